@@ -1,0 +1,156 @@
+/* cli.c - messages, exits, numeric options, progress (see cli.h). */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "numparse.h"
+
+const char *fct_prog = "facet";
+int fct_quiet, fct_verbose;
+
+void fct_cli_init(const char *prog)
+{
+	fct_prog = prog;
+	/* A large buffer makes stdout writes block-sized even on pipes. */
+	static char outbuf[1 << 16];
+	setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
+}
+
+static void vmessage(const char *tag, const char *fmt, va_list ap)
+{
+	char buf[2048];
+	vsnprintf(buf, sizeof buf, fmt, ap);
+	fprintf(stderr, "%s: %s%s\n", fct_prog, tag, buf);
+}
+
+void fct_die(int status, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vmessage("", fmt, ap);
+	va_end(ap);
+	exit(status);
+}
+
+void fct_die_err(const struct fct_err *err)
+{
+	fprintf(stderr, "%s: %s\n", fct_prog, err->msg);
+	exit(1);
+}
+
+void fct_warn(const char *fmt, ...)
+{
+	if (fct_quiet)
+		return;
+	va_list ap;
+	va_start(ap, fmt);
+	vmessage("warning: ", fmt, ap);
+	va_end(ap);
+}
+
+void fct_usage_error(const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vmessage("", fmt, ap);
+	va_end(ap);
+	fprintf(stderr, "Try '%s --help' for more information.\n", fct_prog);
+	exit(2);
+}
+
+double fct_opt_double(const char *opt, const char *arg, double lo, double hi)
+{
+	double v;
+	const char *end = fct_parse_double(arg, &v);
+	if (!end || *end || !isfinite(v))
+		fct_usage_error("%s: \"%s\" is not a number", opt, arg);
+	if (v < lo || v > hi)
+		fct_usage_error("%s: %s must be in [%g, %g]", opt, arg, lo, hi);
+	return v;
+}
+
+long fct_opt_long(const char *opt, const char *arg, long lo, long hi)
+{
+	int64_t v;
+	const char *end = fct_parse_int64(arg, &v);
+	if (!end || *end)
+		fct_usage_error("%s: \"%s\" is not an integer", opt, arg);
+	if (v < lo || v > hi)
+		fct_usage_error("%s: %s must be in [%ld, %ld]", opt, arg, lo, hi);
+	return (long)v;
+}
+
+void fct_opt_doubles(const char *opt, const char *arg, double *v, int n)
+{
+	const char *s = arg;
+	for (int i = 0; i < n; i++) {
+		const char *end = fct_parse_double(s, &v[i]);
+		if (!end || !isfinite(v[i]) || (i < n - 1 ? *end != ',' : *end != 0))
+			fct_usage_error("%s: \"%s\" is not %d comma-separated numbers", opt, arg, n);
+		s = end + 1;
+	}
+}
+
+double fct_now(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+double fct_cpu_time(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void fct_progress_start(struct fct_progress *p, const char *what)
+{
+	p->what = what;
+	p->start = p->last = fct_now();
+	p->on = !fct_quiet && (fct_verbose || isatty(STDERR_FILENO));
+	p->drawn = 0;
+}
+
+void fct_progress_update(struct fct_progress *p, double done, double total)
+{
+	if (!p->on)
+		return;
+	double t = fct_now();
+	/* Quiet for the first second, then a few redraws a second. */
+	if (t - p->start < 1.0 || t - p->last < 0.25)
+		return;
+	p->last = t;
+	p->drawn = 1;
+	if (total > 0)
+		fprintf(stderr, "\r%s: %s %3.0f%%", fct_prog, p->what, 100.0 * done / total);
+	else
+		fprintf(stderr, "\r%s: %s %.0f", fct_prog, p->what, done);
+}
+
+void fct_progress_end(struct fct_progress *p)
+{
+	if (p->on && p->drawn)
+		fprintf(stderr, "\r%s: %s done in %.1f s\n", fct_prog, p->what, fct_now() - p->start);
+	p->drawn = 0;
+}
+
+void fct_report(const char *key, const char *fmt, ...)
+{
+	if (!fct_verbose)
+		return;
+	char buf[512];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(buf, sizeof buf, fmt, ap);
+	va_end(ap);
+	fprintf(stderr, "%s: %s=%s\n", fct_prog, key, buf);
+}

@@ -1,0 +1,57 @@
+/* cli.h - what every facet program does the same way: its name in messages,
+ * the exit convention, numeric options, progress and the -v figures.
+ *
+ * This is the one part of the library that prints and exits; only mains
+ * (src/cmd, tools) use it.  Exit status: 0 success, 1 bad data or I/O,
+ * 2 usage. */
+#ifndef FCT_CLI_H
+#define FCT_CLI_H
+
+#include "err.h"
+
+#define FCT_VERSION "0.1.0"
+
+extern const char *fct_prog;
+
+/* Record the program name (for messages) and set up stdout buffering. */
+void fct_cli_init(const char *prog);
+
+/* "prog: message" on stderr and exit with status. */
+_Noreturn void fct_die(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* "prog: err->msg" and exit 1. */
+_Noreturn void fct_die_err(const struct fct_err *err);
+/* "prog: warning: message" (suppressed by fct_quiet). */
+void fct_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* "prog: usage message" plus the hint to see --help, exit 2. */
+_Noreturn void fct_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+extern int fct_quiet;    /* -q: no warnings, no progress */
+extern int fct_verbose;  /* -v: progress and figures */
+
+/* Numeric option arguments, checked: "prog: -t: "0,01" is not a number",
+ * or "... must be in [lo, hi]"; exit 2 on error. */
+double fct_opt_double(const char *opt, const char *arg, double lo, double hi);
+long fct_opt_long(const char *opt, const char *arg, long lo, long hi);
+/* A comma-separated list of exactly n numbers ("-K fx,fy,cx,cy"). */
+void fct_opt_doubles(const char *opt, const char *arg, double *v, int n);
+
+/* Seconds on a monotonic clock. */
+double fct_now(void);
+/* CPU seconds used by this process. */
+double fct_cpu_time(void);
+
+/* Progress on stderr for long work, with -v or when stderr is a terminal
+ * (never with -q); redrawn at most a few times a second. */
+struct fct_progress {
+	const char *what;
+	double start, last;
+	int on, drawn;
+};
+void fct_progress_start(struct fct_progress *p, const char *what);
+void fct_progress_update(struct fct_progress *p, double done, double total);
+void fct_progress_end(struct fct_progress *p);
+
+/* With -v: one figure as "prog: key=value" on stderr. */
+void fct_report(const char *key, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#endif

@@ -1,0 +1,81 @@
+/* err.c - error messages and checked memory growth. */
+#include "err.h"
+
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int fct_fail(struct fct_err *err, const char *fmt, ...)
+{
+	if (err) {
+		va_list ap;
+		va_start(ap, fmt);
+		vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+		va_end(ap);
+	}
+	return -1;
+}
+
+void fct_err_prefix(struct fct_err *err, const char *fmt, ...)
+{
+	if (!err)
+		return;
+	char head[512], old[sizeof err->msg];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(head, sizeof head, fmt, ap);
+	va_end(ap);
+	memcpy(old, err->msg, sizeof old);
+	snprintf(err->msg, sizeof err->msg, "%s: %s", head, old);
+}
+
+int fct_mul_size(size_t a, size_t b, size_t *out)
+{
+	if (b && a > SIZE_MAX / b)
+		return -1;
+	*out = a * b;
+	return 0;
+}
+
+int fct_add_size(size_t a, size_t b, size_t *out)
+{
+	if (a > SIZE_MAX - b)
+		return -1;
+	*out = a + b;
+	return 0;
+}
+
+int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
+{
+	if (need <= *cap)
+		return 0;
+	size_t ncap = *cap ? *cap : 16;
+	while (ncap < need) {
+		if (ncap > SIZE_MAX / 2)
+			return fct_fail(err, "size overflow");
+		ncap *= 2;
+	}
+	size_t bytes;
+	if (fct_mul_size(ncap, elem, &bytes))
+		return fct_fail(err, "size overflow");
+	void *p = realloc(*ptr, bytes);
+	if (!p)
+		return fct_fail(err, "out of memory (%zu bytes)", bytes);
+	*ptr = p;
+	*cap = ncap;
+	return 0;
+}
+
+char *fct_strdup(const char *s, struct fct_err *err)
+{
+	size_t n = strlen(s) + 1;
+	char *d = malloc(n);
+	if (!d) {
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	memcpy(d, s, n);
+	return d;
+}

@@ -1,0 +1,36 @@
+/* err.h - the one error convention of the library.
+ *
+ * Library functions never print and never exit.  A function that can fail
+ * takes a `struct fct_err *` last, returns -1 (or NULL) on failure and leaves
+ * one line in err->msg of the form "where: what" (no program name, no newline);
+ * the program prefixes its own name and exits 1.  Internal inconsistencies
+ * abort(). */
+#ifndef FCT_ERR_H
+#define FCT_ERR_H
+
+#include <stddef.h>
+
+struct fct_err {
+	char msg[1024];
+};
+
+/* Format a message into err (err may be NULL) and return -1. */
+int fct_fail(struct fct_err *err, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+/* Put "prefix: " before the message already in err (when err is not NULL). */
+void fct_err_prefix(struct fct_err *err, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+/* Overflow-checked a*b and a+b for sizes: return 0 and store, or -1. */
+int fct_mul_size(size_t a, size_t b, size_t *out);
+int fct_add_size(size_t a, size_t b, size_t *out);
+
+/* Grow *ptr (of *cap elements of size elem) to hold at least need elements,
+ * doubling; returns 0, or -1 on overflow or out of memory (with a message). */
+int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err);
+
+/* strdup that reports failure through err. */
+char *fct_strdup(const char *s, struct fct_err *err);
+
+#endif

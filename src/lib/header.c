@@ -1,0 +1,201 @@
+/* header.c - camera, pose, TextureFile and provenance comments (see header.h). */
+#include "header.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+
+#include "numparse.h"
+
+/* Index of the first comment whose text starts with the word key, or -1. */
+static long find_comment(const struct fct_mesh *m, const char *key, size_t from)
+{
+	size_t n = strlen(key);
+	for (size_t i = from; i < m->ncomments; i++) {
+		const char *t = m->comments[i].text;
+		if (!m->comments[i].obj_info && !strncmp(t, key, n) && (t[n] == ' ' || t[n] == '\t' || !t[n]))
+			return (long)i;
+	}
+	return -1;
+}
+
+/* Parse up to max numbers after the key word; returns how many, -1 on junk. */
+static int parse_numbers(const char *s, double *v, int max)
+{
+	int n = 0;
+	for (;;) {
+		while (*s == ' ' || *s == '\t')
+			s++;
+		if (!*s)
+			return n;
+		if (n == max)
+			return -1;
+		const char *end = fct_parse_double(s, &v[n]);
+		if (!end || (*end && *end != ' ' && *end != '\t') || !isfinite(v[n]))
+			return -1;
+		n++;
+		s = end;
+	}
+}
+
+static void remove_comment(struct fct_mesh *m, size_t i)
+{
+	free(m->comments[i].text);
+	memmove(&m->comments[i], &m->comments[i + 1], (m->ncomments - i - 1) * sizeof *m->comments);
+	m->ncomments--;
+}
+
+/* Replace comment `at` (or append when at < 0) with text. */
+static int put_comment(struct fct_mesh *m, long at, const char *text, struct fct_err *err)
+{
+	if (at < 0)
+		return fct_mesh_add_comment(m, text, 0, err);
+	char *t = fct_strdup(text, err);
+	if (!t)
+		return -1;
+	free(m->comments[at].text);
+	m->comments[at].text = t;
+	return 0;
+}
+
+int fct_header_camera(const struct fct_mesh *m, struct fct_camera *cam, struct fct_err *err)
+{
+	memset(cam, 0, sizeof *cam);
+	long i = find_comment(m, "camera", 0);
+	if (i < 0)
+		return 0;
+	const char *t = m->comments[i].text + 6;
+	while (*t == ' ' || *t == '\t')
+		t++;
+	double v[7];
+	int n;
+	if (!strncmp(t, "pinhole", 7) && (n = parse_numbers(t + 7, v, 6)) == 6) {
+		cam->kind = FCT_CAMERA_PINHOLE;
+		cam->fx = v[2], cam->fy = v[3], cam->cx = v[4], cam->cy = v[5];
+		if (!(cam->fx > 0 && cam->fy > 0))
+			return fct_fail(err, "comment camera pinhole: focal lengths must be positive");
+	} else if (!strncmp(t, "cylindrical", 11) && (n = parse_numbers(t + 11, v, 5)) == 5) {
+		cam->kind = FCT_CAMERA_CYLINDRICAL;
+		cam->f = v[2], cam->cy = v[3], cam->theta0 = v[4];
+		if (!(cam->f > 0))
+			return fct_fail(err, "comment camera cylindrical: f must be positive");
+	} else {
+		return fct_fail(err, "comment camera: expected \"pinhole W H fx fy cx cy\" or "
+		                "\"cylindrical W H f cy theta0\"");
+	}
+	if (v[0] < 1 || v[1] < 1 || v[0] > 1e9 || v[1] > 1e9 || v[0] != floor(v[0]) || v[1] != floor(v[1]))
+		return fct_fail(err, "comment camera: bad image size");
+	cam->width = (int)v[0], cam->height = (int)v[1];
+	return 1;
+}
+
+int fct_header_set_camera(struct fct_mesh *m, const struct fct_camera *cam, struct fct_err *err)
+{
+	long i = find_comment(m, "camera", 0);
+	char buf[512];
+	switch (cam->kind) {
+	case FCT_CAMERA_NONE:
+		if (i >= 0)
+			remove_comment(m, (size_t)i);
+		return 0;
+	case FCT_CAMERA_PINHOLE:
+		snprintf(buf, sizeof buf, "camera pinhole %d %d %.17g %.17g %.17g %.17g",
+		         cam->width, cam->height, cam->fx, cam->fy, cam->cx, cam->cy);
+		break;
+	case FCT_CAMERA_CYLINDRICAL:
+		snprintf(buf, sizeof buf, "camera cylindrical %d %d %.17g %.17g %.17g",
+		         cam->width, cam->height, cam->f, cam->cy, cam->theta0);
+		break;
+	}
+	return put_comment(m, i, buf, err);
+}
+
+int fct_header_pose(const struct fct_mesh *m, double pose[12], struct fct_err *err)
+{
+	long i = find_comment(m, "pose", 0);
+	if (i < 0)
+		return 0;
+	if (parse_numbers(m->comments[i].text + 4, pose, 12) != 12)
+		return fct_fail(err, "comment pose: expected 12 numbers (3x4 camera-to-world matrix, row by row)");
+	return 1;
+}
+
+int fct_header_set_pose(struct fct_mesh *m, const double pose[12], struct fct_err *err)
+{
+	long i = find_comment(m, "pose", 0);
+	if (!pose) {
+		if (i >= 0)
+			remove_comment(m, (size_t)i);
+		return 0;
+	}
+	char buf[512];
+	int n = snprintf(buf, sizeof buf, "pose");
+	for (int k = 0; k < 12; k++)
+		n += snprintf(buf + n, sizeof buf - (size_t)n, " %.17g", pose[k]);
+	return put_comment(m, i, buf, err);
+}
+
+/* Index of the i-th TextureFile comment, or -1. */
+static long texture_comment(const struct fct_mesh *m, size_t i)
+{
+	long at = -1;
+	for (size_t k = 0; k <= i; k++)
+		if ((at = find_comment(m, "TextureFile", (size_t)(at + 1))) < 0)
+			return -1;
+	return at;
+}
+
+size_t fct_header_texture_count(const struct fct_mesh *m)
+{
+	size_t n = 0;
+	while (texture_comment(m, n) >= 0)
+		n++;
+	return n;
+}
+
+const char *fct_header_texture(const struct fct_mesh *m, size_t i)
+{
+	long at = texture_comment(m, i);
+	if (at < 0)
+		return NULL;
+	const char *t = m->comments[at].text + 11;
+	while (*t == ' ' || *t == '\t')
+		t++;
+	return t;
+}
+
+int fct_header_set_texture(struct fct_mesh *m, size_t i, const char *path, struct fct_err *err)
+{
+	if (strchr(path, '\n'))
+		return fct_fail(err, "TextureFile: newline in path");
+	size_t n = strlen(path) + 16;
+	char *buf = malloc(n);
+	if (!buf)
+		return fct_fail(err, "out of memory");
+	snprintf(buf, n, "TextureFile %s", path);
+	int rc = put_comment(m, texture_comment(m, i), buf, err);
+	free(buf);
+	return rc;
+}
+
+int fct_header_add_provenance(struct fct_mesh *m, const char *prog, int argc, char **argv,
+                              struct fct_err *err)
+{
+	size_t n = strlen(prog) + 8;
+	for (int i = 0; i < argc; i++)
+		n += strlen(argv[i]) + 1;
+	char *buf = malloc(n);
+	if (!buf)
+		return fct_fail(err, "out of memory");
+	char *p = buf + sprintf(buf, "facet %s", prog);
+	for (int i = 0; i < argc; i++) {
+		*p++ = ' ';
+		for (const char *a = argv[i]; *a; a++)
+			*p++ = (*a == ' ' || *a == '\t' || *a == '\n' || *a == '\r') ? '_' : *a;
+	}
+	*p = 0;
+	int rc = fct_mesh_add_comment(m, buf, 0, err);
+	free(buf);
+	return rc;
+}

@@ -1,0 +1,45 @@
+/* header.h - the header comments of DESIGN.md that travel with a mesh.
+ *
+ *   comment camera pinhole W H fx fy cx cy
+ *   comment camera cylindrical W H f cy theta0
+ *   comment pose r11 r12 r13 t1 r21 r22 r23 t2 r31 r32 r33 t3   (camera-to-world)
+ *   comment TextureFile image.png
+ *   comment facet <program> <arguments...>
+ *
+ * Numbers are written with %.17g so they survive any number of stages. */
+#ifndef FCT_HEADER_H
+#define FCT_HEADER_H
+
+#include "mesh.h"
+
+enum fct_camera_kind { FCT_CAMERA_NONE, FCT_CAMERA_PINHOLE, FCT_CAMERA_CYLINDRICAL };
+
+struct fct_camera {
+	enum fct_camera_kind kind;
+	int width, height;
+	double fx, fy, cx, cy;   /* pinhole */
+	double f, theta0;        /* cylindrical; cy is shared with pinhole */
+};
+
+/* The camera comment of m: 1 found, 0 none, -1 malformed (message set). */
+int fct_header_camera(const struct fct_mesh *m, struct fct_camera *cam, struct fct_err *err);
+/* Replace any camera comment of m with cam (kind NONE removes it). */
+int fct_header_set_camera(struct fct_mesh *m, const struct fct_camera *cam, struct fct_err *err);
+
+/* The camera-to-world pose as a row-major 3x4 matrix [R | t]: 1, 0 or -1. */
+int fct_header_pose(const struct fct_mesh *m, double pose[12], struct fct_err *err);
+/* Replace any pose comment (pose NULL removes it). */
+int fct_header_set_pose(struct fct_mesh *m, const double pose[12], struct fct_err *err);
+
+/* Number of TextureFile comments, and the i-th path (NULL past the end). */
+size_t fct_header_texture_count(const struct fct_mesh *m);
+const char *fct_header_texture(const struct fct_mesh *m, size_t i);
+/* Replace the i-th TextureFile path (i == count appends one). */
+int fct_header_set_texture(struct fct_mesh *m, size_t i, const char *path, struct fct_err *err);
+
+/* Append "facet PROG ARGS..." (arguments separated by blanks; blanks and
+ * newlines inside an argument become '_' so the line stays one line). */
+int fct_header_add_provenance(struct fct_mesh *m, const char *prog, int argc, char **argv,
+                              struct fct_err *err);
+
+#endif

@@ -1,0 +1,44 @@
+/* meshio.h - read a mesh from any supported format, write it where asked.
+ *
+ * Reading detects the format from the content: PLY when it starts with the
+ * PLY magic, otherwise OBJ, which must hold at least one vertex.  Writing
+ * picks OBJ (with a .mtl beside it when textured) for names ending in .obj
+ * and PLY otherwise; named outputs are atomic (output.h).
+ *
+ * TextureFile paths follow DESIGN.md: on the pipes they are relative to the
+ * current folder; reading a file from another folder prefixes that folder,
+ * and writing a named file rewrites them relative to the file's folder. */
+#ifndef FCT_MESHIO_H
+#define FCT_MESHIO_H
+
+#include <stdio.h>
+
+#include "mesh.h"
+
+enum fct_format {
+	FCT_FORMAT_PLY_ASCII, FCT_FORMAT_PLY_LE, FCT_FORMAT_PLY_BE, FCT_FORMAT_OBJ
+};
+
+/* "ply ascii", "ply binary_little_endian", "ply binary_big_endian", "obj". */
+const char *fct_format_name(enum fct_format fmt);
+
+/* Read from path ("-" or NULL: stdin, named "<stdin>"); m is initialised
+ * here.  fmt (may be NULL) gets the format read. */
+int fct_mesh_read_file(struct fct_mesh *m, const char *path, enum fct_format *fmt,
+                       struct fct_err *err);
+
+/* Read from an open stream called name; dir is the folder of the file (NULL
+ * for the current one). */
+int fct_mesh_read_stream(struct fct_mesh *m, FILE *f, const char *name, const char *dir,
+                         enum fct_format *fmt, struct fct_err *err);
+
+/* Write m to path ("-" or NULL: stdout as PLY): OBJ when path ends in .obj,
+ * otherwise ascii PLY when ascii is set, binary little-endian PLY if not. */
+int fct_mesh_write_file(const struct fct_mesh *m, const char *path, int ascii,
+                        struct fct_err *err);
+
+/* Write m to a stream in the given format (OBJ without a material library). */
+int fct_mesh_write_stream(const struct fct_mesh *m, FILE *f, enum fct_format fmt,
+                          struct fct_err *err);
+
+#endif

@@ -1,0 +1,95 @@
+/* output.c - write to a temporary file and rename on success (see output.h). */
+#include "output.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "path.h"
+
+int fct_out_open(struct fct_out *o, const char *path, struct fct_err *err)
+{
+	memset(o, 0, sizeof *o);
+	if (!path || !strcmp(path, "-")) {
+		o->f = stdout;
+		return 0;
+	}
+	char *dir = fct_path_dir(path, err);
+	if (!dir)
+		return -1;
+	const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+	size_t n = strlen(dir) + strlen(base) + 16;
+	o->tmp = malloc(n);
+	o->path = fct_strdup(path, err);
+	if (!o->tmp || !o->path) {
+		free(dir);
+		fct_out_abort(o);
+		return fct_fail(err, "out of memory");
+	}
+	snprintf(o->tmp, n, "%s/.%s.XXXXXX", dir, base);
+	free(dir);
+	int fd = mkstemp(o->tmp);
+	if (fd < 0) {
+		int e = errno;
+		free(o->tmp);
+		o->tmp = NULL;
+		fct_out_abort(o);
+		return fct_fail(err, "%s: %s", path, strerror(e));
+	}
+	/* mkstemp makes 0600; give the file the permissions a plain create would. */
+	mode_t mask = umask(0);
+	umask(mask);
+	fchmod(fd, 0666 & ~mask);
+	if (!(o->f = fdopen(fd, "wb"))) {
+		close(fd);
+		fct_out_abort(o);
+		return fct_fail(err, "%s: %s", path, strerror(errno));
+	}
+	return 0;
+}
+
+int fct_out_commit(struct fct_out *o, struct fct_err *err)
+{
+	if (!o->f)
+		return fct_fail(err, "output already closed");
+	if (!o->path) {
+		int bad = fflush(stdout) != 0 || ferror(stdout);
+		o->f = NULL;
+		if (bad && errno != EPIPE)
+			return fct_fail(err, "<stdout>: write error: %s", strerror(errno ? errno : EIO));
+		return bad ? -1 : 0;
+	}
+	int bad = fflush(o->f) != 0 || ferror(o->f);
+	int e = errno;
+	if (fclose(o->f) != 0 && !bad)
+		bad = 1, e = errno;
+	o->f = NULL;
+	if (bad) {
+		fct_fail(err, "%s: write error: %s", o->path, strerror(e ? e : EIO));
+		fct_out_abort(o);
+		return -1;
+	}
+	if (rename(o->tmp, o->path) != 0) {
+		fct_fail(err, "%s: %s", o->path, strerror(errno));
+		fct_out_abort(o);
+		return -1;
+	}
+	free(o->tmp);
+	free(o->path);
+	o->tmp = o->path = NULL;
+	return 0;
+}
+
+void fct_out_abort(struct fct_out *o)
+{
+	if (o->f && o->f != stdout)
+		fclose(o->f);
+	o->f = NULL;
+	if (o->tmp)
+		unlink(o->tmp);
+	free(o->tmp);
+	free(o->path);
+	o->tmp = o->path = NULL;
+}

@@ -1,0 +1,134 @@
+/* path.c - folder, join and relative paths (see path.h). */
+#include "path.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+char *fct_path_dir(const char *path, struct fct_err *err)
+{
+	const char *slash = strrchr(path, '/');
+	if (!slash)
+		return fct_strdup(".", err);
+	if (slash == path)
+		return fct_strdup("/", err);
+	size_t n = (size_t)(slash - path);
+	char *d = malloc(n + 1);
+	if (!d) {
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	memcpy(d, path, n);
+	d[n] = 0;
+	return d;
+}
+
+char *fct_path_join(const char *dir, const char *rel, struct fct_err *err)
+{
+	if (rel[0] == '/' || !dir || !strcmp(dir, "."))
+		return fct_strdup(rel, err);
+	size_t n = strlen(dir) + strlen(rel) + 2;
+	char *p = malloc(n);
+	if (!p) {
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	size_t dl = strlen(dir);
+	snprintf(p, n, "%s%s%s", dir, dl && dir[dl - 1] == '/' ? "" : "/", rel);
+	return p;
+}
+
+/* Absolute, normalised form of p (no ".", "..", or repeated slashes). */
+static char *absolute(const char *p, struct fct_err *err)
+{
+	char *cwd = NULL;
+	if (p[0] != '/' && !(cwd = getcwd(NULL, 0))) {
+		fct_fail(err, "cannot get the current folder");
+		return NULL;
+	}
+	size_t n = (cwd ? strlen(cwd) : 0) + strlen(p) + 3;
+	char *in = malloc(n), *out = malloc(n);
+	if (!in || !out) {
+		free(cwd), free(in), free(out);
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	snprintf(in, n, "%s/%s", cwd ? cwd : "", p);
+	free(cwd);
+	size_t o = 0;
+	for (char *s = in; *s;) {
+		while (*s == '/')
+			s++;
+		char *e = s;
+		while (*e && *e != '/')
+			e++;
+		size_t len = (size_t)(e - s);
+		if (len == 0 || (len == 1 && s[0] == '.')) {
+		} else if (len == 2 && s[0] == '.' && s[1] == '.') {
+			while (o > 0 && out[o - 1] != '/')
+				o--;
+			if (o > 0)
+				o--;
+		} else {
+			out[o++] = '/';
+			memcpy(out + o, s, len);
+			o += len;
+		}
+		s = e;
+	}
+	if (o == 0)
+		out[o++] = '/';
+	out[o] = 0;
+	free(in);
+	return out;
+}
+
+char *fct_path_relative(const char *target, const char *from, struct fct_err *err)
+{
+	if (target[0] == '/')
+		return fct_strdup(target, err);
+	char *t = absolute(target, err), *f = t ? absolute(from, err) : NULL;
+	if (!t || !f) {
+		free(t);
+		return NULL;
+	}
+	/* Longest common prefix ending at a folder boundary. */
+	size_t common = 0;
+	for (size_t i = 0;; i++) {
+		char a = t[i], b = f[i];
+		if ((a == '/' || !a) && (b == '/' || !b))
+			common = i;
+		if (!a || !b || a != b)
+			break;
+	}
+	size_t ups = 0;
+	if (f[common])
+		for (const char *s = f + common; *s; s++)
+			ups += *s == '/';
+	if (!strcmp(f, "/"))
+		ups = 0, common = 0;
+	const char *rest = t + common + (t[common] == '/');
+	size_t n = 3 * ups + strlen(rest) + 2;
+	char *r = malloc(n);
+	if (r) {
+		r[0] = 0;
+		for (size_t i = 0; i < ups; i++)
+			strcat(r, "../");
+		strcat(r, rest);
+		if (!r[0])
+			strcpy(r, ".");
+	} else {
+		fct_fail(err, "out of memory");
+	}
+	free(t);
+	free(f);
+	return r;
+}
+
+int fct_path_has_suffix(const char *path, const char *suffix)
+{
+	size_t n = strlen(path), k = strlen(suffix);
+	return n >= k && !strcasecmp(path + n - k, suffix);
+}

@@ -1,0 +1,17 @@
+/* path.h - the little path arithmetic that TextureFile needs. */
+#ifndef FCT_PATH_H
+#define FCT_PATH_H
+
+#include "err.h"
+
+/* The folder part of path ("." when it has none); malloc'd. */
+char *fct_path_dir(const char *path, struct fct_err *err);
+/* dir/rel, or rel itself when rel is absolute or dir is "." or NULL; malloc'd. */
+char *fct_path_join(const char *dir, const char *rel, struct fct_err *err);
+/* The path of target relative to folder from (both relative to the current
+ * folder or absolute); an absolute target stays absolute.  malloc'd. */
+char *fct_path_relative(const char *target, const char *from, struct fct_err *err);
+/* Does path end in suffix, ignoring case (".obj")? */
+int fct_path_has_suffix(const char *path, const char *suffix);
+
+#endif

@@ -1,0 +1,73 @@
+# tests/lib.sh - helpers for the command tests in tests/cmd/*.sh.
+#
+# A test script sources this file and calls run_case / check_* ; each call
+# counts one pass or one failure.  The runner reads the closing line.
+#
+#   run_case STATUS "command" [stdout-file|""] [stderr-prefix]
+#       runs the command with sh, from the top folder, with $FCT_BIN first
+#       in PATH; checks the exit status, the exact stdout (when a file is
+#       named; "" skips) and that stderr is one line starting with the prefix
+#       (when given; for non-zero status the one-line rule always holds).
+
+: "${FCT_BIN:=build/bin}"
+case $FCT_BIN in /*) ;; *) FCT_BIN=$(pwd)/$FCT_BIN ;; esac
+PATH=$FCT_BIN:$PATH
+export PATH FCT_BIN
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/facet-test.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+pass=0
+fail=0
+
+ok() { pass=$((pass + 1)); }
+not_ok() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+
+run_case() {
+	want_status=$1 cmd=$2 want_out=${3:-} want_err=${4:-}
+	sh -c "$cmd" >"$TMP/out" 2>"$TMP/err"
+	st=$?
+	if [ "$st" != "$want_status" ]; then
+		not_ok "$cmd: exit status $st, expected $want_status; stderr: $(head -c 300 "$TMP/err")"
+		return
+	fi
+	if [ -n "$want_out" ] && ! cmp -s "$TMP/out" "$want_out"; then
+		not_ok "$cmd: output differs from $want_out"
+		return
+	fi
+	if [ "$want_status" != 0 ]; then
+		lines=$(wc -l <"$TMP/err")
+		if [ "$lines" != 1 ]; then
+			not_ok "$cmd: stderr has $lines lines, expected one: $(head -c 300 "$TMP/err")"
+			return
+		fi
+	fi
+	if [ -n "$want_err" ]; then
+		case $(cat "$TMP/err") in
+		"$want_err"*) ;;
+		*) not_ok "$cmd: stderr \"$(head -c 300 "$TMP/err")\" does not start with \"$want_err\""; return ;;
+		esac
+	fi
+	ok
+}
+
+# check_true "description" command...: passes when the command succeeds.
+check_true() {
+	desc=$1
+	shift
+	if "$@"; then ok; else not_ok "$desc"; fi
+}
+
+# check_num "description" VALUE OP REF: numeric comparison with awk (OP: < <= > >= ==).
+check_num() {
+	if awk -v a="$2" -v b="$4" -v op="$3" 'BEGIN {
+		if (a !~ /^[-+0-9.eEinfa]+$/) exit 1
+		if (op == "<") exit !(a + 0 < b + 0); if (op == "<=") exit !(a + 0 <= b + 0)
+		if (op == ">") exit !(a + 0 > b + 0); if (op == ">=") exit !(a + 0 >= b + 0)
+		if (op == "==") exit !(a + 0 == b + 0); exit 1 }'; then ok
+	else not_ok "$1: $2 $3 $4 does not hold"; fi
+}
+
+# The closing line the runner sums.
+finish() {
+	echo "$(basename "$0"): $pass passed, $fail failed"
+	[ "$fail" = 0 ]
+}
