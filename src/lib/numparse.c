@@ -30,6 +30,8 @@ const char *fct_parse_double(const char *s, double *out)
 	int neg = 0;
 	if (*p == '-' || *p == '+')
 		neg = *p++ == '-';
+	if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X'))
+		return slow_path(s, out);  /* hexadecimal floats */
 	uint64_t mant = 0;
 	int digits = 0, frac = 0, any = 0;
 	while (*p == '0')  /* leading zeros carry no precision */

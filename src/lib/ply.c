@@ -279,6 +279,14 @@ static void where(const struct body *b, char *buf, size_t n)
 		snprintf(buf, n, "%s: byte %" PRIu64, b->r->name, fct_reader_offset(b->r));
 }
 
+/* The input ended (or failed) inside row `row` of the element. */
+static int body_short(const struct body *b, uint64_t row)
+{
+	char what[300];
+	snprintf(what, sizeof what, "element %s %" PRIu64, b->he->name, row);
+	return fct_reader_fail_short(b->r, b->err, what);
+}
+
 static int body_fail(const struct body *b, uint64_t row, const struct slot *s, const char *what)
 {
 	char w[600];
@@ -409,12 +417,12 @@ static int read_binary_elem(struct body *b)
 				return -1;
 		}
 		if (fixed && fct_reader_fill(r, (size_t)rowmin) < rowmin)
-			return fct_reader_fail_short(r, b->err, he->name);
+			return body_short(b, i);
 		for (size_t j = 0; j < ns; j++) {
 			struct slot *s = &b->slots[j];
 			if (!s->count_type) {
 				if (!fixed && fct_reader_fill(r, s->size) < s->size)
-					return fct_reader_fail_short(r, b->err, he->name);
+					return body_short(b, i);
 				const unsigned char *p = r->buf + r->pos;
 				r->pos += s->size;
 				if (s->kind == SLOT_COLUMN) {
@@ -430,7 +438,7 @@ static int read_binary_elem(struct body *b)
 				continue;
 			}
 			if (fct_reader_fill(r, s->count_size) < s->count_size)
-				return fct_reader_fail_short(r, b->err, he->name);
+				return body_short(b, i);
 			unsigned char raw[8];
 			int ok;
 			load_raw(raw, r->buf + r->pos, s->count_size, b->swap);
@@ -445,7 +453,7 @@ static int read_binary_elem(struct body *b)
 				if (reserve_items(b, s, used + (size_t)k, batch))
 					return -1;
 				if (fct_reader_fill(r, batch * s->size) < batch * s->size)
-					return fct_reader_fail_short(r, b->err, he->name);
+					return body_short(b, i);
 				const unsigned char *p = r->buf + r->pos;
 				if (s->kind == SLOT_COLUMN) {
 					char *d = (char *)s->col->data + (used + (size_t)k) * s->size;
@@ -561,6 +569,9 @@ static int read_ascii_elem(struct body *b)
 {
 	const struct helem *he = b->he;
 	struct fct_mesh *m = b->m;
+	if (!he->nprops && he->count)
+		return fct_fail(b->err, "%s:%" PRIu64 ": element %s: %" PRIu64 " rows with no properties",
+		                b->r->name, b->r->line, he->name, he->count);
 	if (he->count > SIZE_MAX / 16)
 		return fct_fail(b->err, "%s: element %s: count too large", b->r->name, he->name);
 	size_t count = (size_t)he->count;
@@ -626,7 +637,7 @@ static int read_ascii_elem(struct body *b)
 
 /* Give element he its destination columns in m and a slot per property. */
 static int plan_elem(struct fct_mesh *m, const struct helem *he, struct slot *slots,
-                     struct fct_elem **dest_out, struct fct_err *err)
+                     struct fct_elem **dest_out, const char *name, struct fct_err *err)
 {
 	int is_vertex = !strcmp(he->name, "vertex"), is_face = !strcmp(he->name, "face");
 	struct fct_elem *dest;
@@ -656,8 +667,8 @@ static int plan_elem(struct fct_mesh *m, const struct helem *he, struct slot *sl
 		} else if (is_face && hp->count_type && !have_face_list &&
 		           (!strcmp(hp->name, "vertex_indices") || !strcmp(hp->name, "vertex_index"))) {
 			if (hp->type == FCT_FLOAT32 || hp->type == FCT_FLOAT64)
-				return fct_fail(err, "element face: property %s: index type %s is not an integer type",
-				                hp->name, fct_type_name(hp->type));
+				return fct_fail(err, "%s: element face: property %s: index type %s is not an integer type",
+				                name, hp->name, fct_type_name(hp->type));
 			s->kind = SLOT_FACE;
 			have_face_list = 1;
 			m->fcount_type = hp->count_type;
@@ -667,7 +678,7 @@ static int plan_elem(struct fct_mesh *m, const struct helem *he, struct slot *sl
 		}
 	}
 	if (is_face && !have_face_list)
-		return fct_fail(err, "element face has no vertex_indices list");
+		return fct_fail(err, "%s: element face has no vertex_indices list", name);
 	if (ncols && !(dest->props = calloc(ncols, sizeof *dest->props)))
 		return fct_fail(err, "out of memory");
 	for (size_t j = 0; j < he->nprops; j++) {
@@ -726,7 +737,7 @@ int fct_ply_read(struct fct_mesh *m, struct fct_reader *r, enum fct_ply_format *
 		}
 		b.slots = slots;
 		b.swap = (h.fmt == FCT_PLY_BINARY_BE) != host_is_big_endian();
-		if (plan_elem(m, he, slots, &b.dest, err))
+		if (plan_elem(m, he, slots, &b.dest, r->name, err))
 			goto out;
 		if (!strcmp(he->name, "face"))
 			m->has_faces = 1;
