@@ -212,6 +212,7 @@ struct slot {
 	enum slot_kind kind;
 	enum fct_type type, count_type;
 	size_t size, count_size;
+	size_t off;               /* byte offset in a row, for the fast paths */
 	struct fct_prop *col;
 	const char *name;
 };
@@ -382,6 +383,103 @@ static int check_position(struct body *b, uint64_t row, const struct slot *s, do
 	return isfinite(v) ? 0 : body_fail(b, row, s, "coordinate is not a finite number");
 }
 
+/* Store the scalar of slot s for row i from the file bytes at p (host order). */
+static inline int store_scalar_fast(struct body *b, const struct slot *s, size_t i, const unsigned char *p)
+{
+	if (s->kind == SLOT_COLUMN) {
+		char *d = (char *)s->col->data + i * s->size;
+		switch (s->size) {
+		case 1: *d = (char)*p; break;
+		case 2: memcpy(d, p, 2); break;
+		case 4: memcpy(d, p, 4); break;
+		default: memcpy(d, p, 8); break;
+		}
+		return 0;
+	}
+	double v;
+	if (s->type == FCT_FLOAT32) {
+		float f;
+		memcpy(&f, p, 4);
+		v = f;
+	} else {
+		v = raw_to_double(p, s->type);
+	}
+	if (!isfinite(v))
+		return -1;
+	b->m->xyz[3 * i + (s->kind - SLOT_X)] = v;
+	return 0;
+}
+
+/* Rows [i, limit) that lie whole in the read buffer, for the common layouts
+ * (host byte order; scalars only, or a face list of uchar count and 32-bit
+ * indices followed by scalars).  Returns the number of rows stored; stops
+ * early, without consuming the row, at anything unusual so that the general
+ * path reads it again and reports it.  (size_t)-1 on failure. */
+static size_t fast_rows(struct body *b, size_t i, size_t limit)
+{
+	struct fct_reader *r = b->r;
+	size_t ns = b->he->nprops, first = 0, rest = 0;
+	if (b->swap || !ns)
+		return 0;
+	int face = b->slots[0].kind == SLOT_FACE;
+	if (face) {
+		if (b->slots[0].count_size != 1 || b->slots[0].size != 4)
+			return 0;
+		first = 1;
+	}
+	for (size_t j = first; j < ns; j++) {
+		if (b->slots[j].count_type)
+			return 0;
+		b->slots[j].off = rest;
+		rest += b->slots[j].size;
+	}
+	const unsigned char *p = r->buf + r->pos, *end = r->buf + r->len;
+	size_t k = i;
+	struct fct_mesh *m = b->m;
+	for (; k < limit; k++) {
+		const unsigned char *row = p;
+		if (face) {
+			if (end - p < 1)
+				break;
+			size_t c = *p;
+			if (c < 3 || (size_t)(end - p) < 1 + 4 * c + rest)
+				break;
+			size_t used = m->fstart[k];
+			if (used + c > UINT32_MAX)
+				break;
+			if (used + c > m->fvert_cap &&
+			    fct_grow((void **)&m->fvert, &m->fvert_cap, used + c, sizeof *m->fvert, b->err))
+				return (size_t)-1;
+			uint32_t *dst = m->fvert + used, neg = 0;
+			if (c == 3) {  /* the rule: a constant-size copy the compiler inlines */
+				memcpy(dst, p + 1, 12);
+				neg = dst[0] | dst[1] | dst[2];
+			} else {
+				memcpy(dst, p + 1, 4 * c);
+				for (size_t q = 0; q < c; q++)
+					neg |= dst[q];
+			}
+			if (b->slots[0].type == FCT_INT32 ? (neg >> 31) : 0)
+				break;
+			if (b->slots[0].type != FCT_INT32 && b->slots[0].type != FCT_UINT32)
+				break;
+			m->fstart[k + 1] = (uint32_t)(used + c);
+			row = p + 1 + 4 * c;
+		} else if ((size_t)(end - p) < rest) {
+			break;
+		}
+		size_t j;
+		for (j = first; j < ns; j++)
+			if (store_scalar_fast(b, &b->slots[j], k, row + b->slots[j].off))
+				break;
+		if (j < ns)
+			break;
+		p = row + rest;
+	}
+	r->pos = (size_t)(p - r->buf);
+	return k - i;
+}
+
 /* Binary body of one element. */
 static int read_binary_elem(struct body *b)
 {
@@ -410,11 +508,24 @@ static int read_binary_elem(struct body *b)
 	if (start_rows(b, reserved))
 		return -1;
 	struct fct_mesh *m = b->m;
+	if (b->slots[0].kind == SLOT_FACE && left != UINT64_MAX) {
+		/* Triangles are the rule; the bytes left bound how many indices can come. */
+		size_t guess = left / b->slots[0].size < 3 * (uint64_t)count ? (size_t)(left / b->slots[0].size) : 3 * count;
+		if (fct_grow((void **)&m->fvert, &m->fvert_cap, guess, sizeof *m->fvert, b->err))
+			return -1;
+	}
 	for (size_t i = 0; i < count; i++) {
 		if (i == reserved) {
 			reserved = count - i < i ? count : 2 * i;
 			if (reserve_rows(b, reserved))
 				return -1;
+		}
+		size_t done = fast_rows(b, i, reserved);
+		if (done == (size_t)-1)
+			return -1;
+		if (done) {
+			i += done - 1;
+			continue;
 		}
 		if (fixed && fct_reader_fill(r, (size_t)rowmin) < rowmin)
 			return body_short(b, i);
@@ -791,7 +902,10 @@ int fct_ply_read(struct fct_mesh *m, struct fct_reader *r, enum fct_ply_format *
 	if (fct_grow((void **)&m->fstart, &m->fstart_cap, m->nf + 1, sizeof *m->fstart, err))
 		goto out;
 	m->fstart[0] = 0;
-	for (size_t f = 0; f < m->nf; f++)
+	uint32_t maxv = 0;
+	for (size_t k = 0; k < m->fstart[m->nf]; k++)
+		maxv = m->fvert[k] > maxv ? m->fvert[k] : maxv;
+	for (size_t f = 0; maxv >= m->nv && f < m->nf; f++)
 		for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++)
 			if (m->fvert[k] >= m->nv) {
 				fct_fail(err, "%s: element face %zu: vertex index %" PRIu32 " out of range (%zu vertices)",
