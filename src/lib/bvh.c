@@ -1,0 +1,490 @@
+/* bvh.c - binned-SAH bounding volume hierarchy and nearest-first closest
+ * point queries (see bvh.h).  The build follows Wald, "On fast Construction
+ * of SAH-based Bounding Volume Hierarchies" (2007): centroids are binned
+ * along each axis and the split with the least area-weighted count wins. */
+#include "bvh.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+
+enum {
+	LEAF_MAX = 4,          /* triangles per leaf */
+	NBINS = 16,
+	SAH_DEPTH = 40,        /* below this depth, split at the object median */
+	STACK_MAX = 128        /* > SAH_DEPTH + 32 + 1: the deepest possible tree */
+};
+
+/* Bounds of one triangle during the build: float, rounded outward. */
+struct tbox {
+	float lo[3], hi[3];
+	float mid[3];
+};
+
+struct box {
+	float lo[3], hi[3];
+};
+
+static void box_empty(struct box *b)
+{
+	for (int k = 0; k < 3; k++) {
+		b->lo[k] = FLT_MAX;
+		b->hi[k] = -FLT_MAX;
+	}
+}
+
+static void box_grow(struct box *b, const float lo[3], const float hi[3])
+{
+	for (int k = 0; k < 3; k++) {
+		if (lo[k] < b->lo[k]) b->lo[k] = lo[k];
+		if (hi[k] > b->hi[k]) b->hi[k] = hi[k];
+	}
+}
+
+static double box_area(const struct box *b)
+{
+	double x = (double)b->hi[0] - b->lo[0], y = (double)b->hi[1] - b->lo[1];
+	double z = (double)b->hi[2] - b->lo[2];
+	if (x < 0 || y < 0 || z < 0)
+		return 0;
+	return x * y + y * z + z * x;
+}
+
+/* Floats that enclose v: the nearest float at or below / at or above it.
+ * Beyond float range (|v| > 3.4e38) the bounds clamp to +-FLT_MAX and no
+ * longer enclose: such coordinates are outside what the tree supports. */
+static float float_down(double v)
+{
+	if (v <= -FLT_MAX) return -FLT_MAX;
+	if (v >= FLT_MAX) return FLT_MAX;
+	float f = (float)v;
+	return (double)f > v ? nextafterf(f, -FLT_MAX) : f;
+}
+
+static float float_up(double v)
+{
+	if (v >= FLT_MAX) return FLT_MAX;
+	if (v <= -FLT_MAX) return -FLT_MAX;
+	float f = (float)v;
+	return (double)f < v ? nextafterf(f, FLT_MAX) : f;
+}
+
+/* Work item of the build: make node `node` over idx[begin..end). */
+struct task {
+	uint32_t node, begin, end;
+	int depth;
+};
+
+/* For the object-median fallback: order by centroid on one axis, then index. */
+struct median_key {
+	float v;
+	uint32_t i;
+};
+
+static int median_cmp(const void *pa, const void *pb)
+{
+	const struct median_key *a = pa, *b = pb;
+	if (a->v != b->v)
+		return a->v < b->v ? -1 : 1;
+	return (a->i > b->i) - (a->i < b->i);
+}
+
+struct builder {
+	const struct tbox *tb;
+	uint32_t *idx;
+	struct fct_bvh_node *nodes;
+	uint32_t nnodes;
+	struct median_key *keys;
+};
+
+static void range_box(const struct builder *bd, uint32_t begin, uint32_t end,
+                      struct box *bb, struct box *cb)
+{
+	box_empty(bb);
+	box_empty(cb);
+	for (uint32_t i = begin; i < end; i++) {
+		const struct tbox *t = &bd->tb[bd->idx[i]];
+		box_grow(bb, t->lo, t->hi);
+		box_grow(cb, t->mid, t->mid);
+	}
+}
+
+/* Choose where to split idx[begin..end) and reorder it so that the first
+ * part comes first; returns the index of the first element of the second
+ * part, strictly between begin and end. */
+static uint32_t split(struct builder *bd, uint32_t begin, uint32_t end, int depth,
+                      const struct box *cb)
+{
+	uint32_t n = end - begin;
+	int axis = 0;
+	double ext[3];
+	for (int k = 0; k < 3; k++)
+		ext[k] = (double)cb->hi[k] - cb->lo[k];
+	if (ext[1] > ext[axis]) axis = 1;
+	if (ext[2] > ext[axis]) axis = 2;
+	if (!(ext[axis] > 0))
+		return begin + n / 2;   /* every centroid equal: any halving will do */
+
+	if (depth < SAH_DEPTH) {
+		int best_axis = -1, best_bin = 0;
+		double best_cost = INFINITY;
+		for (int k = 0; k < 3; k++) {
+			if (!(ext[k] > 0))
+				continue;
+			struct box bins[NBINS];
+			uint32_t cnt[NBINS] = {0};
+			for (int j = 0; j < NBINS; j++)
+				box_empty(&bins[j]);
+			double scale = NBINS / ext[k];
+			for (uint32_t i = begin; i < end; i++) {
+				const struct tbox *t = &bd->tb[bd->idx[i]];
+				int j = (int)(((double)t->mid[k] - cb->lo[k]) * scale);
+				if (j >= NBINS) j = NBINS - 1;
+				cnt[j]++;
+				box_grow(&bins[j], t->lo, t->hi);
+			}
+			/* Sweep from the right for the right-hand areas, then from the left. */
+			double right_area[NBINS];
+			uint32_t right_cnt[NBINS];
+			struct box acc;
+			box_empty(&acc);
+			uint32_t c = 0;
+			for (int j = NBINS - 1; j > 0; j--) {
+				box_grow(&acc, bins[j].lo, bins[j].hi);
+				c += cnt[j];
+				right_area[j] = box_area(&acc);
+				right_cnt[j] = c;
+			}
+			box_empty(&acc);
+			c = 0;
+			for (int j = 0; j < NBINS - 1; j++) {
+				box_grow(&acc, bins[j].lo, bins[j].hi);
+				c += cnt[j];
+				if (c == 0 || right_cnt[j + 1] == 0)
+					continue;
+				double cost = box_area(&acc) * c + right_area[j + 1] * right_cnt[j + 1];
+				if (cost < best_cost) {
+					best_cost = cost;
+					best_axis = k;
+					best_bin = j;
+				}
+			}
+		}
+		if (best_axis >= 0) {
+			int k = best_axis;
+			double scale = NBINS / ext[k];
+			uint32_t i = begin, j = end;
+			/* In-place partition: bins <= best_bin to the front. */
+			while (i < j) {
+				const struct tbox *t = &bd->tb[bd->idx[i]];
+				int bin = (int)(((double)t->mid[k] - cb->lo[k]) * scale);
+				if (bin >= NBINS) bin = NBINS - 1;
+				if (bin <= best_bin) {
+					i++;
+				} else {
+					uint32_t tmp = bd->idx[i];
+					bd->idx[i] = bd->idx[--j];
+					bd->idx[j] = tmp;
+				}
+			}
+			if (i > begin && i < end)
+				return i;
+		}
+	}
+	/* Object median along the widest axis: halves the range, bounding depth. */
+	for (uint32_t i = 0; i < n; i++) {
+		uint32_t t = bd->idx[begin + i];
+		bd->keys[i].v = bd->tb[t].mid[axis];
+		bd->keys[i].i = t;
+	}
+	qsort(bd->keys, n, sizeof *bd->keys, median_cmp);
+	for (uint32_t i = 0; i < n; i++)
+		bd->idx[begin + i] = bd->keys[i].i;
+	return begin + n / 2;
+}
+
+static void set_box(struct fct_bvh_node *nd, const struct box *b)
+{
+	memcpy(nd->lo, b->lo, sizeof nd->lo);
+	memcpy(nd->hi, b->hi, sizeof nd->hi);
+}
+
+/* Build the tree over tb[0..n) into b->nodes; b->tris is filled by the caller
+ * from the final order in idx. */
+static int build_tree(struct fct_bvh *b, const struct tbox *tb, uint32_t *idx, uint32_t n,
+                      struct fct_err *err)
+{
+	/* Node 0 is the root, node 1 padding, then child pairs from node 2, so
+	 * with 32-byte nodes every pair shares one 64-byte line.  A tree with
+	 * leaves of >= 1 triangle has at most 2n - 1 nodes. */
+	size_t cap = 2 * (size_t)n + 2, bytes;
+	if (fct_mul_size(cap, sizeof *b->nodes, &bytes))
+		return fct_fail(err, "bvh: %u triangles: too many", n);
+	bytes = (bytes + 63) / 64 * 64;
+	b->nodes = aligned_alloc(64, bytes);
+	struct task *stack = malloc(sizeof *stack * STACK_MAX);
+	struct builder bd = {tb, idx, b->nodes, 2, malloc(sizeof *bd.keys * n)};
+	if (!b->nodes || !stack || !bd.keys) {
+		free(stack);
+		free(bd.keys);
+		return fct_fail(err, "bvh: out of memory for %u triangles", n);
+	}
+	memset(&b->nodes[1], 0, sizeof b->nodes[1]);
+	struct box bb, cb;
+	range_box(&bd, 0, n, &bb, &cb);
+	set_box(&b->nodes[0], &bb);
+	int sp = 0, depth = 0;
+	stack[sp++] = (struct task){0, 0, n, 0};
+	while (sp > 0) {
+		struct task t = stack[--sp];
+		struct fct_bvh_node *nd = &b->nodes[t.node];
+		if (t.depth > depth)
+			depth = t.depth;
+		if (t.end - t.begin <= LEAF_MAX) {
+			nd->first = t.begin;
+			nd->count = t.end - t.begin;
+			continue;
+		}
+		range_box(&bd, t.begin, t.end, &bb, &cb);
+		uint32_t mid = split(&bd, t.begin, t.end, t.depth, &cb);
+		uint32_t l = bd.nnodes;
+		if (l + 2 > cap || sp + 2 > STACK_MAX)
+			abort();    /* cannot happen: see the bounds above */
+		bd.nnodes += 2;
+		nd->first = l;
+		nd->count = 0;
+		range_box(&bd, t.begin, mid, &bb, &cb);
+		set_box(&b->nodes[l], &bb);
+		range_box(&bd, mid, t.end, &bb, &cb);
+		set_box(&b->nodes[l + 1], &bb);
+		/* Right pushed first so the left subtree is laid out next. */
+		stack[sp++] = (struct task){l + 1, mid, t.end, t.depth + 1};
+		stack[sp++] = (struct task){l, t.begin, mid, t.depth + 1};
+	}
+	b->nnodes = bd.nnodes;
+	b->depth = depth;
+	free(stack);
+	free(bd.keys);
+	return 0;
+}
+
+/* Common build over triangles given as corner index triples and ids. */
+static int build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, const uint32_t *ids,
+                 size_t ntri, struct fct_err *err)
+{
+	memset(b, 0, sizeof *b);
+	if (ntri == 0)
+		return 0;
+	if (ntri > (size_t)1 << 31)
+		return fct_fail(err, "bvh: %zu triangles: more than 2^31", ntri);
+	uint32_t n = (uint32_t)ntri;
+	struct tbox *tb = malloc(sizeof *tb * ntri);
+	uint32_t *idx = malloc(sizeof *idx * ntri);
+	b->tris = malloc(sizeof *b->tris * ntri);
+	if (!tb || !idx || !b->tris) {
+		free(tb);
+		free(idx);
+		fct_bvh_free(b);
+		return fct_fail(err, "bvh: out of memory for %zu triangles", ntri);
+	}
+	for (uint32_t i = 0; i < n; i++) {
+		const double *p[3];
+		for (int j = 0; j < 3; j++) {
+			uint32_t v = tri[3 * (size_t)i + j];
+			p[j] = xyz + 3 * (size_t)v;
+			/* A NaN would make boxes and bins meaningless: refuse it here. */
+			if (!isfinite(p[j][0]) || !isfinite(p[j][1]) || !isfinite(p[j][2])) {
+				free(tb);
+				free(idx);
+				fct_bvh_free(b);
+				return fct_fail(err, "vertex %u: coordinate is not finite", v);
+			}
+		}
+		for (int k = 0; k < 3; k++) {
+			double lo = fmin(p[0][k], fmin(p[1][k], p[2][k]));
+			double hi = fmax(p[0][k], fmax(p[1][k], p[2][k]));
+			tb[i].lo[k] = float_down(lo);
+			tb[i].hi[k] = float_up(hi);
+			/* From the clamped bounds, so centroids stay finite floats. */
+			tb[i].mid[k] = (float)(0.5 * tb[i].lo[k] + 0.5 * tb[i].hi[k]);
+		}
+		idx[i] = i;
+	}
+	int rc = build_tree(b, tb, idx, n, err);
+	if (rc == 0) {
+		for (uint32_t i = 0; i < n; i++) {
+			size_t t = idx[i];
+			struct fct_bvh_tri *o = &b->tris[i];
+			memcpy(o->a, xyz + 3 * (size_t)tri[3 * t], sizeof o->a);
+			memcpy(o->b, xyz + 3 * (size_t)tri[3 * t + 1], sizeof o->b);
+			memcpy(o->c, xyz + 3 * (size_t)tri[3 * t + 2], sizeof o->c);
+			o->id = ids ? ids[t] : (uint32_t)t;
+			o->degenerate = (uint32_t)fct_triangle_degenerate(o->a, o->b, o->c);
+		}
+		b->ntri = ntri;
+	} else {
+		fct_bvh_free(b);
+	}
+	free(tb);
+	free(idx);
+	return rc;
+}
+
+int fct_bvh_build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, size_t ntri,
+                  struct fct_err *err)
+{
+	return build(b, xyz, tri, NULL, ntri, err);
+}
+
+int fct_bvh_build_mesh(struct fct_bvh *b, const struct fct_mesh *m, struct fct_err *err)
+{
+	memset(b, 0, sizeof *b);
+	size_t ntri = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t k = fct_face_size(m, f);
+		ntri += k >= 3 ? k - 2 : k > 0;
+	}
+	if (ntri > (size_t)1 << 31 || m->nf > UINT32_MAX)
+		return fct_fail(err, "bvh: %zu triangles: more than 2^31", ntri);
+	uint32_t *tri = malloc(sizeof *tri * 3 * (ntri ? ntri : 1));
+	uint32_t *ids = malloc(sizeof *ids * (ntri ? ntri : 1));
+	if (!tri || !ids) {
+		free(tri);
+		free(ids);
+		return fct_fail(err, "bvh: out of memory for %zu triangles", ntri);
+	}
+	size_t t = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		const uint32_t *v = m->fvert + m->fstart[f];
+		uint32_t k = fct_face_size(m, f);
+		if (k == 0)
+			continue;
+		if (k < 3) {
+			/* A point (v0 v0 v0) or a segment (v0 v1 v1): degenerate triangles. */
+			tri[3 * t] = v[0];
+			tri[3 * t + 1] = tri[3 * t + 2] = v[k - 1];
+			ids[t++] = (uint32_t)f;
+			continue;
+		}
+		for (uint32_t i = 1; i + 1 < k; i++) {
+			tri[3 * t] = v[0];
+			tri[3 * t + 1] = v[i];
+			tri[3 * t + 2] = v[i + 1];
+			ids[t++] = (uint32_t)f;
+		}
+	}
+	int rc = build(b, m->xyz, tri, ids, ntri, err);
+	free(tri);
+	free(ids);
+	return rc;
+}
+
+void fct_bvh_free(struct fct_bvh *b)
+{
+	if (!b)
+		return;
+	free(b->nodes);
+	free(b->tris);
+	memset(b, 0, sizeof *b);
+}
+
+/* Squared distance from p to the box of n (0 inside).  Computed in double
+ * from the float bounds, which already enclose the triangles. */
+static inline double box_dist2(const struct fct_bvh_node *n, const double p[3])
+{
+	double d2 = 0;
+	for (int k = 0; k < 3; k++) {
+		double lo = (double)n->lo[k] - p[k], hi = p[k] - (double)n->hi[k];
+		double d = lo > hi ? lo : hi;
+		if (d > 0)
+			d2 += d * d;
+	}
+	return d2;
+}
+
+/* Test one triangle; update hit and return the new best squared distance. */
+static inline double test_tri(const struct fct_bvh_tri *t, const double p[3], double best,
+                              struct fct_bvh_hit *hit, int *found)
+{
+	double q[3], d2;
+	if (t->degenerate) {
+		d2 = fct_closest_on_triangle(p, t->a, t->b, t->c, q, NULL);
+	} else {
+		d2 = fct_closest_on_triangle_nd(p, t->a, t->b, t->c, q, NULL);
+	}
+	if (d2 < best) {
+		memcpy(hit->q, q, sizeof q);
+		hit->d2 = d2;
+		hit->id = t->id;
+		*found = 1;
+		return d2;
+	}
+	return best;
+}
+
+int fct_bvh_closest(const struct fct_bvh *b, const double p[3], double max_d2,
+                    struct fct_bvh_hit *hit)
+{
+	if (b->ntri == 0)
+		return 0;
+	const struct fct_bvh_node *nodes = b->nodes;
+	struct {
+		uint32_t node;
+		double d2;
+	} stack[STACK_MAX];
+	int sp = 0, found = 0;
+	double best = max_d2;
+	const struct fct_bvh_node *n = &nodes[0];
+	if (!(box_dist2(n, p) < best))
+		return 0;
+	for (;;) {
+		if (n->count) {
+			const struct fct_bvh_tri *t = b->tris + n->first;
+			for (uint32_t i = 0; i < n->count; i++)
+				best = test_tri(&t[i], p, best, hit, &found);
+		} else {
+			const struct fct_bvh_node *l = &nodes[n->first], *r = l + 1;
+			double dl = box_dist2(l, p), dr = box_dist2(r, p);
+			uint32_t near = n->first, far = near + 1;
+			if (dr < dl) {
+				double tmp = dl;
+				dl = dr;
+				dr = tmp;
+				near = far;
+				far = n->first;
+			}
+			if (dl < best) {
+				/* Descend into the nearer child now, keep the farther one. */
+				if (dr < best) {
+					stack[sp].node = far;
+					stack[sp++].d2 = dr;
+				}
+				n = &nodes[near];
+				continue;
+			}
+		}
+		/* Pop the next subtree that may still hold something closer. */
+		for (;;) {
+			if (sp == 0)
+				return found;
+			sp--;
+			if (stack[sp].d2 < best) {
+				n = &nodes[stack[sp].node];
+				break;
+			}
+		}
+	}
+}
+
+int fct_bvh_closest_brute(const struct fct_bvh *b, const double p[3], double max_d2,
+                          struct fct_bvh_hit *hit)
+{
+	int found = 0;
+	double best = max_d2;
+	for (size_t i = 0; i < b->ntri; i++)
+		best = test_tri(&b->tris[i], p, best, hit, &found);
+	return found;
+}
