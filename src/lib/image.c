@@ -1,0 +1,604 @@
+/* image.c - PNG and PFM reading and writing (see image.h).
+ *
+ * Both readers take the whole input into memory first, growing the buffer
+ * only as bytes really arrive, and then decode from memory.  That gives the
+ * exact input size even on a pipe, which is what bounds every allocation:
+ * a lying header can never make us allocate more than about twice the bytes
+ * it came with (PFM) or what they can inflate to (PNG). */
+#include "image.h"
+
+#include <errno.h>
+#include <math.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "numparse.h"
+
+/* zlib's deflate cannot compress better than about 1032:1, so a PNG whose
+ * filtered rows need more bytes than its whole file times this is lying. */
+enum { DEFLATE_MAX_RATIO = 1032, INFLATE_SLACK = 1 << 16 };
+
+static const unsigned char png_magic[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
+
+static int host_is_le(void)
+{
+	const uint16_t one = 1;
+	unsigned char b;
+	memcpy(&b, &one, 1);
+	return b == 1;
+}
+
+size_t fct_pix_size(enum fct_pix type)
+{
+	switch (type) {
+	case FCT_PIX_U8: return 1;
+	case FCT_PIX_U16: return 2;
+	case FCT_PIX_F32: return 4;
+	}
+	abort();
+}
+
+const char *fct_pix_name(enum fct_pix type)
+{
+	switch (type) {
+	case FCT_PIX_U8: return "u8";
+	case FCT_PIX_U16: return "u16";
+	case FCT_PIX_F32: return "f32";
+	}
+	abort();
+}
+
+const char *fct_image_format_name(enum fct_image_format fmt)
+{
+	return fmt == FCT_IMAGE_PNG ? "png" : "pfm";
+}
+
+size_t fct_image_samples(const struct fct_image *img)
+{
+	return (size_t)img->width * (size_t)img->height * (size_t)img->channels;
+}
+
+/* Bytes of an image of this shape, or -1 (with a message) when the shape is
+ * out of range. */
+static int image_bytes(long width, long height, int channels, enum fct_pix type,
+                       size_t *bytes, struct fct_err *err)
+{
+	if (width < 1 || height < 1)
+		return fct_fail(err, "image size %ldx%ld: width and height must be positive",
+		                width, height);
+	if (width > FCT_IMAGE_MAX_SIDE || height > FCT_IMAGE_MAX_SIDE)
+		return fct_fail(err, "image size %ldx%ld: a side is over %d pixels",
+		                width, height, FCT_IMAGE_MAX_SIDE);
+	if (channels < 1 || channels > 4)
+		return fct_fail(err, "%d channels: must be 1 to 4", channels);
+	size_t pixels = (size_t)width * (size_t)height;  /* < 2^48: no overflow */
+	if (pixels > FCT_IMAGE_MAX_PIXELS)
+		return fct_fail(err, "image size %ldx%ld: more than 2^31 pixels", width, height);
+	if (fct_mul_size(pixels, (size_t)channels * fct_pix_size(type), bytes))
+		return fct_fail(err, "image size %ldx%ld: too large for memory", width, height);
+	return 0;
+}
+
+int fct_image_alloc(struct fct_image *img, int width, int height, int channels,
+                    enum fct_pix type, struct fct_err *err)
+{
+	memset(img, 0, sizeof *img);
+	size_t bytes;
+	if (image_bytes(width, height, channels, type, &bytes, err))
+		return -1;
+	if (!(img->data = calloc(bytes, 1)))
+		return fct_fail(err, "out of memory (%zu bytes for a %dx%d image)", bytes, width, height);
+	img->width = width;
+	img->height = height;
+	img->channels = channels;
+	img->type = type;
+	return 0;
+}
+
+void fct_image_free(struct fct_image *img)
+{
+	if (!img)
+		return;
+	free(img->data);
+	memset(img, 0, sizeof *img);
+}
+
+double fct_image_sample(const struct fct_image *img, size_t i)
+{
+	switch (img->type) {
+	case FCT_PIX_U8: return ((const uint8_t *)img->data)[i];
+	case FCT_PIX_U16: return ((const uint16_t *)img->data)[i];
+	case FCT_PIX_F32: return ((const float *)img->data)[i];
+	}
+	abort();
+}
+
+double fct_image_get(const struct fct_image *img, int x, int y, int c)
+{
+	size_t i = ((size_t)y * (size_t)img->width + (size_t)x) * (size_t)img->channels + (size_t)c;
+	return fct_image_sample(img, i);
+}
+
+/* ---- input ---------------------------------------------------------- */
+
+/* head[0..n) (bytes already read) and the rest of f into *buf (malloc'd)
+ * and *len.  A regular file's size sets the first allocation; otherwise the
+ * buffer doubles as data arrives, so it never exceeds twice what was read. */
+static int slurp(FILE *f, const char *name, const unsigned char *head, size_t n,
+                 unsigned char **buf, size_t *len, struct fct_err *err)
+{
+	size_t cap = (1 << 16) + n;
+	struct stat st;
+	int fd = fileno(f);
+	if (fd >= 0 && fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size >= 0) {
+		long at = ftell(f);
+		uint64_t rest = (uint64_t)st.st_size - (uint64_t)(at > 0 ? at : 0);
+		/* One spare byte, so that reaching the end needs no growth. */
+		if (rest < SIZE_MAX - 1 - n)
+			cap = (size_t)rest + n + 1;
+	}
+	unsigned char *b = malloc(cap);
+	if (!b)
+		return fct_fail(err, "%s: out of memory (%zu bytes)", name, cap);
+	memcpy(b, head, n);
+	for (;;) {
+		if (n == cap) {
+			void *p = b;
+			if (fct_grow(&p, &cap, n + 1, 1, err)) {
+				free(b);
+				fct_err_prefix(err, "%s: byte %zu", name, n);
+				return -1;
+			}
+			b = p;
+		}
+		size_t got = fread(b + n, 1, cap - n, f);
+		n += got;
+		if (got == 0) {
+			if (ferror(f)) {
+				int e = errno;
+				free(b);
+				return fct_fail(err, "%s: byte %zu: %s", name, n,
+				                e ? strerror(e) : "read error");
+			}
+			break;
+		}
+	}
+	*buf = b;
+	*len = n;
+	return 0;
+}
+
+/* ---- PFM ------------------------------------------------------------- */
+
+static int is_space(unsigned char c)
+{
+	return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/* The next whitespace-separated header token at *pos, copied NUL-terminated
+ * into tok (of size cap); *at gets its offset.  Fails at the end of input or
+ * on a token too long to be a number. */
+static int pfm_token(const unsigned char *b, size_t len, size_t *pos, char *tok, size_t cap,
+                     size_t *at, const char *name, const char *what, struct fct_err *err)
+{
+	size_t p = *pos;
+	while (p < len && is_space(b[p]))
+		p++;
+	*at = p;
+	if (p == len)
+		return fct_fail(err, "%s: byte %zu: PFM header: unexpected end of file before the %s",
+		                name, p, what);
+	size_t n = 0;
+	while (p < len && !is_space(b[p])) {
+		if (n + 1 == cap)
+			return fct_fail(err, "%s: byte %zu: PFM header: the %s is not a number",
+			                name, *at, what);
+		tok[n++] = (char)b[p++];
+	}
+	tok[n] = 0;
+	*pos = p;
+	return 0;
+}
+
+/* A side of the image: a plain decimal integer in [1, FCT_IMAGE_MAX_SIDE]. */
+static int pfm_side(const char *tok, size_t at, const char *name, const char *what,
+                    long *out, struct fct_err *err)
+{
+	long v = 0;
+	const char *s = tok;
+	for (; *s >= '0' && *s <= '9'; s++) {
+		v = v * 10 + (*s - '0');
+		if (v > FCT_IMAGE_MAX_SIDE)
+			return fct_fail(err, "%s: byte %zu: PFM header: %s %s is over %d",
+			                name, at, what, tok, FCT_IMAGE_MAX_SIDE);
+	}
+	if (*s || s == tok)
+		return fct_fail(err, "%s: byte %zu: PFM header: %s \"%s\" is not a positive integer",
+		                name, at, what, tok);
+	if (v == 0)
+		return fct_fail(err, "%s: byte %zu: PFM header: %s is 0", name, at, what);
+	*out = v;
+	return 0;
+}
+
+static void swap4(unsigned char *p, size_t n)
+{
+	for (size_t i = 0; i + 4 <= n; i += 4) {
+		unsigned char t = p[i];
+		p[i] = p[i + 3];
+		p[i + 3] = t;
+		t = p[i + 1];
+		p[i + 1] = p[i + 2];
+		p[i + 2] = t;
+	}
+}
+
+/* Decode the PFM in buf (taking ownership of buf, which becomes the pixel
+ * array): "PF" or "Pf", width, height, scale, one whitespace byte (CR LF
+ * accepted), then exactly width*height*channels floats, bottom row first. */
+static int pfm_decode(struct fct_image *img, unsigned char *buf, size_t len, const char *name,
+                      struct fct_err *err)
+{
+	int channels = buf[1] == 'F' ? 3 : 1;
+	size_t pos = 2, at, wat;
+	char tok[64];
+	long w, h;
+	double scale;
+	if (pfm_token(buf, len, &pos, tok, sizeof tok, &wat, name, "width", err) ||
+	    pfm_side(tok, wat, name, "width", &w, err) ||
+	    pfm_token(buf, len, &pos, tok, sizeof tok, &at, name, "height", err) ||
+	    pfm_side(tok, at, name, "height", &h, err) ||
+	    pfm_token(buf, len, &pos, tok, sizeof tok, &at, name, "scale", err))
+		goto fail;
+	{
+		const char *end = fct_parse_double(tok, &scale);
+		if (!end || *end || !isfinite(scale) || scale == 0) {
+			fct_fail(err, "%s: byte %zu: PFM header: scale \"%s\" is not a nonzero number",
+			         name, at, tok);
+			goto fail;
+		}
+	}
+	size_t need;
+	if (image_bytes(w, h, channels, FCT_PIX_F32, &need, err)) {
+		fct_err_prefix(err, "%s: byte %zu: PFM header", name, wat);
+		goto fail;
+	}
+	if (pos == len) {
+		fct_fail(err, "%s: byte %zu: PFM header: unexpected end of file after the scale",
+		         name, pos);
+		goto fail;
+	}
+	/* The header ends with one whitespace byte; a CR LF pair counts as one
+	 * when the size says the LF is not the first data byte. */
+	size_t data = pos + 1;
+	if (buf[pos] == '\r' && data < len && buf[data] == '\n' && len - data != need)
+		data++;
+	if (len - data != need) {
+		fct_fail(err, "%s: byte %zu: PFM header says %ldx%ld with %d channel%s (%zu bytes) "
+		         "but %zu bytes follow", name, data, w, h, channels,
+		         channels > 1 ? "s" : "", need, len - data);
+		goto fail;
+	}
+	memmove(buf, buf + data, need);
+	unsigned char *shrunk = realloc(buf, need);
+	if (shrunk)
+		buf = shrunk;
+	/* Rows are stored bottom to top: turn them over in place. */
+	size_t row = (size_t)w * (size_t)channels * 4;
+	for (long y = 0; y < h / 2; y++) {
+		unsigned char *a = buf + (size_t)y * row, *b = buf + (size_t)(h - 1 - y) * row;
+		for (size_t i = 0; i < row; i++) {
+			unsigned char t = a[i];
+			a[i] = b[i];
+			b[i] = t;
+		}
+	}
+	if ((scale < 0) != host_is_le())
+		swap4(buf, need);
+	img->width = (int)w;
+	img->height = (int)h;
+	img->channels = channels;
+	img->type = FCT_PIX_F32;
+	img->data = buf;
+	return 0;
+fail:
+	free(buf);
+	return -1;
+}
+
+/* ---- PNG ------------------------------------------------------------- */
+
+/* What the libpng callbacks share with the code that called libpng.  It
+ * lives in the caller's frame, not in the frame that calls setjmp, so its
+ * changes survive the longjmp. */
+struct png_state {
+	const unsigned char *buf;   /* reading: the whole file */
+	size_t len, pos;
+	size_t at;                  /* offset the error is reported at */
+	int own;                    /* msg is ours, not libpng's */
+	char msg[512];
+	char warn[256];             /* last warning since the last read */
+};
+
+static void png_on_error(png_structp png, png_const_charp msg)
+{
+	struct png_state *s = png_get_error_ptr(png);
+	if (!s->own) {
+		s->at = s->pos;
+		/* libpng explains "Invalid IHDR data" in warnings just before. */
+		if (s->warn[0] && strcmp(s->warn, msg))
+			snprintf(s->msg, sizeof s->msg, "libpng: %s (%s)", msg, s->warn);
+		else
+			snprintf(s->msg, sizeof s->msg, "libpng: %s", msg);
+	}
+	png_longjmp(png, 1);
+}
+
+static void png_on_warning(png_structp png, png_const_charp msg)
+{
+	struct png_state *s = png_get_error_ptr(png);
+	snprintf(s->warn, sizeof s->warn, "%s", msg);
+}
+
+/* Fail from inside libpng's protected region with our own message. */
+static void png_fail(png_structp png, struct png_state *s, size_t at, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5), noreturn));
+static void png_fail(png_structp png, struct png_state *s, size_t at, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(s->msg, sizeof s->msg, fmt, ap);
+	va_end(ap);
+	s->own = 1;
+	s->at = at;
+	png_error(png, s->msg);
+}
+
+static void png_read_mem(png_structp png, png_bytep out, size_t n)
+{
+	struct png_state *s = png_get_io_ptr(png);
+	s->warn[0] = 0;
+	if (n > s->len - s->pos)
+		png_fail(png, s, s->len, "unexpected end of file");
+	memcpy(out, s->buf + s->pos, n);
+	s->pos += n;
+}
+
+/* Decode the PNG in s->buf into img (whose data is set only on success). */
+static int png_decode(struct fct_image *img, struct png_state *s, const char *name,
+                      struct fct_err *err)
+{
+	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, s, png_on_error,
+	                                         png_on_warning);
+	png_infop info = png ? png_create_info_struct(png) : NULL;
+	if (!info) {
+		png_destroy_read_struct(&png, NULL, NULL);
+		return fct_fail(err, "%s: out of memory", name);
+	}
+	/* Changed after setjmp and needed after longjmp: volatile. */
+	unsigned char *volatile data = NULL;
+	png_bytep *volatile rows = NULL;
+	if (setjmp(png_jmpbuf(png))) {
+		free(rows);
+		free(data);
+		png_destroy_read_struct(&png, &info, NULL);
+		return fct_fail(err, "%s: byte %zu: %s", name, s->at, s->msg);
+	}
+	png_set_read_fn(png, s, png_read_mem);
+	png_set_user_limits(png, FCT_IMAGE_MAX_SIDE, FCT_IMAGE_MAX_SIDE);
+	png_read_info(png, info);
+
+	png_uint_32 w, h;
+	int depth, ctype, interlace;
+	png_get_IHDR(png, info, &w, &h, &depth, &ctype, &interlace, NULL, NULL);
+	/* Width and height sit at byte 16, in IHDR. */
+	if ((uint64_t)w * h > FCT_IMAGE_MAX_PIXELS)
+		png_fail(png, s, 16, "image size %lux%lu: more than 2^31 pixels",
+		         (unsigned long)w, (unsigned long)h);
+	/* The filtered rows, one filter byte each, that IDAT must inflate to. */
+	uint64_t raw = ((uint64_t)w * png_get_channels(png, info) * (uint64_t)depth + 7) / 8 + 1;
+	if (raw * h / DEFLATE_MAX_RATIO > (uint64_t)s->len + INFLATE_SLACK)
+		png_fail(png, s, 16, "image size %lux%lu needs %llu bytes of pixel data, "
+		         "more than %zu bytes of PNG can hold", (unsigned long)w,
+		         (unsigned long)h, (unsigned long long)(raw * h), s->len);
+
+	if (ctype == PNG_COLOR_TYPE_PALETTE)
+		png_set_palette_to_rgb(png);
+	if (ctype == PNG_COLOR_TYPE_GRAY && depth < 8)
+		png_set_expand_gray_1_2_4_to_8(png);
+	if (png_get_valid(png, info, PNG_INFO_tRNS))
+		png_set_tRNS_to_alpha(png);
+	if (depth == 16 && host_is_le())
+		png_set_swap(png);
+	png_set_interlace_handling(png);
+	png_read_update_info(png, info);
+
+	int channels = png_get_channels(png, info);
+	int bits = png_get_bit_depth(png, info);
+	size_t rowbytes = png_get_rowbytes(png, info);
+	if ((bits != 8 && bits != 16) || channels < 1 || channels > 4 ||
+	    rowbytes != (size_t)w * (size_t)channels * (size_t)(bits / 8))
+		abort();  /* the transformations above guarantee this */
+	data = malloc(rowbytes * h);
+	rows = malloc(h * sizeof *rows);
+	if (!data || !rows)
+		png_fail(png, s, s->pos, "out of memory (%zu bytes)", rowbytes * h);
+	for (png_uint_32 y = 0; y < h; y++)
+		rows[y] = data + (size_t)y * rowbytes;
+	png_read_image(png, rows);
+	png_read_end(png, NULL);
+
+	png_destroy_read_struct(&png, &info, NULL);
+	free(rows);
+	img->width = (int)w;
+	img->height = (int)h;
+	img->channels = channels;
+	img->type = bits == 16 ? FCT_PIX_U16 : FCT_PIX_U8;
+	img->data = data;
+	return 0;
+}
+
+/* ---- reading: detection ---------------------------------------------- */
+
+int fct_image_read_stream(struct fct_image *img, FILE *f, const char *name,
+                          enum fct_image_format *fmt, struct fct_err *err)
+{
+	memset(img, 0, sizeof *img);
+	/* Look at the first bytes before taking in the whole input, so that a
+	 * file that is no image is refused without reading it all. */
+	unsigned char head[8];
+	size_t n = fread(head, 1, sizeof head, f);
+	if (n < sizeof head && ferror(f))
+		return fct_fail(err, "%s: byte %zu: %s", name, n, strerror(errno));
+	if (n == 0)
+		return fct_fail(err, "%s: empty input, not a PNG or PFM image", name);
+	int png = !memcmp(head, png_magic, n < 8 ? n : 8);
+	int pfm = n >= 3 && head[0] == 'P' && (head[1] == 'F' || head[1] == 'f') &&
+	          is_space(head[2]);
+	if (png && n < 8)
+		return fct_fail(err, "%s: byte %zu: PNG signature: unexpected end of file", name, n);
+	if (!png && !pfm)
+		return fct_fail(err, "%s: not a PNG or PFM image", name);
+
+	unsigned char *buf = NULL;
+	size_t len = 0;
+	if (slurp(f, name, head, n, &buf, &len, err))
+		return -1;
+
+	if (pfm) {
+		if (pfm_decode(img, buf, len, name, err))
+			return -1;
+	} else {
+		struct png_state s;
+		memset(&s, 0, sizeof s);
+		s.buf = buf;
+		s.len = len;
+		int rc = png_decode(img, &s, name, err);
+		free(buf);
+		if (rc)
+			return -1;
+	}
+	if (fmt)
+		*fmt = pfm ? FCT_IMAGE_PFM : FCT_IMAGE_PNG;
+	return 0;
+}
+
+int fct_image_read_file(struct fct_image *img, const char *path,
+                        enum fct_image_format *fmt, struct fct_err *err)
+{
+	if (!path || !strcmp(path, "-"))
+		return fct_image_read_stream(img, stdin, "<stdin>", fmt, err);
+	memset(img, 0, sizeof *img);
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return fct_fail(err, "%s: %s", path, strerror(errno));
+	int rc = fct_image_read_stream(img, f, path, fmt, err);
+	fclose(f);
+	return rc;
+}
+
+/* ---- writing ---------------------------------------------------------- */
+
+static void png_write_file(png_structp png, png_bytep p, size_t n)
+{
+	FILE *f = png_get_io_ptr(png);
+	if (fwrite(p, 1, n, f) != n)
+		png_error(png, "write error");
+}
+
+static void png_flush_file(png_structp png)
+{
+	(void)png;  /* the caller flushes when it is done */
+}
+
+/* Encode img through libpng with rows already pointing into its data. */
+static int png_encode(const struct fct_image *img, FILE *f, png_bytep *rows,
+                      struct png_state *s, struct fct_err *err)
+{
+	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, s, png_on_error,
+	                                          png_on_warning);
+	png_infop info = png ? png_create_info_struct(png) : NULL;
+	if (!info) {
+		png_destroy_write_struct(&png, NULL);
+		return fct_fail(err, "PNG: out of memory");
+	}
+	if (setjmp(png_jmpbuf(png))) {
+		png_destroy_write_struct(&png, &info);
+		if (ferror(f))
+			return fct_fail(err, "writing PNG: %s", strerror(errno));
+		return fct_fail(err, "writing PNG: %s", s->msg);
+	}
+	static const int ctypes[5] = { 0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
+	                               PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA };
+	png_set_write_fn(png, f, png_write_file, png_flush_file);
+	png_set_IHDR(png, info, (png_uint_32)img->width, (png_uint_32)img->height,
+	             img->type == FCT_PIX_U16 ? 16 : 8, ctypes[img->channels],
+	             PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+	png_write_info(png, info);
+	if (img->type == FCT_PIX_U16 && host_is_le())
+		png_set_swap(png);
+	png_write_image(png, rows);
+	png_write_end(png, NULL);
+	png_destroy_write_struct(&png, &info);
+	return 0;
+}
+
+int fct_png_write(const struct fct_image *img, FILE *f, struct fct_err *err)
+{
+	size_t bytes;
+	if (img->type != FCT_PIX_U8 && img->type != FCT_PIX_U16)
+		return fct_fail(err, "PNG holds 8- or 16-bit integer samples, not %s",
+		                fct_pix_name(img->type));
+	if (image_bytes(img->width, img->height, img->channels, img->type, &bytes, err))
+		return -1;
+	size_t rowbytes = bytes / (size_t)img->height;
+	png_bytep *rows = malloc((size_t)img->height * sizeof *rows);
+	if (!rows)
+		return fct_fail(err, "out of memory");
+	/* libpng copies each row before transforming it, so the cast is safe. */
+	for (int y = 0; y < img->height; y++)
+		rows[y] = (png_bytep)img->data + (size_t)y * rowbytes;
+	struct png_state s;
+	memset(&s, 0, sizeof s);
+	int rc = png_encode(img, f, rows, &s, err);
+	free(rows);
+	if (!rc && ferror(f))
+		return fct_fail(err, "writing PNG: %s", strerror(errno));
+	return rc;
+}
+
+int fct_pfm_write(const struct fct_image *img, FILE *f, struct fct_err *err)
+{
+	size_t bytes;
+	if (img->type != FCT_PIX_F32 || (img->channels != 1 && img->channels != 3))
+		return fct_fail(err, "PFM holds float samples with 1 or 3 channels, not %s with %d",
+		                fct_pix_name(img->type), img->channels);
+	if (image_bytes(img->width, img->height, img->channels, img->type, &bytes, err))
+		return -1;
+	size_t row = bytes / (size_t)img->height;
+	/* Always little-endian (scale -1), so output does not depend on the host. */
+	int le = host_is_le();
+	unsigned char *tmp = le ? NULL : malloc(row);
+	if (!le && !tmp)
+		return fct_fail(err, "out of memory");
+	fprintf(f, "P%c\n%d %d\n-1\n", img->channels == 3 ? 'F' : 'f', img->width, img->height);
+	for (int y = img->height - 1; y >= 0; y--) {
+		const unsigned char *src = (const unsigned char *)img->data + (size_t)y * row;
+		if (!le) {
+			memcpy(tmp, src, row);
+			swap4(tmp, row);
+			src = tmp;
+		}
+		if (fwrite(src, 1, row, f) != row)
+			break;
+	}
+	free(tmp);
+	if (ferror(f))
+		return fct_fail(err, "writing PFM: %s", strerror(errno));
+	return 0;
+}
