@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "numparse.h"
+#include "reader.h"
 
 const char *fct_prog = "facet";
 int fct_quiet, fct_verbose;
@@ -21,6 +22,7 @@ void fct_cli_init(const char *prog)
 	/* A large buffer makes stdout writes block-sized even on pipes. */
 	static char outbuf[1 << 16];
 	setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
+	fct_pipe_widen(STDOUT_FILENO);
 }
 
 static void vmessage(const char *tag, const char *fmt, va_list ap)

@@ -1178,7 +1178,11 @@ int fct_ply_write(const struct fct_mesh *m, FILE *f, enum fct_ply_format fmt, st
 		int dbl = m->xyz_type == FCT_FLOAT64;
 		for (size_t i = 0; i < m->nv && !w.failed; i++) {
 			const double *p = m->xyz + 3 * i;
-			if (dbl) {
+			if (!dbl && !w.swap) {  /* the rule: constant-size stores */
+				float v[3] = {(float)p[0], (float)p[1], (float)p[2]};
+				memcpy(wreserve(&w, 12), v, 12);
+				w.n += 12;
+			} else if (dbl) {
 				wraw(&w, &p[0], 8), wraw(&w, &p[1], 8), wraw(&w, &p[2], 8);
 			} else {
 				float v[3] = {(float)p[0], (float)p[1], (float)p[2]};
@@ -1187,7 +1191,16 @@ int fct_ply_write(const struct fct_mesh *m, FILE *f, enum fct_ply_format fmt, st
 			write_columns_binary(&w, el[0], i, ct[0]);
 		}
 		for (size_t i = 0; i < m->nf && !w.failed; i++) {
-			wvalue(&w, ctype, fct_face_size(m, i));
+			uint32_t n = fct_face_size(m, i);
+			if (ctype == FCT_UINT8 && (itype == FCT_INT32 || itype == FCT_UINT32) && !w.swap) {
+				unsigned char *d = wreserve(&w, 1 + 4 * (size_t)n);
+				*d = (unsigned char)n;
+				memcpy(d + 1, m->fvert + m->fstart[i], 4 * (size_t)n);
+				w.n += 1 + 4 * (size_t)n;
+				write_columns_binary(&w, el[1], i, ct[1]);
+				continue;
+			}
+			wvalue(&w, ctype, n);
 			if (itype == FCT_INT32 || itype == FCT_UINT32) {
 				for (uint32_t k = m->fstart[i]; k < m->fstart[i + 1]; k++)
 					wraw(&w, &m->fvert[k], 4);

@@ -23,6 +23,9 @@ struct fct_reader {
 	int ioerr;            /* the FILE reported an error */
 };
 
+/* Give a pipe on fd a larger buffer where the system allows (Linux). */
+void fct_pipe_widen(int fd);
+
 /* Set up r on f (which stays open and owned by the caller). */
 int fct_reader_init(struct fct_reader *r, FILE *f, const char *name, struct fct_err *err);
 void fct_reader_free(struct fct_reader *r);
