@@ -81,7 +81,7 @@ check: $(PROGS) $(UNITS)
 # ASan+UBSan build of everything, then the whole suite against it.
 SAN_FLAGS = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 sanitize:
-	$(MAKE) O=build/san CFLAGS="$(SAN_FLAGS)" LDFLAGS="$(SAN_FLAGS)" check
+	FCT_SANITIZE=1 $(MAKE) O=build/san CFLAGS="$(SAN_FLAGS)" LDFLAGS="$(SAN_FLAGS)" check
 
 FUZZ_TIME ?= 60
 FUZZ_SRC = $(sort $(wildcard fuzz/fuzz_*.c))
