@@ -80,11 +80,15 @@ int main(int argc, char **argv)
 	};
 	fct_cli_init("imginfo");
 	int c;
+	opterr = 0;  /* one message of ours, naming the option */
 	while ((c = getopt_long(argc, argv, "h", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'h': fputs(usage, stdout); return 0;
 		case 'V': puts("imginfo (facet) " FCT_VERSION); return 0;
-		default: fct_usage_error("unknown option");
+		default:
+			if (!strncmp(argv[optind - 1], "--", 2))
+				fct_usage_error("bad option %s", argv[optind - 1]);
+			fct_usage_error("unknown option -%c", optopt);
 		}
 	}
 	const char *stdin_only[] = { "-" };
