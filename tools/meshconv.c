@@ -32,7 +32,8 @@ int main(int argc, char **argv)
 	fct_cli_init("meshconv");
 	const char *out = NULL;
 	int fmt = -1, c;
-	while ((c = getopt_long(argc, argv, "af:ho:qv", longopts, NULL)) != -1) {
+	static const char optstring[] = "af:ho:qv";
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
 		case 'a': fmt = FCT_FORMAT_PLY_ASCII; break;
 		case 'f':
@@ -47,7 +48,7 @@ int main(int argc, char **argv)
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case 'V': puts("meshconv (facet) " FCT_VERSION); return 0;
-		default: fct_usage_error("unknown option");
+		default: fct_bad_option(optstring, argv);
 		}
 	}
 	if (argc - optind > 1)

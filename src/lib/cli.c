@@ -19,6 +19,7 @@ int fct_quiet, fct_verbose;
 void fct_cli_init(const char *prog)
 {
 	fct_prog = prog;
+	opterr = 0;  /* fct_bad_option says it in one line */
 	/* A large buffer makes stdout writes block-sized even on pipes. */
 	static char outbuf[1 << 16];
 	setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
@@ -63,8 +64,17 @@ void fct_usage_error(const char *fmt, ...)
 	va_start(ap, fmt);
 	vmessage("", fmt, ap);
 	va_end(ap);
-	fprintf(stderr, "Try '%s --help' for more information.\n", fct_prog);
 	exit(2);
+}
+
+void fct_bad_option(const char *optstring, char **argv)
+{
+	if (!optopt)  /* an unknown long option: getopt_long left it in argv */
+		fct_usage_error("%s: unknown option", argv[optind - 1]);
+	const char *at = strchr(optstring, optopt);
+	if (at && at[1] == ':')
+		fct_usage_error("-%c: option requires an argument", optopt);
+	fct_usage_error("-%c: unknown option", optopt);
 }
 
 double fct_opt_double(const char *opt, const char *arg, double lo, double hi)

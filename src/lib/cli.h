@@ -22,8 +22,11 @@ _Noreturn void fct_die(int status, const char *fmt, ...) __attribute__((format(p
 _Noreturn void fct_die_err(const struct fct_err *err);
 /* "prog: warning: message" (suppressed by fct_quiet). */
 void fct_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-/* "prog: usage message" plus the hint to see --help, exit 2. */
+/* "prog: usage message", exit 2. */
 _Noreturn void fct_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* After getopt/getopt_long returned '?': "prog: -x: unknown option" or
+ * "prog: -x: option requires an argument", exit 2. */
+_Noreturn void fct_bad_option(const char *optstring, char **argv);
 
 extern int fct_quiet;    /* -q: no warnings, no progress */
 extern int fct_verbose;  /* -v: progress and figures */

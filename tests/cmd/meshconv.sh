@@ -1,0 +1,72 @@
+# meshconv: exact round trips between encodings on real scans, atomic -o,
+# TextureFile paths, quiet end on a closed pipe, usage errors, and the man
+# page's examples.
+. tests/lib.sh
+D=../shared/data
+bunny=samples/bunny/bun_zipper_res2.ply
+
+# Round trips: ascii -> LE -> BE -> ascii must give the same ascii bytes, and
+# LE -> BE -> LE the same binary bytes.
+for f in "$bunny" "$D/stanford_bunny/data/bun000.ply" "$D/open3d_coloredicp_fragment/frag_115.ply"; do
+	[ -f "$f" ] || continue
+	n=$(basename "$f" .ply)
+	meshconv -a "$f" >"$TMP/$n.a.ply"
+	meshconv "$TMP/$n.a.ply" >"$TMP/$n.le.ply"
+	meshconv -f binary_big_endian "$TMP/$n.le.ply" >"$TMP/$n.be.ply"
+	meshconv -a "$TMP/$n.be.ply" >"$TMP/$n.a2.ply"
+	meshconv "$TMP/$n.be.ply" >"$TMP/$n.le2.ply"
+	check_true "$n: ascii round trip" cmp -s "$TMP/$n.a.ply" "$TMP/$n.a2.ply"
+	check_true "$n: binary round trip" cmp -s "$TMP/$n.le.ply" "$TMP/$n.le2.ply"
+	check_true "$n: big-endian header" grep -q "^format binary_big_endian 1.0" "$TMP/$n.be.ply"
+done
+# A binary little-endian file written by another program comes back identical.
+f=$D/open3d_coloredicp_fragment/frag_115.ply
+[ -f "$f" ] && run_case 0 "meshconv $f" "$f"
+# The ascii scan keeps its obj_info lines and its range_grid element of lists.
+f=$D/stanford_bunny/data/bun000.ply
+if [ -f "$f" ]; then
+	meshconv -a "$f" >"$TMP/b.ply"
+	check_true "bun000: obj_info kept" grep -q "^obj_info num_cols 512" "$TMP/b.ply"
+	check_true "bun000: range_grid kept" grep -q "^element range_grid 204800" "$TMP/b.ply"
+	check_num "bun000: same line count as the original" "$(wc -l <"$TMP/b.ply")" == "$(wc -l <"$f")"
+fi
+
+# Atomic output: a failed run leaves an existing file untouched and no
+# temporary file behind.
+echo keep >"$TMP/out.ply"
+run_case 1 "meshconv -o $TMP/out.ply tests/bad/ply_nan.ply" "" "meshconv: tests/bad/ply_nan.ply:9: "
+check_true "failed run left the old file" grep -q keep "$TMP/out.ply"
+check_num "no temporary files left" "$(ls -a "$TMP" | grep -c '^\.out')" == 0
+run_case 0 "meshconv -o $TMP/out.ply $bunny"
+check_true "successful run replaced the file" cmp -s "$TMP/out.ply" "$TMP/bun_zipper_res2.le.ply"
+run_case 1 "meshconv -o /nonexistent/dir/x.ply $bunny" "" "meshconv: /nonexistent/dir/x.ply: "
+
+# TextureFile paths are relative to the current folder on the pipes and to
+# the output's folder in a file.
+mkdir -p "$TMP/img" "$TMP/models"
+printf 'ply\nformat ascii 1.0\ncomment TextureFile img/tex.png\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float s\nproperty float t\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n' >"$TMP/tex.ply"
+(cd "$TMP" && meshconv -a -o models/m.ply tex.ply)
+check_true "TextureFile rewritten for the output folder" grep -q "^comment TextureFile ../img/tex.png" "$TMP/models/m.ply"
+(cd "$TMP" && meshconv -a models/m.ply >back.ply)
+check_true "TextureFile read from a file is relative to the current folder again" \
+	grep -q "^comment TextureFile models/../img/tex.png" "$TMP/back.ply"
+(cd "$TMP" && meshconv -a <tex.ply >pipe.ply)
+check_true "TextureFile untouched on the pipes" grep -q "^comment TextureFile img/tex.png" "$TMP/pipe.ply"
+
+# A closed pipe ends the program quietly.
+sh -c "meshconv -a $bunny 2>$TMP/pipe_err | head -c 10 >/dev/null"
+check_num "no message on a closed pipe" "$(wc -c <"$TMP/pipe_err")" == 0
+
+# Usage errors: exit 2.
+run_case 2 "meshconv -f banana $bunny" "" "meshconv: -f: unknown format"
+run_case 2 "meshconv -Z" "" ""
+run_case 2 "meshconv a b" "" "meshconv: too many operands"
+run_case 1 "meshconv /nonexistent.ply" "" "meshconv: /nonexistent.ply: No such file"
+run_case 0 "meshconv --version" "" ""
+run_case 0 "meshconv -h" "" ""
+
+# The man page's examples.
+cp "$TMP/bun_zipper_res2.le.ply" "$TMP/in.ply"
+cp "$TMP/bun_zipper_res2.le.ply" "$TMP/scan.ply"
+run_case 0 "cd $TMP && meshconv -a scan.ply > scan_ascii.ply && meshconv -f binary_big_endian in.ply | meshconv | cmp - in.ply"
+finish
