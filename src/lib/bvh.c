@@ -19,13 +19,15 @@ enum {
 };
 
 /* Bounds of one triangle during the build: float, rounded outward. */
+struct box {
+	float lo[3], hi[3];
+};
+
+/* A triangle during the build, moved around with its index i. */
 struct tbox {
 	float lo[3], hi[3];
 	float mid[3];
-};
-
-struct box {
-	float lo[3], hi[3];
+	uint32_t i;
 };
 
 static void box_empty(struct box *b)
@@ -72,80 +74,79 @@ static float float_up(double v)
 	return (double)f < v ? nextafterf(f, FLT_MAX) : f;
 }
 
-/* Work item of the build: make node `node` over idx[begin..end). */
+/* Work item of the build: make node `node` over tb[begin..end), whose
+ * centroids span cb (the node's own box is already set). */
 struct task {
 	uint32_t node, begin, end;
 	int depth;
+	struct box cb;
 };
 
-/* For the object-median fallback: order by centroid on one axis, then index. */
-struct median_key {
-	float v;
-	uint32_t i;
-};
+/* For the object-median fallback: order by centroid on one axis, then index,
+ * a total order so the tree does not depend on qsort's algorithm. */
+#define MEDIAN_CMP(k) \
+	static int median_cmp##k(const void *pa, const void *pb) \
+	{ \
+		const struct tbox *a = pa, *b = pb; \
+		if (a->mid[k] != b->mid[k]) \
+			return a->mid[k] < b->mid[k] ? -1 : 1; \
+		return (a->i > b->i) - (a->i < b->i); \
+	}
+MEDIAN_CMP(0)
+MEDIAN_CMP(1)
+MEDIAN_CMP(2)
+static int (*const median_cmp[3])(const void *, const void *) = {median_cmp0, median_cmp1, median_cmp2};
 
-static int median_cmp(const void *pa, const void *pb)
-{
-	const struct median_key *a = pa, *b = pb;
-	if (a->v != b->v)
-		return a->v < b->v ? -1 : 1;
-	return (a->i > b->i) - (a->i < b->i);
-}
-
-struct builder {
-	const struct tbox *tb;
-	uint32_t *idx;
-	struct fct_bvh_node *nodes;
-	uint32_t nnodes;
-	struct median_key *keys;
-};
-
-static void range_box(const struct builder *bd, uint32_t begin, uint32_t end,
-                      struct box *bb, struct box *cb)
+/* Box and centroid box of tb[0..n). */
+static void range_box(const struct tbox *tb, uint32_t n, struct box *bb, struct box *cb)
 {
 	box_empty(bb);
 	box_empty(cb);
-	for (uint32_t i = begin; i < end; i++) {
-		const struct tbox *t = &bd->tb[bd->idx[i]];
-		box_grow(bb, t->lo, t->hi);
-		box_grow(cb, t->mid, t->mid);
+	for (uint32_t i = 0; i < n; i++) {
+		box_grow(bb, tb[i].lo, tb[i].hi);
+		box_grow(cb, tb[i].mid, tb[i].mid);
 	}
 }
 
-/* Choose where to split idx[begin..end) and reorder it so that the first
- * part comes first; returns the index of the first element of the second
- * part, strictly between begin and end. */
-static uint32_t split(struct builder *bd, uint32_t begin, uint32_t end, int depth,
-                      const struct box *cb)
+static inline int bin_of(float mid, float lo, double scale)
 {
-	uint32_t n = end - begin;
+	int j = (int)(((double)mid - lo) * scale);
+	return j < NBINS ? j : NBINS - 1;
+}
+
+/* Choose where to split tb[0..n), whose centroids span cb, and reorder it so
+ * the first part comes first; returns the size of the first part, strictly
+ * between 0 and n. */
+static uint32_t split(struct tbox *tb, uint32_t n, int depth, const struct box *cb)
+{
 	int axis = 0;
-	double ext[3];
-	for (int k = 0; k < 3; k++)
+	double ext[3], scale[3];
+	for (int k = 0; k < 3; k++) {
 		ext[k] = (double)cb->hi[k] - cb->lo[k];
+		scale[k] = ext[k] > 0 ? NBINS / ext[k] : 0;
+	}
 	if (ext[1] > ext[axis]) axis = 1;
 	if (ext[2] > ext[axis]) axis = 2;
 	if (!(ext[axis] > 0))
-		return begin + n / 2;   /* every centroid equal: any halving will do */
+		return n / 2;   /* every centroid equal: any halving will do */
 
 	if (depth < SAH_DEPTH) {
+		struct box bins[3][NBINS];
+		uint32_t cnt[3][NBINS] = {{0}};
+		for (int k = 0; k < 3; k++)
+			for (int j = 0; j < NBINS; j++)
+				box_empty(&bins[k][j]);
+		for (uint32_t i = 0; i < n; i++)
+			for (int k = 0; k < 3; k++) {
+				int j = bin_of(tb[i].mid[k], cb->lo[k], scale[k]);
+				cnt[k][j]++;
+				box_grow(&bins[k][j], tb[i].lo, tb[i].hi);
+			}
 		int best_axis = -1, best_bin = 0;
 		double best_cost = INFINITY;
 		for (int k = 0; k < 3; k++) {
 			if (!(ext[k] > 0))
 				continue;
-			struct box bins[NBINS];
-			uint32_t cnt[NBINS] = {0};
-			for (int j = 0; j < NBINS; j++)
-				box_empty(&bins[j]);
-			double scale = NBINS / ext[k];
-			for (uint32_t i = begin; i < end; i++) {
-				const struct tbox *t = &bd->tb[bd->idx[i]];
-				int j = (int)(((double)t->mid[k] - cb->lo[k]) * scale);
-				if (j >= NBINS) j = NBINS - 1;
-				cnt[j]++;
-				box_grow(&bins[j], t->lo, t->hi);
-			}
 			/* Sweep from the right for the right-hand areas, then from the left. */
 			double right_area[NBINS];
 			uint32_t right_cnt[NBINS];
@@ -153,16 +154,16 @@ static uint32_t split(struct builder *bd, uint32_t begin, uint32_t end, int dept
 			box_empty(&acc);
 			uint32_t c = 0;
 			for (int j = NBINS - 1; j > 0; j--) {
-				box_grow(&acc, bins[j].lo, bins[j].hi);
-				c += cnt[j];
+				box_grow(&acc, bins[k][j].lo, bins[k][j].hi);
+				c += cnt[k][j];
 				right_area[j] = box_area(&acc);
 				right_cnt[j] = c;
 			}
 			box_empty(&acc);
 			c = 0;
 			for (int j = 0; j < NBINS - 1; j++) {
-				box_grow(&acc, bins[j].lo, bins[j].hi);
-				c += cnt[j];
+				box_grow(&acc, bins[k][j].lo, bins[k][j].hi);
+				c += cnt[k][j];
 				if (c == 0 || right_cnt[j + 1] == 0)
 					continue;
 				double cost = box_area(&acc) * c + right_area[j + 1] * right_cnt[j + 1];
@@ -175,35 +176,24 @@ static uint32_t split(struct builder *bd, uint32_t begin, uint32_t end, int dept
 		}
 		if (best_axis >= 0) {
 			int k = best_axis;
-			double scale = NBINS / ext[k];
-			uint32_t i = begin, j = end;
+			uint32_t i = 0, j = n;
 			/* In-place partition: bins <= best_bin to the front. */
 			while (i < j) {
-				const struct tbox *t = &bd->tb[bd->idx[i]];
-				int bin = (int)(((double)t->mid[k] - cb->lo[k]) * scale);
-				if (bin >= NBINS) bin = NBINS - 1;
-				if (bin <= best_bin) {
+				if (bin_of(tb[i].mid[k], cb->lo[k], scale[k]) <= best_bin) {
 					i++;
 				} else {
-					uint32_t tmp = bd->idx[i];
-					bd->idx[i] = bd->idx[--j];
-					bd->idx[j] = tmp;
+					struct tbox tmp = tb[i];
+					tb[i] = tb[--j];
+					tb[j] = tmp;
 				}
 			}
-			if (i > begin && i < end)
+			if (i > 0 && i < n)
 				return i;
 		}
 	}
 	/* Object median along the widest axis: halves the range, bounding depth. */
-	for (uint32_t i = 0; i < n; i++) {
-		uint32_t t = bd->idx[begin + i];
-		bd->keys[i].v = bd->tb[t].mid[axis];
-		bd->keys[i].i = t;
-	}
-	qsort(bd->keys, n, sizeof *bd->keys, median_cmp);
-	for (uint32_t i = 0; i < n; i++)
-		bd->idx[begin + i] = bd->keys[i].i;
-	return begin + n / 2;
+	qsort(tb, n, sizeof *tb, median_cmp[axis]);
+	return n / 2;
 }
 
 static void set_box(struct fct_bvh_node *nd, const struct box *b)
@@ -212,10 +202,9 @@ static void set_box(struct fct_bvh_node *nd, const struct box *b)
 	memcpy(nd->hi, b->hi, sizeof nd->hi);
 }
 
-/* Build the tree over tb[0..n) into b->nodes; b->tris is filled by the caller
- * from the final order in idx. */
-static int build_tree(struct fct_bvh *b, const struct tbox *tb, uint32_t *idx, uint32_t n,
-                      struct fct_err *err)
+/* Build the tree over tb[0..n) into b->nodes, reordering tb into leaf order;
+ * b->tris is filled by the caller from tb[k].i. */
+static int build_tree(struct fct_bvh *b, struct tbox *tb, uint32_t n, struct fct_err *err)
 {
 	/* Node 0 is the root, node 1 padding, then child pairs from node 2, so
 	 * with 32-byte nodes every pair shares one 64-byte line.  A tree with
@@ -226,18 +215,17 @@ static int build_tree(struct fct_bvh *b, const struct tbox *tb, uint32_t *idx, u
 	bytes = (bytes + 63) / 64 * 64;
 	b->nodes = aligned_alloc(64, bytes);
 	struct task *stack = malloc(sizeof *stack * STACK_MAX);
-	struct builder bd = {tb, idx, b->nodes, 2, malloc(sizeof *bd.keys * n)};
-	if (!b->nodes || !stack || !bd.keys) {
+	if (!b->nodes || !stack) {
 		free(stack);
-		free(bd.keys);
 		return fct_fail(err, "bvh: out of memory for %u triangles", n);
 	}
 	memset(&b->nodes[1], 0, sizeof b->nodes[1]);
 	struct box bb, cb;
-	range_box(&bd, 0, n, &bb, &cb);
+	range_box(tb, n, &bb, &cb);
 	set_box(&b->nodes[0], &bb);
+	uint32_t used = 2;
 	int sp = 0, depth = 0;
-	stack[sp++] = (struct task){0, 0, n, 0};
+	stack[sp++] = (struct task){0, 0, n, 0, cb};
 	while (sp > 0) {
 		struct task t = stack[--sp];
 		struct fct_bvh_node *nd = &b->nodes[t.node];
@@ -248,26 +236,25 @@ static int build_tree(struct fct_bvh *b, const struct tbox *tb, uint32_t *idx, u
 			nd->count = t.end - t.begin;
 			continue;
 		}
-		range_box(&bd, t.begin, t.end, &bb, &cb);
-		uint32_t mid = split(&bd, t.begin, t.end, t.depth, &cb);
-		uint32_t l = bd.nnodes;
+		uint32_t mid = t.begin + split(tb + t.begin, t.end - t.begin, t.depth, &t.cb);
+		uint32_t l = used;
 		if (l + 2 > cap || sp + 2 > STACK_MAX)
 			abort();    /* cannot happen: see the bounds above */
-		bd.nnodes += 2;
+		used += 2;
 		nd->first = l;
 		nd->count = 0;
-		range_box(&bd, t.begin, mid, &bb, &cb);
+		struct box lcb, rcb;
+		range_box(tb + t.begin, mid - t.begin, &bb, &lcb);
 		set_box(&b->nodes[l], &bb);
-		range_box(&bd, mid, t.end, &bb, &cb);
+		range_box(tb + mid, t.end - mid, &bb, &rcb);
 		set_box(&b->nodes[l + 1], &bb);
 		/* Right pushed first so the left subtree is laid out next. */
-		stack[sp++] = (struct task){l + 1, mid, t.end, t.depth + 1};
-		stack[sp++] = (struct task){l, t.begin, mid, t.depth + 1};
+		stack[sp++] = (struct task){l + 1, mid, t.end, t.depth + 1, rcb};
+		stack[sp++] = (struct task){l, t.begin, mid, t.depth + 1, lcb};
 	}
-	b->nnodes = bd.nnodes;
+	b->nnodes = used;
 	b->depth = depth;
 	free(stack);
-	free(bd.keys);
 	return 0;
 }
 
@@ -282,11 +269,9 @@ static int build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, cons
 		return fct_fail(err, "bvh: %zu triangles: more than 2^31", ntri);
 	uint32_t n = (uint32_t)ntri;
 	struct tbox *tb = malloc(sizeof *tb * ntri);
-	uint32_t *idx = malloc(sizeof *idx * ntri);
 	b->tris = malloc(sizeof *b->tris * ntri);
-	if (!tb || !idx || !b->tris) {
+	if (!tb || !b->tris) {
 		free(tb);
-		free(idx);
 		fct_bvh_free(b);
 		return fct_fail(err, "bvh: out of memory for %zu triangles", ntri);
 	}
@@ -298,7 +283,6 @@ static int build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, cons
 			/* A NaN would make boxes and bins meaningless: refuse it here. */
 			if (!isfinite(p[j][0]) || !isfinite(p[j][1]) || !isfinite(p[j][2])) {
 				free(tb);
-				free(idx);
 				fct_bvh_free(b);
 				return fct_fail(err, "vertex %u: coordinate is not finite", v);
 			}
@@ -311,12 +295,12 @@ static int build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, cons
 			/* From the clamped bounds, so centroids stay finite floats. */
 			tb[i].mid[k] = (float)(0.5 * tb[i].lo[k] + 0.5 * tb[i].hi[k]);
 		}
-		idx[i] = i;
+		tb[i].i = i;
 	}
-	int rc = build_tree(b, tb, idx, n, err);
+	int rc = build_tree(b, tb, n, err);
 	if (rc == 0) {
 		for (uint32_t i = 0; i < n; i++) {
-			size_t t = idx[i];
+			size_t t = tb[i].i;
 			struct fct_bvh_tri *o = &b->tris[i];
 			memcpy(o->a, xyz + 3 * (size_t)tri[3 * t], sizeof o->a);
 			memcpy(o->b, xyz + 3 * (size_t)tri[3 * t + 1], sizeof o->b);
@@ -329,7 +313,6 @@ static int build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, cons
 		fct_bvh_free(b);
 	}
 	free(tb);
-	free(idx);
 	return rc;
 }
 
@@ -339,22 +322,25 @@ int fct_bvh_build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, siz
 	return build(b, xyz, tri, NULL, ntri, err);
 }
 
-int fct_bvh_build_mesh(struct fct_bvh *b, const struct fct_mesh *m, struct fct_err *err)
+int fct_mesh_fan(const struct fct_mesh *m, uint32_t **tri, uint32_t **face, size_t *ntri,
+                 struct fct_err *err)
 {
-	memset(b, 0, sizeof *b);
-	size_t ntri = 0;
+	size_t n = 0;
 	for (size_t f = 0; f < m->nf; f++) {
 		uint32_t k = fct_face_size(m, f);
-		ntri += k >= 3 ? k - 2 : k > 0;
+		n += k >= 3 ? k - 2 : k > 0;
 	}
-	if (ntri > (size_t)1 << 31 || m->nf > UINT32_MAX)
-		return fct_fail(err, "bvh: %zu triangles: more than 2^31", ntri);
-	uint32_t *tri = malloc(sizeof *tri * 3 * (ntri ? ntri : 1));
-	uint32_t *ids = malloc(sizeof *ids * (ntri ? ntri : 1));
-	if (!tri || !ids) {
-		free(tri);
+	*tri = NULL;
+	*face = NULL;
+	*ntri = 0;
+	if (n > (size_t)1 << 31 || m->nf > UINT32_MAX)
+		return fct_fail(err, "%zu triangles: more than 2^31", n);
+	uint32_t *t3 = malloc(sizeof *t3 * 3 * (n ? n : 1));
+	uint32_t *ids = malloc(sizeof *ids * (n ? n : 1));
+	if (!t3 || !ids) {
+		free(t3);
 		free(ids);
-		return fct_fail(err, "bvh: out of memory for %zu triangles", ntri);
+		return fct_fail(err, "out of memory for %zu triangles", n);
 	}
 	size_t t = 0;
 	for (size_t f = 0; f < m->nf; f++) {
@@ -363,19 +349,31 @@ int fct_bvh_build_mesh(struct fct_bvh *b, const struct fct_mesh *m, struct fct_e
 		if (k == 0)
 			continue;
 		if (k < 3) {
-			/* A point (v0 v0 v0) or a segment (v0 v1 v1): degenerate triangles. */
-			tri[3 * t] = v[0];
-			tri[3 * t + 1] = tri[3 * t + 2] = v[k - 1];
+			t3[3 * t] = v[0];
+			t3[3 * t + 1] = t3[3 * t + 2] = v[k - 1];
 			ids[t++] = (uint32_t)f;
 			continue;
 		}
 		for (uint32_t i = 1; i + 1 < k; i++) {
-			tri[3 * t] = v[0];
-			tri[3 * t + 1] = v[i];
-			tri[3 * t + 2] = v[i + 1];
+			t3[3 * t] = v[0];
+			t3[3 * t + 1] = v[i];
+			t3[3 * t + 2] = v[i + 1];
 			ids[t++] = (uint32_t)f;
 		}
 	}
+	*tri = t3;
+	*face = ids;
+	*ntri = n;
+	return 0;
+}
+
+int fct_bvh_build_mesh(struct fct_bvh *b, const struct fct_mesh *m, struct fct_err *err)
+{
+	uint32_t *tri, *ids;
+	size_t ntri;
+	memset(b, 0, sizeof *b);
+	if (fct_mesh_fan(m, &tri, &ids, &ntri, err))
+		return -1;
 	int rc = build(b, m->xyz, tri, ids, ntri, err);
 	free(tri);
 	free(ids);

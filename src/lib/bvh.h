@@ -60,6 +60,14 @@ struct fct_bvh_hit {
 int fct_bvh_build(struct fct_bvh *b, const double *xyz, const uint32_t *tri, size_t ntri,
                   struct fct_err *err);
 
+/* Fan the faces of m into triangles: face f of k >= 3 vertices gives
+ * (v0, vi, vi+1) for i = 1 .. k-2; a face of one or two vertices gives the
+ * degenerate triangle (v0, vk-1, vk-1), a point or a segment; empty faces
+ * give nothing.  *tri gets 3 indices per triangle and *face the face of each
+ * (both malloc'd, free them; non-NULL even when *ntri is 0). */
+int fct_mesh_fan(const struct fct_mesh *m, uint32_t **tri, uint32_t **face, size_t *ntri,
+                 struct fct_err *err);
+
 /* Build over the faces of m, each fanned from its first vertex into
  * triangles (v0, vi, vi+1) that carry the face's index as id.  A face of one
  * or two vertices counts as a point or a segment; faces with no vertices are
