@@ -352,7 +352,8 @@ static int same_set(const struct face_sets *s, uint32_t f, uint32_t g)
 }
 
 /* Merge sort of faces v[0..n) by cmp_sets (tmp holds n entries); used only
- * on runs of equal hashes, so it is rarely called on more than two faces. */
+ * on runs of equal hash keys, so it rarely sees more than two faces unless
+ * they are true duplicates. */
 static void sort_by_set(const struct face_sets *s, uint32_t *v, uint32_t *tmp, size_t n)
 {
 	if (n < 2)
@@ -375,24 +376,32 @@ struct hashed {
 	uint32_t f;
 };
 
-/* Stable LSD radix sort of x[0..n) by h, 16 bits a pass (tmp: n entries). */
-static int radix_sort_hashes(struct hashed *x, struct hashed *tmp, size_t n, struct fct_err *err)
+/* The hash bits faces are sorted by: the top 33, in three 11-bit digits
+ * whose counts fit in L1.  Faces that agree on them (about n^2 / 2^34 pairs
+ * by chance) are then ordered by their sets. */
+#define KEY_SHIFT 31
+#define DIGIT_BITS 11
+#define DIGITS (1u << DIGIT_BITS)
+
+static uint64_t sort_key(const struct hashed *x)
 {
-	size_t *count = alloc_array(65537, sizeof *count, err);
-	if (!count)
-		return -1;
-	for (int shift = 0; shift < 64; shift += 16) {
-		memset(count, 0, 65537 * sizeof *count);
+	return x->h >> KEY_SHIFT;
+}
+
+/* Stable LSD radix sort of x[0..n) by sort_key (tmp: n entries). */
+static void radix_sort_hashes(struct hashed *x, struct hashed *tmp, size_t n)
+{
+	size_t count[DIGITS + 1];
+	for (int shift = 0; shift < 64 - KEY_SHIFT; shift += DIGIT_BITS) {
+		memset(count, 0, sizeof count);
 		for (size_t i = 0; i < n; i++)
-			count[((x[i].h >> shift) & 0xffff) + 1]++;
-		for (size_t k = 0; k < 65536; k++)
+			count[((sort_key(&x[i]) >> shift) & (DIGITS - 1)) + 1]++;
+		for (size_t k = 0; k < DIGITS; k++)
 			count[k + 1] += count[k];
 		for (size_t i = 0; i < n; i++)
-			tmp[count[(x[i].h >> shift) & 0xffff]++] = x[i];
+			tmp[count[(sort_key(&x[i]) >> shift) & (DIGITS - 1)]++] = x[i];
 		memcpy(x, tmp, n * sizeof *x);
 	}
-	free(count);
-	return 0;
 }
 
 /* Faces are hashed on their sorted vertex sets and radix-sorted by hash, so
@@ -424,21 +433,20 @@ long fct_mesh_duplicate_faces(const struct fct_mesh *m, uint32_t *first, struct 
 		x[f].h = h;
 		x[f].f = (uint32_t)f;
 	}
-	if (radix_sort_hashes(x, tmp, m->nf, err))
-		goto out;
+	radix_sort_hashes(x, tmp, m->nf);
 	n = 0;
 	for (size_t i = 0, j; i < m->nf; i = j) {
-		for (j = i; j < m->nf && x[j].h == x[i].h; j++)
+		for (j = i; j < m->nf && sort_key(&x[j]) == sort_key(&x[i]); j++)
 			run[j - i] = x[j].f;
 		sort_by_set(&s, run, rtmp, j - i);
 		/* In each group of equal sets the smallest face comes first. */
 		uint32_t lead = run[0];
 		for (size_t k = 0; k < j - i; k++) {
 			uint32_t f = run[k];
-			if (!same_set(&s, lead, f))
-				lead = f;
-			else if (f != lead)
+			if (k > 0 && same_set(&s, lead, f))
 				n++;
+			else
+				lead = f;
 			if (first)
 				first[f] = lead;
 		}
