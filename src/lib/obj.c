@@ -353,20 +353,27 @@ static int parse_vn(struct obj *o, const char *p)
 	return 0;
 }
 
+/* "face: "1/x/2" is not a vertex reference" for the corner at c. */
+static int bad_corner(struct obj *o, const char *c)
+{
+	const char *e = c;
+	while (!is_end(*e))
+		e++;
+	return fail_at(o, "face: \"%.*s\" is not a vertex reference", (int)(e - c > 40 ? 40 : e - c), c);
+}
+
 /* Parse an OBJ index (1-based, or negative: relative to the count so far)
  * at p and turn it into a 0-based index below count.  Returns the end of the
  * number, or NULL with a message naming `what`. */
 static const char *parse_index(struct obj *o, const char *p, size_t count, const char *what,
-                               const char *plural, uint32_t *out)
+                               const char *plural, const char *corner, uint32_t *out)
 {
 	const char *s = p;
 	int neg = *p == '-';
 	if (*p == '-' || *p == '+')
 		p++;
 	if (!is_digit(*p)) {
-		while (!is_end(*p))
-			p++;
-		fail_at(o, "face: \"%.*s\" is not a vertex reference", (int)(p - s > 40 ? 40 : p - s), s);
+		bad_corner(o, corner);
 		return NULL;
 	}
 	uint64_t v = 0;
@@ -533,14 +540,14 @@ static int parse_f(struct obj *o, const char *p)
 		if (!*p)
 			break;
 		uint32_t v, t = 0, n = 0;
-		const char *q = fast_index(p, o->npos, &v);
-		if (!(p = q ? q : parse_index(o, p, o->npos, "vertex", "vertices", &v)))
+		const char *corner = p, *q = fast_index(p, o->npos, &v);
+		if (!(p = q ? q : parse_index(o, p, o->npos, "vertex", "vertices", corner, &v)))
 			return -1;
 		if (*p == '/') {
 			p++;
 			if (*p != '/' && !is_end(*p)) {
 				q = fast_index(p, o->nvt, &t);
-				if (!(p = q ? q : parse_index(o, p, o->nvt, "texture coordinate", "texture coordinates", &t)))
+				if (!(p = q ? q : parse_index(o, p, o->nvt, "texture coordinate", "texture coordinates", corner, &t)))
 					return -1;
 				t++;
 				o->corner_vt = 1;
@@ -549,20 +556,15 @@ static int parse_f(struct obj *o, const char *p)
 				p++;
 				if (!is_end(*p)) {
 					q = fast_index(p, o->nvn, &n);
-					if (!(p = q ? q : parse_index(o, p, o->nvn, "normal", "normals", &n)))
+					if (!(p = q ? q : parse_index(o, p, o->nvn, "normal", "normals", corner, &n)))
 						return -1;
 					n++;
 					o->corner_vn = 1;
 				}
 			}
 		}
-		if (!is_end(*p)) {
-			const char *e = p;
-			while (!is_end(*e))
-				e++;
-			return fail_at(o, "face: unexpected \"%.*s\" in a vertex reference",
-			               (int)(e - p > 40 ? 40 : e - p), p);
-		}
+		if (!is_end(*p))
+			return bad_corner(o, corner);
 		if (base + k >= UINT32_MAX)
 			return fail_at(o, "too many face vertices in all");
 		if (base + k >= m->fvert_cap &&
@@ -656,6 +658,8 @@ static int read_mtl(struct obj *o, const char *path)
 	size_t len;
 	char *line;
 	while ((line = fct_reader_line(&r, &len, &e))) {
+		if (strlen(line) != len)
+			break;  /* binary: not a material library (and maybe endless) */
 		if (r.line == 1 && len >= 3 && !memcmp(line, "\xEF\xBB\xBF", 3))
 			line += 3;
 		line = (char *)skip_blanks(line);
@@ -798,13 +802,19 @@ static int statement(struct obj *o, char *s, size_t len)
 			rc = parse_vn(o, s + 2);
 		else
 			goto other;
-		return rc ? rc : o->end == eol ? 0 : fail_binary(o);
+		break;
 	case 'f':
 		if (!is_end(s[1]))
 			goto other;
 		rc = parse_f(o, s + 1);
-		return rc ? rc : o->end == eol ? 0 : fail_binary(o);
+		break;
+	default:
+		goto other;
 	}
+	/* A NUL byte explains a parse error better than the error itself. */
+	if (rc ? s + strlen(s) != eol : o->end != eol)
+		return fail_binary(o);
+	return rc;
 other:
 	if (s + strlen(s) != eol)
 		return fail_binary(o);
