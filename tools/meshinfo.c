@@ -220,15 +220,13 @@ int main(int argc, char **argv)
 		{NULL, 0, NULL, 0},
 	};
 	fct_cli_init("meshinfo");
+	static const char optstring[] = "h";
 	int c;
-	while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
 		case 'h': fputs(usage, stdout); return 0;
 		case 'V': puts("meshinfo (facet) " FCT_VERSION); return 0;
-		default:
-			if (optopt)
-				fct_usage_error("-%c: unknown option", optopt);
-			fct_usage_error("%s: unknown option", argv[optind - 1]);
+		default: fct_bad_option(optstring, argv);
 		}
 	}
 	int status = 0, printed = 0, nfiles = argc - optind;

@@ -200,19 +200,16 @@ int main(int argc, char **argv)
 		{NULL, 0, NULL, 0},
 	};
 	fct_cli_init("tolcmp");
+	static const char optstring[] = "a:hr:s";
 	int c;
-	while ((c = getopt_long(argc, argv, ":a:hr:s", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
 		case 'a': tol_abs = fct_opt_double("-a", optarg, 0, INFINITY); break;
 		case 'h': fputs(usage, stdout); return 0;
 		case 'r': tol_rel = fct_opt_double("-r", optarg, 0, INFINITY); break;
 		case 's': silent = 1; break;
 		case 'V': puts("tolcmp (facet) " FCT_VERSION); return 0;
-		case ':': fct_usage_error("-%c: needs an argument", optopt);
-		default:
-			if (optopt)
-				fct_usage_error("-%c: unknown option", optopt);
-			fct_usage_error("%s: unknown option", argv[optind - 1]);
+		default: fct_bad_option(optstring, argv);
 		}
 	}
 	if (argc - optind != 2)
