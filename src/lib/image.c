@@ -19,9 +19,11 @@
 
 #include "numparse.h"
 
-/* zlib's deflate cannot compress better than about 1032:1, so a PNG whose
- * filtered rows need more bytes than its whole file times this is lying. */
-enum { DEFLATE_MAX_RATIO = 1032, INFLATE_SLACK = 1 << 16 };
+/* Deflate cannot compress better than 1032:1 (a 258-byte match costs at
+ * least 2 bits), so a PNG whose filtered rows need more bytes than its whole
+ * file times this is lying about its size.  Palette and sub-8-bit expansion
+ * can still multiply the pixel array by up to 32, as a real file would. */
+enum { DEFLATE_MAX_RATIO = 1032, CHUNK_MALLOC_MIN = 8 << 20 };
 
 static const unsigned char png_magic[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
 
@@ -369,10 +371,37 @@ static void png_read_mem(png_structp png, png_bytep out, size_t n)
 	s->pos += n;
 }
 
+/* Walk the chunk headers and refuse a chunk whose declared length runs past
+ * the end of the file: libpng allocates a chunk's declared length before it
+ * reads it (sPLT, unknown chunks), so 30 bytes could ask for 2 GB. */
+static int png_check_chunks(const unsigned char *b, size_t len, const char *name,
+                            struct fct_err *err)
+{
+	size_t pos = 8;
+	while (len - pos >= 8) {
+		uint32_t n = (uint32_t)b[pos] << 24 | (uint32_t)b[pos + 1] << 16 |
+		             (uint32_t)b[pos + 2] << 8 | b[pos + 3];
+		const unsigned char *t = b + pos + 4;
+		int named = 1;
+		for (int i = 0; i < 4; i++)
+			named &= (t[i] >= 'A' && t[i] <= 'Z') || (t[i] >= 'a' && t[i] <= 'z');
+		if (n > len - pos - 8 || len - pos - 8 - n < 4)
+			return fct_fail(err, "%s: byte %zu: chunk %.4s declares %lu bytes, "
+			                "past the end of the file (%zu bytes)", name, pos,
+			                named ? (const char *)t : "(bad name)", (unsigned long)n, len);
+		if (!memcmp(t, "IEND", 4))
+			break;
+		pos += (size_t)n + 12;
+	}
+	return 0;
+}
+
 /* Decode the PNG in s->buf into img (whose data is set only on success). */
 static int png_decode(struct fct_image *img, struct png_state *s, const char *name,
                       struct fct_err *err)
 {
+	if (png_check_chunks(s->buf, s->len, name, err))
+		return -1;
 	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, s, png_on_error,
 	                                         png_on_warning);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -391,6 +420,9 @@ static int png_decode(struct fct_image *img, struct png_state *s, const char *na
 	}
 	png_set_read_fn(png, s, png_read_mem);
 	png_set_user_limits(png, FCT_IMAGE_MAX_SIDE, FCT_IMAGE_MAX_SIDE);
+	/* Caps what libpng inflates ancillary chunks (iCCP, zTXt) to; 8 MiB
+	 * leaves room for a real colour profile in a small file. */
+	png_set_chunk_malloc_max(png, s->len > CHUNK_MALLOC_MIN ? s->len : CHUNK_MALLOC_MIN);
 	png_read_info(png, info);
 
 	png_uint_32 w, h;
@@ -402,7 +434,7 @@ static int png_decode(struct fct_image *img, struct png_state *s, const char *na
 		         (unsigned long)w, (unsigned long)h);
 	/* The filtered rows, one filter byte each, that IDAT must inflate to. */
 	uint64_t raw = ((uint64_t)w * png_get_channels(png, info) * (uint64_t)depth + 7) / 8 + 1;
-	if (raw * h / DEFLATE_MAX_RATIO > (uint64_t)s->len + INFLATE_SLACK)
+	if (raw * h > (uint64_t)s->len * DEFLATE_MAX_RATIO)
 		png_fail(png, s, 16, "image size %lux%lu needs %llu bytes of pixel data, "
 		         "more than %zu bytes of PNG can hold", (unsigned long)w,
 		         (unsigned long)h, (unsigned long long)(raw * h), s->len);
