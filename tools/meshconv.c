@@ -6,7 +6,6 @@
 
 #include "cli.h"
 #include "meshio.h"
-#include "output.h"
 #include "path.h"
 
 static const char usage[] =
@@ -62,21 +61,11 @@ int main(int argc, char **argv)
 	if (fct_mesh_read_file(&m, in, &infmt, &err))
 		fct_die_err(&err);
 	double t1 = fct_now();
-	int rc;
-	int named = out && strcmp(out, "-");
-	if (named && fct_path_has_suffix(out, ".obj") && fmt != -1 && fmt != FCT_FORMAT_OBJ)
-		fct_usage_error("-o %s: the name says OBJ but -f says PLY", out);
-	if (fmt == FCT_FORMAT_PLY_BE || (fmt == FCT_FORMAT_OBJ && !named)) {
-		/* Formats the file name cannot express go through the stream writer. */
-		struct fct_out o;
-		rc = fct_out_open(&o, out, &err);
-		if (!rc && (rc = fct_mesh_write_stream(&m, o.f, (enum fct_format)fmt, &err)))
-			fct_out_abort(&o);
-		else if (!rc)
-			rc = fct_out_commit(&o, &err);
-	} else {
-		rc = fct_mesh_write_file(&m, out, fmt == FCT_FORMAT_PLY_ASCII, &err);
-	}
+	if (fmt == -1)
+		fmt = fct_format_for_path(out, 0);
+	else if (out && strcmp(out, "-") && fct_path_has_suffix(out, ".obj") && fmt != FCT_FORMAT_OBJ)
+		fct_usage_error("-o %s: the name says OBJ but the format asked for is PLY", out);
+	int rc = fct_mesh_write_file_as(&m, out, (enum fct_format)fmt, &err);
 	if (rc) {
 		fct_mesh_free(&m);
 		if (err.msg[0])

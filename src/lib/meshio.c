@@ -88,27 +88,45 @@ int fct_mesh_write_stream(const struct fct_mesh *m, FILE *f, enum fct_format fmt
 	return fct_ply_write(m, f, (enum fct_ply_format)fmt, err);
 }
 
-/* "model.obj" -> "model.mtl" */
+/* "model.obj" -> "model.mtl"; any other name gets ".mtl" appended. */
 static char *mtl_path_for(const char *obj, struct fct_err *err)
 {
 	size_t n = strlen(obj);
-	char *p = fct_strdup(obj, err);
-	if (p)
-		memcpy(p + n - 4, ".mtl", 4);
+	int swap = fct_path_has_suffix(obj, ".obj");
+	char *p = malloc(n + 5);
+	if (!p) {
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	memcpy(p, obj, n + 1);
+	strcpy(p + (swap ? n - 4 : n), ".mtl");
 	return p;
+}
+
+enum fct_format fct_format_for_path(const char *path, int ascii)
+{
+	if (path && strcmp(path, "-") && fct_path_has_suffix(path, ".obj"))
+		return FCT_FORMAT_OBJ;
+	return ascii ? FCT_FORMAT_PLY_ASCII : FCT_FORMAT_PLY_LE;
 }
 
 int fct_mesh_write_file(const struct fct_mesh *m, const char *path, int ascii,
                         struct fct_err *err)
 {
+	return fct_mesh_write_file_as(m, path, fct_format_for_path(path, ascii), err);
+}
+
+int fct_mesh_write_file_as(const struct fct_mesh *m, const char *path, enum fct_format fmt,
+                           struct fct_err *err)
+{
 	struct fct_out out, mtl = {0};
-	int is_obj = path && strcmp(path, "-") && fct_path_has_suffix(path, ".obj");
+	int named = path && strcmp(path, "-");
 	struct fct_mesh copy;
 	const struct fct_mesh *w = m;
 	char *dir = NULL, *mtl_path = NULL;
 	int rc = -1;
 	fct_mesh_init(&copy);
-	if (path && strcmp(path, "-") && fct_header_texture_count(m)) {
+	if (named && fct_header_texture_count(m)) {
 		/* Only the comments change: copy the mesh shallowly with its own comments. */
 		if (!(dir = fct_path_dir(path, err)))
 			return -1;
@@ -123,9 +141,9 @@ int fct_mesh_write_file(const struct fct_mesh *m, const char *path, int ascii,
 	}
 	if (fct_out_open(&out, path, err))
 		goto out;
-	if (is_obj) {
+	if (fmt == FCT_FORMAT_OBJ) {
 		const char *mtl_name = NULL;
-		if (fct_obj_wants_mtl(w)) {
+		if (named && fct_obj_wants_mtl(w)) {
 			if (!(mtl_path = mtl_path_for(path, err)) || fct_out_open(&mtl, mtl_path, err)) {
 				fct_out_abort(&out);
 				goto out;
@@ -134,10 +152,10 @@ int fct_mesh_write_file(const struct fct_mesh *m, const char *path, int ascii,
 		}
 		rc = fct_obj_write(w, out.f, mtl_name, mtl.f, err);
 	} else {
-		rc = fct_ply_write(w, out.f, ascii ? FCT_PLY_ASCII : FCT_PLY_BINARY_LE, err);
+		rc = fct_ply_write(w, out.f, (enum fct_ply_format)fmt, err);
 	}
 	if (rc) {
-		fct_err_prefix(err, "%s", path && strcmp(path, "-") ? path : "<stdout>");
+		fct_err_prefix(err, "%s", named ? path : "<stdout>");
 		fct_out_abort(&out);
 		fct_out_abort(&mtl);
 		goto out;

@@ -37,6 +37,14 @@ int fct_mesh_read_stream(struct fct_mesh *m, FILE *f, const char *name, const ch
 int fct_mesh_write_file(const struct fct_mesh *m, const char *path, int ascii,
                         struct fct_err *err);
 
+/* The format fct_mesh_write_file picks for path. */
+enum fct_format fct_format_for_path(const char *path, int ascii);
+
+/* Write m to path ("-" or NULL: stdout) in the given format; the material
+ * library of a textured OBJ is written only for a named file. */
+int fct_mesh_write_file_as(const struct fct_mesh *m, const char *path, enum fct_format fmt,
+                           struct fct_err *err);
+
 /* Write m to a stream in the given format (OBJ without a material library). */
 int fct_mesh_write_stream(const struct fct_mesh *m, FILE *f, enum fct_format fmt,
                           struct fct_err *err);

@@ -47,6 +47,8 @@ mkdir -p "$TMP/img" "$TMP/models"
 printf 'ply\nformat ascii 1.0\ncomment TextureFile img/tex.png\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float s\nproperty float t\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n' >"$TMP/tex.ply"
 (cd "$TMP" && meshconv -a -o models/m.ply tex.ply)
 check_true "TextureFile rewritten for the output folder" grep -q "^comment TextureFile ../img/tex.png" "$TMP/models/m.ply"
+(cd "$TMP" && meshconv -f binary_big_endian -o models/m2.ply tex.ply)
+check_true "TextureFile rewritten for any output format" grep -aq "^comment TextureFile ../img/tex.png" "$TMP/models/m2.ply"
 (cd "$TMP" && meshconv -a models/m.ply >back.ply)
 check_true "TextureFile read from a file is relative to the current folder again" \
 	grep -q "^comment TextureFile models/../img/tex.png" "$TMP/back.ply"
