@@ -10,7 +10,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	if (!buf)
 		return 0;
 	size_t n = 0;
-	if (size < 4 || memcmp(data, "ply", 3))
+	int magic = (size >= 4 && !memcmp(data, "ply\n", 4)) || (size >= 5 && !memcmp(data, "ply\r\n", 5));
+	if (!magic)
 		memcpy(buf, "ply\n", 4), n = 4;
 	memcpy(buf + n, data, size);
 	fuzz_mesh_bytes(buf, n + size);

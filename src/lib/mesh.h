@@ -110,7 +110,10 @@ struct fct_prop *fct_elem_find(const struct fct_elem *e, const char *name);
 /* The element called name among m's other elements, or NULL. */
 struct fct_elem *fct_mesh_find_elem(const struct fct_mesh *m, const char *name);
 
-/* Add a zero-filled scalar column of type t to e (which has e->count rows);
+/* Adding a property may move e->props: pointers to e's properties taken
+ * before it are stale afterwards; look them up again (fct_elem_find).
+ *
+ * Add a zero-filled scalar column of type t to e (which has e->count rows);
  * an existing column of that name is returned as it is if its type is t and
  * replaced otherwise.  Returns the column or NULL. */
 struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
