@@ -865,9 +865,12 @@ static int build_vertex_columns(struct obj *o)
 	static const char *names[8] = {"nx", "ny", "nz", "s", "t", "red", "green", "blue"};
 	for (int k = 0; k < 8; k++) {
 		int want = k < 3 ? want_vn : k < 5 ? want_vt : o->rgb != NULL;
-		if (want && !(c[k] = fct_elem_add_scalar(&m->vertex, names[k], k < 5 ? FCT_FLOAT32 : FCT_UINT8, o->err)))
+		if (want && !fct_elem_add_scalar(&m->vertex, names[k], k < 5 ? FCT_FLOAT32 : FCT_UINT8, o->err))
 			return -1;
 	}
+	/* Only now: adding a column moves the others. */
+	for (int k = 0; k < 8; k++)
+		c[k] = fct_elem_find(&m->vertex, names[k]);
 	for (size_t j = 0; j < nv; j++) {
 		uint32_t p, t, n;
 		vertex_source(o, j, &p, &t, &n);

@@ -322,7 +322,9 @@ static void build_textured(struct fct_mesh *m, int two_textures)
 	static const char *names[] = {"nx", "ny", "nz", "s", "t", "red", "green", "blue"};
 	struct fct_prop *p[8];
 	for (int k = 0; k < 8; k++)
-		p[k] = fct_elem_add_scalar(&m->vertex, names[k], k < 5 ? FCT_FLOAT32 : FCT_UINT8, &err);
+		fct_elem_add_scalar(&m->vertex, names[k], k < 5 ? FCT_FLOAT32 : FCT_UINT8, &err);
+	for (int k = 0; k < 8; k++)  /* after adding: each new column moves the others */
+		p[k] = fct_elem_find(&m->vertex, names[k]);
 	for (size_t v = 0; v < 4; v++) {
 		fct_prop_set(p[2], v, 1);
 		fct_prop_set(p[3], v, v * 0.25);
