@@ -3,13 +3,13 @@
  * distance from points to a surface.
  *
  * The tree is built once with binned SAH splits (surface area heuristic,
- * 16 bins on each axis; object-median splits below depth 40 so the depth
- * stays bounded on any input) into a flat node array, with the triangles
- * copied in tree order in double precision.  The same input gives the same
- * tree.  Node boxes are float, rounded outward, so they never exclude a
- * point they should hold.  A query walks the tree nearest child first and
- * skips every box farther than the best distance found so far; the
- * triangle distance itself is exact in double (geom.h). */
+ * 16 bins on the widest axis of the centroids; object-median splits below
+ * depth 40 so the depth stays bounded on any input) into a flat node array,
+ * with the triangles copied in tree order in double precision.  The same
+ * input gives the same tree.  Node boxes are float, rounded outward, so they
+ * never exclude a point they should hold.  A query walks the tree nearest
+ * child first and skips every box farther than the best distance found so
+ * far; the triangle distance itself is exact in double (geom.h). */
 #ifndef FCT_BVH_H
 #define FCT_BVH_H
 
@@ -79,8 +79,9 @@ int fct_bvh_build_mesh(struct fct_bvh *b, const struct fct_mesh *m, struct fct_e
 void fct_bvh_free(struct fct_bvh *b);
 
 /* Find the closest point of the triangles to p among those closer than
- * sqrt(max_d2) (pass INFINITY for no limit).  Returns 1 and fills hit, or 0
- * when there is none (no triangles, or all too far). */
+ * sqrt(max_d2).  Returns 1 and fills hit, or 0 when there is none (no
+ * triangles, or all too far).  With max_d2 = INFINITY, a tree with
+ * triangles always answers (hit->d2 is infinite when it overflows). */
 int fct_bvh_closest(const struct fct_bvh *b, const double p[3], double max_d2,
                     struct fct_bvh_hit *hit);
 

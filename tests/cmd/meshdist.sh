@@ -76,6 +76,7 @@ run_case 1 "meshdist $D/dist_cube.ply $D/dist_nofaces.ply" "" "meshdist: $D/dist
 run_case 1 "meshdist -H $D/dist_empty.ply $D/dist_cube.ply" "" "meshdist: $D/dist_empty.ply: no faces"
 run_case 1 "meshdist -s 10 $D/dist_nofaces.ply $D/dist_cube.ply" "" "meshdist: $D/dist_nofaces.ply: -s: the faces have no area"
 run_case 1 "meshdist $D/dist_nan.ply $D/dist_cube.ply" "" "meshdist: $D/dist_nan.ply:"
+run_case 1 "meshdist $D/dist_far.ply $D/dist_cube.ply" "" "meshdist: $D/dist_far.ply: vertex 1: the distance overflows a double"
 run_case 1 "meshdist $D/dist_cube.ply $D/no_such_file.ply" "" "meshdist: $D/no_such_file.ply"
 
 # -v figures on stderr, stdout unchanged.

@@ -256,6 +256,12 @@ static void test_limits(void)
 	CHECK_NEAR(h.d2, 4, 0);
 	CHECK_INT(h.id, 0);
 	CHECK(fct_bvh_closest(&b, p, 4, &h) == 0);
+	/* So far away that the squared distance overflows: still an answer
+	 * without a limit, none with one. */
+	double far[3] = {1e300, 0, 0};
+	CHECK(fct_bvh_closest(&b, far, INFINITY, &h) == 1);
+	CHECK(isinf(h.d2));
+	CHECK(fct_bvh_closest(&b, far, 1e308, &h) == 0);
 	fct_bvh_free(&b);
 	/* A corner that is not a number is refused with its index. */
 	double bad[9] = {0, 0, 0, 1, NAN, 0, 0, 1, 0};
