@@ -278,7 +278,8 @@ int main(int argc, char **argv)
 	int ascii = 0, sym = 0, c;
 	long samples = 0;
 	uint64_t seed = 1;
-	while ((c = getopt_long(argc, argv, "aHho:qs:v", longopts, NULL)) != -1) {
+	static const char optstring[] = "aHho:qs:v";
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
 		case 'a': ascii = 1; break;
 		case 'H': sym = 1; break;
@@ -289,7 +290,7 @@ int main(int argc, char **argv)
 		case 'S': seed = (uint64_t)fct_opt_long("--seed", optarg, 0, 0x7fffffffffffffffL); break;
 		case 'v': fct_verbose = 1; break;
 		case 'V': puts("meshdist (facet) " FCT_VERSION); return 0;
-		default: fct_usage_error("unknown option");
+		default: fct_bad_option(optstring, argv);
 		}
 	}
 	if (argc - optind != 2)

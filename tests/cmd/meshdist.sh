@@ -91,7 +91,8 @@ run_case 2 "meshdist - - <$D/dist_sq.ply" "" "meshdist: A and B cannot both be s
 run_case 2 "meshdist -s -3 $D/dist_sq.ply $D/dist_sq.ply" "" "meshdist: -s: -3 must be in"
 run_case 2 "meshdist --seed x $D/dist_sq.ply $D/dist_sq.ply" "" "meshdist: --seed: \"x\" is not an integer"
 run_case 2 "meshdist -o - $D/dist_sq.ply $D/dist_sq.ply" "" "meshdist: -o: the figures go to standard output"
-run_case 2 "meshdist -Z $D/dist_sq.ply $D/dist_sq.ply"
+run_case 2 "meshdist -Z $D/dist_sq.ply $D/dist_sq.ply" "" "meshdist: -Z: unknown option"
+run_case 2 "meshdist $D/dist_sq.ply $D/dist_sq.ply -s" "" "meshdist: -s: option requires an argument"
 run_case 0 "meshdist --help | head -n 1 | grep -q '^usage: meshdist '"
 run_case 0 "meshdist --version | grep -q '^meshdist (facet) '"
 
