@@ -17,7 +17,6 @@
 #include <strings.h>
 #include <sys/stat.h>
 
-#include "header.h"
 #include "numparse.h"
 #include "path.h"
 
@@ -296,6 +295,9 @@ static int parse_v(struct obj *o, const char *p)
 	for (int k = 0; k < n; k++)
 		if (!isfinite(c[k]))
 			return fail_at(o, "v: %s is not a finite number", k < 3 ? "coordinate" : "colour");
+	for (int k = 0; k < 3; k++)
+		if (isinf((float)c[k]))
+			o->xyz_double = 1;  /* finite, but not as a float */
 	if (o->npos >= MAX_COUNT)
 		return fail_at(o, "too many vertices");
 	if (fct_grow((void **)&o->pos, &o->pos_cap, 3 * (o->npos + 1), sizeof *o->pos, o->err))
@@ -1098,9 +1100,30 @@ static const struct fct_prop *scalar(const struct fct_elem *e, const char *name)
 	return p && !p->count_type ? p : NULL;
 }
 
+/* The path of comment c if it is a TextureFile comment (as header.c reads
+ * them), else NULL.  Walking the comments once keeps many textures linear. */
+static const char *texture_of(const struct fct_comment *c)
+{
+	const char *t = c->text;
+	if (c->obj_info || strncmp(t, "TextureFile", 11) || (t[11] && t[11] != ' ' && t[11] != '\t'))
+		return NULL;
+	for (t += 11; *t == ' ' || *t == '\t'; t++)
+		;
+	return t;
+}
+
+/* Number of TextureFile comments (header.c's count is quadratic in them). */
+static size_t texture_count(const struct fct_mesh *m)
+{
+	size_t n = 0;
+	for (size_t i = 0; i < m->ncomments; i++)
+		n += texture_of(&m->comments[i]) != NULL;
+	return n;
+}
+
 int fct_obj_wants_mtl(const struct fct_mesh *m)
 {
-	return scalar(&m->vertex, "s") && scalar(&m->vertex, "t") && fct_header_texture_count(m) > 0;
+	return scalar(&m->vertex, "s") && scalar(&m->vertex, "t") && texture_count(m) > 0;
 }
 
 /* The material of face f: its texnumber when valid, else texture 0; -1 for
@@ -1115,10 +1138,13 @@ static long face_material(const struct fct_prop *tn, size_t f, size_t ntex)
 
 static int write_mtl(const struct fct_mesh *m, FILE *mtl, int untextured)
 {
-	size_t ntex = fct_header_texture_count(m);
 	fputs("# facet\n", mtl);
-	for (size_t i = 0; i < ntex; i++)
-		fprintf(mtl, "newmtl material_%zu\nKa 1 1 1\nKd 1 1 1\nmap_Kd %s\n\n", i, fct_header_texture(m, i));
+	size_t k = 0;
+	for (size_t i = 0; i < m->ncomments; i++) {
+		const char *path = texture_of(&m->comments[i]);
+		if (path)
+			fprintf(mtl, "newmtl material_%zu\nKa 1 1 1\nKd 1 1 1\nmap_Kd %s\n\n", k++, path);
+	}
 	if (untextured)
 		fputs("newmtl untextured\nKa 1 1 1\nKd 1 1 1\n", mtl);
 	return ferror(mtl) ? -1 : 0;
@@ -1138,7 +1164,7 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 	int has_rgb = c.r && c.g && c.b && c.r->type == FCT_UINT8 && c.g->type == FCT_UINT8 &&
 	              c.b->type == FCT_UINT8;
 	int textured = fct_obj_wants_mtl(m);
-	size_t ntex = fct_header_texture_count(m);
+	size_t ntex = texture_count(m);
 	const struct fct_prop *tn = textured ? scalar(&m->face, "texnumber") : NULL;
 	int untextured = 0;
 	for (size_t i = 0; tn && i < m->nf; i++)

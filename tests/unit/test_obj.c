@@ -205,6 +205,10 @@ static void test_colours_and_numbers(void)
 	CHECK(m.xyz_type == FCT_FLOAT64);
 	CHECK(m.xyz[0] == 0.1 && m.xyz[3] == 123456.789012);
 	fct_mesh_free(&m);
+	/* Beyond the float range: double, so the value stays finite. */
+	CHECK(read_str(&m, "v 1e39 0 0\n", &err) == 0);
+	CHECK(m.xyz_type == FCT_FLOAT64 && m.xyz[0] == 1e39);
+	fct_mesh_free(&m);
 	/* Trailing zeros are not precision. */
 	CHECK(read_str(&m, "v 0.1000000000 1 2\n", &err) == 0);
 	CHECK(m.xyz_type == FCT_FLOAT32);
