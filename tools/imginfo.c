@@ -80,15 +80,12 @@ int main(int argc, char **argv)
 	};
 	fct_cli_init("imginfo");
 	int c;
-	opterr = 0;  /* one message of ours, naming the option */
-	while ((c = getopt_long(argc, argv, "h", longopts, NULL)) != -1) {
+	static const char optstring[] = "h";
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
 		case 'h': fputs(usage, stdout); return 0;
 		case 'V': puts("imginfo (facet) " FCT_VERSION); return 0;
-		default:
-			if (!strncmp(argv[optind - 1], "--", 2))
-				fct_usage_error("bad option %s", argv[optind - 1]);
-			fct_usage_error("unknown option -%c", optopt);
+		default: fct_bad_option(optstring, argv);
 		}
 	}
 	const char *stdin_only[] = { "-" };

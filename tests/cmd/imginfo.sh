@@ -34,8 +34,8 @@ run_case 1 "imginfo $D/no-such-file.png" "" "imginfo: $D/no-such-file.png: No su
 # Usage.
 run_case 0 "imginfo -h | head -n 1 | grep -q '^usage: imginfo \[-h\] \[--version\] \[file \.\.\.\]\$'"
 run_case 0 "imginfo --version | grep -q '^imginfo (facet) '"
-run_case 0 "imginfo -x 2>\"\$TMP/usage\"; test \$? = 2 && head -n 1 \"\$TMP/usage\" | grep -qx 'imginfo: unknown option -x'"
-run_case 0 "imginfo --bogus 2>\"\$TMP/usage\"; test \$? = 2 && head -n 1 \"\$TMP/usage\" | grep -qx 'imginfo: bad option --bogus'"
+run_case 2 "imginfo -x" "" "imginfo: -x: unknown option"
+run_case 2 "imginfo --bogus" "" "imginfo: --bogus: unknown option"
 
 # The man page's synopsis is the usage line, and its examples run.
 man=man/man1/imginfo.1
