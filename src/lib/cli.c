@@ -69,8 +69,13 @@ void fct_usage_error(const char *fmt, ...)
 
 void fct_bad_option(const char *optstring, char **argv)
 {
-	if (!optopt)  /* an unknown long option: getopt_long left it in argv */
-		fct_usage_error("%s: unknown option", argv[optind - 1]);
+	const char *word = argv[optind - 1];
+	if (!strncmp(word, "--", 2)) {  /* a long option: name it as given */
+		const char *eq = strchr(word, '=');
+		if (eq)
+			fct_usage_error("%.*s: unknown option, or it takes no argument", (int)(eq - word), word);
+		fct_usage_error("%s: unknown option, or it needs an argument", word);
+	}
 	const char *at = strchr(optstring, optopt);
 	if (at && at[1] == ':')
 		fct_usage_error("-%c: option requires an argument", optopt);
