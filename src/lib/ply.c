@@ -708,6 +708,8 @@ static int read_ascii_elem(struct body *b)
 				if (s->kind == SLOT_COLUMN) {
 					memcpy((char *)s->col->data + i * s->size, raw, s->size);
 				} else {
+					if (s->type == FCT_FLOAT32)  /* the value is the float, as in binary */
+						d = (float)d;
 					if (check_position(b, i, s, d))
 						return -1;
 					m->xyz[3 * i + (s->kind - SLOT_X)] = d;
