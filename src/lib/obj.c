@@ -209,7 +209,9 @@ static char *next_statement(struct obj *o, size_t *len)
 	o->line = o->r->line;
 	if (o->line == 1 && *len >= 3 && !memcmp(line, "\xEF\xBB\xBF", 3))
 		line += 3, *len -= 3;
-	if (!*len || line[*len - 1] != '\\')
+	/* A comment ends at its line even with a "\\" there: a Windows path in a
+	 * provenance comment must not swallow the next statement. */
+	if (!*len || line[*len - 1] != '\\' || *skip_blanks(line) == '#')
 		return line;
 	size_t n = 0;
 	for (;;) {

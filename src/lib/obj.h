@@ -3,8 +3,9 @@
  * Reads v (with optional w, or with the common r g b extension), vt, vn, f
  * with v, v/vt, v//vn, v/vt/vn and negative (relative) indices, polygons of
  * any size (kept, not triangulated), g/o/s (ignored), usemtl/mtllib, line
- * continuations ("\" at a line's end), '#' comments and a UTF-8 BOM; other
- * statements (l, p, curv, ...) are ignored.
+ * continuations ("\" at a line's end; not in '#' comments, which end at
+ * their line), '#' comments and a UTF-8 BOM; other statements (l, p, curv,
+ * ...) are ignored.
  *
  * OBJ indexes positions, texture coordinates and normals separately; facet's
  * meshes have one index per vertex, so a position used with two different

@@ -231,6 +231,7 @@ static void test_lines_and_comments(void)
 		"# obj_info scanner 3\r\n"
 		"#comment  two blanks kept\r\n"
 		"# just a remark\r\n"
+		"# comment facet prog C:\\dir\\\r\n"
 		"  \t\r\n"
 		"v 0 0 \\\r\n 0\r\n"
 		"v 1 0 0\nv 0 1 0\n"
@@ -240,13 +241,14 @@ static void test_lines_and_comments(void)
 	CHECK_INT(m.nv, 3);
 	CHECK_INT(m.nf, 1);
 	CHECK_STR(face_str(&m, 0), "0 1 2");
-	CHECK_INT(m.ncomments, 3);
-	if (m.ncomments == 3) {
+	CHECK_INT(m.ncomments, 4);
+	if (m.ncomments == 4) {
 		CHECK_STR(m.comments[0].text, "camera pinhole 640 480 525 525 319.5 239.5");
 		CHECK(!m.comments[0].obj_info);
 		CHECK_STR(m.comments[1].text, "scanner 3");
 		CHECK(m.comments[1].obj_info);
 		CHECK_STR(m.comments[2].text, " two blanks kept");
+		CHECK_STR(m.comments[3].text, "facet prog C:\\dir\\");  /* no continuation */
 	}
 	fct_mesh_free(&m);
 
