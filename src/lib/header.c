@@ -146,23 +146,29 @@ static long texture_comment(const struct fct_mesh *m, size_t i)
 	return at;
 }
 
+const char *fct_comment_texture(const struct fct_comment *c)
+{
+	const char *t = c->text;
+	if (c->obj_info || strncmp(t, "TextureFile", 11) || (t[11] != ' ' && t[11] != '\t' && t[11]))
+		return NULL;
+	t += 11;
+	while (*t == ' ' || *t == '\t')
+		t++;
+	return t;
+}
+
 size_t fct_header_texture_count(const struct fct_mesh *m)
 {
 	size_t n = 0;
-	while (texture_comment(m, n) >= 0)
-		n++;
+	for (size_t i = 0; i < m->ncomments; i++)
+		n += fct_comment_texture(&m->comments[i]) != NULL;
 	return n;
 }
 
 const char *fct_header_texture(const struct fct_mesh *m, size_t i)
 {
 	long at = texture_comment(m, i);
-	if (at < 0)
-		return NULL;
-	const char *t = m->comments[at].text + 11;
-	while (*t == ' ' || *t == '\t')
-		t++;
-	return t;
+	return at < 0 ? NULL : fct_comment_texture(&m->comments[at]);
 }
 
 int fct_header_set_texture(struct fct_mesh *m, size_t i, const char *path, struct fct_err *err)

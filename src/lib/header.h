@@ -31,6 +31,8 @@ int fct_header_pose(const struct fct_mesh *m, double pose[12], struct fct_err *e
 /* Replace any pose comment (pose NULL removes it). */
 int fct_header_set_pose(struct fct_mesh *m, const double pose[12], struct fct_err *err);
 
+/* The path of a TextureFile comment, or NULL for any other comment. */
+const char *fct_comment_texture(const struct fct_comment *c);
 /* Number of TextureFile comments, and the i-th path (NULL past the end). */
 size_t fct_header_texture_count(const struct fct_mesh *m);
 const char *fct_header_texture(const struct fct_mesh *m, size_t i);

@@ -2,6 +2,7 @@
 #include "meshio.h"
 
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,21 +19,27 @@ const char *fct_format_name(enum fct_format fmt)
 	return names[fmt];
 }
 
-/* Rewrite every relative TextureFile path p of m as f(p). */
+/* Rewrite every relative TextureFile path p of m: joined to dir (reading a
+ * file from another folder) or made relative to dir (writing a file).  One
+ * pass over the comments, so thousands of textures stay linear. */
 static int map_textures(struct fct_mesh *m, const char *dir, int to_relative, struct fct_err *err)
 {
-	size_t n = fct_header_texture_count(m);
-	for (size_t i = 0; i < n; i++) {
-		const char *p = fct_header_texture(m, i);
-		if (p[0] == '/' || !p[0])
+	for (size_t i = 0; i < m->ncomments; i++) {
+		const char *p = fct_comment_texture(&m->comments[i]);
+		if (!p || p[0] == '/' || !p[0])
 			continue;
 		char *q = to_relative ? fct_path_relative(p, dir, err) : fct_path_join(dir, p, err);
 		if (!q)
 			return -1;
-		int rc = fct_header_set_texture(m, i, q, err);
+		size_t n = strlen(q) + 16;
+		char *text = malloc(n);
+		if (text)
+			snprintf(text, n, "TextureFile %s", q);
 		free(q);
-		if (rc)
-			return -1;
+		if (!text)
+			return fct_fail(err, "out of memory");
+		free(m->comments[i].text);
+		m->comments[i].text = text;
 	}
 	return 0;
 }

@@ -1,6 +1,7 @@
 /* numparse.c - exact fast decimal parsing (see numparse.h). */
 #include "numparse.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 
 static const double pow10_exact[23] = {
@@ -100,4 +101,26 @@ const char *fct_parse_int64(const char *s, int64_t *out)
 		return NULL;
 	*out = neg ? (int64_t)(0 - v) : (int64_t)v;
 	return p;
+}
+
+int fct_format_float(char *buf, size_t n, float v)
+{
+	for (int prec = 6; prec < 9; prec++) {
+		int k = snprintf(buf, n, "%.*g", prec, v);
+		double d;
+		if (fct_parse_double(buf, &d) && (float)d == v)
+			return k;
+	}
+	return snprintf(buf, n, "%.9g", v);
+}
+
+int fct_format_double(char *buf, size_t n, double v)
+{
+	for (int prec = 15; prec < 17; prec++) {
+		int k = snprintf(buf, n, "%.*g", prec, v);
+		double d;
+		if (fct_parse_double(buf, &d) && d == v)
+			return k;
+	}
+	return snprintf(buf, n, "%.17g", v);
 }

@@ -8,6 +8,8 @@
  * triangle mesh file is mostly indices. */
 #include "obj.h"
 
+#include "header.h"
+
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -1004,32 +1006,6 @@ int fct_obj_read(struct fct_mesh *m, struct fct_reader *r, const char *dir, stru
 
 /* Writer ----------------------------------------------------------------- */
 
-/* The shortest %g form that the reader (fct_parse_double, then rounding to
- * float) turns back into v, so a float survives PLY -> OBJ -> PLY bit for
- * bit.  Checked with the reader's own parser rather than strtof, so the two
- * cannot disagree. */
-static int format_float(char *buf, size_t n, float v)
-{
-	for (int prec = 6; prec < 9; prec++) {
-		int k = snprintf(buf, n, "%.*g", prec, v);
-		double d;
-		if (fct_parse_double(buf, &d) && (float)d == v)
-			return k;
-	}
-	return snprintf(buf, n, "%.9g", v);
-}
-
-static int format_double(char *buf, size_t n, double v)
-{
-	for (int prec = 15; prec < 17; prec++) {
-		int k = snprintf(buf, n, "%.*g", prec, v);
-		double d;
-		if (fct_parse_double(buf, &d) && d == v)
-			return k;
-	}
-	return snprintf(buf, n, "%.17g", v);
-}
-
 /* Buffered output: OBJ is many short lines. */
 struct wbuf {
 	FILE *f;
@@ -1078,12 +1054,12 @@ static void w_uint(struct wbuf *w, uint64_t v)
 
 static void w_float(struct wbuf *w, float v)
 {
-	w->len += (size_t)format_float(w_reserve(w, 40), 40, v);
+	w->len += (size_t)fct_format_float(w_reserve(w, 40), 40, v);
 }
 
 static void w_double(struct wbuf *w, double v)
 {
-	w->len += (size_t)format_double(w_reserve(w, 40), 40, v);
+	w->len += (size_t)fct_format_double(w_reserve(w, 40), 40, v);
 }
 
 /* Value i of column p, as precisely as its type holds. */
@@ -1102,30 +1078,9 @@ static const struct fct_prop *scalar(const struct fct_elem *e, const char *name)
 	return p && !p->count_type ? p : NULL;
 }
 
-/* The path of comment c if it is a TextureFile comment (as header.c reads
- * them), else NULL.  Walking the comments once keeps many textures linear. */
-static const char *texture_of(const struct fct_comment *c)
-{
-	const char *t = c->text;
-	if (c->obj_info || strncmp(t, "TextureFile", 11) || (t[11] && t[11] != ' ' && t[11] != '\t'))
-		return NULL;
-	for (t += 11; *t == ' ' || *t == '\t'; t++)
-		;
-	return t;
-}
-
-/* Number of TextureFile comments (header.c's count is quadratic in them). */
-static size_t texture_count(const struct fct_mesh *m)
-{
-	size_t n = 0;
-	for (size_t i = 0; i < m->ncomments; i++)
-		n += texture_of(&m->comments[i]) != NULL;
-	return n;
-}
-
 int fct_obj_wants_mtl(const struct fct_mesh *m)
 {
-	return scalar(&m->vertex, "s") && scalar(&m->vertex, "t") && texture_count(m) > 0;
+	return scalar(&m->vertex, "s") && scalar(&m->vertex, "t") && fct_header_texture_count(m) > 0;
 }
 
 /* The material of face f: its texnumber when valid, else texture 0; -1 for
@@ -1143,7 +1098,7 @@ static int write_mtl(const struct fct_mesh *m, FILE *mtl, int untextured)
 	fputs("# facet\n", mtl);
 	size_t k = 0;
 	for (size_t i = 0; i < m->ncomments; i++) {
-		const char *path = texture_of(&m->comments[i]);
+		const char *path = fct_comment_texture(&m->comments[i]);
 		if (path)
 			fprintf(mtl, "newmtl material_%zu\nKa 1 1 1\nKd 1 1 1\nmap_Kd %s\n\n", k++, path);
 	}
@@ -1166,7 +1121,7 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 	int has_rgb = c.r && c.g && c.b && c.r->type == FCT_UINT8 && c.g->type == FCT_UINT8 &&
 	              c.b->type == FCT_UINT8;
 	int textured = fct_obj_wants_mtl(m);
-	size_t ntex = texture_count(m);
+	size_t ntex = fct_header_texture_count(m);
 	const struct fct_prop *tn = textured ? scalar(&m->face, "texnumber") : NULL;
 	int untextured = 0;
 	for (size_t i = 0; tn && i < m->nf; i++)

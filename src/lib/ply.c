@@ -1000,32 +1000,19 @@ static void write_columns_binary(struct wbuf *w, const struct fct_elem *e, size_
 	}
 }
 
-/* The shortest %g form that reads back as the same value, so ascii output
- * keeps what was read ("0.5", not "0.500000000"). */
+/* Numbers in ascii PLY: the shortest form that reads back exactly. */
 static void print_float(FILE *f, float v)
 {
-	char buf[32];
-	for (int prec = 6; prec < 9; prec++) {
-		snprintf(buf, sizeof buf, "%.*g", prec, v);
-		if (strtof(buf, NULL) == v) {
-			fputs(buf, f);
-			return;
-		}
-	}
-	fprintf(f, "%.9g", v);
+	char buf[40];
+	fct_format_float(buf, sizeof buf, v);
+	fputs(buf, f);
 }
 
 static void print_double(FILE *f, double v)
 {
 	char buf[40];
-	for (int prec = 15; prec < 17; prec++) {
-		snprintf(buf, sizeof buf, "%.*g", prec, v);
-		if (strtod(buf, NULL) == v) {
-			fputs(buf, f);
-			return;
-		}
-	}
-	fprintf(f, "%.17g", v);
+	fct_format_double(buf, sizeof buf, v);
+	fputs(buf, f);
 }
 
 static void print_value(FILE *f, const struct fct_prop *p, size_t k)
