@@ -6,21 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* malloc of n elements of size elem, overflow-checked; n == 0 allocates one
- * element so that NULL always means failure. */
-static void *alloc_array(size_t n, size_t elem, struct fct_err *err)
-{
-	size_t bytes;
-	if (fct_mul_size(n ? n : 1, elem, &bytes)) {
-		fct_fail(err, "adjacency: size overflow");
-		return NULL;
-	}
-	void *p = malloc(bytes);
-	if (!p)
-		fct_fail(err, "adjacency: out of memory");
-	return p;
-}
-
 void fct_adj_free(struct fct_adj *a)
 {
 	if (!a)
@@ -62,13 +47,13 @@ static void counting_sort(uint32_t *dst, const uint32_t *src, size_t n, const ui
 static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
 {
 	size_t nc = m->nf ? m->fstart[m->nf] : 0;
-	uint32_t *lo = alloc_array(nc, sizeof *lo, err);
-	uint32_t *hi = alloc_array(nc, sizeof *hi, err);
-	uint32_t *cf = alloc_array(nc, sizeof *cf, err);
-	uint32_t *p1 = alloc_array(nc, sizeof *p1, err);
-	uint32_t *p2 = alloc_array(nc, sizeof *p2, err);
-	uint32_t *count = alloc_array(m->nv + 1, sizeof *count, err);
-	a->face_e = alloc_array(nc, sizeof *a->face_e, err);
+	uint32_t *lo = fct_alloc_array(nc, sizeof *lo, err);
+	uint32_t *hi = fct_alloc_array(nc, sizeof *hi, err);
+	uint32_t *cf = fct_alloc_array(nc, sizeof *cf, err);
+	uint32_t *p1 = fct_alloc_array(nc, sizeof *p1, err);
+	uint32_t *p2 = fct_alloc_array(nc, sizeof *p2, err);
+	uint32_t *count = fct_alloc_array(m->nv + 1, sizeof *count, err);
+	a->face_e = fct_alloc_array(nc, sizeof *a->face_e, err);
 	int rc = -1;
 	if (!lo || !hi || !cf || !p1 || !p2 || !count || !a->face_e)
 		goto out;
@@ -100,9 +85,9 @@ static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_e
 		if (i == 0 || lo[p2[i]] != lo[p2[i - 1]] || hi[p2[i]] != hi[p2[i - 1]])
 			ne++;
 	a->ne = ne;
-	a->edge_v = alloc_array(2 * ne, sizeof *a->edge_v, err);
-	a->edge_fstart = alloc_array(ne + 1, sizeof *a->edge_fstart, err);
-	a->edge_f = alloc_array(nk, sizeof *a->edge_f, err);
+	a->edge_v = fct_alloc_array(2 * ne, sizeof *a->edge_v, err);
+	a->edge_fstart = fct_alloc_array(ne + 1, sizeof *a->edge_fstart, err);
+	a->edge_f = fct_alloc_array(nk, sizeof *a->edge_f, err);
 	if (!a->edge_v || !a->edge_fstart || !a->edge_f)
 		goto out;
 	size_t e = (size_t)-1;
@@ -142,8 +127,8 @@ out:
  * tells that it was already counted for v. */
 static int build_vertex_faces(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
 {
-	uint32_t *last = alloc_array(m->nv, sizeof *last, err);
-	a->vert_fstart = alloc_array(m->nv + 1, sizeof *a->vert_fstart, err);
+	uint32_t *last = fct_alloc_array(m->nv, sizeof *last, err);
+	a->vert_fstart = fct_alloc_array(m->nv + 1, sizeof *a->vert_fstart, err);
 	if (!last || !a->vert_fstart) {
 		free(last);
 		return -1;
@@ -161,7 +146,7 @@ static int build_vertex_faces(struct fct_adj *a, const struct fct_mesh *m, struc
 		}
 	for (size_t v = 0; v < m->nv; v++)
 		start[v + 1] += start[v];
-	a->vert_f = alloc_array(start[m->nv], sizeof *a->vert_f, err);
+	a->vert_f = fct_alloc_array(start[m->nv], sizeof *a->vert_f, err);
 	if (!a->vert_f) {
 		free(last);
 		return -1;
@@ -209,7 +194,7 @@ static uint32_t find_root(uint32_t *parent, uint32_t x)
 
 long fct_adj_components(const struct fct_adj *a, uint32_t *label, struct fct_err *err)
 {
-	uint32_t *parent = alloc_array(a->nf, sizeof *parent, err);
+	uint32_t *parent = fct_alloc_array(a->nf, sizeof *parent, err);
 	if (!parent)
 		return -1;
 	for (size_t f = 0; f < a->nf; f++)
@@ -267,7 +252,7 @@ long fct_mesh_degenerate_faces(const struct fct_mesh *m, double min_area, unsign
 {
 	if (check_size(m, err))
 		return -1;
-	uint32_t *last = alloc_array(m->nv, sizeof *last, err);
+	uint32_t *last = fct_alloc_array(m->nv, sizeof *last, err);
 	if (!last)
 		return -1;
 	memset(last, 0xff, m->nv * sizeof *last);
@@ -413,12 +398,12 @@ long fct_mesh_duplicate_faces(const struct fct_mesh *m, uint32_t *first, struct 
 		return -1;
 	size_t nc = m->nf ? m->fstart[m->nf] : 0;
 	struct face_sets s = {m->fstart, NULL, NULL};
-	s.set = alloc_array(nc, sizeof *s.set, err);
-	s.len = alloc_array(m->nf, sizeof *s.len, err);
-	struct hashed *x = alloc_array(m->nf, sizeof *x, err);
-	struct hashed *tmp = alloc_array(m->nf, sizeof *tmp, err);
-	uint32_t *run = alloc_array(m->nf, sizeof *run, err);
-	uint32_t *rtmp = alloc_array(m->nf, sizeof *rtmp, err);
+	s.set = fct_alloc_array(nc, sizeof *s.set, err);
+	s.len = fct_alloc_array(m->nf, sizeof *s.len, err);
+	struct hashed *x = fct_alloc_array(m->nf, sizeof *x, err);
+	struct hashed *tmp = fct_alloc_array(m->nf, sizeof *tmp, err);
+	uint32_t *run = fct_alloc_array(m->nf, sizeof *run, err);
+	uint32_t *rtmp = fct_alloc_array(m->nf, sizeof *rtmp, err);
 	long n = -1;
 	if (!s.set || !s.len || !x || !tmp || !run || !rtmp)
 		goto out;

@@ -68,6 +68,19 @@ int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *
 	return 0;
 }
 
+void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err)
+{
+	size_t bytes;
+	if (fct_mul_size(n ? n : 1, elem, &bytes)) {
+		fct_fail(err, "size overflow");
+		return NULL;
+	}
+	void *p = malloc(bytes);
+	if (!p)
+		fct_fail(err, "out of memory (%zu bytes)", bytes);
+	return p;
+}
+
 char *fct_strdup(const char *s, struct fct_err *err)
 {
 	size_t n = strlen(s) + 1;

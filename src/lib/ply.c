@@ -319,6 +319,14 @@ static int reserve_rows(struct body *b, size_t rows)
 	return 0;
 }
 
+/* All rows are read: double the storage, up to the element's count. */
+static int grow_rows(struct body *b, size_t count, size_t *reserved)
+{
+	size_t i = *reserved;
+	*reserved = count - i < i ? count : 2 * i;
+	return reserve_rows(b, *reserved);
+}
+
 /* Storage for the first rows, and the first offset of every list. */
 static int start_rows(struct body *b, size_t rows)
 {
@@ -515,11 +523,8 @@ static int read_binary_elem(struct body *b)
 			return -1;
 	}
 	for (size_t i = 0; i < count; i++) {
-		if (i == reserved) {
-			reserved = count - i < i ? count : 2 * i;
-			if (reserve_rows(b, reserved))
-				return -1;
-		}
+		if (i == reserved && grow_rows(b, count, &reserved))
+			return -1;
 		size_t done = fast_rows(b, i, reserved);
 		if (done == (size_t)-1)
 			return -1;
@@ -693,11 +698,8 @@ static int read_ascii_elem(struct body *b)
 	if (start_rows(b, reserved))
 		return -1;
 	for (size_t i = 0; i < count; i++) {
-		if (i == reserved) {
-			reserved = count - i < i ? count : 2 * i;
-			if (reserve_rows(b, reserved))
-				return -1;
-		}
+		if (i == reserved && grow_rows(b, count, &reserved))
+			return -1;
 		for (size_t j = 0; j < he->nprops; j++) {
 			struct slot *s = &b->slots[j];
 			double d;
