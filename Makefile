@@ -20,7 +20,8 @@ CC = gcc
 endif
 OPT ?= -O2
 CFLAGS ?= $(OPT) -g
-WARN = -std=c11 -Wall -Wextra -Werror -ffp-contract=off $(NO_TRUNC_WARN)
+BASE_WARN = -std=c11 -Wall -Wextra -Werror -ffp-contract=off
+WARN = $(BASE_WARN) $(NO_TRUNC_WARN)
 # Messages are cut to their buffer on purpose; gcc's guess that they might be is noise.
 NO_TRUNC_WARN := $(shell $(CC) -Werror -Wno-format-truncation -E -x c /dev/null >/dev/null 2>&1 && echo -Wno-format-truncation)
 ALL_CPPFLAGS = -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc/lib $(CPPFLAGS)
@@ -92,7 +93,7 @@ fuzz: build/config.mk
 	@mkdir -p build/fuzz
 	@for f in $(FUZZ_SRC); do n=$$(basename $$f .c); \
 	  echo "clang $$f -> build/fuzz/$$n"; \
-	  clang $(WARN) $(FUZZ_FLAGS) $(ALL_CPPFLAGS) $(DEP_CFLAGS) $$f build/fuzzlib/libfacet.a $(LDLIBS) -o build/fuzz/$$n || exit 1; done
+	  clang $(BASE_WARN) $(FUZZ_FLAGS) $(ALL_CPPFLAGS) $(DEP_CFLAGS) $$f build/fuzzlib/libfacet.a $(LDLIBS) -o build/fuzz/$$n || exit 1; done
 	FUZZ_TIME=$(FUZZ_TIME) sh fuzz/run $(FUZZ_SRC:fuzz/%.c=build/fuzz/%)
 
 bench: $(PROGS) $(BENCHES)
