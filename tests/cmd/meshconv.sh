@@ -67,6 +67,10 @@ run_case 1 "meshconv /nonexistent.ply" "" "meshconv: /nonexistent.ply: No such f
 run_case 0 "meshconv --version" "" ""
 run_case 0 "meshconv -h" "" ""
 
+# Fuzz finds kept as regressions (run under ASan by make sanitize): an OBJ
+# whose vertex columns were added while a pointer to an earlier one was held.
+run_case 0 "meshconv tests/data/obj_fuzz_uaf.obj >/dev/null"
+
 # The man page's examples.
 cp "$TMP/bun_zipper_res2.le.ply" "$TMP/in.ply"
 cp "$TMP/bun_zipper_res2.le.ply" "$TMP/scan.ply"
