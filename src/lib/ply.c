@@ -226,6 +226,8 @@ struct body {
 	struct slot *slots;
 	int swap;                 /* big-endian file on this little-endian reading */
 	char *cur;                /* ascii: rest of the current line */
+	enum { FAST_NONE, FAST_SCALARS, FAST_FACE } fast;  /* see plan_fast */
+	size_t fast_rest;
 };
 
 static int host_is_big_endian(void)
@@ -418,29 +420,42 @@ static inline int store_scalar_fast(struct body *b, const struct slot *s, size_t
 	return 0;
 }
 
-/* Rows [i, limit) that lie whole in the read buffer, for the common layouts
- * (host byte order; scalars only, or a face list of uchar count and 32-bit
- * indices followed by scalars).  Returns the number of rows stored; stops
- * early, without consuming the row, at anything unusual so that the general
- * path reads it again and reports it.  (size_t)-1 on failure. */
-static size_t fast_rows(struct body *b, size_t i, size_t limit)
+/* Which fast path the element's layout allows, decided once per element:
+ * FAST_NONE, FAST_SCALARS (host byte order, no lists) or FAST_FACE (a face
+ * list of uchar count and 32-bit indices first, then scalars).  Sets each
+ * scalar slot's offset and b->fast_rest, the bytes of scalars in a row. */
+static void plan_fast(struct body *b)
 {
-	struct fct_reader *r = b->r;
 	size_t ns = b->he->nprops, first = 0, rest = 0;
+	b->fast = FAST_NONE;
 	if (b->swap || !ns)
-		return 0;
-	int face = b->slots[0].kind == SLOT_FACE;
-	if (face) {
-		if (b->slots[0].count_size != 1 || b->slots[0].size != 4)
-			return 0;
+		return;
+	const struct slot *s0 = &b->slots[0];
+	if (s0->kind == SLOT_FACE) {
+		if (s0->count_size != 1 || (s0->type != FCT_INT32 && s0->type != FCT_UINT32))
+			return;
 		first = 1;
 	}
 	for (size_t j = first; j < ns; j++) {
 		if (b->slots[j].count_type)
-			return 0;
+			return;
 		b->slots[j].off = rest;
 		rest += b->slots[j].size;
 	}
+	b->fast = first ? FAST_FACE : FAST_SCALARS;
+	b->fast_rest = rest;
+}
+
+/* Rows [i, limit) that lie whole in the read buffer, for the layouts
+ * plan_fast accepted.  Returns the number of rows stored; stops early,
+ * without consuming the row, at anything unusual so that the general path
+ * reads it again and reports it.  (size_t)-1 on failure. */
+static size_t fast_rows(struct body *b, size_t i, size_t limit)
+{
+	struct fct_reader *r = b->r;
+	size_t ns = b->he->nprops, rest = b->fast_rest;
+	int face = b->fast == FAST_FACE;
+	size_t first = face ? 1 : 0;
 	const unsigned char *p = r->buf + r->pos, *end = r->buf + r->len;
 	size_t k = i;
 	struct fct_mesh *m = b->m;
@@ -467,9 +482,7 @@ static size_t fast_rows(struct body *b, size_t i, size_t limit)
 				for (size_t q = 0; q < c; q++)
 					neg |= dst[q];
 			}
-			if (b->slots[0].type == FCT_INT32 ? (neg >> 31) : 0)
-				break;
-			if (b->slots[0].type != FCT_INT32 && b->slots[0].type != FCT_UINT32)
+			if (b->slots[0].type == FCT_INT32 && (neg >> 31))
 				break;
 			m->fstart[k + 1] = (uint32_t)(used + c);
 			row = p + 1 + 4 * c;
@@ -522,10 +535,11 @@ static int read_binary_elem(struct body *b)
 		if (fct_grow((void **)&m->fvert, &m->fvert_cap, guess, sizeof *m->fvert, b->err))
 			return -1;
 	}
+	plan_fast(b);
 	for (size_t i = 0; i < count; i++) {
 		if (i == reserved && grow_rows(b, count, &reserved))
 			return -1;
-		size_t done = fast_rows(b, i, reserved);
+		size_t done = b->fast ? fast_rows(b, i, reserved) : 0;
 		if (done == (size_t)-1)
 			return -1;
 		if (done) {
@@ -844,7 +858,7 @@ int fct_ply_read(struct fct_mesh *m, struct fct_reader *r, enum fct_ply_format *
 	}
 	for (size_t i = 0; i < h.nelems; i++) {
 		const struct helem *he = &h.elems[i];
-		struct body b = {m, r, err, he, NULL, NULL, 0, NULL};
+		struct body b = {.m = m, .r = r, .err = err, .he = he};
 		free(slots);
 		if (!(slots = calloc(he->nprops ? he->nprops : 1, sizeof *slots))) {
 			fct_fail(err, "out of memory");
@@ -899,9 +913,6 @@ int fct_ply_read(struct fct_mesh *m, struct fct_reader *r, enum fct_ply_format *
 	} else if (r->ioerr) {
 		fct_reader_fail_short(r, err, "reading");
 		goto out;
-	}
-	if (m->nf && !m->fstart) {
-		/* an empty face element still needs its first offset */
 	}
 	if (fct_grow((void **)&m->fstart, &m->fstart_cap, m->nf + 1, sizeof *m->fstart, err))
 		goto out;
@@ -974,8 +985,25 @@ static inline void wraw(struct wbuf *w, const void *src, size_t sz)
 	w->n += sz;
 }
 
-static enum fct_type count_type_for(enum fct_type want, uint64_t n);
-static size_t max_list_length(const struct fct_prop *p, size_t count);
+/* The smallest list count type at least as wide as `want` that holds n. */
+static enum fct_type count_type_for(enum fct_type want, uint64_t n)
+{
+	static const uint64_t max[] = {0, INT8_MAX, UINT8_MAX, INT16_MAX, UINT16_MAX, INT32_MAX, UINT32_MAX};
+	if (want >= FCT_INT8 && want <= FCT_UINT32 && n <= max[want])
+		return want;
+	return n <= INT32_MAX ? FCT_INT32 : FCT_UINT32;
+}
+
+/* Largest row length of list column p (0 for no rows). */
+static size_t max_list_length(const struct fct_prop *p, size_t count)
+{
+	size_t mx = 0;
+	for (size_t i = 0; i < count; i++)
+		if (p->off[i + 1] - p->off[i] > mx)
+			mx = p->off[i + 1] - p->off[i];
+	return mx;
+}
+
 
 /* The count type a list column is written with: its own, widened when a row
  * has grown longer than that type can say. */
@@ -1061,25 +1089,6 @@ static void write_prop_decls(FILE *f, const struct fct_elem *e, const enum fct_t
 		else
 			fprintf(f, "property %s %s\n", fct_type_name(p->type), p->name);
 	}
-}
-
-/* The smallest list count type at least as wide as `want` that holds n. */
-static enum fct_type count_type_for(enum fct_type want, uint64_t n)
-{
-	static const uint64_t max[] = {0, INT8_MAX, UINT8_MAX, INT16_MAX, UINT16_MAX, INT32_MAX, UINT32_MAX};
-	if (want >= FCT_INT8 && want <= FCT_UINT32 && n <= max[want])
-		return want;
-	return n <= INT32_MAX ? FCT_INT32 : FCT_UINT32;
-}
-
-/* Largest row length of list column p (0 for no rows). */
-static size_t max_list_length(const struct fct_prop *p, size_t count)
-{
-	size_t mx = 0;
-	for (size_t i = 0; i < count; i++)
-		if (p->off[i + 1] - p->off[i] > mx)
-			mx = p->off[i + 1] - p->off[i];
-	return mx;
 }
 
 /* Count types of every list column of e, freshly allocated (NULL on no memory). */
