@@ -171,17 +171,43 @@ const char *fct_header_texture(const struct fct_mesh *m, size_t i)
 	return at < 0 ? NULL : fct_comment_texture(&m->comments[at]);
 }
 
-int fct_header_set_texture(struct fct_mesh *m, size_t i, const char *path, struct fct_err *err)
+/* "TextureFile PATH", malloc'd; NULL (message set) on a newline or no memory. */
+static char *texture_text(const char *path, struct fct_err *err)
 {
-	if (strchr(path, '\n'))
-		return fct_fail(err, "TextureFile: newline in path");
+	if (strchr(path, '\n')) {
+		fct_fail(err, "TextureFile: newline in path");
+		return NULL;
+	}
 	size_t n = strlen(path) + 16;
 	char *buf = malloc(n);
 	if (!buf)
-		return fct_fail(err, "out of memory");
-	snprintf(buf, n, "TextureFile %s", path);
-	int rc = put_comment(m, texture_comment(m, i), buf, err);
-	free(buf);
+		fct_fail(err, "out of memory");
+	else
+		snprintf(buf, n, "TextureFile %s", path);
+	return buf;
+}
+
+int fct_comment_set_texture(struct fct_comment *c, const char *path, struct fct_err *err)
+{
+	char *t = texture_text(path, err);
+	if (!t)
+		return -1;
+	free(c->text);
+	c->text = t;
+	c->obj_info = 0;
+	return 0;
+}
+
+int fct_header_set_texture(struct fct_mesh *m, size_t i, const char *path, struct fct_err *err)
+{
+	long at = texture_comment(m, i);
+	if (at >= 0)
+		return fct_comment_set_texture(&m->comments[at], path, err);
+	char *t = texture_text(path, err);
+	if (!t)
+		return -1;
+	int rc = fct_mesh_add_comment(m, t, 0, err);
+	free(t);
 	return rc;
 }
 

@@ -31,15 +31,10 @@ static int map_textures(struct fct_mesh *m, const char *dir, int to_relative, st
 		char *q = to_relative ? fct_path_relative(p, dir, err) : fct_path_join(dir, p, err);
 		if (!q)
 			return -1;
-		size_t n = strlen(q) + 16;
-		char *text = malloc(n);
-		if (text)
-			snprintf(text, n, "TextureFile %s", q);
+		int rc = fct_comment_set_texture(&m->comments[i], q, err);
 		free(q);
-		if (!text)
-			return fct_fail(err, "out of memory");
-		free(m->comments[i].text);
-		m->comments[i].text = text;
+		if (rc)
+			return -1;
 	}
 	return 0;
 }

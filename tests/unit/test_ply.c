@@ -222,7 +222,7 @@ static void test_hostile_stream(void)
 	struct fct_err err;
 	CHECK(read_mem(&m, buf, sizeof buf, &err) == -1);
 	CHECK_MSG(strstr(err.msg, "element vertex 10: unexpected end of file") != NULL, "%s", err.msg);
-	CHECK_STR(strncmp(err.msg, "mem: byte ", 10) ? err.msg : "ok", "ok");
+	CHECK_MSG(!strncmp(err.msg, "mem: byte ", 10), "binary errors give the byte offset: %s", err.msg);
 }
 
 static void test_header_comments(void)
@@ -252,7 +252,6 @@ static void test_header_comments(void)
 	CHECK(fct_header_camera(&m, &got, &err) == 1 && got.kind == FCT_CAMERA_CYLINDRICAL &&
 	      got.f == 651.9 && got.theta0 == 0.25 && got.cy == 511.5);
 	CHECK_INT(fct_header_texture_count(&m), 2);
-	fct_mesh_add_comment(&m, "pose 1 2 3", 0, &err);
 	fct_mesh_free(&m);
 	fct_mesh_init(&m);
 	fct_mesh_add_comment(&m, "pose 1 2 3", 0, &err);
