@@ -65,49 +65,23 @@ int fct_header_camera(const struct fct_mesh *m, struct fct_camera *cam, struct f
 	long i = find_comment(m, "camera", 0);
 	if (i < 0)
 		return 0;
-	const char *t = m->comments[i].text + 6;
-	while (*t == ' ' || *t == '\t')
-		t++;
-	double v[7];
-	int n;
-	if (!strncmp(t, "pinhole", 7) && (n = parse_numbers(t + 7, v, 6)) == 6) {
-		cam->kind = FCT_CAMERA_PINHOLE;
-		cam->fx = v[2], cam->fy = v[3], cam->cx = v[4], cam->cy = v[5];
-		if (!(cam->fx > 0 && cam->fy > 0))
-			return fct_fail(err, "comment camera pinhole: focal lengths must be positive");
-	} else if (!strncmp(t, "cylindrical", 11) && (n = parse_numbers(t + 11, v, 5)) == 5) {
-		cam->kind = FCT_CAMERA_CYLINDRICAL;
-		cam->f = v[2], cam->cy = v[3], cam->theta0 = v[4];
-		if (!(cam->f > 0))
-			return fct_fail(err, "comment camera cylindrical: f must be positive");
-	} else {
-		return fct_fail(err, "comment camera: expected \"pinhole W H fx fy cx cy\" or "
-		                "\"cylindrical W H f cy theta0\"");
+	if (fct_camera_parse(m->comments[i].text + 6, cam, err)) {
+		fct_err_prefix(err, "comment");
+		return -1;
 	}
-	if (v[0] < 1 || v[1] < 1 || v[0] > 1e9 || v[1] > 1e9 || v[0] != floor(v[0]) || v[1] != floor(v[1]))
-		return fct_fail(err, "comment camera: bad image size");
-	cam->width = (int)v[0], cam->height = (int)v[1];
 	return 1;
 }
 
 int fct_header_set_camera(struct fct_mesh *m, const struct fct_camera *cam, struct fct_err *err)
 {
 	long i = find_comment(m, "camera", 0);
-	char buf[512];
-	switch (cam->kind) {
-	case FCT_CAMERA_NONE:
+	if (cam->kind == FCT_CAMERA_NONE) {
 		if (i >= 0)
 			remove_comment(m, (size_t)i);
 		return 0;
-	case FCT_CAMERA_PINHOLE:
-		snprintf(buf, sizeof buf, "camera pinhole %d %d %.17g %.17g %.17g %.17g",
-		         cam->width, cam->height, cam->fx, cam->fy, cam->cx, cam->cy);
-		break;
-	case FCT_CAMERA_CYLINDRICAL:
-		snprintf(buf, sizeof buf, "camera cylindrical %d %d %.17g %.17g %.17g",
-		         cam->width, cam->height, cam->f, cam->cy, cam->theta0);
-		break;
 	}
+	char buf[300] = "camera ";
+	fct_camera_format(cam, buf + 7, sizeof buf - 7);
 	return put_comment(m, i, buf, err);
 }
 

@@ -10,16 +10,8 @@
 #ifndef FCT_HEADER_H
 #define FCT_HEADER_H
 
+#include "camera.h"
 #include "mesh.h"
-
-enum fct_camera_kind { FCT_CAMERA_NONE, FCT_CAMERA_PINHOLE, FCT_CAMERA_CYLINDRICAL };
-
-struct fct_camera {
-	enum fct_camera_kind kind;
-	int width, height;
-	double fx, fy, cx, cy;   /* pinhole */
-	double f, theta0;        /* cylindrical; cy is shared with pinhole */
-};
 
 /* The camera comment of m: 1 found, 0 none, -1 malformed (message set). */
 int fct_header_camera(const struct fct_mesh *m, struct fct_camera *cam, struct fct_err *err);

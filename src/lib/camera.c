@@ -1,0 +1,352 @@
+/* camera.c - camera models, camera and pose files (see camera.h). */
+#include "camera.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "numparse.h"
+
+void fct_camera_ray(const struct fct_camera *cam, double u, double v, double ray[3])
+{
+	if (cam->kind == FCT_CAMERA_CYLINDRICAL) {
+		double theta = cam->theta0 + 2 * M_PI * u / cam->width;
+		ray[0] = sin(theta);
+		ray[1] = (v - cam->cy) / cam->f;
+		ray[2] = cos(theta);
+	} else {
+		ray[0] = (u - cam->cx) / cam->fx;
+		ray[1] = (v - cam->cy) / cam->fy;
+		ray[2] = 1;
+	}
+}
+
+int fct_camera_project(const struct fct_camera *cam, const double p[3], double *u, double *v,
+                       double *depth)
+{
+	if (cam->kind == FCT_CAMERA_CYLINDRICAL) {
+		double rho = hypot(p[0], p[2]);
+		if (!(rho > 0))
+			return 0;
+		double a = atan2(p[0], p[2]) - cam->theta0;
+		double w = cam->width;
+		double x = a * w / (2 * M_PI);
+		x -= w * floor((x + 0.5) / w);
+		*u = x, *v = cam->cy + cam->f * p[1] / rho, *depth = rho;
+		return 1;
+	}
+	if (!(p[2] > 0))
+		return 0;
+	*u = cam->cx + cam->fx * p[0] / p[2];
+	*v = cam->cy + cam->fy * p[1] / p[2];
+	*depth = p[2];
+	return 1;
+}
+
+/* Skip blanks (and, for files, line ends and commas of JSON arrays). */
+static const char *skip_space(const char *s)
+{
+	while (*s == ' ' || *s == '\t' || *s == '\n' || *s == '\r')
+		s++;
+	return s;
+}
+
+/* Up to max finite numbers separated by blanks, line ends or commas; stops at
+ * the first thing that is not a number.  Returns how many, *end after them. */
+static int scan_numbers(const char *s, double *v, int max, const char **end)
+{
+	int n = 0;
+	for (;;) {
+		s = skip_space(s);
+		double x;
+		const char *e = n < max ? fct_parse_double(s, &x) : NULL;
+		if (!e || !isfinite(x))
+			break;
+		v[n++] = x;
+		s = skip_space(e);
+		if (*s == ',')
+			s++;
+	}
+	*end = s;
+	return n;
+}
+
+static int word_is(const char *s, const char *w, const char **after)
+{
+	size_t n = strlen(w);
+	if (strncmp(s, w, n) || (s[n] && s[n] != ' ' && s[n] != '\t'))
+		return 0;
+	*after = s + n;
+	return 1;
+}
+
+static int check_size(double w, double h, struct fct_camera *cam, struct fct_err *err)
+{
+	if (!(w >= 1 && h >= 1 && w <= 1e9 && h <= 1e9 && w == floor(w) && h == floor(h)))
+		return fct_fail(err, "camera: bad image size %.17g x %.17g", w, h);
+	cam->width = (int)w, cam->height = (int)h;
+	return 0;
+}
+
+int fct_camera_parse(const char *text, struct fct_camera *cam, struct fct_err *err)
+{
+	memset(cam, 0, sizeof *cam);
+	const char *s = skip_space(text), *rest, *end;
+	double v[7];
+	int n;
+	if (word_is(s, "pinhole", &rest)) {
+		n = scan_numbers(rest, v, 7, &end);
+		if (n != 6 || *end)
+			return fct_fail(err, "camera pinhole: expected W H fx fy cx cy");
+		cam->kind = FCT_CAMERA_PINHOLE;
+		cam->fx = v[2], cam->fy = v[3], cam->cx = v[4], cam->cy = v[5];
+		if (!(cam->fx > 0 && cam->fy > 0))
+			return fct_fail(err, "camera pinhole: focal lengths must be positive");
+	} else if (word_is(s, "cylindrical", &rest)) {
+		n = scan_numbers(rest, v, 6, &end);
+		if (n != 5 || *end)
+			return fct_fail(err, "camera cylindrical: expected W H f cy theta0");
+		cam->kind = FCT_CAMERA_CYLINDRICAL;
+		cam->f = v[2], cam->cy = v[3], cam->theta0 = v[4];
+		if (!(cam->f > 0))
+			return fct_fail(err, "camera cylindrical: f must be positive");
+	} else {
+		return fct_fail(err, "camera: expected \"pinhole W H fx fy cx cy\" or "
+		                "\"cylindrical W H f cy theta0\"");
+	}
+	return check_size(v[0], v[1], cam, err);
+}
+
+void fct_camera_format(const struct fct_camera *cam, char *buf, size_t size)
+{
+	if (cam->kind == FCT_CAMERA_CYLINDRICAL)
+		snprintf(buf, size, "cylindrical %d %d %.17g %.17g %.17g",
+		         cam->width, cam->height, cam->f, cam->cy, cam->theta0);
+	else
+		snprintf(buf, size, "pinhole %d %d %.17g %.17g %.17g %.17g",
+		         cam->width, cam->height, cam->fx, cam->fy, cam->cx, cam->cy);
+}
+
+/* Intrinsics of common RGB-D datasets, all 640x480.  TUM: the freiburg 1-3
+ * calibrations from the dataset page and the ROS default it recommends for
+ * the rest; Redwood, PrimeSense/Kinect: Open3D's PrimeSenseDefault;
+ * ICL-NUIM: its published K with the y axis pointing down; 7-Scenes: the
+ * dataset's approximate depth camera. */
+static const struct named_camera {
+	const char *name;
+	double fx, fy, cx, cy, scale;
+} named_cameras[] = {
+	{ "tum",        525.0, 525.0, 319.5, 239.5, 5000 },
+	{ "tum1",       517.3, 516.5, 318.6, 255.3, 5000 },
+	{ "tum2",       520.9, 521.0, 325.1, 249.7, 5000 },
+	{ "tum3",       535.4, 539.2, 320.1, 247.6, 5000 },
+	{ "redwood",    525.0, 525.0, 319.5, 239.5, 1000 },
+	{ "primesense", 525.0, 525.0, 319.5, 239.5, 1000 },
+	{ "kinect",     525.0, 525.0, 319.5, 239.5, 1000 },
+	{ "icl-nuim",   481.2, 480.0, 319.5, 239.5, 5000 },
+	{ "7scenes",    585.0, 585.0, 320.0, 240.0, 1000 },
+};
+
+int fct_camera_named(const char *name, struct fct_camera *cam, double *depth_scale)
+{
+	for (size_t i = 0; i < sizeof named_cameras / sizeof *named_cameras; i++) {
+		const struct named_camera *c = &named_cameras[i];
+		if (strcmp(name, c->name))
+			continue;
+		memset(cam, 0, sizeof *cam);
+		cam->kind = FCT_CAMERA_PINHOLE;
+		cam->width = 640, cam->height = 480;
+		cam->fx = c->fx, cam->fy = c->fy, cam->cx = c->cx, cam->cy = c->cy;
+		if (depth_scale)
+			*depth_scale = c->scale;
+		return 0;
+	}
+	return -1;
+}
+
+const char *fct_camera_names(void)
+{
+	return "tum tum1 tum2 tum3 redwood primesense kinect icl-nuim 7scenes";
+}
+
+/* The whole of a small text file, NUL-terminated, malloc'd. */
+static char *read_small_file(const char *path, struct fct_err *err)
+{
+	enum { MAX = 1 << 16 };
+	FILE *f = fopen(path, "rb");
+	if (!f) {
+		fct_fail(err, "%s: %s", path, strerror(errno));
+		return NULL;
+	}
+	char *buf = malloc(MAX + 1);
+	size_t n = buf ? fread(buf, 1, MAX + 1, f) : 0;
+	int bad = ferror(f);
+	fclose(f);
+	if (!buf) {
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	const char *why = bad ? "read error" : n > MAX ? "too large for a camera or pose file"
+	                : memchr(buf, 0, n) ? "binary data in a text file" : NULL;
+	if (why) {
+		fct_fail(err, "%s: %s", path, why);
+		free(buf);
+		return NULL;
+	}
+	buf[n] = 0;
+	return buf;
+}
+
+/* The text after "key" and a colon in a JSON object (no full JSON parser:
+ * Open3D's intrinsic files are flat objects). */
+static const char *json_value(const char *s, const char *key)
+{
+	size_t n = strlen(key);
+	for (const char *p = s; (p = strchr(p, '"')); p++) {
+		if (strncmp(p + 1, key, n) || p[n + 1] != '"')
+			continue;
+		const char *q = skip_space(p + n + 2);
+		if (*q == ':')
+			return skip_space(q + 1);
+	}
+	return NULL;
+}
+
+static int parse_open3d_json(const char *text, const char *path, struct fct_camera *cam,
+                             struct fct_err *err)
+{
+	const char *w = json_value(text, "width"), *h = json_value(text, "height");
+	const char *k = json_value(text, "intrinsic_matrix"), *end;
+	double vw, vh, m[10];
+	if (!w || !h || !k || *k != '[' || scan_numbers(w, &vw, 1, &end) != 1
+	    || scan_numbers(h, &vh, 1, &end) != 1)
+		return fct_fail(err, "%s: expected Open3D intrinsics: \"width\", \"height\" and "
+		                "\"intrinsic_matrix\"", path);
+	if (scan_numbers(k + 1, m, 10, &end) != 9 || *end != ']')
+		return fct_fail(err, "%s: intrinsic_matrix: expected 9 numbers", path);
+	/* Open3D stores K column by column: fx 0 0 0 fy 0 cx cy 1. */
+	memset(cam, 0, sizeof *cam);
+	cam->kind = FCT_CAMERA_PINHOLE;
+	cam->fx = m[0], cam->fy = m[4], cam->cx = m[6], cam->cy = m[7];
+	if (!(cam->fx > 0 && cam->fy > 0) || m[1] != 0 || m[2] != 0 || m[3] != 0 || m[5] != 0 || m[8] != 1)
+		return fct_fail(err, "%s: intrinsic_matrix is not a pinhole K with positive focal lengths",
+		                path);
+	if (check_size(vw, vh, cam, err)) {
+		fct_err_prefix(err, "%s", path);
+		return -1;
+	}
+	return 0;
+}
+
+static int parse_k_matrix(const char *text, const char *path, struct fct_camera *cam,
+                          struct fct_err *err)
+{
+	double k[10];
+	const char *end;
+	int n = scan_numbers(text, k, 10, &end);
+	if (n != 9 || *end)
+		return fct_fail(err, "%s: expected a camera line, Open3D JSON or a 3x3 K matrix", path);
+	if (!(k[0] > 0 && k[4] > 0) || k[1] != 0 || k[3] != 0 || k[6] != 0 || k[7] != 0 || k[8] != 1)
+		return fct_fail(err, "%s: not a pinhole K matrix (fx 0 cx / 0 fy cy / 0 0 1)", path);
+	memset(cam, 0, sizeof *cam);
+	cam->kind = FCT_CAMERA_PINHOLE;
+	cam->fx = k[0], cam->fy = k[4], cam->cx = k[2], cam->cy = k[5];
+	return 0;
+}
+
+/* Skip "comment" and then the keyword; NULL when the text does not start so. */
+static const char *after_keyword(const char *text, const char *key)
+{
+	const char *s = skip_space(text), *rest;
+	if (word_is(s, "comment", &rest))
+		s = skip_space(rest);
+	return word_is(s, key, &rest) ? rest : NULL;
+}
+
+int fct_camera_read_file(const char *path, struct fct_camera *cam, struct fct_err *err)
+{
+	char *text = read_small_file(path, err);
+	if (!text)
+		return -1;
+	/* One trailing line end is part of a text file, not of the camera line. */
+	size_t n = strlen(text);
+	while (n && (text[n - 1] == '\n' || text[n - 1] == '\r'))
+		text[--n] = 0;
+	const char *s = skip_space(text), *rest;
+	int rc;
+	if (*s == '{') {
+		rc = parse_open3d_json(s, path, cam, err);
+	} else if ((rest = after_keyword(s, "camera"))) {
+		rc = fct_camera_parse(rest, cam, err);
+		if (rc)
+			fct_err_prefix(err, "%s", path);
+	} else {
+		rc = parse_k_matrix(s, path, cam, err);
+	}
+	free(text);
+	return rc;
+}
+
+int fct_pose_check(const double pose[12], double tol, struct fct_err *err)
+{
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++) {
+			double d = 0;
+			for (int k = 0; k < 3; k++)
+				d += pose[4 * k + i] * pose[4 * k + j];
+			if (!(fabs(d - (i == j)) <= tol))
+				return fct_fail(err, "pose: the 3x3 part is not a rotation (R^T R differs from I by %.3g)",
+				                fabs(d - (i == j)));
+		}
+	double det = pose[0] * (pose[5] * pose[10] - pose[6] * pose[9])
+	           - pose[1] * (pose[4] * pose[10] - pose[6] * pose[8])
+	           + pose[2] * (pose[4] * pose[9] - pose[5] * pose[8]);
+	if (!(det > 0))
+		return fct_fail(err, "pose: the 3x3 part is a reflection, not a rotation");
+	for (int k = 0; k < 12; k++)
+		if (!isfinite(pose[k]))
+			return fct_fail(err, "pose: not finite");
+	return 0;
+}
+
+int fct_pose_read_file(const char *path, double pose[12], struct fct_err *err)
+{
+	char *text = read_small_file(path, err);
+	if (!text)
+		return -1;
+	const char *s = after_keyword(text, "pose"), *end;
+	double v[17];
+	int n = scan_numbers(s ? s : text, v, 17, &end);
+	int rc = 0;
+	if (*skip_space(end) || !(n == 12 || (n == 16 && !s)))
+		rc = fct_fail(err, "%s: expected a 4x4 or 3x4 camera-to-world matrix, or a pose line", path);
+	else if (n == 16 && (v[12] != 0 || v[13] != 0 || v[14] != 0 || v[15] != 1))
+		rc = fct_fail(err, "%s: the last row of a 4x4 pose must be 0 0 0 1", path);
+	free(text);
+	if (rc)
+		return -1;
+	memcpy(pose, v, 12 * sizeof *pose);
+	if (fct_pose_check(pose, 1e-3, err)) {
+		fct_err_prefix(err, "%s", path);
+		return -1;
+	}
+	return 0;
+}
+
+void fct_pose_apply(const double pose[12], const double p[3], double out[3])
+{
+	double x = p[0], y = p[1], z = p[2];
+	for (int i = 0; i < 3; i++)
+		out[i] = pose[4 * i] * x + pose[4 * i + 1] * y + pose[4 * i + 2] * z + pose[4 * i + 3];
+}
+
+void fct_pose_invert(const double pose[12], double inv[12])
+{
+	for (int i = 0; i < 3; i++) {
+		for (int j = 0; j < 3; j++)
+			inv[4 * i + j] = pose[4 * j + i];
+		inv[4 * i + 3] = -(pose[i] * pose[3] + pose[4 + i] * pose[7] + pose[8 + i] * pose[11]);
+	}
+}
