@@ -258,6 +258,52 @@ long fct_mesh_add_face(struct fct_mesh *m, const uint32_t *v, size_t n, struct f
 	return (long)m->nf++;
 }
 
+/* Make *ptr hold exactly need elements when it holds fewer (bulk
+ * construction knows its size; doubling would waste up to half). */
+static int reserve_exact(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
+{
+	size_t bytes;
+	if (need <= *cap)
+		return 0;
+	if (fct_mul_size(need, elem, &bytes))
+		return fct_fail(err, "size overflow");
+	void *p = *ptr ? realloc(*ptr, bytes) : fct_malloc_large(bytes);
+	if (!p)
+		return fct_fail(err, "out of memory (%zu bytes)", bytes);
+	if (p != *ptr)
+		fct_advise_large(p, bytes);
+	*ptr = p;
+	*cap = need;
+	return 0;
+}
+
+int fct_mesh_set_vertex_count(struct fct_mesh *m, size_t nv, struct fct_err *err)
+{
+	size_t n;
+	if (fct_mul_size(nv, 3, &n))
+		return fct_fail(err, "too many vertices");
+	if (reserve_exact((void **)&m->xyz, &m->xyz_cap, n, sizeof *m->xyz, err) ||
+	    fct_elem_resize(&m->vertex, nv, err))
+		return -1;
+	m->nv = nv;
+	return 0;
+}
+
+int fct_mesh_set_triangle_count(struct fct_mesh *m, size_t nf, struct fct_err *err)
+{
+	if (nf > UINT32_MAX / 3)
+		return fct_fail(err, "too many faces");
+	if (reserve_exact((void **)&m->fstart, &m->fstart_cap, nf + 1, sizeof *m->fstart, err) ||
+	    reserve_exact((void **)&m->fvert, &m->fvert_cap, 3 * nf, sizeof *m->fvert, err) ||
+	    fct_elem_resize(&m->face, nf, err))
+		return -1;
+	for (size_t f = 0; f <= nf; f++)
+		m->fstart[f] = (uint32_t)(3 * f);
+	m->nf = nf;
+	m->has_faces = 1;
+	return 0;
+}
+
 /* Gather rows of one column into fresh storage. */
 static int prop_gather(struct fct_prop *p, const size_t *src, size_t n, struct fct_err *err)
 {

@@ -97,6 +97,12 @@ void fct_mesh_free(struct fct_mesh *m);
 long fct_mesh_add_vertex(struct fct_mesh *m, double x, double y, double z, struct fct_err *err);
 long fct_mesh_add_face(struct fct_mesh *m, const uint32_t *v, size_t n, struct fct_err *err);
 
+/* Bulk construction: make m hold nv vertices (positions uninitialised, new
+ * rows of extra properties zeroed) / nf triangles (fvert[3f..3f+2]
+ * uninitialised for the caller to fill).  0 or -1. */
+int fct_mesh_set_vertex_count(struct fct_mesh *m, size_t nv, struct fct_err *err);
+int fct_mesh_set_triangle_count(struct fct_mesh *m, size_t nf, struct fct_err *err);
+
 /* Number of vertices of face f. */
 static inline uint32_t fct_face_size(const struct fct_mesh *m, size_t f)
 {

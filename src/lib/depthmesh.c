@@ -1,0 +1,119 @@
+/* depthmesh.c - depth images to meshes (see depthmesh.h). */
+#include "depthmesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void fct_depth_params_default(struct fct_depth_params *p)
+{
+	memset(p, 0, sizeof *p);
+	p->depth_scale = 1000;
+	p->max_depth = HUGE_VAL;
+	p->step = 1;
+	p->grid.max_jump = FCT_DEFAULT_MAX_JUMP;
+	p->grid.min_faces = FCT_DEFAULT_MIN_FACES;
+	p->texcoords = 1;
+}
+
+double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_depth_params *p)
+{
+	size_t i = (size_t)y * (size_t)img->width + (size_t)x;
+	double v;
+	switch (img->type) {
+	case FCT_PIX_U8:
+		v = ((const unsigned char *)img->data)[i] / p->depth_scale;
+		break;
+	case FCT_PIX_U16: {
+		unsigned s = ((const uint16_t *)img->data)[i];
+		v = s == 65535 ? 0 : s / p->depth_scale;
+		break;
+	}
+	default:
+		v = ((const float *)img->data)[i];
+		if (p->scale_float)
+			v /= p->depth_scale;
+	}
+	if (p->baseline > 0)
+		v = v > 0 ? p->baseline * p->focal / v : 0;
+	return v > 0 && v >= p->min_depth && v <= p->max_depth && isfinite(v) ? v : 0;
+}
+
+/* Lateral size of one grid step per unit depth: the geometric mean of the
+ * horizontal and vertical pixel angles, times the step. */
+static double footprint(const struct fct_camera *cam, int step)
+{
+	if (cam->kind == FCT_CAMERA_CYLINDRICAL)
+		return step * sqrt(2 * M_PI / cam->width / cam->f);
+	return step / sqrt(cam->fx * cam->fy);
+}
+
+int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
+                   const struct fct_depth_params *p, struct fct_grid_stats *stats,
+                   struct fct_err *err)
+{
+	fct_mesh_init(m);
+	if (img->channels != 1)
+		return fct_fail(err, "depth image has %d channels; one is needed", img->channels);
+	if (cam->kind == FCT_CAMERA_NONE)
+		return fct_fail(err, "no camera");
+	if (cam->width != img->width || cam->height != img->height)
+		return fct_fail(err, "the camera is %dx%d but the depth image is %dx%d",
+		                cam->width, cam->height, img->width, img->height);
+	if (p->step < 1)
+		return fct_fail(err, "step must be at least 1");
+	int step = p->step, gw = (img->width + step - 1) / step, gh = (img->height + step - 1) / step;
+	size_t ncells = (size_t)gw * (size_t)gh;
+	double *depth = fct_alloc_array(ncells, sizeof *depth, err);
+	double *xyz = fct_alloc_array(ncells, 3 * sizeof *xyz, err);
+	double *col = fct_alloc_array((size_t)gw, 3 * sizeof *col, err);
+	uint32_t *cell_of = NULL;
+	int rc = -1;
+	if (!depth || !xyz || !col)
+		goto out;
+
+	/* Rays factor into a column part and a row part for both models:
+	 * pinhole ((u-cx)/fx, (v-cy)/fy, 1), cylindrical (sin, (v-cy)/f, cos). */
+	for (int i = 0; i < gw; i++)
+		fct_camera_ray(cam, (double)i * step, 0, &col[3 * i]);
+	for (int j = 0; j < gh; j++) {
+		double ray[3];
+		fct_camera_ray(cam, 0, (double)j * step, ray);
+		double row_y = ray[1];
+		for (int i = 0; i < gw; i++) {
+			size_t c = (size_t)j * gw + i;
+			double d = fct_depth_at(img, i * step, j * step, p);
+			depth[c] = d;
+			xyz[3 * c] = d * col[3 * i];
+			xyz[3 * c + 1] = d * row_y;
+			xyz[3 * c + 2] = d * col[3 * i + 2];
+		}
+	}
+	struct fct_range_grid g = { gw, gh, xyz, depth, footprint(cam, step),
+	                            cam->kind == FCT_CAMERA_CYLINDRICAL };
+	if (fct_grid_mesh(m, &g, &p->grid, &cell_of, stats, err))
+		goto out;
+
+	if (p->texcoords) {
+		struct fct_prop *ps = fct_elem_add_scalar(&m->vertex, "s", FCT_FLOAT32, err);
+		if (!ps || !fct_elem_add_scalar(&m->vertex, "t", FCT_FLOAT32, err))
+			goto out;
+		ps = fct_elem_find(&m->vertex, "s");
+		float *s = ps->data, *t = fct_elem_find(&m->vertex, "t")->data;
+		for (size_t v = 0; v < m->nv; v++) {
+			size_t u = cell_of[v] % (size_t)gw * (size_t)step;
+			size_t r = cell_of[v] / (size_t)gw * (size_t)step;
+			s[v] = (float)((u + 0.5) / img->width);
+			t[v] = (float)(1 - (r + 0.5) / img->height);
+		}
+	}
+	rc = 0;
+out:
+	free(depth);
+	free(xyz);
+	free(col);
+	free(cell_of);
+	if (rc)
+		fct_mesh_free(m);
+	return rc;
+}

@@ -1,0 +1,53 @@
+/* depthmesh.h - a depth (or disparity) image and its camera to a mesh in the
+ * camera frame, with texture coordinates of the co-registered image.
+ *
+ * Depth images follow DESIGN.md: integer PNG samples are depth_scale units
+ * per metre; PFM samples are metres (divided by depth_scale only when
+ * scale_float is set).  Zero, non-finite and, in 16-bit images, 65535 (the
+ * 7-Scenes and Kinect "no reading" mark) mean no data, as does a depth
+ * outside [min_depth, max_depth].  With a baseline the samples are
+ * disparities d in pixels and depth = baseline * focal / d.
+ *
+ * Every step-th pixel of every step-th row (from pixel 0) is a grid cell of
+ * gridmesh.h; s = (u + 0.5) / W and t = 1 - (v + 0.5) / H place the vertex
+ * of pixel (u, v) on any image of the same field of view, whatever its
+ * resolution. */
+#ifndef FCT_DEPTHMESH_H
+#define FCT_DEPTHMESH_H
+
+#include "camera.h"
+#include "gridmesh.h"
+#include "image.h"
+#include "mesh.h"
+
+struct fct_depth_params {
+	double depth_scale;       /* units per metre; default 1000 */
+	int scale_float;          /* apply depth_scale to PFM samples as well */
+	double baseline, focal;   /* baseline > 0: disparity image */
+	double min_depth, max_depth;
+	int step;                 /* sample every step-th pixel (>= 1) */
+	struct fct_grid_params grid;
+	int texcoords;            /* add float vertex properties s, t */
+};
+
+/* The defaults: scale 1000, no disparity, depths in (0, inf), step 1,
+ * max_jump FCT_DEFAULT_MAX_JUMP, min_faces FCT_DEFAULT_MIN_FACES, s t on. */
+void fct_depth_params_default(struct fct_depth_params *p);
+
+/* Largest depth change per lateral step that is still one surface: the
+ * tangent of about 87 degrees, steeper than any surface a structured-light
+ * sensor measures reliably and above its noise at step 1 (see dm2mesh(1)). */
+#define FCT_DEFAULT_MAX_JUMP 20.0
+#define FCT_DEFAULT_MIN_FACES 8
+
+/* Depth in metres of sample (x, y) of a one-channel depth image, 0 for no
+ * data. */
+double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_depth_params *p);
+
+/* Mesh the depth image seen by cam (whose size must be the image's) into m,
+ * which is initialised here.  stats may be NULL.  0 or -1. */
+int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
+                   const struct fct_depth_params *p, struct fct_grid_stats *stats,
+                   struct fct_err *err);
+
+#endif

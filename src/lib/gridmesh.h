@@ -1,0 +1,60 @@
+/* gridmesh.h - triangle meshes from organised range data.
+ *
+ * Kang et al. sec. 2: the pixels of a dense depth map are connected by a
+ * planar triangulation of their image coordinates; Sun et al. mesh each range
+ * image the same way.  Here the pixels (or range-grid cells) form a regular
+ * grid and each grid square becomes at most two triangles:
+ *
+ * - a cell without data leaves a hole (a square with three valid corners
+ *   still gets the one triangle on them);
+ * - no triangle is made across a depth discontinuity: an edge between cells
+ *   a and b, L grid steps apart, is cut when
+ *       |depth_a - depth_b| > max_jump * L * footprint * min(depth_a, depth_b),
+ *   footprint * depth being the lateral size of one grid step at that depth,
+ *   so max_jump is the largest depth change per lateral step that still
+ *   counts as one surface (tan of the grazing angle);
+ * - of the two diagonals of a square, the one along which the surface bends
+ *   less is chosen: for each diagonal, the distance of its end cells from the
+ *   3-D lines through their neighbours along it (zero on any plane and along
+ *   a crease that follows the diagonal); where those neighbours lack data,
+ *   the shorter 3-D diagonal;
+ * - connected pieces with fewer than min_faces triangles (specks of flying
+ *   pixels) are dropped.
+ *
+ * Triangles are ordered so that their normals face the sensor for the
+ * camera models of camera.h (u right, v down). */
+#ifndef FCT_GRIDMESH_H
+#define FCT_GRIDMESH_H
+
+#include <stdint.h>
+
+#include "mesh.h"
+
+struct fct_range_grid {
+	int width, height;       /* cells per row, rows */
+	const double *xyz;       /* 3 per cell, row by row */
+	const double *depth;     /* per cell, along the sensor's ray; not > 0: no data */
+	double footprint;        /* lateral size of one grid step per unit depth */
+	int wrap;                /* the last column borders the first (360-degree cylinder) */
+};
+
+struct fct_grid_params {
+	double max_jump;         /* see above; infinity disables the test */
+	size_t min_faces;        /* smaller connected pieces are dropped (0, 1: keep all) */
+};
+
+/* What fct_grid_mesh left out, for reports. */
+struct fct_grid_stats {
+	size_t jump_faces;       /* triangles not made across a discontinuity */
+	size_t speck_faces;      /* triangles dropped with their small pieces */
+};
+
+/* Triangulate g into m (which should be empty): the vertices are the cells
+ * used by a triangle, in row-major order, and when cell_of is not NULL it gets
+ * a malloc'd array mapping each vertex to its cell index.  stats may be NULL.
+ * 0 or -1. */
+int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
+                  const struct fct_grid_params *p, uint32_t **cell_of,
+                  struct fct_grid_stats *stats, struct fct_err *err);
+
+#endif
