@@ -34,10 +34,11 @@ struct fct_depth_params {
  * max_jump FCT_DEFAULT_MAX_JUMP, min_faces FCT_DEFAULT_MIN_FACES, s t on. */
 void fct_depth_params_default(struct fct_depth_params *p);
 
-/* Largest depth change per lateral step that is still one surface: the
- * tangent of about 87 degrees, steeper than any surface a structured-light
- * sensor measures reliably and above its noise at step 1 (see dm2mesh(1)). */
-#define FCT_DEFAULT_MAX_JUMP 20.0
+/* Largest depth change per lateral step that is still one surface: 10 is
+ * the tangent of 84 degrees, the most grazing view a structured-light sensor
+ * measures usefully; on Kinect frames (7-Scenes, TUM) at step 1 lower
+ * values start to shred surfaces along the sensor's noise (see dm2mesh(1)). */
+#define FCT_DEFAULT_MAX_JUMP 10.0
 #define FCT_DEFAULT_MIN_FACES 8
 
 /* Depth in metres of sample (x, y) of a one-channel depth image, 0 for no
