@@ -65,11 +65,11 @@ int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct
 	int step = p->step, gw = (img->width + step - 1) / step, gh = (img->height + step - 1) / step;
 	size_t ncells = (size_t)gw * (size_t)gh;
 	double *depth = fct_alloc_array(ncells, sizeof *depth, err);
-	double *xyz = fct_alloc_array(ncells, 3 * sizeof *xyz, err);
 	double *col = fct_alloc_array((size_t)gw, 3 * sizeof *col, err);
+	double *row = fct_alloc_array((size_t)gh, sizeof *row, err);
 	uint32_t *cell_of = NULL;
 	int rc = -1;
-	if (!depth || !xyz || !col)
+	if (!depth || !col || !row)
 		goto out;
 
 	/* Rays factor into a column part and a row part for both models:
@@ -79,17 +79,11 @@ int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct
 	for (int j = 0; j < gh; j++) {
 		double ray[3];
 		fct_camera_ray(cam, 0, (double)j * step, ray);
-		double row_y = ray[1];
-		for (int i = 0; i < gw; i++) {
-			size_t c = (size_t)j * gw + i;
-			double d = fct_depth_at(img, i * step, j * step, p);
-			depth[c] = d;
-			xyz[3 * c] = d * col[3 * i];
-			xyz[3 * c + 1] = d * row_y;
-			xyz[3 * c + 2] = d * col[3 * i + 2];
-		}
+		row[j] = ray[1];
+		for (int i = 0; i < gw; i++)
+			depth[(size_t)j * gw + i] = fct_depth_at(img, i * step, j * step, p);
 	}
-	struct fct_range_grid g = { gw, gh, xyz, depth, footprint(cam, step),
+	struct fct_range_grid g = { gw, gh, NULL, col, row, depth, footprint(cam, step),
 	                            cam->kind == FCT_CAMERA_CYLINDRICAL };
 	if (fct_grid_mesh(m, &g, &p->grid, &cell_of, stats, err))
 		goto out;
@@ -110,8 +104,8 @@ int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct
 	rc = 0;
 out:
 	free(depth);
-	free(xyz);
 	free(col);
+	free(row);
 	free(cell_of);
 	if (rc)
 		fct_mesh_free(m);

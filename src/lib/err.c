@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 int fct_fail(struct fct_err *err, const char *fmt, ...)
 {
@@ -48,38 +47,6 @@ int fct_add_size(size_t a, size_t b, size_t *out)
 	return 0;
 }
 
-enum { HUGE_PAGE = (size_t)2 << 20 };
-
-void fct_advise_large(void *p, size_t bytes)
-{
-#ifdef MADV_HUGEPAGE
-	/* Big arrays are filled once, front to back: on Linux with transparent
-	 * huge pages in "madvise" mode, asking for them saves most of the page
-	 * faults, which otherwise cost as much as the work (a third of dm2mesh's
-	 * time on a 640x480 map). */
-	if (bytes < HUGE_PAGE)
-		return;
-	uintptr_t a = ((uintptr_t)p + HUGE_PAGE - 1) & ~(uintptr_t)(HUGE_PAGE - 1);
-	uintptr_t e = ((uintptr_t)p + bytes) & ~(uintptr_t)(HUGE_PAGE - 1);
-	if (e > a)
-		madvise((void *)a, e - a, MADV_HUGEPAGE);
-#else
-	(void)p, (void)bytes;
-#endif
-}
-
-void *fct_malloc_large(size_t bytes)
-{
-	if (bytes < HUGE_PAGE)
-		return malloc(bytes ? bytes : 1);
-	/* Aligned, so that every whole huge page of it can be one. */
-	void *p;
-	if (posix_memalign(&p, HUGE_PAGE, bytes))
-		return NULL;
-	fct_advise_large(p, bytes);
-	return p;
-}
-
 int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
 {
 	if (need <= *cap)
@@ -96,7 +63,6 @@ int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *
 	void *p = realloc(*ptr, bytes);
 	if (!p)
 		return fct_fail(err, "out of memory (%zu bytes)", bytes);
-	fct_advise_large(p, bytes);
 	*ptr = p;
 	*cap = ncap;
 	return 0;
@@ -109,7 +75,7 @@ void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err)
 		fct_fail(err, "size overflow");
 		return NULL;
 	}
-	void *p = fct_malloc_large(bytes);
+	void *p = malloc(bytes);
 	if (!p)
 		fct_fail(err, "out of memory (%zu bytes)", bytes);
 	return p;

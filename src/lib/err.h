@@ -34,13 +34,6 @@ int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *
  * element so that NULL always means failure (message set). */
 void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err);
 
-/* Hint that a large fresh allocation will be filled whole (huge pages where
- * the system offers them on request); fct_grow does this. */
-void fct_advise_large(void *p, size_t bytes);
-/* malloc for arrays that may be large: huge-page aligned and advised when
- * over one huge page (free with free()); fct_alloc_array uses it. */
-void *fct_malloc_large(size_t bytes);
-
 /* strdup that reports failure through err. */
 char *fct_strdup(const char *s, struct fct_err *err);
 

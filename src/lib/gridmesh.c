@@ -46,10 +46,18 @@ static inline int joined(const struct grid *G, size_t a, size_t b, double steps)
 	return fabs(da - db) <= G->limit * steps * (da < db ? da : db);
 }
 
-static inline const double *P(const struct grid *G, size_t c)
+/* The position of cell c, which is (i, j). */
+static inline void P(const struct grid *G, size_t c, size_t i, size_t j, double p[3])
 {
-	return G->g->xyz + 3 * c;
+	const struct fct_range_grid *g = G->g;
+	if (g->xyz) {
+		memcpy(p, g->xyz + 3 * c, 3 * sizeof *p);
+		return;
+	}
+	double d = g->depth[c];
+	p[0] = d * g->col[3 * i], p[1] = d * g->row[j], p[2] = d * g->col[3 * i + 2];
 }
+
 
 /* Squared distance of point p from the line through a and b. */
 static inline double line_distance2(const double p[3], const double a[3], const double b[3])
@@ -62,29 +70,39 @@ static inline double line_distance2(const double p[3], const double a[3], const 
 	return l2 > 0 ? fct_v3_dot(x, x) / l2 : fct_v3_dot(ap, ap);
 }
 
-/* How much the surface bends along the diagonal from cell p to cell q, whose
- * outer neighbours along it are pp (before p) and qq (after q), as a sum of
- * squared distances; -1 when one of them has no data. */
-static double diagonal_bend(const struct grid *G, size_t p, size_t q, long pp, long qq)
+/* The position of cell (i, j), columns wrapped on a full cylinder; 0 when
+ * it is outside the grid or has no data. */
+static int position_at(const struct grid *G, long i, long j, double p[3])
 {
-	if (pp < 0 || qq < 0 || !has_data(G, (size_t)pp) || !has_data(G, (size_t)qq))
-		return -1;
-	return line_distance2(P(G, p), P(G, (size_t)pp), P(G, q)) +
-	       line_distance2(P(G, q), P(G, p), P(G, (size_t)qq));
+	long c = cell_at(G, i, j);
+	if (c < 0 || !has_data(G, (size_t)c))
+		return 0;
+	if (i < 0 || i >= G->w)
+		i = (i + G->w) % G->w;
+	P(G, (size_t)c, (size_t)i, (size_t)j, p);
+	return 1;
 }
 
 /* Choose the diagonal of the full square (i, j) whose triangles fit the
- * surface better: 1 for ad, 0 for bc. */
-static int prefer_ad(const struct grid *G, long i, long j, size_t a, size_t b, size_t c, size_t d)
+ * surface better: 1 for ad, 0 for bc.  The bend along a diagonal from p to
+ * q is the sum of squared distances of p and q from the lines through their
+ * neighbours along it (pp before p, qq after q). */
+static int prefer_ad(const struct grid *G, long i, long j)
 {
-	double bad = diagonal_bend(G, a, d, cell_at(G, i - 1, j - 1), cell_at(G, i + 2, j + 2));
-	double bbc = diagonal_bend(G, b, c, cell_at(G, i + 2, j - 1), cell_at(G, i - 1, j + 2));
-	double lad = fct_v3_dist2(P(G, a), P(G, d)), lbc = fct_v3_dist2(P(G, b), P(G, c));
-	/* Bends that are both rounding noise (a plane) decide nothing: then the
-	 * shorter diagonal makes the better-shaped triangles. */
-	double noise = 1e-18 * (lad > lbc ? lad : lbc);
-	if (bad >= 0 && bbc >= 0 && fabs(bad - bbc) > noise)
-		return bad < bbc;
+	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3];
+	position_at(G, i, j, a), position_at(G, i + 1, j, b);
+	position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
+	double lad = fct_v3_dist2(a, d), lbc = fct_v3_dist2(b, c);
+	if (position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
+	    position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc)) {
+		double bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
+		double bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
+		/* Bends that are both rounding noise (a plane) decide nothing:
+		 * then the shorter diagonal makes the better-shaped triangles. */
+		double noise = 1e-18 * (lad > lbc ? lad : lbc);
+		if (fabs(bad - bbc) > noise)
+			return bad < bbc;
+	}
 	return lad < lbc;
 }
 
@@ -129,7 +147,7 @@ static unsigned square_code(const struct grid *G, long i, long j, struct square 
 	*possible = 2;
 	int ab = joined(G, a, b, S), cd = joined(G, c, d, S), ac = joined(G, a, c, S), bd = joined(G, b, d, S);
 	int jad = joined(G, a, d, D), jbc = joined(G, b, c, D);
-	int ad = jad && jbc ? prefer_ad(G, i, j, a, b, c, d) : jad;
+	int ad = jad && jbc ? prefer_ad(G, i, j) : jad;
 	if (ad)
 		return DIAG_AD | (ac && cd ? FIRST : 0) | (bd && ab ? SECOND : 0);
 	if (!jbc)
@@ -272,14 +290,15 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 		goto out;
 	if (cell_of && !(*cell_of = fct_alloc_array(nv, sizeof **cell_of, err)))
 		goto out;
-	for (size_t c = 0; c < ncells; c++) {
-		uint32_t v = vindex[c];
-		if (v == UINT32_MAX)
-			continue;
-		memcpy(m->xyz + 3 * (size_t)v, g->xyz + 3 * c, 3 * sizeof *m->xyz);
-		if (cell_of)
-			(*cell_of)[v] = (uint32_t)c;
-	}
+	for (size_t c = 0, j = 0; j < (size_t)G.h; j++)
+		for (size_t i = 0; i < (size_t)G.w; i++, c++) {
+			uint32_t v = vindex[c];
+			if (v == UINT32_MAX)
+				continue;
+			P(&G, c, i, j, m->xyz + 3 * (size_t)v);
+			if (cell_of)
+				(*cell_of)[v] = (uint32_t)c;
+		}
 	uint32_t *fv = m->fvert;
 	for (long j = 0; j < sh; j++)
 		for (long i = 0; i < sw; i++) {

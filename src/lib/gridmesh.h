@@ -30,9 +30,15 @@
 
 #include "mesh.h"
 
+/* Cell positions are given either explicitly (xyz) or, for a camera whose
+ * rays factor into a column part and a row part as both camera models of
+ * camera.h do, as depth * (col[3i], row[j], col[3i+2]) -- which saves
+ * storing a position per pixel of a large depth map. */
 struct fct_range_grid {
 	int width, height;       /* cells per row, rows */
-	const double *xyz;       /* 3 per cell, row by row */
+	const double *xyz;       /* 3 per cell, row by row; or NULL: */
+	const double *col;       /* 3 per column: ray x, unused, ray z */
+	const double *row;       /* 1 per row: ray y */
 	const double *depth;     /* per cell, along the sensor's ray; not > 0: no data */
 	double footprint;        /* lateral size of one grid step per unit depth */
 	int wrap;                /* the last column borders the first (360-degree cylinder) */

@@ -267,11 +267,9 @@ static int reserve_exact(void **ptr, size_t *cap, size_t need, size_t elem, stru
 		return 0;
 	if (fct_mul_size(need, elem, &bytes))
 		return fct_fail(err, "size overflow");
-	void *p = *ptr ? realloc(*ptr, bytes) : fct_malloc_large(bytes);
+	void *p = realloc(*ptr, bytes);
 	if (!p)
 		return fct_fail(err, "out of memory (%zu bytes)", bytes);
-	if (p != *ptr)
-		fct_advise_large(p, bytes);
 	*ptr = p;
 	*cap = need;
 	return 0;
