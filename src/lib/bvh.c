@@ -487,3 +487,181 @@ int fct_bvh_closest_brute(const struct fct_bvh *b, const double p[3], double max
 		best = test_tri(&b->tris[i], p, best, hit, &found);
 	return found;
 }
+
+/* Ray casting ----------------------------------------------------------------- */
+
+/* A ray prepared once for the watertight test and the slab test. */
+struct ray {
+	double org[3], dir[3];
+	double inv[3];        /* 1 / dir (infinite for a zero component) */
+	int kx, ky, kz;       /* kz: the largest component of dir */
+	double sx, sy, sz;    /* the shear that maps dir to the z axis */
+};
+
+static int ray_setup(struct ray *r, const double org[3], const double dir[3])
+{
+	for (int k = 0; k < 3; k++) {
+		if (!isfinite(org[k]) || !isfinite(dir[k]))
+			return -1;
+		r->org[k] = org[k];
+		r->dir[k] = dir[k];
+		r->inv[k] = 1.0 / dir[k];   /* +-inf for a zero: handled in box_enter */
+	}
+	int kz = 0;
+	if (fabs(dir[1]) > fabs(dir[kz])) kz = 1;
+	if (fabs(dir[2]) > fabs(dir[kz])) kz = 2;
+	if (dir[kz] == 0)
+		return -1;
+	int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+	if (dir[kz] < 0) {   /* keep the winding: a mirror flips it */
+		int tmp = kx;
+		kx = ky;
+		ky = tmp;
+	}
+	r->kx = kx, r->ky = ky, r->kz = kz;
+	r->sx = dir[kx] / dir[kz];
+	r->sy = dir[ky] / dir[kz];
+	r->sz = 1.0 / dir[kz];
+	return 0;
+}
+
+/* Where the ray enters the box of n within [tmin, tfar], or -1 when it
+ * misses it.  The far bound is widened by 1 + 4 DBL_EPSILON, more than
+ * Ize's 1 + 2 gamma(3), so rounding never loses a box the ray touches; an
+ * axis the ray runs parallel to is a plain inside test (no 0 * inf). */
+static inline double box_enter(const struct ray *r, const struct fct_bvh_node *n, double tmin,
+                               double tfar)
+{
+	double tnear = tmin;
+	for (int k = 0; k < 3; k++) {
+		double lo = n->lo[k], hi = n->hi[k];
+		if (r->dir[k] == 0) {
+			if (r->org[k] < lo || r->org[k] > hi)
+				return -1;
+			continue;
+		}
+		double t0 = (lo - r->org[k]) * r->inv[k], t1 = (hi - r->org[k]) * r->inv[k];
+		if (t0 > t1) {
+			double tmp = t0;
+			t0 = t1;
+			t1 = tmp;
+		}
+		if (t0 > tnear) tnear = t0;
+		if (t1 < tfar) tfar = t1;
+	}
+	return tnear <= tfar * (1 + 4 * DBL_EPSILON) ? tnear : -1;
+}
+
+/* Is (t, id, idx) before the hit found so far? */
+static inline int ray_better(double t, uint32_t id, uint32_t idx, const struct fct_bvh_ray_hit *h,
+                             int found)
+{
+	if (!found || t < h->t)
+		return 1;
+	return t == h->t && (id < h->id || (id == h->id && idx < h->tri));
+}
+
+/* The watertight test of one triangle (Woop, Benthin and Wald, 2013); on a
+ * hit with tmin <= t <= tmax that beats *hit, *hit is updated. */
+static inline void ray_tri(const struct ray *r, const struct fct_bvh_tri *tri, uint32_t idx,
+                           double tmin, double tmax, struct fct_bvh_ray_hit *hit, int *found)
+{
+	const int kx = r->kx, ky = r->ky, kz = r->kz;
+	double a[3], b[3], c[3];
+	fct_v3_sub(a, tri->a, r->org);
+	fct_v3_sub(b, tri->b, r->org);
+	fct_v3_sub(c, tri->c, r->org);
+	double ax = a[kx] - r->sx * a[kz], ay = a[ky] - r->sy * a[kz];
+	double bx = b[kx] - r->sx * b[kz], by = b[ky] - r->sy * b[kz];
+	double cx = c[kx] - r->sx * c[kz], cy = c[ky] - r->sy * c[kz];
+	/* Each edge function is a difference of two products that the other
+	 * triangle of the edge forms with its operands swapped: exactly the
+	 * negated value, so the two sign tests agree. */
+	double eu = cx * by - cy * bx;
+	double ev = ax * cy - ay * cx;
+	double ew = bx * ay - by * ax;
+	if ((eu < 0 || ev < 0 || ew < 0) && (eu > 0 || ev > 0 || ew > 0))
+		return;
+	double det = eu + ev + ew;
+	if (det == 0)
+		return;
+	double az = r->sz * a[kz], bz = r->sz * b[kz], cz = r->sz * c[kz];
+	double t = (eu * az + ev * bz + ew * cz) / det;
+	if (!(t >= tmin && t <= tmax))
+		return;
+	if (!ray_better(t, tri->id, idx, hit, *found))
+		return;
+	hit->t = t;
+	hit->u = ev / det;
+	hit->v = ew / det;
+	hit->id = tri->id;
+	hit->tri = idx;
+	*found = 1;
+}
+
+int fct_bvh_raycast(const struct fct_bvh *b, const double org[3], const double dir[3],
+                    double tmin, double tmax, struct fct_bvh_ray_hit *hit)
+{
+	struct ray r;
+	if (b->ntri == 0 || ray_setup(&r, org, dir) || !(tmin <= tmax))
+		return 0;
+	const struct fct_bvh_node *nodes = b->nodes;
+	struct {
+		uint32_t node;
+		double t;
+	} stack[STACK_MAX];
+	int sp = 0, found = 0;
+	double best = tmax;   /* hits beyond are not wanted; ties at best are */
+	if (box_enter(&r, &nodes[0], tmin, best) < 0)
+		return 0;
+	const struct fct_bvh_node *n = &nodes[0];
+	for (;;) {
+		if (n->count) {
+			for (uint32_t i = 0; i < n->count; i++)
+				ray_tri(&r, &b->tris[n->first + i], n->first + i, tmin, best, hit, &found);
+			if (found)
+				best = hit->t;
+		} else {
+			uint32_t near = n->first, far = near + 1;
+			double tl = box_enter(&r, &nodes[near], tmin, best);
+			double tr = box_enter(&r, &nodes[far], tmin, best);
+			if (tl >= 0 || tr >= 0) {
+				if (tl < 0 || (tr >= 0 && tr < tl)) {
+					double tmp = tl;
+					tl = tr;
+					tr = tmp;
+					near = far;
+					far = n->first;
+				}
+				if (tr >= 0) {
+					stack[sp].node = far;
+					stack[sp++].t = tr;
+				}
+				n = &nodes[near];
+				continue;
+			}
+		}
+		/* Pop the next subtree the ray may still meet at or before best. */
+		for (;;) {
+			if (sp == 0)
+				return found;
+			sp--;
+			if (stack[sp].t <= best * (1 + 4 * DBL_EPSILON)) {
+				n = &nodes[stack[sp].node];
+				break;
+			}
+		}
+	}
+}
+
+int fct_bvh_raycast_brute(const struct fct_bvh *b, const double org[3], const double dir[3],
+                          double tmin, double tmax, struct fct_bvh_ray_hit *hit)
+{
+	struct ray r;
+	if (b->ntri == 0 || ray_setup(&r, org, dir) || !(tmin <= tmax))
+		return 0;
+	int found = 0;
+	for (size_t i = 0; i < b->ntri; i++)
+		ray_tri(&r, &b->tris[i], (uint32_t)i, tmin, found ? hit->t : tmax, hit, &found);
+	return found;
+}

@@ -9,7 +9,11 @@
  * input gives the same tree.  Node boxes are float, rounded outward, so they
  * never exclude a point they should hold.  A query walks the tree nearest
  * child first and skips every box farther than the best distance found so
- * far; the triangle distance itself is exact in double (geom.h). */
+ * far; the triangle distance itself is exact in double (geom.h).
+ *
+ * The same tree answers ray casts (fct_bvh_raycast): nearest hit first,
+ * with a watertight ray-triangle test, so renderers and scene synthesis
+ * share the tree with the distance queries. */
 #ifndef FCT_BVH_H
 #define FCT_BVH_H
 
@@ -88,5 +92,38 @@ int fct_bvh_closest(const struct fct_bvh *b, const double p[3], double max_d2,
 /* The same by testing every triangle: the reference the tests compare with. */
 int fct_bvh_closest_brute(const struct fct_bvh *b, const double p[3], double max_d2,
                           struct fct_bvh_hit *hit);
+
+/* The answer to a ray cast: the ray parameter t of the hit (the point is
+ * org + t dir), its barycentric coordinates on the tree triangle (the point
+ * is (1 - u - v) a + u b + v c), the triangle's id and its index in
+ * b->tris (for its corners). */
+struct fct_bvh_ray_hit {
+	double t, u, v;
+	uint32_t id;
+	uint32_t tri;
+};
+
+/* The first hit of the ray org + t dir, tmin <= t <= tmax, with any
+ * triangle, from either side.  Returns 1 and fills hit, or 0 when there is
+ * none (no triangles, a dir that is zero or not finite, nothing in range).
+ *
+ * The triangle test is the watertight one of Woop, Benthin and Wald
+ * ("Watertight Ray/Triangle Intersection", JCGT 2(1), 2013) in double: the
+ * corners are moved into a frame where the ray is the z axis and the three
+ * edge functions are evaluated so that an edge shared by two triangles
+ * (the same corner coordinates) gives exactly opposite values in both, so a
+ * ray through a shared edge or vertex never slips between them.  A triangle
+ * seen edge-on (zero area along the ray) or degenerate is never hit.  Box
+ * tests use Ize's conservative slab bound ("Robust BVH Ray Traversal",
+ * JCGT 2(2), 2013), so no box is skipped that holds a hit.
+ *
+ * Equal t goes to the lower id, then the lower tree index: the answer is
+ * the brute-force one exactly, whatever the traversal order. */
+int fct_bvh_raycast(const struct fct_bvh *b, const double org[3], const double dir[3],
+                    double tmin, double tmax, struct fct_bvh_ray_hit *hit);
+
+/* The same by testing every triangle: the reference the tests compare with. */
+int fct_bvh_raycast_brute(const struct fct_bvh *b, const double org[3], const double dir[3],
+                          double tmin, double tmax, struct fct_bvh_ray_hit *hit);
 
 #endif
