@@ -525,8 +525,8 @@ static int ray_setup(struct ray *r, const double org[3], const double dir[3])
 	return 0;
 }
 
-/* Where the ray enters the box of n within [tmin, tfar], or -1 when it
- * misses it.  The far bound is widened by 1 + 4 DBL_EPSILON, more than
+/* Where the ray enters the box of n within [tmin, tfar], or -INFINITY
+ * when it misses it.  The far bound is widened by 1 + 4 DBL_EPSILON, more than
  * Ize's 1 + 2 gamma(3), so rounding never loses a box the ray touches; an
  * axis the ray runs parallel to is a plain inside test (no 0 * inf). */
 static inline double box_enter(const struct ray *r, const struct fct_bvh_node *n, double tmin,
@@ -549,7 +549,7 @@ static inline double box_enter(const struct ray *r, const struct fct_bvh_node *n
 		if (t0 > tnear) tnear = t0;
 		if (t1 < tfar) tfar = t1;
 	}
-	return tnear <= tfar * (1 + 4 * DBL_EPSILON) ? tnear : -1;
+	return tnear <= tfar + fabs(tfar) * (4 * DBL_EPSILON) ? tnear : -INFINITY;
 }
 
 /* Is (t, id, idx) before the hit found so far? */
@@ -612,7 +612,7 @@ int fct_bvh_raycast(const struct fct_bvh *b, const double org[3], const double d
 	} stack[STACK_MAX];
 	int sp = 0, found = 0;
 	double best = tmax;   /* hits beyond are not wanted; ties at best are */
-	if (box_enter(&r, &nodes[0], tmin, best) < 0)
+	if (box_enter(&r, &nodes[0], tmin, best) == -INFINITY)
 		return 0;
 	const struct fct_bvh_node *n = &nodes[0];
 	for (;;) {
@@ -625,15 +625,16 @@ int fct_bvh_raycast(const struct fct_bvh *b, const double org[3], const double d
 			uint32_t near = n->first, far = near + 1;
 			double tl = box_enter(&r, &nodes[near], tmin, best);
 			double tr = box_enter(&r, &nodes[far], tmin, best);
-			if (tl >= 0 || tr >= 0) {
-				if (tl < 0 || (tr >= 0 && tr < tl)) {
+			const double miss = -INFINITY;
+			if (tl != miss || tr != miss) {
+				if (tl == miss || (tr != miss && tr < tl)) {
 					double tmp = tl;
 					tl = tr;
 					tr = tmp;
 					near = far;
 					far = n->first;
 				}
-				if (tr >= 0) {
+				if (tr != miss) {
 					stack[sp].node = far;
 					stack[sp++].t = tr;
 				}
@@ -646,7 +647,7 @@ int fct_bvh_raycast(const struct fct_bvh *b, const double org[3], const double d
 			if (sp == 0)
 				return found;
 			sp--;
-			if (stack[sp].t <= best * (1 + 4 * DBL_EPSILON)) {
+			if (stack[sp].t <= best + fabs(best) * (4 * DBL_EPSILON)) {
 				n = &nodes[stack[sp].node];
 				break;
 			}

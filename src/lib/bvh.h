@@ -104,8 +104,10 @@ struct fct_bvh_ray_hit {
 };
 
 /* The first hit of the ray org + t dir, tmin <= t <= tmax, with any
- * triangle, from either side.  Returns 1 and fills hit, or 0 when there is
- * none (no triangles, a dir that is zero or not finite, nothing in range).
+ * triangle, from either side (0 and INFINITY: in front of org; a negative
+ * range looks behind it).  Returns 1 and fills hit, or 0 when there is none
+ * (no triangles, an org or dir not finite, a dir of zero, nothing in
+ * range).
  *
  * The triangle test is the watertight one of Woop, Benthin and Wald
  * ("Watertight Ray/Triangle Intersection", JCGT 2(1), 2013) in double: the

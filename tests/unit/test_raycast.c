@@ -76,6 +76,11 @@ static void test_single(void)
 	CHECK(fct_bvh_raycast(&b, o, down, 0, nextafter(2, 0), &h) == 0);
 	CHECK(fct_bvh_raycast(&b, o, down, nextafter(2, 3), INFINITY, &h) == 0);
 	CHECK(fct_bvh_raycast(&b, o, down, 3, 1, &h) == 0);
+	/* Negative t: the hit behind the origin, when the range asks for it. */
+	CHECK(fct_bvh_raycast(&b, o, up, -10, 0, &h) == 1);
+	CHECK_NEAR(h.t, -2, 0);
+	CHECK(fct_bvh_raycast(&b, o, up, -INFINITY, -2, &h) == 1);
+	CHECK(fct_bvh_raycast(&b, o, up, -INFINITY, nextafter(-2, -3), &h) == 0);
 	/* Misses: pointing away, outside the triangle, parallel to its plane
 	 * (even inside it: seen edge-on it has no area), a bad direction. */
 	CHECK(fct_bvh_raycast(&b, o, up, 0, INFINITY, &h) == 0);
@@ -260,6 +265,10 @@ static int compare_brute(const struct soup *s, struct fct_rng *r, int n, int *hi
 		}
 		double tmin = i % 5 == 0 ? 0.5 * fct_rng_uniform(r) : 0;
 		double tmax = i % 7 == 0 ? 2 * fct_rng_uniform(r) : INFINITY;
+		if (i % 11 == 0) {   /* backwards: a range of negative t */
+			tmin = i % 2 ? -INFINITY : -3;
+			tmax = -0.1 * fct_rng_uniform(r);
+		}
 		struct fct_bvh_ray_hit h1, h2;
 		int f1 = fct_bvh_raycast(&b, o, d, tmin, tmax, &h1);
 		int f2 = fct_bvh_raycast_brute(&b, o, d, tmin, tmax, &h2);
