@@ -39,12 +39,11 @@ double fct_orient2d(const double a[2], const double b[2], const double c[2]);
 /* For a, b, c in counter-clockwise order (fct_orient2d > 0): positive when d
  * lies strictly inside the circle through a, b, c, negative when strictly
  * outside, zero when the four points are cocircular.  The sign is reversed
- * when a, b, c are clockwise; with a, b, c collinear the result is the
- * orientation of the "circle" (line) test, as for the 3x3 determinant
+ * when a, b, c are clockwise.  Always the sign of the determinant
  *   | ax-dx  ay-dy  (ax-dx)^2+(ay-dy)^2 |
  *   | bx-dx  by-dy  (bx-dx)^2+(by-dy)^2 |
  *   | cx-dx  cy-dy  (cx-dx)^2+(cy-dy)^2 |
- * whose sign this always is. */
+ * (also when a, b, c are collinear). */
 double fct_incircle(const double a[2], const double b[2], const double c[2], const double d[2]);
 
 #endif
