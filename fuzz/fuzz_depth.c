@@ -1,0 +1,37 @@
+/* fuzz_depth - libFuzzer target: any bytes, read as a depth image, meshed
+ * through a pinhole or a cylindrical camera of the image's size (dm2mesh's
+ * path), then freed.  A crash, leak, sanitizer report or huge allocation is
+ * a bug. */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "depthmesh.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+	if (size == 0)
+		return 0;
+	FILE *f = fmemopen((void *)data, size, "rb");
+	if (!f)
+		return 0;
+	struct fct_image img;
+	struct fct_err err;
+	if (fct_image_read_stream(&img, f, "fuzz", NULL, &err) == 0) {
+		struct fct_camera cam = { FCT_CAMERA_PINHOLE, img.width, img.height, 50, 50,
+		                          img.width / 2.0, img.height / 2.0, 0, 0 };
+		if (size & 1)
+			cam.kind = FCT_CAMERA_CYLINDRICAL, cam.f = img.width / 6.28;
+		struct fct_depth_params p;
+		fct_depth_params_default(&p);
+		p.step = 1 + (int)(size % 3);
+		struct fct_mesh m;
+		if (fct_depth_mesh(&m, &img, &cam, &p, NULL, &err) == 0)
+			fct_mesh_free(&m);
+		fct_image_free(&img);
+	}
+	fclose(f);
+	return 0;
+}

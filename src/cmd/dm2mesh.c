@@ -1,0 +1,305 @@
+/* dm2mesh - a depth map (or sparse points with image coordinates) to a
+ * triangle mesh: Kang, Johnson and Szeliski, "Extraction of Concise and
+ * Realistic 3-D Models from Real Data" (DEC CRL 95/7), sections 2 and 7:
+ * points that carry image coordinates lie on a 2-D manifold parameterised by
+ * them, so a planar triangulation of the image coordinates connects them --
+ * the pixel grid for a dense map, the Delaunay triangulation for sparse
+ * points. */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "depthmesh.h"
+#include "header.h"
+#include "image.h"
+#include "meshio.h"
+#include "sparsemesh.h"
+
+static const char usage[] =
+	"usage: dm2mesh [-aqv] [-o file] [-K fx,fy,cx,cy|name] [--camera file]\n"
+	"               [--cylindrical f,cy,theta0] [--depth-scale s] [--baseline b]\n"
+	"               [--focal f] [--range min,max] [--step n] [-j jump]\n"
+	"               [--max-angle deg] [--min-faces n] [--pose file] [--image file]\n"
+	"               [depth-image]\n"
+	"       dm2mesh --points [-aqv] [-o file] [camera options] [--max-edge l]\n"
+	"               [-j jump] [--pose file] [--image file] [points]\n"
+	"Mesh a depth image (16- or 8-bit PNG, PFM) by its pixel grid, or sparse points\n"
+	"with image coordinates by the Delaunay triangulation of those coordinates, in\n"
+	"the camera frame (the world frame with --pose).\n"
+	"  -a                 write ascii PLY\n"
+	"  -K fx,fy,cx,cy     pinhole camera (pixels); or a dataset's camera by name:\n"
+	"                     tum tum1 tum2 tum3 redwood primesense kinect icl-nuim\n"
+	"                     7scenes (which also sets its depth scale)\n"
+	"      --camera file  camera from a file: Open3D intrinsic JSON, a 3x3 K matrix,\n"
+	"                     or a line \"camera pinhole|cylindrical ...\"\n"
+	"      --cylindrical f,cy,theta0\n"
+	"                     cylindrical panorama camera (depth = distance from the\n"
+	"                     vertical axis); f and cy may be empty for W/(2 pi) and\n"
+	"                     (H-1)/2\n"
+	"      --depth-scale s\n"
+	"                     PNG depth units per metre (default 1000; TUM 5000); given,\n"
+	"                     it also divides PFM samples\n"
+	"      --baseline b   the image holds disparities: depth = b * focal / disparity\n"
+	"      --focal f      focal length for disparities (default the camera's)\n"
+	"      --range min,max\n"
+	"                     depths outside are no data (metres)\n"
+	"      --step n       use every n-th pixel of every n-th row (default 1)\n"
+	"  -j jump            cut a face where depth changes by more than jump times\n"
+	"                     the pixel footprint per pixel (default 10)\n"
+	"      --max-angle deg\n"
+	"                     the same as a grazing angle: jump = tan(deg)\n"
+	"      --min-faces n  drop connected pieces of fewer faces (default 8)\n"
+	"      --points       input is sparse points: lines \"u v x y z\", or PLY with\n"
+	"                     vertex properties u v x y z\n"
+	"      --max-edge l   drop Delaunay faces with a 3-D edge longer than l\n"
+	"  -o file            output file (default standard output)\n"
+	"      --pose file    camera-to-world pose (4x4 or 3x4 matrix, or a pose line):\n"
+	"                     write world coordinates and the pose comment\n"
+	"      --image file   the co-registered image, recorded as TextureFile (with\n"
+	"                     --points, its size is the camera's when not given)\n"
+	"  -q                 quiet\n"
+	"  -v                 report counts, times and faces/s on stderr\n"
+	"  -h, --help         this help\n"
+	"      --version      print the version\n";
+
+enum {
+	OPT_CAMERA = 256, OPT_CYL, OPT_SCALE, OPT_BASELINE, OPT_FOCAL, OPT_RANGE, OPT_STEP,
+	OPT_ANGLE, OPT_MINFACES, OPT_POINTS, OPT_MAXEDGE, OPT_POSE, OPT_IMAGE, OPT_VERSION
+};
+
+struct options {
+	const char *out, *camera_file, *pose_file, *image_file, *input;
+	const char *K, *cylindrical;
+	int ascii, points, scale_given;
+	double focal, max_edge;
+	struct fct_depth_params depth;
+};
+
+/* "f,cy,theta0" with f and cy allowed empty (defaults from the image). */
+static void parse_cylindrical(const char *arg, double v[3])
+{
+	const char *s = arg;
+	for (int k = 0; k < 3; k++) {
+		const char *e = strchr(s, ',');
+		size_t n = e ? (size_t)(e - s) : strlen(s);
+		if ((k < 2 && !e) || (k == 2 && e))
+			fct_usage_error("--cylindrical: expected f,cy,theta0");
+		char buf[64];
+		if (n >= sizeof buf)
+			fct_usage_error("--cylindrical: \"%s\" is not a number", s);
+		memcpy(buf, s, n);
+		buf[n] = 0;
+		v[k] = n == 0 && k < 2 ? NAN : fct_opt_double("--cylindrical", buf, -1e300, 1e300);
+		s = e ? e + 1 : s;
+	}
+}
+
+/* The camera the options name; width and height of a size-less camera come
+ * from the image (w, h; 0 for sparse points without a size). */
+static void resolve_camera(struct options *o, struct fct_camera *cam, int w, int h)
+{
+	struct fct_err err;
+	int given = !!o->K + !!o->camera_file + !!o->cylindrical;
+	memset(cam, 0, sizeof *cam);
+	if (given > 1)
+		fct_usage_error("-K, --camera and --cylindrical exclude each other");
+	if (o->K) {
+		double scale, k[4];
+		if (!fct_camera_named(o->K, cam, &scale)) {
+			if (!o->scale_given)
+				o->depth.depth_scale = scale;
+		} else if (strchr(o->K, ',')) {
+			fct_opt_doubles("-K", o->K, k, 4);
+			if (!(k[0] > 0 && k[1] > 0))
+				fct_usage_error("-K: focal lengths must be positive");
+			cam->kind = FCT_CAMERA_PINHOLE;
+			cam->fx = k[0], cam->fy = k[1], cam->cx = k[2], cam->cy = k[3];
+		} else {
+			fct_usage_error("-K: \"%s\" is neither fx,fy,cx,cy nor a camera name (%s)",
+			                o->K, fct_camera_names());
+		}
+	} else if (o->camera_file) {
+		if (fct_camera_read_file(o->camera_file, cam, &err))
+			fct_die_err(&err);
+	} else if (o->cylindrical) {
+		double v[3];
+		parse_cylindrical(o->cylindrical, v);
+		cam->kind = FCT_CAMERA_CYLINDRICAL;
+		cam->f = isnan(v[0]) ? w / (2 * M_PI) : v[0];
+		cam->cy = isnan(v[1]) ? (h - 1) / 2.0 : v[1];
+		cam->theta0 = v[2];
+		if (!(cam->f > 0))
+			fct_usage_error("--cylindrical: f must be positive");
+	} else if (!o->points) {
+		fct_usage_error("no camera: give -K, --camera or --cylindrical");
+	}
+	if (cam->kind != FCT_CAMERA_NONE && cam->width == 0)
+		cam->width = w, cam->height = h;
+}
+
+static void parse_options(int argc, char **argv, struct options *o)
+{
+	static const struct option longopts[] = {
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, OPT_VERSION},
+		{"camera", required_argument, NULL, OPT_CAMERA},
+		{"cylindrical", required_argument, NULL, OPT_CYL},
+		{"depth-scale", required_argument, NULL, OPT_SCALE},
+		{"baseline", required_argument, NULL, OPT_BASELINE},
+		{"focal", required_argument, NULL, OPT_FOCAL},
+		{"range", required_argument, NULL, OPT_RANGE},
+		{"step", required_argument, NULL, OPT_STEP},
+		{"max-angle", required_argument, NULL, OPT_ANGLE},
+		{"min-faces", required_argument, NULL, OPT_MINFACES},
+		{"points", no_argument, NULL, OPT_POINTS},
+		{"max-edge", required_argument, NULL, OPT_MAXEDGE},
+		{"pose", required_argument, NULL, OPT_POSE},
+		{"image", required_argument, NULL, OPT_IMAGE},
+		{NULL, 0, NULL, 0},
+	};
+	static const char optstring[] = "ahj:K:o:qv";
+	int c;
+	double r[2];
+	memset(o, 0, sizeof *o);
+	fct_depth_params_default(&o->depth);
+	o->max_edge = HUGE_VAL;
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		switch (c) {
+		case 'a': o->ascii = 1; break;
+		case 'h': fputs(usage, stdout); exit(0);
+		case 'j': o->depth.grid.max_jump = fct_opt_double("-j", optarg, 0, HUGE_VAL); break;
+		case 'K': o->K = optarg; break;
+		case 'o': o->out = optarg; break;
+		case 'q': fct_quiet = 1; break;
+		case 'v': fct_verbose = 1; break;
+		case OPT_VERSION: puts("dm2mesh (facet) " FCT_VERSION); exit(0);
+		case OPT_CAMERA: o->camera_file = optarg; break;
+		case OPT_CYL: o->cylindrical = optarg; break;
+		case OPT_SCALE:
+			o->depth.depth_scale = fct_opt_double("--depth-scale", optarg, 1e-300, 1e300);
+			o->depth.scale_float = o->scale_given = 1;
+			break;
+		case OPT_BASELINE: o->depth.baseline = fct_opt_double("--baseline", optarg, 1e-300, 1e300); break;
+		case OPT_FOCAL: o->focal = fct_opt_double("--focal", optarg, 1e-300, 1e300); break;
+		case OPT_RANGE:
+			fct_opt_doubles("--range", optarg, r, 2);
+			if (!(r[0] >= 0 && r[1] > r[0]))
+				fct_usage_error("--range: expected 0 <= min < max");
+			o->depth.min_depth = r[0], o->depth.max_depth = r[1];
+			break;
+		case OPT_STEP: o->depth.step = (int)fct_opt_long("--step", optarg, 1, 1 << 20); break;
+		case OPT_ANGLE:
+			o->depth.grid.max_jump = tan(fct_opt_double("--max-angle", optarg, 0, 89.999) * M_PI / 180);
+			break;
+		case OPT_MINFACES: o->depth.grid.min_faces = (size_t)fct_opt_long("--min-faces", optarg, 0, 1L << 40); break;
+		case OPT_POINTS: o->points = 1; break;
+		case OPT_MAXEDGE: o->max_edge = fct_opt_double("--max-edge", optarg, 0, HUGE_VAL); break;
+		case OPT_POSE: o->pose_file = optarg; break;
+		case OPT_IMAGE: o->image_file = optarg; break;
+		default: fct_bad_option(optstring, argv);
+		}
+	}
+	if (argc - optind > 1)
+		fct_usage_error("too many operands");
+	o->input = optind < argc ? argv[optind] : "-";
+	if (o->focal > 0 && !(o->depth.baseline > 0))
+		fct_usage_error("--focal is for disparities and needs --baseline");
+	if (o->points && (o->depth.baseline > 0 || o->depth.step != 1))
+		fct_usage_error("--points takes no --baseline or --step");
+	if (!o->points && o->max_edge < HUGE_VAL)
+		fct_usage_error("--max-edge is for --points");
+}
+
+static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
+{
+	struct fct_err err;
+	struct fct_image img;
+	if (fct_image_read_file(&img, o->input, NULL, &err))
+		fct_die_err(&err);
+	resolve_camera(o, cam, img.width, img.height);
+	if (o->depth.baseline > 0)
+		o->depth.focal = o->focal > 0 ? o->focal
+		               : cam->kind == FCT_CAMERA_CYLINDRICAL ? cam->f : cam->fx;
+	struct fct_mesh m;
+	fct_report("pixels", "%zu", (size_t)img.width * (size_t)img.height);
+	struct fct_grid_stats st;
+	if (fct_depth_mesh(&m, &img, cam, &o->depth, &st, &err)) {
+		fct_image_free(&img);
+		fct_err_prefix(&err, "%s", strcmp(o->input, "-") ? o->input : "<stdin>");
+		fct_die_err(&err);
+	}
+	fct_image_free(&img);
+	fct_report("jump_faces", "%zu", st.jump_faces);
+	fct_report("speck_faces", "%zu", st.speck_faces);
+	return m;
+}
+
+static struct fct_mesh mesh_points(struct options *o, struct fct_camera *cam)
+{
+	struct fct_err err;
+	struct fct_image_points pts;
+	if (fct_image_points_read_file(&pts, o->input, &err))
+		fct_die_err(&err);
+	resolve_camera(o, cam, 0, 0);
+	if (cam->kind != FCT_CAMERA_NONE && cam->width == 0 && o->image_file) {
+		/* The image gives the size that texture coordinates need. */
+		struct fct_image img;
+		if (fct_image_read_file(&img, o->image_file, NULL, &err)) {
+			fct_image_points_free(&pts);
+			fct_die_err(&err);
+		}
+		cam->width = img.width, cam->height = img.height;
+		fct_image_free(&img);
+	}
+	struct fct_sparse_params sp = { o->depth.grid.max_jump, o->max_edge };
+	struct fct_mesh m;
+	fct_report("points", "%zu", pts.n);
+	struct fct_sparse_stats st;
+	int rc = fct_sparse_mesh(&m, &pts, cam, &sp, &st, &err);
+	fct_image_points_free(&pts);
+	if (rc)
+		fct_die_err(&err);
+	fct_report("duplicates", "%zu", st.duplicates);
+	fct_report("jump_faces", "%zu", st.jump_faces);
+	fct_report("long_faces", "%zu", st.long_faces);
+	return m;
+}
+
+int main(int argc, char **argv)
+{
+	fct_cli_init("dm2mesh");
+	struct options o;
+	parse_options(argc, argv, &o);
+	struct fct_err err;
+	double pose[12];
+	if (o.pose_file && fct_pose_read_file(o.pose_file, pose, &err))
+		fct_die_err(&err);
+
+	double t0 = fct_now(), c0 = fct_cpu_time();
+	struct fct_camera cam;
+	struct fct_mesh m = o.points ? mesh_points(&o, &cam) : mesh_depth(&o, &cam);
+	double mesh_s = fct_now() - t0;
+
+	if (o.pose_file)
+		for (size_t v = 0; v < m.nv; v++)
+			fct_pose_apply(pose, &m.xyz[3 * v], &m.xyz[3 * v]);
+	if (fct_header_set_camera(&m, &cam, &err) ||
+	    (o.pose_file && fct_header_set_pose(&m, pose, &err)) ||
+	    (o.image_file && fct_header_set_texture(&m, 0, o.image_file, &err)) ||
+	    fct_header_add_provenance(&m, "dm2mesh", argc - 1, argv + 1, &err) ||
+	    fct_mesh_write_file(&m, o.out, o.ascii, &err))
+		fct_die_err(&err);
+	double total_s = fct_now() - t0, cpu_s = fct_cpu_time() - c0;
+
+	fct_report("vertices", "%zu", m.nv);
+	fct_report("faces", "%zu", m.nf);
+	fct_report("mesh_s", "%.4f", mesh_s);
+	fct_report("total_s", "%.4f", total_s);
+	fct_report("cpu_s", "%.4f", cpu_s);
+	fct_report("faces_per_s", "%.0f", total_s > 0 ? m.nf / total_s : 0);
+	fct_mesh_free(&m);
+	return 0;
+}

@@ -1,0 +1,161 @@
+# dm2mesh: depth images, disparities, cameras, poses, sparse points, checked
+# against positions, counts and texture coordinates worked out by hand
+# (fixtures from tests/data/dm_gen.py), then real frames.
+. tests/lib.sh
+D=tests/data
+
+# The vertex lines of an ascii PLY on stdin.
+verts() { awk '/^element vertex/ { n = $3 } f && n-- > 0 { print } /^end_header/ { f = 1 }'; }
+# meshinfo's value for KEY of a mesh file.
+info() { meshinfo "$2" | awk -v k="$1:" '$1 == k { print $2 }'; }
+# Every face of an ascii PLY (x y z first) points toward the origin:
+# prints the number of faces that do not.
+away() {
+	awk 'BEGIN { v = 0 } /^element vertex/ { nv = $3 } /^element face/ { nf = $3 }
+	f && v < nv { x[v] = $1; y[v] = $2; z[v] = $3; v++; next }
+	f && nf-- > 0 { a = $2; b = $3; c = $4
+		ux = x[b] - x[a]; uy = y[b] - y[a]; uz = z[b] - z[a]
+		wx = x[c] - x[a]; wy = y[c] - y[a]; wz = z[c] - z[a]
+		nx = uy * wz - uz * wy; ny = uz * wx - ux * wz; nz = ux * wy - uy * wx
+		if (nx * x[a] + ny * y[a] + nz * z[a] >= 0) bad++ }
+	/^end_header/ { f = 1 } END { print bad + 0 }'
+}
+
+run_case 0 "dm2mesh --help | head -n 1 | grep -q '^usage: dm2mesh \[-aqv\] \[-o file\] \[-K fx,fy,cx,cy|name\]'"
+run_case 0 "dm2mesh --version | grep -q '^dm2mesh (facet) '"
+
+# The plane z = 2 + 0.1 x in millimetres, 8x6, holes at two corners: 35
+# squares, one triangle lost at each hole's square, 46 vertices.
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 $D/dm_plane16.png > $TMP/plane.ply"
+check_num "plane vertices" "$(info vertices $TMP/plane.ply)" == 46
+check_num "plane faces" "$(info faces $TMP/plane.ply)" == 68
+check_num "plane faces toward the camera" "$(away < $TMP/plane.ply)" == 0
+check_num "plane: every vertex within 0.6 mm of z = 2 + 0.1 x" \
+	"$(verts < $TMP/plane.ply | awk '{ d = $3 - 2 - 0.1 * $1; if (d < 0) d = -d; if (d > m) m = d } END { print m }')" "<" 0.0006
+# The first vertex is pixel (1, 0): depth 2000 / (1 - 0.01 * -2.5) mm rounded
+# to 1951 mm, s = 1.5 / 8, t = 1 - 0.5 / 6.
+first=$(verts < $TMP/plane.ply | head -n 1)
+check_true "first vertex of the plane: $first" test "$first" = "-0.48775 -0.48775 1.951 0.1875 0.9166667"
+run_case 0 "grep -q '^comment camera pinhole 8 6 10 10 3.5 2.5\$' $TMP/plane.ply"
+run_case 0 "grep -q '^comment facet dm2mesh -a -K 10,10,3.5,2.5 ' $TMP/plane.ply"
+
+# The same camera from every kind of file gives the same mesh.
+for cam in dm_cam.json dm_K.txt dm_cam.txt; do
+	run_case 0 "dm2mesh -a --camera $D/$cam $D/dm_plane16.png | grep -v '^comment facet' > $TMP/cam.ply"
+	run_case 0 "grep -v '^comment facet' $TMP/plane.ply | cmp -s - $TMP/cam.ply"
+done
+run_case 1 "dm2mesh --camera $D/dm_cam_big.txt $D/dm_plane16.png" "" \
+	"dm2mesh: $D/dm_plane16.png: the camera is 640x480 but the depth image is 8x6"
+run_case 1 "dm2mesh --camera $D/dm_points.txt $D/dm_plane16.png" "" "dm2mesh: $D/dm_points.txt: "
+run_case 1 "dm2mesh --camera $D/nonexistent $D/dm_plane16.png" "" "dm2mesh: $D/nonexistent: "
+
+# Subsampling: pixels 0, 2, 4, 6 of rows 0, 2, 4; (0, 0) has no data.
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --step 2 $D/dm_plane16.png > $TMP/step.ply"
+check_num "step 2 vertices" "$(info vertices $TMP/step.ply)" == 11
+check_num "step 2 faces" "$(info faces $TMP/step.ply)" == 11
+# --range: depths beyond 2 m (columns 4-7) are no data.
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --range 0,2 $D/dm_plane16.png > $TMP/range.ply"
+check_num "range faces" "$(info faces $TMP/range.ply)" == 29
+# Depth scale: read as 500 units per metre, every depth doubles.
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --depth-scale 500 $D/dm_plane16.png > $TMP/scale.ply"
+check_num "scale 500 doubles depth" "$(verts < $TMP/scale.ply | head -n 1 | awk '{ print $3 }')" == 3.902
+
+# Disparity 20 px with baseline 0.1 and focal 100: depth 0.5 everywhere; a
+# zero and a NaN disparity are holes (four triangles each).
+run_case 0 "dm2mesh -a -K 100,100,3.5,2.5 --baseline 0.1 --focal 100 $D/dm_disp.pfm > $TMP/disp.ply"
+check_num "disparity faces" "$(info faces $TMP/disp.ply)" == 62
+check_num "disparity depth" "$(verts < $TMP/disp.ply | awk '$3 != 0.5 { n++ } END { print n + 0 }')" == 0
+run_case 0 "dm2mesh -a -K 100,100,3.5,2.5 --baseline 0.1 $D/dm_disp.pfm | grep -v '^comment facet' > $TMP/disp2.ply"
+run_case 0 "grep -v '^comment facet' $TMP/disp.ply | cmp -s - $TMP/disp2.ply"
+
+# A pose: x_world = z + 1, y_world = y + 2, z_world = -x + 3; the same from
+# a 4x4 file and from a pose line.
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --pose $D/dm_pose.txt $D/dm_plane16.png > $TMP/posed.ply"
+check_num "posed vertices moved" "$(verts < $TMP/plane.ply > $TMP/v0; verts < $TMP/posed.ply | paste -d' ' $TMP/v0 - |
+	awk '{ d = ($6 - $3 - 1) ^ 2 + ($7 - $2 - 2) ^ 2 + ($8 + $1 - 3) ^ 2; if (d > m) m = d } END { print m }')" "<" 1e-12
+run_case 0 "grep -q '^comment pose 0 0 1 1 0 1 0 2 -1 0 0 3\$' $TMP/posed.ply"
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --pose $D/dm_pose_line.txt $D/dm_plane16.png | grep -v '^comment facet' > $TMP/posed2.ply"
+run_case 0 "grep -v '^comment facet' $TMP/posed.ply | cmp -s - $TMP/posed2.ply"
+run_case 1 "dm2mesh -K 10,10,3.5,2.5 --pose $D/dm_badpose.txt $D/dm_plane16.png" "" \
+	"dm2mesh: $D/dm_badpose.txt: pose: the 3x3 part is not a rotation"
+run_case 1 "dm2mesh -K 10,10,3.5,2.5 --pose $D/dm_shortpose.txt $D/dm_plane16.png" "" \
+	"dm2mesh: $D/dm_shortpose.txt: expected a 4x4 or 3x4"
+
+# The image is recorded as given on standard output, relative to the output
+# file's folder with -o.
+run_case 0 "dm2mesh -K 10,10,3.5,2.5 --image $D/img_rgb8.png $D/dm_plane16.png | grep -a -q '^comment TextureFile $D/img_rgb8.png\$'"
+mkdir -p "$TMP/sub"
+run_case 0 "cp $D/img_rgb8.png $TMP/tex.png && cd $TMP && dm2mesh -K 10,10,3.5,2.5 --image tex.png -o sub/m.ply \"\$OLDPWD/$D/dm_plane16.png\""
+run_case 0 "grep -a -q '^comment TextureFile ../tex.png\$' $TMP/sub/m.ply"
+
+# Same input and options, same bytes; from standard input too.
+run_case 0 "dm2mesh -K 10,10,3.5,2.5 $D/dm_plane16.png > $TMP/d1.ply && dm2mesh -K 10,10,3.5,2.5 $D/dm_plane16.png | cmp - $TMP/d1.ply"
+run_case 0 "dm2mesh -K 10,10,3.5,2.5 - < $D/dm_plane16.png | grep -a -v '^comment facet' > $TMP/d2.ply && grep -a -v '^comment facet' $TMP/d1.ply | cmp - $TMP/d2.ply"
+
+# Usage errors.
+run_case 2 "dm2mesh $D/dm_plane16.png" "" "dm2mesh: no camera: give -K, --camera or --cylindrical"
+run_case 2 "dm2mesh -K 1,2,3 $D/dm_plane16.png" "" "dm2mesh: -K: "
+run_case 2 "dm2mesh -K nokinect $D/dm_plane16.png" "" "dm2mesh: -K: \"nokinect\" is neither"
+run_case 2 "dm2mesh -K 10,-10,3.5,2.5 $D/dm_plane16.png" "" "dm2mesh: -K: focal lengths must be positive"
+run_case 2 "dm2mesh -K tum --camera $D/dm_K.txt $D/dm_plane16.png" "" "dm2mesh: -K, --camera and --cylindrical exclude each other"
+run_case 2 "dm2mesh -K tum --focal 5 $D/dm_plane16.png" "" "dm2mesh: --focal is for disparities"
+run_case 2 "dm2mesh -K tum --step 0 $D/dm_plane16.png" "" "dm2mesh: --step: "
+run_case 2 "dm2mesh -K tum --range 3,1 $D/dm_plane16.png" "" "dm2mesh: --range: "
+run_case 2 "dm2mesh -K tum --max-angle 90 $D/dm_plane16.png" "" "dm2mesh: --max-angle: "
+run_case 2 "dm2mesh -K tum --max-edge 1 $D/dm_plane16.png" "" "dm2mesh: --max-edge is for --points"
+run_case 2 "dm2mesh -K tum a b" "" "dm2mesh: too many operands"
+run_case 2 "dm2mesh --bogus" "" "dm2mesh: --bogus: unknown option"
+# Bad data.
+run_case 1 "dm2mesh -K tum $D/nonexistent.png" "" "dm2mesh: $D/nonexistent.png: "
+run_case 1 "dm2mesh -K 10,10,3.5,2.5 $D/img_rgb8.png" "" "dm2mesh: $D/img_rgb8.png: depth image has 3 channels"
+run_case 1 "dm2mesh -K 10,10,3.5,2.5 $D/dm_points.txt" "" "dm2mesh: $D/dm_points.txt: "
+
+# Sparse points: a 5x4 lattice of 20 distinct image positions, 14 of them on
+# the hull, gives 2n - 2 - h = 24 triangles; a repeated position is left
+# unused; all faces toward the camera; s t from the image coordinates in an
+# image of the size given by --image.
+run_case 0 "dm2mesh -a -v --points -K 100,100,20,15 --image $D/img_rgb8.png $D/dm_points.txt > $TMP/pts.ply 2> $TMP/pts.err"
+check_num "points faces" "$(info faces $TMP/pts.ply)" == 24
+check_num "points vertices" "$(info vertices $TMP/pts.ply)" == 21
+check_num "points isolated" "$(info isolated_vertices $TMP/pts.ply)" == 1
+check_num "points duplicates" "$(sed -n 's/^dm2mesh: duplicates=//p' $TMP/pts.err)" == 1
+check_num "points toward the camera" "$(away < $TMP/pts.ply)" == 0
+run_case 0 "meshinfo $TMP/pts.ply | grep -q '^property: vertex float s\$'"
+# Without a camera: the same faces, no s t.
+run_case 0 "dm2mesh -a --points $D/dm_points.txt > $TMP/pts0.ply"
+check_num "points without camera" "$(info faces $TMP/pts0.ply)" == 24
+check_true "points without camera have no s t" sh -c "! meshinfo $TMP/pts0.ply | grep -q 'vertex float s'"
+# Long-edge culling: every edge is at least 0.4 m long.
+run_case 0 "dm2mesh -a --points --max-edge 0.3 $D/dm_points.txt > $TMP/pts1.ply"
+check_num "max-edge culls all" "$(info faces $TMP/pts1.ply)" == 0
+# PLY input; collinear points give no faces, not an error.
+run_case 0 "dm2mesh -a --points $D/dm_points.ply > $TMP/ptsply.ply"
+check_num "points from PLY" "$(info faces $TMP/ptsply.ply)" == 2
+run_case 0 "dm2mesh -a --points $D/dm_collinear.txt > $TMP/col.ply"
+check_num "collinear points" "$(info faces $TMP/col.ply)" == 0
+run_case 1 "dm2mesh --points $D/dm_points_bad.txt" "" "dm2mesh: $D/dm_points_bad.txt:2: expected five numbers"
+run_case 1 "dm2mesh --points $D/dm_points_nan.txt" "" "dm2mesh: $D/dm_points_nan.txt"
+run_case 1 "dm2mesh --points /dev/null" "" "dm2mesh: /dev/null: no points"
+run_case 2 "dm2mesh --points --step 2 $D/dm_points.txt" "" "dm2mesh: --points takes no --baseline or --step"
+
+# A real TUM RGB-D frame (samples/tum, CC BY 4.0): the named camera sets the
+# depth scale 5000; depths between 0.5 and 10 m; nearly every square of four
+# valid pixels becomes two triangles (discontinuities and specks are few).
+run_case 0 "dm2mesh -v -K tum -o $TMP/tum.ply samples/tum/TUM_depth.png 2> $TMP/tum.err"
+check_num "tum faces" "$(info faces $TMP/tum.ply)" ">" 450000
+check_num "tum near" "$(meshinfo $TMP/tum.ply | awk '$1 == "bbox_min:" { print $4 }')" ">" 0.5
+check_num "tum far" "$(meshinfo $TMP/tum.ply | awk '$1 == "bbox_max:" { print $4 }')" "<" 10
+check_num "tum jump faces under 3%" "$(awk -F= '/jump_faces/ { j = $2 } /^dm2mesh: faces=/ { f = $2 } END { print j / f }' $TMP/tum.err)" "<" 0.03
+
+# Two real 7-Scenes frames 50 apart, put in the world by their poses, lie on
+# each other (the data's README measured 7.6 mm median); with the inverse
+# poses they would not.
+S=../shared/data/7scenes_redkitchen/frames
+if [ -d "$S" ]; then
+	run_case 0 "dm2mesh -K 7scenes --step 2 --pose $S/frame-000000.pose.txt -o $TMP/k0.ply $S/frame-000000.depth.png"
+	run_case 0 "dm2mesh -K 7scenes --step 2 --pose $S/frame-000050.pose.txt -o $TMP/k50.ply $S/frame-000050.depth.png"
+	run_case 0 "meshdist $TMP/k50.ply $TMP/k0.ply > $TMP/k.out"
+	check_num "7-Scenes frames agree" "$(awk '$1 == "mean" { print $2 }' $TMP/k.out)" "<" 0.05
+fi
+
+finish
