@@ -1,0 +1,105 @@
+/* planes.c - the patch property and plane element (see planes.h). */
+#include "planes.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int fct_planes_get(const struct fct_mesh *m, struct fct_plane **planes, size_t *n,
+                   struct fct_err *err)
+{
+	*planes = NULL, *n = 0;
+	const struct fct_elem *e = fct_mesh_find_elem(m, "plane");
+	if (!e)
+		return 0;
+	static const char *const names[] = { "nx", "ny", "nz", "d" };
+	const struct fct_prop *p[4];
+	for (int k = 0; k < 4; k++) {
+		p[k] = fct_elem_find(e, names[k]);
+		if (!p[k] || p[k]->count_type != FCT_NONE)
+			return fct_fail(err, "element plane: no scalar property %s", names[k]);
+	}
+	const struct fct_prop *count = fct_elem_find(e, "count"), *rms = fct_elem_find(e, "rms");
+	if (count && count->count_type != FCT_NONE)
+		count = NULL;
+	if (rms && rms->count_type != FCT_NONE)
+		rms = NULL;
+	struct fct_plane *pl = fct_alloc_array(e->count, sizeof *pl, err);
+	if (!pl)
+		return -1;
+	for (size_t i = 0; i < e->count; i++) {
+		for (int k = 0; k < 3; k++)
+			pl[i].n[k] = fct_prop_get(p[k], i);
+		pl[i].d = fct_prop_get(p[3], i);
+		pl[i].count = count ? (long)fct_prop_get(count, i) : 0;
+		pl[i].rms = rms ? fct_prop_get(rms, i) : 0;
+		double len = sqrt(pl[i].n[0] * pl[i].n[0] + pl[i].n[1] * pl[i].n[1] + pl[i].n[2] * pl[i].n[2]);
+		if (!(fabs(len - 1) <= 1e-6) || !isfinite(pl[i].d)) {
+			free(pl);
+			return fct_fail(err, "element plane %zu: the normal is not of unit length, or d is not finite",
+			                i);
+		}
+	}
+	*planes = pl, *n = e->count;
+	return 0;
+}
+
+int fct_planes_set(struct fct_mesh *m, const struct fct_plane *planes, size_t n,
+                   struct fct_err *err)
+{
+	fct_mesh_remove_elem(m, "plane");
+	struct fct_elem *e = fct_mesh_add_elem(m, "plane", n, err);
+	if (!e)
+		return -1;
+	static const char *const names[] = { "nx", "ny", "nz", "d", "count", "rms" };
+	for (int k = 0; k < 6; k++)
+		if (!fct_elem_add_scalar(e, names[k], k == 4 ? FCT_INT32 : FCT_FLOAT64, err))
+			return -1;
+	/* Adding properties may have moved them: look them up once, now. */
+	struct fct_prop *p[6];
+	for (int k = 0; k < 6; k++)
+		p[k] = fct_elem_find(e, names[k]);
+	for (size_t i = 0; i < n; i++) {
+		for (int k = 0; k < 3; k++)
+			fct_prop_set(p[k], i, planes[i].n[k]);
+		fct_prop_set(p[3], i, planes[i].d);
+		fct_prop_set(p[4], i, (double)planes[i].count);
+		fct_prop_set(p[5], i, planes[i].rms);
+	}
+	return 0;
+}
+
+int fct_patches_get(const struct fct_mesh *m, int32_t **patch, int *present, long nplanes,
+                    struct fct_err *err)
+{
+	*patch = NULL, *present = 0;
+	const struct fct_prop *p = fct_elem_find(&m->face, "patch");
+	if (!p)
+		return 0;
+	if (p->count_type != FCT_NONE)
+		return fct_fail(err, "face property patch is a list");
+	int32_t *out = fct_alloc_array(m->nf, sizeof *out, err);
+	if (!out)
+		return -1;
+	for (size_t f = 0; f < m->nf; f++) {
+		double v = fct_prop_get(p, f);
+		if (!(v == floor(v) && v >= -1 && (nplanes < 0 || v < nplanes) && v <= INT32_MAX)) {
+			free(out);
+			return fct_fail(err, "face %zu: patch %.17g is not -1 or a plane (%ld planes)", f, v,
+			                nplanes);
+		}
+		out[f] = (int32_t)v;
+	}
+	*patch = out, *present = 1;
+	return 0;
+}
+
+int fct_patches_set(struct fct_mesh *m, const int32_t *patch, struct fct_err *err)
+{
+	struct fct_prop *p = fct_elem_add_scalar(&m->face, "patch", FCT_INT32, err);
+	if (!p)
+		return -1;
+	if (m->nf)
+		memcpy(p->data, patch, m->nf * sizeof *patch);
+	return 0;
+}

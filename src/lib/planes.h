@@ -1,0 +1,46 @@
+/* planes.h - the planar patches of DESIGN.md as they travel on the pipes:
+ * the face property `int patch` (the plane a face belongs to, -1 none) and
+ * the element `plane` (nx ny nz d: unit normal, n.p + d = 0; int count: the
+ * points fitted; rms: the fit residual), the i-th plane being patch i.
+ *
+ * Every stage of the planar pipeline reads and writes them through these
+ * functions, so the on-disk types (double planes, int patch) are fixed in
+ * one place; a file whose plane element uses float or another integer type
+ * is read all the same. */
+#ifndef FCT_PLANES_H
+#define FCT_PLANES_H
+
+#include <stdint.h>
+
+#include "mesh.h"
+
+struct fct_plane {
+	double n[3], d;          /* unit normal and offset: n.p + d = 0 */
+	long count;              /* points (or faces) the fit used */
+	double rms;              /* residual of the fit */
+};
+
+/* The plane element of m as a malloc'd array (*planes NULL and *n 0 when m
+ * has none).  Fails on a plane element without nx ny nz d, or whose normal
+ * is not finite and of unit length (to 1e-6). */
+int fct_planes_get(const struct fct_mesh *m, struct fct_plane **planes, size_t *n,
+                   struct fct_err *err);
+/* Replace m's plane element by planes[0..n). */
+int fct_planes_set(struct fct_mesh *m, const struct fct_plane *planes, size_t n,
+                   struct fct_err *err);
+
+/* The face property patch as a malloc'd array of m->nf labels (NULL when m
+ * has none: *present = 0).  Labels must be -1 or in [0, nplanes) when
+ * nplanes >= 0 (pass -1 to skip that check). */
+int fct_patches_get(const struct fct_mesh *m, int32_t **patch, int *present, long nplanes,
+                    struct fct_err *err);
+/* Set the face property patch (int) from patch[0..m->nf). */
+int fct_patches_set(struct fct_mesh *m, const int32_t *patch, struct fct_err *err);
+
+/* Signed distance of p from the plane. */
+static inline double fct_plane_distance(const struct fct_plane *pl, const double p[3])
+{
+	return pl->n[0] * p[0] + pl->n[1] * p[1] + pl->n[2] * p[2] + pl->d;
+}
+
+#endif
