@@ -50,7 +50,16 @@ UNITS = $(UNIT_SRC:tests/unit/%.c=$(O)/tests/%)
 BENCHES = $(BENCH_SRC:bench/%.c=$(O)/bench/%)
 LDLIBS = $(DEP_LIBS) -lm
 
-all: $(PROGS)
+# Pipeline scripts, installed beside the programs (and copied into $(O)/bin
+# so that the tests find them where they find the programs).
+SCRIPTS = tools/planarize
+SCRIPT_BIN = $(SCRIPTS:tools/%=$(O)/bin/%)
+
+all: $(PROGS) $(SCRIPT_BIN)
+
+$(SCRIPT_BIN): $(O)/bin/%: tools/%
+	@mkdir -p $(@D)
+	cp $< $@
 
 $(O)/%.o: %.c
 	@mkdir -p $(@D)
@@ -76,7 +85,7 @@ $(O)/bench/%: $(O)/bench/%.o $(LIB)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-check: $(PROGS) $(UNITS)
+check: $(PROGS) $(SCRIPT_BIN) $(UNITS)
 	@FCT_BIN=$(O)/bin FCT_UNITS=$(O)/tests sh tests/run
 
 # ASan+UBSan build of everything, then the whole suite against it.
@@ -108,11 +117,11 @@ lint-man:
 
 install: $(PROGS)
 	mkdir -p $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1
-	cp $(PROGS) $(DESTDIR)$(BINDIR)/
+	cp $(PROGS) $(SCRIPTS) $(DESTDIR)$(BINDIR)/
 	cp man/man1/*.1 $(DESTDIR)$(MANDIR)/man1/
 
 uninstall:
-	cd $(DESTDIR)$(BINDIR) && rm -f $(notdir $(PROGS))
+	cd $(DESTDIR)$(BINDIR) && rm -f $(notdir $(PROGS) $(SCRIPTS))
 	cd $(DESTDIR)$(MANDIR)/man1 && rm -f $(notdir $(wildcard man/man1/*.1))
 
 clean:
