@@ -1,0 +1,994 @@
+/* project.c - vertex projection onto segmentation planes, texture
+ * coordinates, orthogonal snapping and the depth scale: Kang, Johnson and
+ * Szeliski, DEC CRL 95/7, sections 5 (eq. 2), 6 and 8 (see project.h and
+ * projverts(1) for the mathematics). */
+#include "project.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "adj.h"
+#include "geom.h"
+#include "header.h"
+
+/* LAPACK (Fortran calling convention; character lengths of 1 need no
+ * hidden argument for these routines). */
+extern void dgesvd_(const char *jobu, const char *jobvt, const int *m, const int *n, double *a,
+                    const int *lda, double *s, double *u, const int *ldu, double *vt,
+                    const int *ldvt, double *work, const int *lwork, int *info);
+extern void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
+                   double *w, double *work, const int *lwork, int *info);
+
+#define DEG (M_PI / 180)
+
+void fct_project_params_default(struct fct_project_params *p)
+{
+	memset(p, 0, sizeof *p);
+	p->max_move = -1;
+	p->max_move_edges = FCT_PROJECT_MAX_MOVE_EDGES;
+	p->rank_tol = FCT_PROJECT_RANK_TOL;
+	p->scale_angle = FCT_PROJECT_SCALE_ANGLE;
+	p->texcoords = 1;
+}
+
+static double norm3(const double v[3])
+{
+	return sqrt(fct_v3_dot(v, v));
+}
+
+/* Section 5 ------------------------------------------------------------- */
+
+/* Rows on the stack up to this many planes; more come from the heap. */
+enum { STACK_ROWS = 16 };
+
+int fct_project_point(const double *normals, const double *offsets, size_t k, const double p0[3],
+                      double bound, double rank_tol, int fallback, double out[3],
+                      struct fct_point_fit *fit, struct fct_err *err)
+{
+	struct fct_point_fit f = { 0, 0, 0, 0 };
+	double p[3] = { p0[0], p0[1], p0[2] };
+	if (k == 0) {
+		out[0] = p[0], out[1] = p[1], out[2] = p[2];
+		if (fit)
+			*fit = f;
+		return 0;
+	}
+	double delta[3][3] = { { 0 } };   /* delta[r-1]: the solution of rank r */
+	if (k == 1) {
+		/* The perpendicular foot, exactly as the SVD would give it. */
+		double r = -(fct_v3_dot(normals, p) + offsets[0]);
+		for (int c = 0; c < 3; c++)
+			delta[0][c] = r * normals[c];
+		f.rank = 1;
+	} else {
+		if (k > (size_t)1 << 20)
+			return fct_fail(err, "vertex on %zu planes: too many", k);
+		int m = (int)k, n = 3, mn = m < 3 ? m : 3, lwork = 64 + 8 * m, info = 0;
+		double stack[STACK_ROWS * 3 * 2 + STACK_ROWS + 64 + 8 * STACK_ROWS];
+		double *buf = stack;
+		size_t need = k * 3 * 2 + k + (size_t)lwork;
+		if (k > STACK_ROWS) {
+			buf = fct_alloc_array(need, sizeof *buf, err);
+			if (!buf)
+				return -1;
+		}
+		double *a = buf, *u = a + 3 * k, *r = u + 3 * k, *work = r + k;
+		double s[3], vt[9];
+		for (size_t i = 0; i < k; i++) {
+			for (int c = 0; c < 3; c++)
+				a[i + k * (size_t)c] = normals[3 * i + (size_t)c];   /* column-major */
+			r[i] = -(fct_v3_dot(normals + 3 * i, p) + offsets[i]);
+		}
+		dgesvd_("S", "S", &m, &n, a, &m, s, u, &m, vt, &mn, work, &lwork, &info);
+		if (info != 0) {
+			if (buf != stack)
+				free(buf);
+			return fct_fail(err, "LAPACK dgesvd failed (info %d)", info);
+		}
+		int rank = 0;
+		while (rank < mn && s[rank] > rank_tol * s[0] && s[rank] > 0)
+			rank++;
+		double acc[3] = { 0, 0, 0 };
+		for (int j = 0; j < rank; j++) {
+			double ur = 0;
+			for (size_t i = 0; i < k; i++)
+				ur += u[i + k * (size_t)j] * r[i];
+			double c = ur / s[j];
+			for (int q = 0; q < 3; q++) {
+				acc[q] += vt[j + mn * q] * c;
+				delta[j][q] = acc[q];
+			}
+		}
+		f.rank = rank;
+		if (buf != stack)
+			free(buf);
+	}
+	if (f.rank > 0) {
+		f.want = norm3(delta[f.rank - 1]);
+		/* The longest acceptable truncation: |delta_r| grows with r, the
+		 * terms being orthogonal. */
+		int use = 0;
+		if (f.want <= bound)
+			use = f.rank;
+		else if (fallback)
+			for (int j = f.rank - 1; j >= 1; j--)
+				if (norm3(delta[j - 1]) <= bound) {
+					use = j;
+					break;
+				}
+		if (use > 0) {
+			f.used = use;
+			f.move = norm3(delta[use - 1]);
+			for (int c = 0; c < 3; c++)
+				p[c] += delta[use - 1][c];
+		}
+	}
+	out[0] = p[0], out[1] = p[1], out[2] = p[2];
+	if (fit)
+		*fit = f;
+	return 0;
+}
+
+/* Section 6 ------------------------------------------------------------- */
+
+int fct_project_texcoord(const struct fct_camera *cam, const double *inv_pose, const double p[3],
+                         double *s, double *t)
+{
+	double q[3], u, v, depth;
+	if (inv_pose)
+		fct_pose_apply(inv_pose, p, q);
+	else
+		q[0] = p[0], q[1] = p[1], q[2] = p[2];
+	if (cam->width <= 0 || cam->height <= 0 || !fct_camera_project(cam, q, &u, &v, &depth))
+		return 0;
+	*s = (u + 0.5) / cam->width;
+	*t = 1 - (v + 0.5) / cam->height;
+	return isfinite(*s) && isfinite(*t);
+}
+
+/* Section 8: snapping --------------------------------------------------- */
+
+/* Principal eigenvector of the symmetric 3x3 matrix m (row-major). */
+static int principal_vector(const double m[9], double v[3], struct fct_err *err)
+{
+	double a[9], w[3], work[64];
+	int n = 3, lwork = 64, info = 0;
+	memcpy(a, m, sizeof a);
+	dsyev_("V", "U", &n, a, &n, w, work, &lwork, &info);
+	if (info != 0)
+		return fct_fail(err, "LAPACK dsyev failed (info %d)", info);
+	/* Eigenvalues ascending; column 2 (column-major) is the largest. */
+	v[0] = a[6], v[1] = a[7], v[2] = a[8];
+	return 0;
+}
+
+/* Indices 0..n-1 by weight, heaviest first, ties by index. */
+static const double *sort_weight;
+static int by_weight(const void *x, const void *y)
+{
+	size_t i = *(const size_t *)x, j = *(const size_t *)y;
+	if (sort_weight[i] != sort_weight[j])
+		return sort_weight[i] > sort_weight[j] ? -1 : 1;
+	return (i > j) - (i < j);
+}
+
+enum { MAX_CANDIDATES = 1000, MAX_FRAMES = 256 };
+
+/* Refine axis a to the principal direction of the normals within cos_a of
+ * it (as lines), twice; the sign follows ref. */
+static int refine_axis(const struct fct_plane *pl, size_t n, const double *w, double cos_a,
+                       double a[3], const double ref[3], struct fct_err *err)
+{
+	for (int it = 0; it < 2; it++) {
+		double m[9] = { 0 };
+		int any = 0;
+		for (size_t j = 0; j < n; j++)
+			if (fabs(fct_v3_dot(pl[j].n, a)) >= cos_a) {
+				for (int r = 0; r < 3; r++)
+					for (int c = 0; c < 3; c++)
+						m[3 * r + c] += w[j] * pl[j].n[r] * pl[j].n[c];
+				any = 1;
+			}
+		if (!any)
+			break;
+		double v[3] = { 0, 0, 0 };
+		if (principal_vector(m, v, err))
+			return -1;
+		double len = norm3(v);
+		if (!(len > 0))
+			break;
+		double sg = fct_v3_dot(v, ref) < 0 ? -1 : 1;
+		for (int c = 0; c < 3; c++)
+			a[c] = sg * v[c] / len;
+	}
+	return 0;
+}
+
+/* Circular distance of azimuths x and y modulo 90 degrees. */
+static double dist90(double x, double y)
+{
+	return fabs(remainder(x - y, M_PI / 2));
+}
+
+/* Sorted azimuths (mod 90 degrees) with prefix sums of weights, for the
+ * weight within a window of half-width h about x. */
+struct azimuths {
+	double *x, *cum;   /* x ascending in [0, pi/2); cum[i] = sum of weights of x[0..i) */
+	size_t n;
+};
+
+static size_t lower(const double *x, size_t n, double v)
+{
+	size_t lo = 0, hi = n;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if (x[mid] < v)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+static size_t upper(const double *x, size_t n, double v)
+{
+	size_t lo = 0, hi = n;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if (x[mid] <= v)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+/* Weight of the azimuths in [lo, hi] on the circle of length pi/2 (the
+ * window is narrower than the circle: at most 80 of its 90 degrees). */
+static double window_weight(const struct azimuths *az, double lo, double hi)
+{
+	const double q = M_PI / 2;
+	double seg[2][2] = { { lo, hi }, { 1, 0 } };   /* the second segment empty unless wrapped */
+	if (lo < 0)
+		seg[0][0] = 0, seg[1][0] = lo + q, seg[1][1] = q;
+	else if (hi >= q)
+		seg[0][1] = q, seg[1][0] = 0, seg[1][1] = hi - q;
+	double sum = 0;
+	for (int k = 0; k < 2; k++) {
+		if (seg[k][0] > seg[k][1])
+			continue;
+		size_t a = lower(az->x, az->n, seg[k][0]), b = upper(az->x, az->n, seg[k][1]);
+		if (b > a)
+			sum += az->cum[b] - az->cum[a];
+	}
+	return sum;
+}
+
+static double mod90(double x)
+{
+	double q = M_PI / 2, r = fmod(x, q);
+	if (r < 0)
+		r += q;
+	if (r >= q)
+		r = 0;
+	return r;
+}
+
+int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weight,
+                             const double *pivot, const double *up_prior, double angle,
+                             struct fct_ortho_result *res, struct fct_err *err)
+{
+	struct fct_ortho_result r;
+	memset(&r, 0, sizeof r);
+	r.up[2] = 1;
+	if (up_prior)
+		memcpy(r.up, up_prior, sizeof r.up);
+	if (!(angle > 0 && angle <= 40))
+		return fct_fail(err, "snapping angle %g: must be in (0, 40] degrees", angle);
+	if (n == 0) {
+		if (res)
+			*res = r;
+		return 0;
+	}
+	const double cos_a = cos(angle * DEG), sin_a = sin(angle * DEG);
+	int rc = -1;
+	double *w = fct_alloc_array(n, sizeof *w, err);
+	size_t *order = fct_alloc_array(n, sizeof *order, err);
+	int *frame = fct_alloc_array(n, sizeof *frame, err);
+	double *phi = fct_alloc_array(n, sizeof *phi, err);
+	struct azimuths az = { fct_alloc_array(n, sizeof(double), err),
+	                       fct_alloc_array(n + 1, sizeof(double), err), 0 };
+	double (*axes)[2][3] = fct_alloc_array(MAX_FRAMES, sizeof *axes, err);
+	size_t *idx = fct_alloc_array(n, sizeof *idx, err);
+	struct fct_plane *old = fct_alloc_array(n, sizeof *old, err);
+	if (!w || !order || !frame || !phi || !az.x || !az.cum || !axes || !idx || !old)
+		goto out;
+	memcpy(old, pl, n * sizeof *pl);
+
+	/* Weights: a plane of no weight still counts a little, so that a
+	 * mesh without area is snapped all the same. */
+	double wmax = 0;
+	for (size_t i = 0; i < n; i++) {
+		w[i] = weight && isfinite(weight[i]) && weight[i] > 0 ? weight[i] : 0;
+		if (w[i] > wmax)
+			wmax = w[i];
+	}
+	for (size_t i = 0; i < n; i++)
+		w[i] = wmax > 0 ? w[i] + 1e-9 * wmax : 1;
+
+	/* 1. up. */
+	for (size_t i = 0; i < n; i++)
+		order[i] = i;
+	sort_weight = w;
+	qsort(order, n, sizeof *order, by_weight);
+	size_t ncand = n < MAX_CANDIDATES ? n : MAX_CANDIDATES;
+	long best = -1;
+	double best_score = -1;
+	for (int pass = up_prior ? 0 : 1; pass < 2 && best < 0; pass++)
+		for (size_t c = 0; c < ncand; c++) {
+			size_t i = order[c];
+			if (pass == 0 && fabs(fct_v3_dot(pl[i].n, up_prior)) < cos(45 * DEG))
+				continue;
+			double sc = 0;
+			for (size_t j = 0; j < n; j++)
+				if (fabs(fct_v3_dot(pl[j].n, pl[i].n)) >= cos_a)
+					sc += w[j];
+			if (sc > best_score || (sc == best_score && (long)i < best))
+				best_score = sc, best = (long)i;
+		}
+	double up[3], ref[3];
+	memcpy(up, pl[best].n, sizeof up);
+	memcpy(ref, up_prior ? up_prior : pl[best].n, sizeof ref);
+	if (fct_v3_dot(up, ref) < 0)
+		for (int c = 0; c < 3; c++)
+			up[c] = -up[c];
+	if (refine_axis(pl, n, w, cos_a, up, ref, err))
+		goto out;
+	memcpy(r.up, up, sizeof up);
+
+	/* 2. frames of vertical planes. */
+	double ea[3] = { 0, 0, 0 }, eb[3];
+	{
+		int k = 0;
+		for (int c = 1; c < 3; c++)
+			if (fabs(up[c]) < fabs(up[k]))
+				k = c;
+		ea[k] = 1;
+		fct_v3_axpy(ea, ea, -fct_v3_dot(ea, up), up);
+		double len = norm3(ea);
+		for (int c = 0; c < 3; c++)
+			ea[c] /= len;
+		fct_v3_cross(eb, up, ea);
+	}
+	for (size_t i = 0; i < n; i++) {
+		frame[i] = -2;   /* not vertical */
+		double nu = fct_v3_dot(pl[i].n, up);
+		if (fabs(nu) <= sin_a) {
+			frame[i] = -1;   /* vertical, no frame yet */
+			phi[i] = mod90(atan2(fct_v3_dot(pl[i].n, eb), fct_v3_dot(pl[i].n, ea)));
+		}
+	}
+	size_t nframes = 0;
+	while (nframes < MAX_FRAMES) {
+		/* The unassigned vertical planes, by azimuth. */
+		size_t m = 0;
+		for (size_t i = 0; i < n; i++)
+			if (frame[i] == -1)
+				idx[m++] = i;
+		if (m == 0)
+			break;
+		sort_weight = phi;
+		qsort(idx, m, sizeof *idx, by_weight);   /* descending azimuth; reversed below */
+		az.n = m;
+		az.cum[0] = 0;
+		for (size_t k = 0; k < m; k++) {
+			size_t i = idx[m - 1 - k];
+			az.x[k] = phi[i];
+			az.cum[k + 1] = az.cum[k] + w[i];
+		}
+		long pick = -1;
+		double pick_score = -1;
+		size_t seen = 0;
+		for (size_t c = 0; c < n && seen < MAX_CANDIDATES; c++) {
+			size_t i = order[c];
+			if (frame[i] != -1)
+				continue;
+			seen++;
+			double sc = window_weight(&az, phi[i] - angle * DEG, phi[i] + angle * DEG);
+			if (sc > pick_score || (sc == pick_score && (long)i < pick))
+				pick_score = sc, pick = (long)i;
+		}
+		double psi = phi[pick];
+		for (int it = 0; it < 2; it++) {
+			double sx = 0, sy = 0;
+			for (size_t k = 0; k < m; k++) {
+				size_t i = idx[k];
+				if (dist90(phi[i], psi) <= angle * DEG) {
+					sx += w[i] * cos(4 * phi[i]);
+					sy += w[i] * sin(4 * phi[i]);
+				}
+			}
+			if (sx != 0 || sy != 0)
+				psi = mod90(atan2(sy, sx) / 4);
+		}
+		int members = 0;
+		for (size_t k = 0; k < m; k++) {
+			size_t i = idx[k];
+			if (dist90(phi[i], psi) <= angle * DEG)
+				frame[i] = (int)nframes, members++;
+		}
+		if (!members)
+			frame[pick] = (int)nframes, psi = phi[pick];
+		double cs = cos(psi), sn = sin(psi);
+		for (int c = 0; c < 3; c++) {
+			axes[nframes][0][c] = cs * ea[c] + sn * eb[c];
+			axes[nframes][1][c] = -sn * ea[c] + cs * eb[c];
+		}
+		nframes++;
+	}
+	r.frames = nframes;
+
+	/* 3. snap. */
+	for (size_t i = 0; i < n; i++) {
+		double *nv = pl[i].n, nu = fct_v3_dot(nv, up);
+		if (fabs(nu) >= cos_a) {
+			double sg = nu < 0 ? -1 : 1;
+			for (int c = 0; c < 3; c++)
+				nv[c] = sg * up[c];
+			r.horizontal++;
+		} else if (frame[i] >= 0) {
+			const double (*ax)[3] = axes[frame[i]];
+			double d0 = fct_v3_dot(nv, ax[0]), d1 = fct_v3_dot(nv, ax[1]);
+			int k = fabs(d1) > fabs(d0);
+			double sg = (k ? d1 : d0) < 0 ? -1 : 1;
+			for (int c = 0; c < 3; c++)
+				nv[c] = sg * ax[k][c];
+			r.vertical++;
+		} else if (frame[i] == -1) {
+			/* A vertical plane beyond the frames: only made vertical. */
+			fct_v3_axpy(nv, nv, -nu, up);
+			double len = norm3(nv);
+			for (int c = 0; c < 3; c++)
+				nv[c] /= len;
+		} else {
+			double bestd = HUGE_VAL;
+			const double *bax = NULL;
+			for (size_t f = 0; f < nframes; f++)
+				for (int k = 0; k < 2; k++) {
+					double dd = fabs(fct_v3_dot(nv, axes[f][k]));
+					if (dd < bestd)
+						bestd = dd, bax = axes[f][k];
+				}
+			if (bax && bestd <= sin_a) {
+				fct_v3_axpy(nv, nv, -fct_v3_dot(nv, bax), bax);
+				double len = norm3(nv);
+				for (int c = 0; c < 3; c++)
+					nv[c] /= len;
+				r.oblique++;
+			}
+		}
+	}
+
+	/* 4. turn each plane about its pivot. */
+	for (size_t i = 0; i < n; i++) {
+		double q[3];
+		const double *pv = pivot ? pivot + 3 * i : NULL;
+		if (pv && isfinite(pv[0]) && isfinite(pv[1]) && isfinite(pv[2]))
+			fct_v3_axpy(q, pv, -fct_plane_distance(&old[i], pv), old[i].n);
+		else
+			for (int c = 0; c < 3; c++)
+				q[c] = -old[i].d * old[i].n[c];
+		pl[i].d = -fct_v3_dot(pl[i].n, q);
+		double cosang = fct_v3_dot(pl[i].n, old[i].n);
+		double ang = acos(cosang > 1 ? 1 : cosang < -1 ? -1 : cosang) / DEG;
+		if (ang > r.max_change)
+			r.max_change = ang;
+	}
+	if (res)
+		*res = r;
+	rc = 0;
+out:
+	free(w);
+	free(order);
+	free(frame);
+	free(phi);
+	free(az.x);
+	free(az.cum);
+	free(axes);
+	free(idx);
+	free(old);
+	return rc;
+}
+
+/* Section 8: depth scale ------------------------------------------------ */
+
+/* Per plane: its camera-frame normal split into the unscaled and scaled
+ * axes, for the cosine of a pair at any scale. */
+struct split {
+	double n[3];
+};
+
+static const int scaled_pinhole[3] = { 0, 0, 1 }, scaled_cyl[3] = { 1, 0, 1 };
+
+/* Cosine of the angle between planes i and j once depth is scaled by lambda. */
+static double pair_cos(const struct split *a, const struct split *b, const int *sc, double lambda)
+{
+	double num = 0, la = 0, lb = 0;
+	for (int c = 0; c < 3; c++) {
+		double f = sc[c] ? 1 / lambda : 1;
+		double x = a->n[c] * f, y = b->n[c] * f;
+		num += x * y, la += x * x, lb += y * y;
+	}
+	if (!(la > 0 && lb > 0))
+		return 1;
+	return num / sqrt(la * lb);
+}
+
+static double inlier_cost(const struct split *s, const struct fct_plane_pair *pairs,
+                          const unsigned char *in, size_t np, const int *sc, double lambda)
+{
+	double f = 0;
+	for (size_t k = 0; k < np; k++)
+		if (in[k]) {
+			double c = pair_cos(&s[pairs[k].a], &s[pairs[k].b], sc, lambda);
+			f += pairs[k].w * c * c;
+		}
+	return f;
+}
+
+int fct_depth_scale_solve(const struct fct_plane *pl, size_t n, const struct fct_plane_pair *pairs,
+                          size_t npairs, const double *to_cam, int cylindrical, double angle,
+                          struct fct_scale_result *res, struct fct_err *err)
+{
+	struct fct_scale_result r = { 1, 0, 0, 0 };
+	const int *sc = cylindrical ? scaled_cyl : scaled_pinhole;
+	if (!(angle > 0 && angle < 90))
+		return fct_fail(err, "depth-scale angle %g: must be in (0, 90) degrees", angle);
+	int rc = -1;
+	struct split *s = fct_alloc_array(n, sizeof *s, err);
+	double *lam = fct_alloc_array(npairs, sizeof *lam, err);
+	double *wt = fct_alloc_array(npairs, sizeof *wt, err);
+	size_t *order = fct_alloc_array(npairs, sizeof *order, err);
+	unsigned char *in = fct_alloc_array(npairs, 1, err);
+	if (!s || !lam || !wt || !order || !in)
+		goto out;
+	for (size_t i = 0; i < n; i++)
+		for (int c = 0; c < 3; c++)
+			s[i].n[c] = to_cam ? to_cam[4 * c] * pl[i].n[0] + to_cam[4 * c + 1] * pl[i].n[1] +
+			                     to_cam[4 * c + 2] * pl[i].n[2]
+			                   : pl[i].n[c];
+	/* Proposals. */
+	size_t nprop = 0;
+	for (size_t k = 0; k < npairs; k++) {
+		lam[k] = 0, wt[k] = -1;
+		if (pairs[k].a >= n || pairs[k].b >= n || !(pairs[k].w > 0))
+			continue;
+		double a = 0, b = 0;
+		for (int c = 0; c < 3; c++) {
+			double x = s[pairs[k].a].n[c] * s[pairs[k].b].n[c];
+			if (sc[c])
+				b += x;
+			else
+				a += x;
+		}
+		if (!(a * b < 0) || fabs(a) < 1e-12 || fabs(b) < 1e-12)
+			continue;
+		double l = sqrt(-b / a);
+		if (!(l >= 1e-3 && l <= 1e3))
+			continue;
+		lam[k] = l, wt[k] = pairs[k].w;
+		order[nprop++] = k;
+	}
+	r.pairs = nprop;
+	if (nprop == 0) {
+		rc = 0;
+		goto out;
+	}
+	sort_weight = wt;
+	qsort(order, nprop, sizeof *order, by_weight);
+	const double sin_t = sin(angle * DEG);
+	double best = lam[order[0]], best_score = -1;
+	size_t ncand = nprop < MAX_CANDIDATES ? nprop : MAX_CANDIDATES;
+	for (size_t c = 0; c < ncand; c++) {
+		double l = lam[order[c]], score = 0;
+		for (size_t q = 0; q < nprop; q++) {
+			size_t k = order[q];
+			if (fabs(pair_cos(&s[pairs[k].a], &s[pairs[k].b], sc, l)) <= sin_t)
+				score += pairs[k].w;
+		}
+		if (score > best_score ||
+		    (score == best_score && fabs(log(l)) < fabs(log(best))))
+			best_score = score, best = l;
+	}
+	/* Refine: golden section on log lambda over the inliers, twice. */
+	double lambda = best;
+	for (int it = 0; it < 3; it++) {
+		memset(in, 0, npairs);
+		for (size_t q = 0; q < nprop; q++) {
+			size_t k = order[q];
+			in[k] = fabs(pair_cos(&s[pairs[k].a], &s[pairs[k].b], sc, lambda)) <= sin_t;
+		}
+		if (it == 2)
+			break;
+		const double g = (sqrt(5) - 1) / 2;
+		double lo = log(lambda) - 0.5, hi = log(lambda) + 0.5;
+		double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+		double f1 = inlier_cost(s, pairs, in, npairs, sc, exp(x1));
+		double f2 = inlier_cost(s, pairs, in, npairs, sc, exp(x2));
+		for (int step = 0; step < 200 && hi - lo > 1e-14; step++) {
+			if (f1 <= f2) {
+				hi = x2, x2 = x1, f2 = f1;
+				x1 = hi - g * (hi - lo);
+				f1 = inlier_cost(s, pairs, in, npairs, sc, exp(x1));
+			} else {
+				lo = x1, x1 = x2, f1 = f2;
+				x2 = lo + g * (hi - lo);
+				f2 = inlier_cost(s, pairs, in, npairs, sc, exp(x2));
+			}
+		}
+		lambda = exp((lo + hi) / 2);
+	}
+	double sw = 0, sc2 = 0;
+	for (size_t k = 0; k < npairs; k++)
+		if (in[k]) {
+			double c = pair_cos(&s[pairs[k].a], &s[pairs[k].b], sc, lambda);
+			sw += pairs[k].w, sc2 += pairs[k].w * c * c;
+			r.inliers++;
+		}
+	r.rms_cos = sw > 0 ? sqrt(sc2 / sw) : 0;
+	r.scale = lambda;
+	rc = 0;
+out:
+	if (res)
+		*res = r;
+	free(s);
+	free(lam);
+	free(wt);
+	free(order);
+	free(in);
+	return rc;
+}
+
+void fct_depth_scale_apply(double lambda, const double *pose, int cylindrical, double *xyz,
+                           size_t nv, struct fct_plane *pl, size_t npl, struct fct_camera *cam)
+{
+	static const double identity[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
+	const int *sc = cylindrical ? scaled_cyl : scaled_pinhole;
+	double inv[12];
+	if (!pose)
+		pose = identity;
+	fct_pose_invert(pose, inv);
+	for (size_t i = 0; i < nv; i++) {
+		double q[3];
+		fct_pose_apply(inv, xyz + 3 * i, q);
+		for (int c = 0; c < 3; c++)
+			if (sc[c])
+				q[c] *= lambda;
+		fct_pose_apply(pose, q, xyz + 3 * i);
+	}
+	const double t[3] = { pose[3], pose[7], pose[11] };
+	for (size_t i = 0; i < npl; i++) {
+		/* Camera frame: n_c = R^T n, d_c = n.t + d; scaled: n_c / S, d_c;
+		 * normalised; back: n = R n_c, d = d_c - n.t. */
+		double nc[3], dc = fct_v3_dot(pl[i].n, t) + pl[i].d;
+		for (int c = 0; c < 3; c++) {
+			nc[c] = pose[c] * pl[i].n[0] + pose[4 + c] * pl[i].n[1] + pose[8 + c] * pl[i].n[2];
+			if (sc[c])
+				nc[c] /= lambda;
+		}
+		double len = norm3(nc);
+		for (int c = 0; c < 3; c++)
+			nc[c] /= len;
+		dc /= len;
+		for (int c = 0; c < 3; c++)
+			pl[i].n[c] = pose[4 * c] * nc[0] + pose[4 * c + 1] * nc[1] + pose[4 * c + 2] * nc[2];
+		pl[i].d = dc - fct_v3_dot(pl[i].n, t);
+	}
+	if (cam) {
+		if (cam->kind == FCT_CAMERA_PINHOLE)
+			cam->fx *= lambda, cam->fy *= lambda;
+		else if (cam->kind == FCT_CAMERA_CYLINDRICAL)
+			cam->f *= lambda;
+	}
+}
+
+/* The whole stage -------------------------------------------------------- */
+
+static int cmp_u32(const void *x, const void *y)
+{
+	uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+	return (a > b) - (a < b);
+}
+
+static int cmp_pair(const void *x, const void *y)
+{
+	const struct fct_plane_pair *a = x, *b = y;
+	if (a->a != b->a)
+		return a->a < b->a ? -1 : 1;
+	return (a->b > b->b) - (a->b < b->b);
+}
+
+/* Pairs of patches that share mesh edges, weighted by the edges' length
+ * (edges among more than four patches, non-manifold clutter, are skipped). */
+static int adjacent_pairs(const struct fct_mesh *m, const struct fct_adj *adj,
+                          const int32_t *patch, struct fct_plane_pair **out, size_t *nout,
+                          struct fct_err *err)
+{
+	struct fct_plane_pair *pp = NULL;
+	size_t n = 0, cap = 0;
+	for (size_t e = 0; e < adj->ne; e++) {
+		uint32_t lab[4];
+		int nl = 0, skip = 0;
+		for (uint32_t k = adj->edge_fstart[e]; k < adj->edge_fstart[e + 1] && !skip; k++) {
+			int32_t p = patch[adj->edge_f[k]];
+			if (p < 0)
+				continue;
+			int dup = 0;
+			for (int q = 0; q < nl; q++)
+				dup |= lab[q] == (uint32_t)p;
+			if (dup)
+				continue;
+			if (nl == 4)
+				skip = 1;
+			else
+				lab[nl++] = (uint32_t)p;
+		}
+		if (skip || nl < 2)
+			continue;
+		double len = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj->edge_v[2 * e],
+		                               m->xyz + 3 * (size_t)adj->edge_v[2 * e + 1]));
+		for (int a = 0; a < nl; a++)
+			for (int b = a + 1; b < nl; b++) {
+				if (fct_grow((void **)&pp, &cap, n + 1, sizeof *pp, err)) {
+					free(pp);
+					return -1;
+				}
+				pp[n].a = lab[a] < lab[b] ? lab[a] : lab[b];
+				pp[n].b = lab[a] < lab[b] ? lab[b] : lab[a];
+				pp[n].w = len;
+				n++;
+			}
+	}
+	if (n)
+		qsort(pp, n, sizeof *pp, cmp_pair);
+	size_t k = 0;
+	for (size_t i = 0; i < n; i++) {
+		if (k && pp[k - 1].a == pp[i].a && pp[k - 1].b == pp[i].b)
+			pp[k - 1].w += pp[i].w;
+		else
+			pp[k++] = pp[i];
+	}
+	*out = pp, *nout = k;
+	return 0;
+}
+
+/* Area and area-weighted centroid of each patch (polygons fanned). */
+static void patch_moments(const struct fct_mesh *m, const int32_t *patch, size_t np,
+                          double *area, double *cen)
+{
+	for (size_t i = 0; i < np; i++)
+		area[i] = 0, cen[3 * i] = cen[3 * i + 1] = cen[3 * i + 2] = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		if (patch[f] < 0)
+			continue;
+		size_t p = (size_t)patch[f];
+		const uint32_t *fv = m->fvert + m->fstart[f];
+		uint32_t ns = fct_face_size(m, f);
+		for (uint32_t k = 1; k + 1 < ns; k++) {
+			const double *a = m->xyz + 3 * (size_t)fv[0], *b = m->xyz + 3 * (size_t)fv[k],
+			             *c = m->xyz + 3 * (size_t)fv[k + 1];
+			double ar = fct_triangle_area2(a, b, c) / 2;
+			area[p] += ar;
+			for (int q = 0; q < 3; q++)
+				cen[3 * p + q] += ar * (a[q] + b[q] + c[q]) / 3;
+		}
+	}
+	for (size_t i = 0; i < np; i++)
+		for (int q = 0; q < 3; q++)
+			cen[3 * i + q] = area[i] > 0 ? cen[3 * i + q] / area[i] : NAN;
+}
+
+/* Make sure m has a scalar vertex column name (float when added). */
+static int texcoord_column(struct fct_mesh *m, const char *name, struct fct_err *err)
+{
+	const struct fct_prop *c = fct_elem_find(&m->vertex, name);
+	enum fct_type t = c && c->count_type == FCT_NONE ? c->type : FCT_FLOAT32;
+	return fct_elem_add_scalar(&m->vertex, name, t, err) ? 0 : -1;
+}
+
+int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
+                     struct fct_project_stats *st_out, struct fct_err *err)
+{
+	struct fct_project_stats st;
+	memset(&st, 0, sizeof st);
+	struct fct_plane *pl = NULL;
+	size_t npl = 0;
+	int32_t *patch = NULL;
+	int present = 0, rc = -1;
+	struct fct_adj adj;
+	memset(&adj, 0, sizeof adj);
+	double *nbuf = NULL, *dbuf = NULL, *area = NULL, *cen = NULL;
+	uint32_t *lab = NULL;
+	struct fct_plane_pair *pairs = NULL;
+
+	if (fct_planes_get(m, &pl, &npl, err))
+		return -1;
+	if (!fct_mesh_find_elem(m, "plane")) {
+		fct_fail(err, "no plane element (the planes of segplanes)");
+		goto out;
+	}
+	if (fct_patches_get(m, &patch, &present, (long)npl, err))
+		goto out;
+	if (!present) {
+		fct_fail(err, "no face property patch (the labels of segplanes)");
+		goto out;
+	}
+	st.nvert = m->nv, st.nplanes = npl;
+	if (fct_adj_build(&adj, m, err))
+		goto out;
+
+	double sum = 0;
+	for (size_t e = 0; e < adj.ne; e++)
+		sum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
+		                         m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+	st.mean_edge = adj.ne ? sum / (double)adj.ne : 0;
+
+	struct fct_camera cam;
+	double pose[12], inv[12];
+	int have_cam = fct_header_camera(m, &cam, err);
+	if (have_cam < 0)
+		goto out;
+	int have_pose = fct_header_pose(m, pose, err);
+	if (have_pose < 0)
+		goto out;
+	if (have_pose) {
+		if (fct_pose_check(pose, 1e-3, err)) {
+			fct_err_prefix(err, "comment pose");
+			goto out;
+		}
+		fct_pose_invert(pose, inv);
+	}
+	int cyl = have_cam && cam.kind == FCT_CAMERA_CYLINDRICAL;
+	int planes_changed = 0;
+
+	/* Section 8: the depth scale first (it changes shape), then snapping. */
+	if (p->depth_scale_fix) {
+		size_t npairs = 0;
+		if (adjacent_pairs(m, &adj, patch, &pairs, &npairs, err))
+			goto out;
+		double angle = p->scale_angle > 0 ? p->scale_angle
+		             : p->ortho_angle > 0 ? p->ortho_angle : FCT_PROJECT_SCALE_ANGLE;
+		if (fct_depth_scale_solve(pl, npl, pairs, npairs, have_pose ? inv : NULL, cyl, angle,
+		                          &st.scale_res, err))
+			goto out;
+		st.scaled = 1;
+		if (st.scale_res.scale != 1) {
+			fct_depth_scale_apply(st.scale_res.scale, have_pose ? pose : NULL, cyl, m->xyz, m->nv,
+			                      pl, npl, have_cam ? &cam : NULL);
+			if (have_cam && fct_header_set_camera(m, &cam, err))
+				goto out;
+			planes_changed = 1;
+		}
+	}
+	if (p->ortho_angle > 0) {
+		area = fct_alloc_array(npl, sizeof *area, err);
+		cen = fct_alloc_array(3 * npl, sizeof *cen, err);
+		if (!area || !cen)
+			goto out;
+		patch_moments(m, patch, npl, area, cen);
+		double prior[3], down[3] = { 0, -1, 0 };
+		int use_prior = have_cam || have_pose;
+		if (have_pose) {
+			double o[3] = { 0, 0, 0 }, a[3], b[3];
+			fct_pose_apply(pose, down, a);
+			fct_pose_apply(pose, o, b);
+			fct_v3_sub(prior, a, b);
+		} else {
+			memcpy(prior, down, sizeof prior);
+		}
+		if (fct_planes_orthogonalize(pl, npl, area, cen, use_prior ? prior : NULL,
+		                             p->ortho_angle, &st.ortho_res, err))
+			goto out;
+		st.ortho = 1;
+		planes_changed = 1;
+	}
+
+	/* Section 5. */
+	size_t maxdeg = 0;
+	for (size_t v = 0; v < m->nv; v++) {
+		size_t d = adj.vert_fstart[v + 1] - adj.vert_fstart[v];
+		if (d > maxdeg)
+			maxdeg = d;
+	}
+	nbuf = fct_alloc_array(3 * maxdeg, sizeof *nbuf, err);
+	dbuf = fct_alloc_array(maxdeg, sizeof *dbuf, err);
+	lab = fct_alloc_array(maxdeg, sizeof *lab, err);
+	if (!nbuf || !dbuf || !lab)
+		goto out;
+	st.bound = p->max_move >= 0 ? p->max_move : p->max_move_edges * st.mean_edge;
+	double move_sum = 0, r2_before = 0, r2_after = 0;
+	size_t nres = 0;
+	for (size_t v = 0; v < m->nv; v++) {
+		size_t k = 0;
+		for (uint32_t q = adj.vert_fstart[v]; q < adj.vert_fstart[v + 1]; q++)
+			if (patch[adj.vert_f[q]] >= 0)
+				lab[k++] = (uint32_t)patch[adj.vert_f[q]];
+		qsort(lab, k, sizeof *lab, cmp_u32);
+		size_t u = 0;
+		for (size_t q = 0; q < k; q++)
+			if (u == 0 || lab[q] != lab[u - 1])
+				lab[u++] = lab[q];
+		k = u;
+		for (size_t q = 0; q < k; q++) {
+			memcpy(nbuf + 3 * q, pl[lab[q]].n, 3 * sizeof *nbuf);
+			dbuf[q] = pl[lab[q]].d;
+		}
+		double *x = m->xyz + 3 * v;
+		for (size_t q = 0; q < k; q++) {
+			double r = fct_plane_distance(&pl[lab[q]], x);
+			r2_before += r * r;
+		}
+		struct fct_point_fit fit;
+		if (fct_project_point(nbuf, dbuf, k, x, st.bound, p->rank_tol, p->fallback, x, &fit, err))
+			goto out;
+		int kk = k < 3 ? (int)k : 3;
+		st.by_k[kk]++;
+		if (fit.used > 0) {
+			st.moved[kk]++;
+			move_sum += fit.move;
+			if (fit.move > st.max_move)
+				st.max_move = fit.move;
+			if (fit.used < fit.rank)
+				st.fallback++;
+		} else if (fit.rank > 0) {
+			st.rejected++;
+		}
+		if (fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3))
+			st.rank_deficient++;
+		for (size_t q = 0; q < k; q++) {
+			double r = fct_plane_distance(&pl[lab[q]], x);
+			r2_after += r * r;
+			if (fabs(r) > st.max_after)
+				st.max_after = fabs(r);
+		}
+		nres += k;
+	}
+	size_t nmoved = st.moved[1] + st.moved[2] + st.moved[3];
+	st.mean_move = nmoved ? move_sum / (double)nmoved : 0;
+	st.rms_before = nres ? sqrt(r2_before / (double)nres) : 0;
+	st.rms_after = nres ? sqrt(r2_after / (double)nres) : 0;
+
+	/* Section 6. */
+	if (p->texcoords && have_cam && m->nv > 0) {
+		if (texcoord_column(m, "s", err) || texcoord_column(m, "t", err))
+			goto out;
+		struct fct_prop *ps = fct_elem_find(&m->vertex, "s"), *pt = fct_elem_find(&m->vertex, "t");
+		for (size_t v = 0; v < m->nv; v++) {
+			double s, t;
+			if (fct_project_texcoord(&cam, have_pose ? inv : NULL, m->xyz + 3 * v, &s, &t)) {
+				fct_prop_set(ps, v, s);
+				fct_prop_set(pt, v, t);
+			} else {
+				st.no_pixel++;
+			}
+		}
+		st.texcoords = 1;
+	}
+	if (planes_changed && fct_planes_set(m, pl, npl, err))
+		goto out;
+	rc = 0;
+out:
+	if (st_out)
+		*st_out = st;
+	free(pl);
+	free(patch);
+	fct_adj_free(&adj);
+	free(nbuf);
+	free(dbuf);
+	free(lab);
+	free(area);
+	free(cen);
+	free(pairs);
+	return rc;
+}
