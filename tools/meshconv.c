@@ -9,7 +9,7 @@
 #include "path.h"
 
 static const char usage[] =
-	"usage: meshconv [-aq] [-f format] [-o file] [input]\n"
+	"usage: meshconv [-aqv] [-f format] [-o file] [input]\n"
 	"Convert a mesh (PLY or OBJ, detected from the content) to binary PLY,\n"
 	"keeping every property, element and comment.\n"
 	"  -a            write ascii PLY\n"

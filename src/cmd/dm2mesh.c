@@ -19,7 +19,7 @@
 #include "sparsemesh.h"
 
 static const char usage[] =
-	"usage: dm2mesh [-aqv] [-o file] [-K fx,fy,cx,cy|name] [--camera file]\n"
+	"usage: dm2mesh [-aqv] [-o file] [-K fx,fy,cx,cy | name] [--camera file]\n"
 	"               [--cylindrical f,cy,theta0] [--depth-scale s] [--baseline b]\n"
 	"               [--focal f] [--range min,max] [--step n] [-j jump]\n"
 	"               [--max-angle deg] [--min-faces n] [--pose file] [--image file]\n"
