@@ -21,7 +21,7 @@ away() {
 	/^end_header/ { f = 1 } END { print bad + 0 }'
 }
 
-run_case 0 "dm2mesh --help | head -n 1 | grep -q '^usage: dm2mesh \[-aqv\] \[-o file\] \[-K fx,fy,cx,cy|name\]'"
+run_case 0 "dm2mesh --help | head -n 1 | grep -q '^usage: dm2mesh \[-aqv\] \[-o file\] \[-K fx,fy,cx,cy | name\]'"
 run_case 0 "dm2mesh --version | grep -q '^dm2mesh (facet) '"
 
 # The plane z = 2 + 0.1 x in millimetres, 8x6, holes at two corners: 35
