@@ -1,0 +1,1449 @@
+/* chain.c - patch boundaries as chains and their simplification: Kang,
+ * Johnson and Szeliski, "Extraction of Concise and Realistic 3-D Models from
+ * Real Data" (DEC CRL 95/7), section 3 (see chain.h for the rules). */
+#include "chain.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "adj.h"
+#include "geom.h"
+#include "header.h"
+#include "predicates.h"
+
+#define OUTSIDE FCT_CHAIN_OUTSIDE
+
+void fct_chain_params_default(struct fct_chain_params *p)
+{
+	p->threshold = 3;
+	p->keep_topology = 1;
+}
+
+void fct_chains_free(struct fct_chains *c)
+{
+	if (!c)
+		return;
+	free(c->start);
+	free(c->vert);
+	free(c->keep);
+	free(c->left);
+	free(c->right);
+	free(c->closed);
+	memset(c, 0, sizeof *c);
+}
+
+/* Extraction -------------------------------------------------------------- */
+
+/* The order in which sides are preferred as the left side of a record:
+ * patches by label, then unlabelled (-1), then the outside. */
+static long side_rank(int32_t s)
+{
+	return s >= 0 ? (long)s : s == -1 ? (long)INT32_MAX + 1 : (long)INT32_MAX + 2;
+}
+
+struct side {
+	int32_t label;
+	int dir;          /* +1: walks lower -> higher vertex, -1: the other way */
+};
+
+static int side_cmp(const void *pa, const void *pb)
+{
+	const struct side *a = pa, *b = pb;
+	long ra = side_rank(a->label), rb = side_rank(b->label);
+	if (ra != rb)
+		return ra < rb ? -1 : 1;
+	return (a->dir > b->dir) - (a->dir < b->dir);
+}
+
+static void sides_sort(struct side *s, size_t n)
+{
+	if (n > 16) {
+		qsort(s, n, sizeof *s, side_cmp);
+		return;
+	}
+	for (size_t i = 1; i < n; i++) {
+		struct side t = s[i];
+		size_t j = i;
+		while (j > 0 && side_cmp(&s[j - 1], &t) > 0) {
+			s[j] = s[j - 1];
+			j--;
+		}
+		s[j] = t;
+	}
+}
+
+/* A directed boundary record: left walks a -> b. */
+struct rec {
+	uint32_t a, b;
+	int32_t l, r;
+};
+
+struct recs {
+	struct rec *r;
+	size_t n, cap;
+};
+
+static int rec_add(struct recs *rs, uint32_t lo, uint32_t hi, int32_t p, int pdir, int32_t q,
+                   struct fct_err *err)
+{
+	/* p walks in direction pdir; q (another side or the outside) the other way. */
+	if (fct_grow((void **)&rs->r, &rs->cap, rs->n + 1, sizeof *rs->r, err))
+		return -1;
+	struct rec *x = &rs->r[rs->n++];
+	int32_t l = p, r = q;
+	int dir = pdir;
+	if (side_rank(q) < side_rank(p))
+		l = q, r = p, dir = -pdir;
+	x->a = dir > 0 ? lo : hi;
+	x->b = dir > 0 ? hi : lo;
+	x->l = l, x->r = r;
+	return 0;
+}
+
+/* The boundary records of edge e from its walking sides s[0..n): bounded
+ * sides (odd count) paired a -> b with b -> a in rank order, the rest against
+ * the outside.  s is sorted here. */
+static int edge_records(struct recs *rs, uint32_t lo, uint32_t hi, struct side *s, size_t n,
+                        struct side *plus, struct side *minus, unsigned char *touch_out,
+                        struct fct_err *err)
+{
+	sides_sort(s, n);
+	size_t np = 0, nm = 0;
+	for (size_t i = 0; i < n;) {
+		size_t j = i;
+		int net = 0;
+		while (j < n && s[j].label == s[i].label)
+			net += s[j++].dir;
+		if ((j - i) % 2) {
+			struct side x = { s[i].label, net > 0 ? 1 : -1 };
+			if (x.dir > 0)
+				plus[np++] = x;
+			else
+				minus[nm++] = x;
+		}
+		i = j;
+	}
+	size_t k = 0;
+	for (; k < np && k < nm; k++)
+		if (rec_add(rs, lo, hi, plus[k].label, 1, minus[k].label, err))
+			return -1;
+	for (size_t i = k; i < np; i++)
+		if (rec_add(rs, lo, hi, plus[i].label, 1, OUTSIDE, err))
+			return -1;
+	for (size_t i = k; i < nm; i++)
+		if (rec_add(rs, lo, hi, minus[i].label, -1, OUTSIDE, err))
+			return -1;
+	if (np != nm)
+		touch_out[lo] = touch_out[hi] = 1;
+	return 0;
+}
+
+/* Distinct sides around v, counted up to 3. */
+static int vertex_sides(const struct fct_adj *a, const int32_t *patch, int outside, uint32_t v)
+{
+	int32_t seen[3];
+	int n = 0;
+	if (outside)
+		seen[n++] = OUTSIDE;
+	for (uint32_t k = a->vert_fstart[v]; k < a->vert_fstart[v + 1]; k++) {
+		int32_t p = patch[a->vert_f[k]];
+		int found = 0;
+		for (int i = 0; i < n; i++)
+			found |= seen[i] == p;
+		if (found)
+			continue;
+		if (n == 2)
+			return 3;
+		seen[n++] = p;
+	}
+	return n;
+}
+
+/* Growing the chain arrays: one capacity per array. */
+struct chain_build {
+	struct fct_chains *c;
+	size_t np;                          /* points so far */
+	size_t cap_start, cap_l, cap_r, cap_closed, cap_vert;
+};
+
+static int chain_begin(struct chain_build *b, int32_t l, int32_t r, struct fct_err *err)
+{
+	struct fct_chains *c = b->c;
+	if (fct_grow((void **)&c->start, &b->cap_start, c->n + 2, sizeof *c->start, err) ||
+	    fct_grow((void **)&c->left, &b->cap_l, c->n + 1, sizeof *c->left, err) ||
+	    fct_grow((void **)&c->right, &b->cap_r, c->n + 1, sizeof *c->right, err) ||
+	    fct_grow((void **)&c->closed, &b->cap_closed, c->n + 1, sizeof *c->closed, err))
+		return -1;
+	c->start[c->n] = b->np;
+	c->left[c->n] = l, c->right[c->n] = r, c->closed[c->n] = 0;
+	return 0;
+}
+
+static int chain_point(struct chain_build *b, uint32_t v, struct fct_err *err)
+{
+	if (fct_grow((void **)&b->c->vert, &b->cap_vert, b->np + 1, sizeof *b->c->vert, err))
+		return -1;
+	b->c->vert[b->np++] = v;
+	return 0;
+}
+
+static void chain_end(struct chain_build *b, int loop)
+{
+	struct fct_chains *c = b->c;
+	c->closed[c->n] = c->vert[c->start[c->n]] != c->vert[b->np - 1] ? 0 : loop ? 2 : 1;
+	c->start[++c->n] = b->np;
+}
+
+int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                       struct fct_err *err)
+{
+	memset(c, 0, sizeof *c);
+	struct fct_adj a;
+	if (fct_adj_build(&a, m, err))
+		return -1;
+	int rc = -1;
+	struct recs rs = { 0 };
+	signed char *dir = NULL;
+	uint32_t *cursor = NULL, *outstart = NULL, *outrec = NULL, *inrec = NULL;
+	unsigned char *touch_out = NULL, *junction = NULL, *visited = NULL;
+	struct side *sbuf = NULL;
+	size_t nocc = a.edge_fstart[a.ne], maxk = 0;
+
+	double sum = 0;
+	for (size_t e = 0; e < a.ne; e++) {
+		sum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)a.edge_v[2 * e],
+		                         m->xyz + 3 * (size_t)a.edge_v[2 * e + 1]));
+		if (fct_adj_edge_nfaces(&a, e) > maxk)
+			maxk = fct_adj_edge_nfaces(&a, e);
+	}
+	c->mean_edge = a.ne ? sum / (double)a.ne : 0;
+
+	/* The direction of every face's walk along every edge, in the order of
+	 * edge_f (faces in increasing index, corners in order). */
+	dir = fct_alloc_array(nocc, sizeof *dir, err);
+	cursor = calloc(a.ne ? a.ne : 1, sizeof *cursor);
+	touch_out = calloc(m->nv ? m->nv : 1, 1);
+	sbuf = fct_alloc_array(3 * (maxk ? maxk : 1), sizeof *sbuf, err);
+	if (!dir || !cursor || !touch_out || !sbuf) {
+		if (!cursor || !touch_out)
+			fct_fail(err, "out of memory");
+		goto done;
+	}
+	for (size_t f = 0; f < m->nf; f++)
+		for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
+			uint32_t e = a.face_e[k];
+			if (e == FCT_ADJ_NONE)
+				continue;
+			dir[a.edge_fstart[e] + cursor[e]++] = m->fvert[k] == a.edge_v[2 * e] ? 1 : -1;
+		}
+
+	for (size_t e = 0; e < a.ne; e++) {
+		uint32_t k0 = a.edge_fstart[e], k1 = a.edge_fstart[e + 1];
+		if (k1 - k0 == 2 && patch[a.edge_f[k0]] == patch[a.edge_f[k0 + 1]])
+			continue;       /* interior, however wound (even count) */
+		size_t n = 0;
+		for (uint32_t k = k0; k < k1; k++)
+			sbuf[n].label = patch[a.edge_f[k]], sbuf[n++].dir = dir[k];
+		if (n >= 3)
+			c->nonmanifold_edges++;
+		if (edge_records(&rs, a.edge_v[2 * e], a.edge_v[2 * e + 1], sbuf, n, sbuf + maxk,
+		                 sbuf + 2 * maxk, touch_out, err))
+			goto done;
+	}
+	free(dir), dir = NULL;
+	free(cursor), cursor = NULL;
+
+	/* Records with a patch on a side; the others only touched the outside. */
+	size_t nr = 0;
+	for (size_t i = 0; i < rs.n; i++)
+		if (rs.r[i].l >= 0)
+			rs.r[nr++] = rs.r[i];
+	rs.n = nr;
+	c->boundary_edges = nr;
+
+	/* Out-lists (CSR by tail), the in-record of each vertex, degrees. */
+	outstart = calloc(m->nv + 1, sizeof *outstart);
+	inrec = fct_alloc_array(m->nv, sizeof *inrec, err);
+	outrec = fct_alloc_array(nr, sizeof *outrec, err);
+	junction = calloc(m->nv ? m->nv : 1, 1);
+	visited = calloc(nr ? nr : 1, 1);
+	if (!outstart || !inrec || !outrec || !junction || !visited) {
+		fct_fail(err, "out of memory");
+		goto done;
+	}
+	/* indeg in junction[] temporarily: 0, 1, 2 = two or more. */
+	for (size_t i = 0; i < nr; i++) {
+		outstart[rs.r[i].a + 1]++;
+		uint32_t b = rs.r[i].b;
+		if (junction[b] < 2)
+			junction[b]++;
+		inrec[b] = (uint32_t)i;
+	}
+	for (size_t v = 0; v < m->nv; v++)
+		outstart[v + 1] += outstart[v];
+	{
+		uint32_t *fill = cursor = calloc(m->nv ? m->nv : 1, sizeof *cursor);
+		if (!fill) {
+			fct_fail(err, "out of memory");
+			goto done;
+		}
+		for (size_t i = 0; i < nr; i++)
+			outrec[outstart[rs.r[i].a] + fill[rs.r[i].a]++] = (uint32_t)i;
+	}
+	for (uint32_t v = 0; v < m->nv; v++) {
+		uint32_t outdeg = outstart[v + 1] - outstart[v], indeg = junction[v];
+		if (!outdeg && !indeg) {
+			junction[v] = 0;
+			continue;
+		}
+		c->boundary_vertices++;
+		int j = outdeg != 1 || indeg != 1;
+		if (!j) {
+			const struct rec *ri = &rs.r[inrec[v]], *ro = &rs.r[outrec[outstart[v]]];
+			j = ri->l != ro->l || ri->r != ro->r ||
+			    vertex_sides(&a, patch, touch_out[v], v) >= 3;
+		}
+		junction[v] = (unsigned char)j;
+		c->junctions += (size_t)j;
+	}
+
+	/* Walk the chains from junctions, then the loops. */
+	struct chain_build b = { c, 0, 0, 0, 0, 0, 0 };
+	if (fct_grow((void **)&c->start, &b.cap_start, 1, sizeof *c->start, err))
+		goto done;
+	c->start[0] = 0;
+	for (int pass = 0; pass < 2; pass++)
+		for (size_t i = 0; i < nr; i++) {
+			if (visited[i] || (pass == 0 && !junction[rs.r[i].a]))
+				continue;
+			uint32_t first = rs.r[i].a;
+			if (chain_begin(&b, rs.r[i].l, rs.r[i].r, err) || chain_point(&b, first, err))
+				goto done;
+			for (size_t r = i;;) {
+				if (visited[r])
+					abort();    /* a non-junction has one record in and one out */
+				visited[r] = 1;
+				uint32_t v = rs.r[r].b;
+				if (chain_point(&b, v, err))
+					goto done;
+				if (junction[v] || v == first)
+					break;
+				r = outrec[outstart[v]];
+			}
+			chain_end(&b, pass == 1);
+			c->loops += pass == 1;
+		}
+	{
+		size_t np = c->start[c->n];
+		c->keep = malloc(np ? np : 1);
+		if (!c->keep) {
+			fct_fail(err, "out of memory");
+			goto done;
+		}
+		memset(c->keep, 1, np);
+	}
+	rc = 0;
+done:
+	fct_adj_free(&a);
+	free(rs.r);
+	free(dir);
+	free(cursor);
+	free(outstart);
+	free(outrec);
+	free(inrec);
+	free(touch_out);
+	free(junction);
+	free(visited);
+	free(sbuf);
+	if (rc)
+		fct_chains_free(c);
+	return rc;
+}
+
+/* Simplification ---------------------------------------------------------- */
+
+static const double *pt(const struct fct_mesh *m, const struct fct_chains *c, size_t i)
+{
+	return m->xyz + 3 * (size_t)c->vert[i];
+}
+
+/* The point of (i, j) farthest from segment i-j (3-D, ties to the lowest
+ * position) and its squared distance in *d2; i + 1 < j. */
+static size_t farthest(const struct fct_mesh *m, const struct fct_chains *c, size_t i, size_t j,
+                       double *d2)
+{
+	const double *a = pt(m, c, i), *b = pt(m, c, j);
+	double best = -1, q[3];
+	size_t k = i + 1;
+	for (size_t x = i + 1; x < j; x++) {
+		double d = fct_closest_on_segment(pt(m, c, x), a, b, q);
+		if (d > best)
+			best = d, k = x;
+	}
+	*d2 = best;
+	return k;
+}
+
+/* Iterative end-point fit of positions i..j (both kept): keep the farthest
+ * point while its squared distance exceeds tol2.  stack holds 2 (j - i)
+ * entries. */
+static void endpoint_fit(const struct fct_mesh *m, struct fct_chains *c, size_t i, size_t j,
+                         double tol2, size_t *stack)
+{
+	size_t n = 0;
+	stack[n++] = i, stack[n++] = j;
+	while (n) {
+		size_t hi = stack[--n], lo = stack[--n];
+		if (hi - lo < 2)
+			continue;
+		double d2;
+		size_t k = farthest(m, c, lo, hi, &d2);
+		if (!(d2 > tol2))
+			continue;
+		c->keep[k] = 1;
+		stack[n++] = lo, stack[n++] = k;
+		stack[n++] = k, stack[n++] = hi;
+	}
+}
+
+/* Largest squared distance of the points strictly between positions i and
+ * j from segment i-j (0 when there are none). */
+static double span_dev2(const struct fct_mesh *m, const struct fct_chains *c, size_t i, size_t j)
+{
+	double d2 = 0;
+	if (j - i >= 2)
+		farthest(m, c, i, j, &d2);
+	return d2;
+}
+
+/* One pass over the kept points of positions s..e (ends kept): drop a point
+ * when the segment between its kept neighbours still holds every original
+ * point within the tolerance.  The end-point fit's first split of a U-shaped
+ * chain lands anywhere on the far side, which then needs both corners too;
+ * this takes such points out again.  A closed chain keeps min_kept points. */
+static void drop_redundant(const struct fct_mesh *m, struct fct_chains *c, size_t s, size_t e,
+                           double tol2, size_t min_kept)
+{
+	size_t kept = 0;
+	for (size_t x = s; x < e; x++)
+		kept += c->keep[x];
+	size_t a = s;
+	for (size_t k = s + 1; k < e; k++) {
+		if (!c->keep[k])
+			continue;
+		size_t b = k + 1;
+		while (!c->keep[b])
+			b++;
+		if (kept > min_kept && span_dev2(m, c, a, b) <= tol2) {
+			c->keep[k] = 0;
+			kept--;
+		} else {
+			a = k;
+		}
+	}
+}
+
+/* Rotate the loop at positions s..e (e repeats s) to start at position k. */
+static int rotate_loop(struct fct_chains *c, size_t s, size_t e, size_t k, struct fct_err *err)
+{
+	size_t len = e - s;       /* distinct points */
+	if (k == s)
+		return 0;
+	uint32_t *tmp = fct_alloc_array(len, sizeof *tmp, err);
+	if (!tmp)
+		return -1;
+	for (size_t i = 0; i < len; i++)
+		tmp[i] = c->vert[s + (k - s + i) % len];
+	memcpy(c->vert + s, tmp, len * sizeof *tmp);
+	c->vert[e] = c->vert[s];
+	free(tmp);
+	return 0;
+}
+
+/* Simplify chain ci alone by the end-point fit. */
+static int simplify_chain(const struct fct_mesh *m, struct fct_chains *c, size_t ci, double tol2,
+                          size_t *stack, struct fct_chain_stats *st, struct fct_err *err)
+{
+	size_t s = c->start[ci], e = c->start[ci + 1] - 1;
+	memset(c->keep + s, 0, e - s + 1);
+	c->keep[s] = c->keep[e] = 1;
+	if (!c->closed[ci]) {
+		endpoint_fit(m, c, s, e, tol2, stack);
+		drop_redundant(m, c, s, e, tol2, 0);
+		return 0;
+	}
+	size_t len = e - s;
+	if (len <= 3) {
+		memset(c->keep + s, 1, len + 1);
+		return 0;
+	}
+	if (c->closed[ci] == 2) {
+		/* A loop: start at the point farthest from its centroid. */
+		double g[3] = { 0, 0, 0 };
+		for (size_t x = s; x < e; x++)
+			fct_v3_add(g, g, pt(m, c, x));
+		for (int k = 0; k < 3; k++)
+			g[k] /= (double)len;
+		size_t best = s;
+		double bd = -1;
+		for (size_t x = s; x < e; x++) {
+			double d = fct_v3_dist2(pt(m, c, x), g);
+			if (d > bd)
+				bd = d, best = x;
+		}
+		if (rotate_loop(c, s, e, best, err))
+			return -1;
+	}
+	/* Split at the point farthest from the start. */
+	size_t mid = s + 1;
+	double md = -1;
+	for (size_t x = s + 1; x < e; x++) {
+		double d = fct_v3_dist2(pt(m, c, x), pt(m, c, s));
+		if (d > md)
+			md = d, mid = x;
+	}
+	c->keep[mid] = 1;
+	endpoint_fit(m, c, s, mid, tol2, stack);
+	endpoint_fit(m, c, mid, e, tol2, stack);
+	size_t kept = 0;
+	for (size_t x = s; x < e; x++)
+		kept += c->keep[x];
+	if (kept < 3) {
+		/* Only the two anchors: keep the point farthest from the segment
+		 * between them as well. */
+		double d1, d2;
+		size_t k1 = mid - s >= 2 ? farthest(m, c, s, mid, &d1) : 0;
+		size_t k2 = e - mid >= 2 ? farthest(m, c, mid, e, &d2) : 0;
+		if (mid - s < 2)
+			d1 = -1;
+		if (e - mid < 2)
+			d2 = -1;
+		/* Distances to the same segment s-mid: farthest() on mid..e measures
+		 * from segment mid-e, which is the same segment reversed. */
+		/* The new point shortens a segment: refit its two halves so every
+		 * point stays within the tolerance. */
+		size_t k = d1 >= d2 ? k1 : k2, lo = d1 >= d2 ? s : mid, hi = d1 >= d2 ? mid : e;
+		c->keep[k] = 1;
+		st->loop_points++;
+		endpoint_fit(m, c, lo, k, tol2, stack);
+		endpoint_fit(m, c, k, hi, tol2, stack);
+	}
+	drop_redundant(m, c, s, e, tol2, 3);
+	return 0;
+}
+
+/* Crossing checks ---------------------------------------------------------- */
+
+/* A uniform grid over a patch's 2-D points: items in cells, CSR. */
+struct grid {
+	double x0, y0, h, inv;
+	int nx, ny;
+	uint32_t *cstart;    /* nx * ny + 1 */
+	uint32_t *items;
+	size_t cap_cstart, cap_items, nitems;
+};
+
+static int cell_of(double v, double o, double inv, int n)
+{
+	double x = (v - o) * inv;
+	if (!(x > 0))
+		return 0;
+	if (x >= n - 1)
+		return n - 1;
+	return (int)x;
+}
+
+static void grid_shape(struct grid *g, double x0, double y0, double x1, double y1, size_t target)
+{
+	double w = x1 - x0, h = y1 - y0;
+	double t = (double)(target ? target : 1);
+	double cell = sqrt(w * h / t);
+	if (!(cell >= w / t))
+		cell = w / t;
+	if (!(cell >= h / t))
+		cell = h / t;
+	if (!(cell > 0) || !isfinite(cell))
+		cell = 1;
+	g->x0 = x0, g->y0 = y0, g->h = cell, g->inv = 1 / cell;
+	double nx = floor(w / cell) + 1, ny = floor(h / cell) + 1;
+	double lim = 2 * t + 2;
+	g->nx = (int)(nx < lim ? nx : lim);
+	g->ny = (int)(ny < lim ? ny : lim);
+	if (g->nx < 1)
+		g->nx = 1;
+	if (g->ny < 1)
+		g->ny = 1;
+}
+
+/* Call fn for every cell segment ab may touch (conservatively: each column
+ * strip it crosses, the rows of its y-range there, padded). */
+typedef void (*cell_fn)(void *ctx, uint32_t cell, uint32_t item);
+
+static void seg_cells(const struct grid *g, const double *a, const double *b, uint32_t item,
+                      cell_fn fn, void *ctx)
+{
+	if (a[0] > b[0]) {
+		const double *t = a;
+		a = b, b = t;
+	}
+	double pad = g->h * 1e-6;
+	int c0 = cell_of(a[0] - pad, g->x0, g->inv, g->nx), c1 = cell_of(b[0] + pad, g->x0, g->inv, g->nx);
+	double dx = b[0] - a[0], dy = b[1] - a[1];
+	for (int cx = c0; cx <= c1; cx++) {
+		double ylo, yhi;
+		if (c0 == c1 || !(dx > 0)) {
+			ylo = a[1] < b[1] ? a[1] : b[1];
+			yhi = a[1] < b[1] ? b[1] : a[1];
+		} else {
+			double xl = g->x0 + cx * g->h, xr = xl + g->h;
+			if (xl < a[0])
+				xl = a[0];
+			if (xr > b[0])
+				xr = b[0];
+			double yl = a[1] + dy * ((xl - a[0]) / dx), yr = a[1] + dy * ((xr - a[0]) / dx);
+			ylo = yl < yr ? yl : yr;
+			yhi = yl < yr ? yr : yl;
+			if (cx == c0 && a[1] < ylo)
+				ylo = a[1];
+			if (cx == c0 && a[1] > yhi)
+				yhi = a[1];
+			if (cx == c1 && b[1] < ylo)
+				ylo = b[1];
+			if (cx == c1 && b[1] > yhi)
+				yhi = b[1];
+		}
+		int r0 = cell_of(ylo - pad, g->y0, g->inv, g->ny), r1 = cell_of(yhi + pad, g->y0, g->inv, g->ny);
+		for (int r = r0; r <= r1; r++)
+			fn(ctx, (uint32_t)r * (uint32_t)g->nx + (uint32_t)cx, item);
+	}
+}
+
+static void count_cell(void *ctx, uint32_t cell, uint32_t item)
+{
+	(void)item;
+	((struct grid *)ctx)->cstart[cell + 1]++;
+}
+
+static void fill_cell(void *ctx, uint32_t cell, uint32_t item)
+{
+	struct grid *g = ctx;
+	g->items[g->cstart[cell]++] = item;
+}
+
+static int grid_alloc_cells(struct grid *g, struct fct_err *err)
+{
+	size_t ncell = (size_t)g->nx * (size_t)g->ny;
+	if (fct_grow((void **)&g->cstart, &g->cap_cstart, ncell + 1, sizeof *g->cstart, err))
+		return -1;
+	memset(g->cstart, 0, (ncell + 1) * sizeof *g->cstart);
+	return 0;
+}
+
+/* After counting into cstart[cell + 1]: prefix sums, room for the items;
+ * filling then advances cstart[cell], and grid_fixup restores the starts. */
+static int grid_prepare(struct grid *g, struct fct_err *err)
+{
+	size_t ncell = (size_t)g->nx * (size_t)g->ny;
+	for (size_t i = 0; i < ncell; i++)
+		g->cstart[i + 1] += g->cstart[i];
+	g->nitems = g->cstart[ncell];
+	if (fct_grow((void **)&g->items, &g->cap_items, g->nitems ? g->nitems : 1, sizeof *g->items, err))
+		return -1;
+	return 0;
+}
+
+static void grid_fixup(struct grid *g)
+{
+	size_t ncell = (size_t)g->nx * (size_t)g->ny;
+	for (size_t i = ncell; i > 0; i--)
+		g->cstart[i] = g->cstart[i - 1];
+	g->cstart[0] = 0;
+}
+
+static int sgn(double x)
+{
+	return (x > 0) - (x < 0);
+}
+
+/* c on closed segment ab, given collinear. */
+static int on_segment(const double *a, const double *b, const double *c)
+{
+	return (a[0] <= c[0]) == (c[0] <= b[0]) && (a[1] <= c[1]) == (c[1] <= b[1]) &&
+	       ((a[0] <= c[0] && c[0] <= b[0]) || (b[0] <= c[0] && c[0] <= a[0])) &&
+	       ((a[1] <= c[1] && c[1] <= b[1]) || (b[1] <= c[1] && c[1] <= a[1]));
+}
+
+int fct_segments_conflict(const double a[2], const double b[2], const double c[2],
+                          const double d[2], uint32_t va, uint32_t vb, uint32_t vc, uint32_t vd)
+{
+	int ac = va == vc, ad = va == vd, bc = vb == vc, bd = vb == vd;
+	if ((ac && bd) || (ad && bc))
+		return 1;
+	if (ac || ad || bc || bd) {
+		/* Shared vertex o; the others p (of ab) and q (of cd) must not lie
+		 * on one ray from o. */
+		const double *o = ac || ad ? a : b, *p = ac || ad ? b : a, *q = ac || bc ? d : c;
+		if (fct_orient2d(o, p, q) != 0)
+			return 0;
+		return sgn(p[0] - o[0]) == sgn(q[0] - o[0]) && sgn(p[1] - o[1]) == sgn(q[1] - o[1]);
+	}
+	int o1 = sgn(fct_orient2d(a, b, c)), o2 = sgn(fct_orient2d(a, b, d));
+	int o3 = sgn(fct_orient2d(c, d, a)), o4 = sgn(fct_orient2d(c, d, b));
+	if (o1 * o2 < 0 && o3 * o4 < 0)
+		return 1;
+	return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+	       (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+}
+
+/* Squared distance from p to segment ab in 2-D (floating point). */
+static double seg_dist2(const double *p, const double *a, const double *b)
+{
+	double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+	double t = len2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2 : 0;
+	t = t < 0 ? 0 : t > 1 ? 1 : t;
+	double ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
+	return ex * ex + ey * ey;
+}
+
+/* Is q strictly inside the closed polygon p[0..n) by the even-odd rule (exact
+ * predicates; points on its edges may go either way)? */
+static int inside_polygon(const double *p, size_t n, const double *q)
+{
+	int in = 0;
+	for (size_t k = 0; k < n; k++) {
+		const double *u = p + 2 * k, *w = p + 2 * ((k + 1) % n);
+		if ((u[1] > q[1]) != (w[1] > q[1])) {
+			double o = fct_orient2d(u, w, q);
+			if (w[1] > u[1] ? o > 0 : o < 0)
+				in ^= 1;
+		}
+	}
+	return in;
+}
+
+/* A segment of a patch's boundary: chain positions i -> j (j = i + 1 for an
+ * original mesh edge). */
+struct seg {
+	uint32_t chain;   /* index into the patch's chain list */
+	size_t i, j;
+};
+
+/* Working memory of the checks, reused from patch to patch. */
+struct checker {
+	const struct fct_mesh *m;
+	struct fct_chains *c;
+	size_t *pchain_start;     /* patch -> chains CSR */
+	uint32_t *pchain;
+	const uint32_t *list;     /* the chains of the patch being checked */
+	size_t nlist;
+	double (*normal)[3];
+	double *xy;               /* 2-D points of the patch's chains, local index */
+	size_t *base;             /* local index of each listed chain's first point */
+	struct seg *seg;
+	size_t nseg;
+	uint32_t *pts;            /* kept points: local index */
+	uint32_t *stamp;
+	unsigned char *mark;      /* per segment: split it */
+	uint32_t *fpre;           /* prefix counts of crossing original edges by the
+	                             local index of their first point */
+	uint32_t *flist;          /* the local indices of those edges, increasing */
+	size_t nflist;
+	size_t cap_xy, cap_base, cap_seg, cap_pts, cap_stamp, cap_mark, cap_fpre, cap_flist;
+	struct grid sg, pg;
+	unsigned char *split;     /* per chain position: split the segment starting here */
+	unsigned char *chain_dirty;
+	const struct fct_prop *ps, *pt;   /* image coordinates, or NULL */
+	int wrap;                 /* s wraps round (a cylindrical panorama) */
+};
+
+static size_t local_of(const struct checker *k, uint32_t chain, size_t pos)
+{
+	return k->base[chain] + (pos - k->c->start[k->list[chain]]);
+}
+
+static const double *lxy(const struct checker *k, const struct seg *s, size_t pos)
+{
+	return k->xy + 2 * local_of(k, s->chain, pos);
+}
+
+/* Projection frame of a normal: u, w with u x w = n. */
+static void plane_frame(const double n[3], double u[3], double w[3])
+{
+	double ax[3] = { 0, 0, 0 };
+	int i = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
+	ax[i] = 1;
+	fct_v3_cross(u, ax, n);
+	double l = sqrt(fct_v3_dot(u, u));
+	for (int x = 0; x < 3; x++)
+		u[x] /= l;
+	fct_v3_cross(w, n, u);
+}
+
+static int seg_pair_conflict(const struct checker *k, const struct seg *a, const struct seg *b)
+{
+	const uint32_t *v = k->c->vert;
+	if (v[a->i] == v[a->j] || v[b->i] == v[b->j])
+		return 0;
+	return fct_segments_conflict(lxy(k, a, a->i), lxy(k, a, a->j), lxy(k, b, b->i), lxy(k, b, b->j),
+	                             v[a->i], v[a->j], v[b->i], v[b->j]);
+}
+
+/* The crossing original edges within segment s's span: flist[*lo .. *hi). */
+static void flagged_range(const struct checker *k, const struct seg *s, size_t *lo, size_t *hi)
+{
+	size_t a = local_of(k, s->chain, s->i), b = local_of(k, s->chain, s->j);
+	*lo = k->fpre[a], *hi = k->fpre[b];
+}
+
+/* Does the input already conflict between the spans of a and b: some
+ * crossing original edge of one against one of the other?  Past a
+ * budget of tests, assume so. */
+static int inherited(const struct checker *k, const struct seg *a, const struct seg *b)
+{
+	size_t a0, a1, b0, b1;
+	flagged_range(k, a, &a0, &a1);
+	flagged_range(k, b, &b0, &b1);
+	if (a0 == a1 || b0 == b1)
+		return 0;
+	if ((a1 - a0) * (b1 - b0) > 4096)
+		return 1;
+	for (size_t x = a0; x < a1; x++)
+		for (size_t y = b0; y < b1; y++) {
+			/* Local index to chain position: find the listed chain. */
+			struct seg e[2];
+			size_t l[2] = { k->flist[x], k->flist[y] };
+			for (int z = 0; z < 2; z++) {
+				size_t lo = 0, hi = k->nlist;
+				while (hi - lo > 1) {
+					size_t mid = (lo + hi) / 2;
+					if (k->base[mid] <= l[z])
+						lo = mid;
+					else
+						hi = mid;
+				}
+				e[z].chain = (uint32_t)lo;
+				e[z].i = k->c->start[k->list[lo]] + (l[z] - k->base[lo]);
+				e[z].j = e[z].i + 1;
+			}
+			if (seg_pair_conflict(k, &e[0], &e[1]))
+				return 1;
+		}
+	return 0;
+}
+
+struct pair_ctx {
+	struct checker *k;
+	size_t s;                 /* the segment being tested */
+	int original;             /* the segments are original edges: flag them */
+	size_t conflicts, unresolved;
+};
+
+static void test_cell(void *ctx, uint32_t cell, uint32_t item)
+{
+	struct pair_ctx *pc = ctx;
+	struct checker *k = pc->k;
+	(void)item;
+	size_t s = pc->s;
+	const struct seg *a = &k->seg[s];
+	for (uint32_t x = k->sg.cstart[cell]; x < k->sg.cstart[cell + 1]; x++) {
+		uint32_t t = k->sg.items[x];
+		if (t <= s || k->stamp[t] == s + 1)
+			continue;
+		k->stamp[t] = (uint32_t)(s + 1);
+		const struct seg *b = &k->seg[t];
+		if (!seg_pair_conflict(k, a, b))
+			continue;
+		if (pc->original) {
+			/* Flag both edges (fpre holds flags until made prefix counts). */
+			k->fpre[local_of(k, a->chain, a->i) + 1] = 1;
+			k->fpre[local_of(k, b->chain, b->i) + 1] = 1;
+			continue;
+		}
+		pc->conflicts++;
+		if (inherited(k, a, b)) {
+			pc->unresolved++;
+			continue;
+		}
+		k->mark[s] = 1;
+		k->mark[t] = 1;
+	}
+}
+
+/* Put k->seg[0..nseg) into the segment grid (shaped for the patch's
+ * bounding box) and test the pairs sharing a cell. */
+static int find_pairs(struct checker *k, struct pair_ctx *pc, double x0, double y0, double x1,
+                      double y1, struct fct_err *err)
+{
+	size_t n = k->nseg;
+	if (fct_grow((void **)&k->stamp, &k->cap_stamp, n ? n : 1, sizeof *k->stamp, err))
+		return -1;
+	memset(k->stamp, 0, n * sizeof *k->stamp);
+	grid_shape(&k->sg, x0, y0, x1, y1, 2 * n);
+	if (grid_alloc_cells(&k->sg, err))
+		return -1;
+	for (size_t s = 0; s < n; s++)
+		seg_cells(&k->sg, lxy(k, &k->seg[s], k->seg[s].i), lxy(k, &k->seg[s], k->seg[s].j),
+		          (uint32_t)s, count_cell, &k->sg);
+	if (grid_prepare(&k->sg, err))
+		return -1;
+	for (size_t s = 0; s < n; s++)
+		seg_cells(&k->sg, lxy(k, &k->seg[s], k->seg[s].i), lxy(k, &k->seg[s], k->seg[s].j),
+		          (uint32_t)s, fill_cell, &k->sg);
+	grid_fixup(&k->sg);
+	for (size_t s = 0; s < n; s++) {
+		pc->s = s;
+		seg_cells(&k->sg, lxy(k, &k->seg[s], k->seg[s].i), lxy(k, &k->seg[s], k->seg[s].j),
+		          (uint32_t)s, test_cell, pc);
+	}
+	return 0;
+}
+
+/* A kept point strictly inside the sliver between a simplified segment and
+ * the points it replaces would change sides of that boundary: mark the
+ * segment.  Segments whose span holds crossing original edges are left
+ * alone (the input is already tangled there). */
+static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
+                         struct fct_err *err)
+{
+	const struct fct_chains *c = k->c;
+	struct grid *g = &k->pg;
+	g->x0 = k->sg.x0, g->y0 = k->sg.y0, g->h = k->sg.h, g->inv = k->sg.inv;
+	g->nx = k->sg.nx, g->ny = k->sg.ny;
+	if (grid_alloc_cells(g, err))
+		return -1;
+	for (int pass = 0; pass < 2; pass++) {
+		for (size_t q = 0; q < nkept; q++) {
+			const double *o = k->xy + 2 * (size_t)k->pts[q];
+			uint32_t cell = (uint32_t)cell_of(o[1], g->y0, g->inv, g->ny) * (uint32_t)g->nx +
+			                (uint32_t)cell_of(o[0], g->x0, g->inv, g->nx);
+			if (pass == 0)
+				g->cstart[cell + 1]++;
+			else
+				g->items[g->cstart[cell]++] = (uint32_t)q;
+		}
+		if (pass == 0 && grid_prepare(g, err))
+			return -1;
+	}
+	grid_fixup(g);
+	for (size_t s = 0; s < k->nseg; s++) {
+		const struct seg *sg = &k->seg[s];
+		size_t f0, f1;
+		flagged_range(k, sg, &f0, &f1);
+		if (sg->j - sg->i < 2 || k->mark[s] || f0 != f1)
+			continue;
+		const double *P = lxy(k, sg, sg->i);
+		size_t n = sg->j - sg->i + 1;
+		const double *A = P, *B = P + 2 * (n - 1);
+		double bx0 = HUGE_VAL, by0 = HUGE_VAL, bx1 = -HUGE_VAL, by1 = -HUGE_VAL, dev2 = 0;
+		for (size_t q = 0; q < n; q++) {
+			const double *o = P + 2 * q;
+			bx0 = o[0] < bx0 ? o[0] : bx0, bx1 = o[0] > bx1 ? o[0] : bx1;
+			by0 = o[1] < by0 ? o[1] : by0, by1 = o[1] > by1 ? o[1] : by1;
+			double d = seg_dist2(o, A, B);
+			dev2 = d > dev2 ? d : dev2;
+		}
+		/* The sliver lies in the hull of its points, so within sqrt(dev2) of
+		 * the segment: a cheap, generously rounded filter before the exact
+		 * parity test. */
+		dev2 = dev2 * (1 + 1e-6) + 1e-300;
+		int r0 = cell_of(by0, g->y0, g->inv, g->ny), r1 = cell_of(by1, g->y0, g->inv, g->ny);
+		int q0 = cell_of(bx0, g->x0, g->inv, g->nx), q1 = cell_of(bx1, g->x0, g->inv, g->nx);
+		uint32_t va = c->vert[sg->i], vb = c->vert[sg->j];
+		for (int r = r0; r <= r1 && !k->mark[s]; r++)
+			for (int cx = q0; cx <= q1 && !k->mark[s]; cx++) {
+				uint32_t cell = (uint32_t)r * (uint32_t)g->nx + (uint32_t)cx;
+				for (uint32_t x = g->cstart[cell]; x < g->cstart[cell + 1]; x++) {
+					uint32_t lq = k->pts[g->items[x]];
+					const double *o = k->xy + 2 * (size_t)lq;
+					if (o[0] < bx0 || o[0] > bx1 || o[1] < by0 || o[1] > by1 ||
+					    seg_dist2(o, A, B) > dev2)
+						continue;
+					size_t lo = 0, hi = k->nlist;
+					while (hi - lo > 1) {
+						size_t mid = (lo + hi) / 2;
+						if (k->base[mid] <= lq)
+							lo = mid;
+						else
+							hi = mid;
+					}
+					uint32_t vq = c->vert[c->start[k->list[lo]] + (lq - k->base[lo])];
+					if (vq == va || vq == vb || !inside_polygon(P, n, o))
+						continue;
+					k->mark[s] = 1;
+					pc->conflicts++;
+					break;
+				}
+			}
+	}
+	return 0;
+}
+
+/* Check patch p's simplified chains in its plane (image 0) or in image
+ * coordinates (image 1); mark the segments to split in k->split and their
+ * chains in k->chain_dirty.  Adds the conflicts found, and those inherited
+ * from the input (not pursued), to *conflicts and *unresolved.  -1 when out
+ * of memory. */
+static int check_patch(struct checker *k, size_t p, int image, size_t *conflicts,
+                       size_t *unresolved, struct fct_err *err)
+{
+	const struct fct_chains *c = k->c;
+	size_t c0 = k->pchain_start[p], nc = k->pchain_start[p + 1] - c0;
+	k->list = k->pchain + c0, k->nlist = nc;
+	if (fct_grow((void **)&k->base, &k->cap_base, nc + 1, sizeof *k->base, err))
+		return -1;
+	size_t npt = 0, nkept = 0;
+	for (size_t x = 0; x < nc; x++) {
+		size_t ci = k->list[x];
+		k->base[x] = npt;
+		npt += c->start[ci + 1] - c->start[ci];
+	}
+	k->base[nc] = npt;
+	if (fct_grow((void **)&k->xy, &k->cap_xy, 2 * (npt ? npt : 1), sizeof *k->xy, err) ||
+	    fct_grow((void **)&k->seg, &k->cap_seg, npt ? npt : 1, sizeof *k->seg, err) ||
+	    fct_grow((void **)&k->pts, &k->cap_pts, npt ? npt : 1, sizeof *k->pts, err) ||
+	    fct_grow((void **)&k->mark, &k->cap_mark, npt ? npt : 1, sizeof *k->mark, err) ||
+	    fct_grow((void **)&k->fpre, &k->cap_fpre, npt + 1, sizeof *k->fpre, err))
+		return -1;
+
+	/* Project; list the original edges. */
+	double u[3] = { 1, 0, 0 }, w[3] = { 0, 1, 0 }, ref = HUGE_VAL;
+	if (!image)
+		plane_frame(k->normal[p], u, w);
+	double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
+	k->nseg = 0;
+	for (size_t x = 0; x < nc; x++) {
+		size_t ci = k->list[x];
+		size_t s = c->start[ci], e = c->start[ci + 1];
+		for (size_t q = s; q < e; q++) {
+			double *o = k->xy + 2 * (k->base[x] + (q - s));
+			if (image) {
+				o[0] = fct_prop_get(k->ps, c->vert[q]);
+				o[1] = fct_prop_get(k->pt, c->vert[q]);
+				if (k->wrap) {
+					/* Unwrap s to within half a turn of the patch's
+					 * first point. */
+					if (ref == HUGE_VAL)
+						ref = o[0];
+					o[0] -= floor(o[0] - ref + 0.5);
+				}
+			} else {
+				const double *P = pt(k->m, c, q);
+				o[0] = fct_v3_dot(P, u), o[1] = fct_v3_dot(P, w);
+			}
+			x0 = o[0] < x0 ? o[0] : x0, x1 = o[0] > x1 ? o[0] : x1;
+			y0 = o[1] < y0 ? o[1] : y0, y1 = o[1] > y1 ? o[1] : y1;
+			if (q > s) {
+				struct seg *g = &k->seg[k->nseg++];
+				g->chain = (uint32_t)x, g->i = q - 1, g->j = q;
+			}
+		}
+	}
+	/* The original edges that already conflict in this map. */
+	struct pair_ctx pc = { k, 0, 1, 0, 0 };
+	memset(k->fpre, 0, (npt + 1) * sizeof *k->fpre);
+	if (find_pairs(k, &pc, x0, y0, x1, y1, err))
+		return -1;
+	k->nflist = 0;
+	for (size_t l = 0; l < npt; l++)
+		k->nflist += k->fpre[l + 1];
+	if (fct_grow((void **)&k->flist, &k->cap_flist, k->nflist ? k->nflist : 1, sizeof *k->flist, err))
+		return -1;
+	k->nflist = 0;
+	for (size_t l = 0; l < npt; l++) {
+		if (k->fpre[l + 1])
+			k->flist[k->nflist++] = (uint32_t)l;
+		k->fpre[l + 1] = (uint32_t)k->nflist;
+	}
+
+	/* The simplified segments and kept points. */
+	k->nseg = 0;
+	for (size_t x = 0; x < nc; x++) {
+		size_t ci = k->list[x];
+		size_t s = c->start[ci], e = c->start[ci + 1], last = s;
+		for (size_t q = s; q < e; q++) {
+			if (!c->keep[q])
+				continue;
+			if (!(c->closed[ci] && q == e - 1))
+				k->pts[nkept++] = (uint32_t)(k->base[x] + (q - s));
+			if (q > s) {
+				struct seg *g = &k->seg[k->nseg++];
+				g->chain = (uint32_t)x, g->i = last, g->j = q;
+			}
+			last = q;
+		}
+	}
+	memset(k->mark, 0, k->nseg);
+	pc.original = 0;
+	if (find_pairs(k, &pc, x0, y0, x1, y1, err) || sliver_checks(k, &pc, nkept, err))
+		return -1;
+	for (size_t s = 0; s < k->nseg; s++)
+		if (k->mark[s]) {
+			k->split[k->seg[s].i] = 1;
+			k->chain_dirty[k->list[k->seg[s].chain]] = 1;
+		}
+	*conflicts += pc.conflicts;
+	*unresolved += pc.unresolved;
+	return 0;
+}
+
+static int label_cmp(const void *pa, const void *pb)
+{
+	int32_t a = *(const int32_t *)pa, b = *(const int32_t *)pb;
+	return (a > b) - (a < b);
+}
+
+static long label_id(const int32_t *lab, size_t n, int32_t x)
+{
+	const int32_t *f = bsearch(&x, lab, n, sizeof *lab, label_cmp);
+	return f ? (long)(f - lab) : -1;
+}
+
+/* Per-patch crossing checks and splits until nothing more can be split. */
+static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                         const struct fct_plane *planes, size_t nplanes, double tol2,
+                         size_t *stack, struct fct_chain_stats *st, struct fct_err *err)
+{
+	int rc = -1;
+	struct checker k;
+	memset(&k, 0, sizeof k);
+	k.m = m, k.c = c;
+	size_t np = 0, total = c->start[c->n];
+	int32_t *lab = fct_alloc_array(2 * c->n, sizeof *lab, err);
+	unsigned char *dirty = NULL;
+	size_t *unres = NULL;
+	if (!lab)
+		return -1;
+	for (size_t i = 0; i < c->n; i++) {
+		lab[np++] = c->left[i];
+		if (c->right[i] >= 0)
+			lab[np++] = c->right[i];
+	}
+	qsort(lab, np, sizeof *lab, label_cmp);
+	size_t u = 0;
+	for (size_t i = 0; i < np; i++)
+		if (!u || lab[i] != lab[u - 1])
+			lab[u++] = lab[i];
+	np = u;
+
+	/* Chains by patch, CSR; the extra list np holds every chain (the
+	 * global image check). */
+	k.pchain_start = calloc(np + 2, sizeof *k.pchain_start);
+	k.pchain = fct_alloc_array(3 * c->n, sizeof *k.pchain, err);
+	k.normal = calloc(np + 1, sizeof *k.normal);
+	k.split = calloc(total ? total : 1, 1);
+	k.chain_dirty = calloc(c->n ? c->n : 1, 1);
+	dirty = malloc(2 * np + 2);
+	unres = calloc(2 * np + 2, sizeof *unres);
+	if (!k.pchain_start || !k.pchain || !k.normal || !k.split || !k.chain_dirty || !dirty || !unres) {
+		fct_fail(err, "out of memory");
+		goto done;
+	}
+	for (size_t i = 0; i < c->n; i++) {
+		k.pchain_start[label_id(lab, np, c->left[i]) + 1]++;
+		if (c->right[i] >= 0)
+			k.pchain_start[label_id(lab, np, c->right[i]) + 1]++;
+	}
+	k.pchain_start[np + 1] = c->n;
+	for (size_t i = 0; i < np + 1; i++)
+		k.pchain_start[i + 1] += k.pchain_start[i];
+	for (size_t i = 0; i < c->n; i++)
+		k.pchain[k.pchain_start[np] + i] = (uint32_t)i;
+	{
+		size_t *fill = calloc(np ? np : 1, sizeof *fill);
+		if (!fill) {
+			fct_fail(err, "out of memory");
+			goto done;
+		}
+		for (size_t i = 0; i < c->n; i++) {
+			long a = label_id(lab, np, c->left[i]);
+			k.pchain[k.pchain_start[a] + fill[a]++] = (uint32_t)i;
+			if (c->right[i] >= 0) {
+				long b = label_id(lab, np, c->right[i]);
+				k.pchain[k.pchain_start[b] + fill[b]++] = (uint32_t)i;
+			}
+		}
+		free(fill);
+	}
+	/* Normals: the plane's, or the faces' area-weighted (Newell) normal. */
+	int need = 0;
+	for (size_t i = 0; i < np; i++) {
+		if ((size_t)lab[i] < nplanes)
+			memcpy(k.normal[i], planes[lab[i]].n, sizeof k.normal[i]);
+		else
+			need = 1;
+	}
+	if (need)
+		for (size_t f = 0; f < m->nf; f++) {
+			if (patch[f] < 0 || (size_t)patch[f] < nplanes)
+				continue;
+			long id = label_id(lab, np, patch[f]);
+			if (id < 0)
+				continue;
+			for (uint32_t x = m->fstart[f]; x < m->fstart[f + 1]; x++) {
+				uint32_t y = x + 1 < m->fstart[f + 1] ? x + 1 : m->fstart[f];
+				const double *a = m->xyz + 3 * (size_t)m->fvert[x], *b = m->xyz + 3 * (size_t)m->fvert[y];
+				k.normal[id][0] += (a[1] - b[1]) * (a[2] + b[2]);
+				k.normal[id][1] += (a[2] - b[2]) * (a[0] + b[0]);
+				k.normal[id][2] += (a[0] - b[0]) * (a[1] + b[1]);
+			}
+		}
+	for (size_t i = 0; i < np; i++) {
+		double l = sqrt(fct_v3_dot(k.normal[i], k.normal[i]));
+		if (!(l > 0) || !isfinite(l)) {
+			k.normal[i][0] = k.normal[i][1] = 0, k.normal[i][2] = 1;
+			continue;
+		}
+		for (int x = 0; x < 3; x++)
+			k.normal[i][x] /= l;
+	}
+
+	/* Each patch is checked in its plane (check 2 p), and when the vertices
+	 * carry image coordinates, the whole boundary in the image (check
+	 * 2 np + 1): one view's image is a planar map of all its surfaces, so
+	 * there no chains may cross whatever patches they bound, and a hole or
+	 * an unlabelled region may not collapse either.  A cylindrical
+	 * panorama's s wraps round; it is unwrapped patch by patch (checks
+	 * 2 p + 1) instead. */
+	k.ps = fct_elem_find(&m->vertex, "s"), k.pt = fct_elem_find(&m->vertex, "t");
+	if (!k.ps || !k.pt || k.ps->count_type || k.pt->count_type)
+		k.ps = k.pt = NULL;
+	struct fct_camera cam;
+	k.wrap = fct_header_camera(m, &cam, NULL) == 1 && cam.kind == FCT_CAMERA_CYLINDRICAL;
+	size_t nv2 = 2 * np + 2;
+	memset(dirty, 0, nv2);
+	for (size_t p = 0; p < np; p++)
+		dirty[2 * p] = 1, dirty[2 * p + 1] = k.ps && k.wrap;
+	dirty[2 * np + 1] = k.ps && !k.wrap;
+	for (;;) {
+		int any = 0;
+		for (size_t v = 0; v < nv2; v++) {
+			if (!dirty[v])
+				continue;
+			dirty[v] = 0;
+			size_t conf = 0;
+			unres[v] = 0;
+			if (check_patch(&k, v / 2, (int)(v % 2), &conf, &unres[v], err))
+				goto done;
+			if (st->rounds == 0)
+				st->conflicts_plain += conf;
+		}
+		st->rounds++;
+		for (size_t ci = 0; ci < c->n; ci++) {
+			if (!k.chain_dirty[ci])
+				continue;
+			k.chain_dirty[ci] = 0;
+			size_t last = c->start[ci];
+			for (size_t q = c->start[ci] + 1; q < c->start[ci + 1]; q++) {
+				if (!c->keep[q])
+					continue;
+				if (k.split[last]) {
+					k.split[last] = 0;
+					if (q - last >= 2) {
+						/* Split at the farthest point, then refit both
+						 * halves: a shorter segment may leave points
+						 * beyond the tolerance that the longer one did not. */
+						double d2;
+						size_t kk = farthest(m, c, last, q, &d2);
+						c->keep[kk] = 1;
+						endpoint_fit(m, c, last, kk, tol2, stack);
+						endpoint_fit(m, c, kk, q, tol2, stack);
+						st->topology_points++;
+						size_t a = (size_t)label_id(lab, np, c->left[ci]);
+						dirty[2 * a] = 1;
+						dirty[2 * a + 1] |= k.ps && k.wrap;
+						if (c->right[ci] >= 0) {
+							size_t b = (size_t)label_id(lab, np, c->right[ci]);
+							dirty[2 * b] = 1;
+							dirty[2 * b + 1] |= k.ps && k.wrap;
+						}
+						dirty[2 * np + 1] |= k.ps && !k.wrap;
+						any = 1;
+					}
+				}
+				last = q;
+			}
+		}
+		if (!any)
+			break;
+	}
+	for (size_t v = 0; v < nv2; v++) {
+		if (v % 2)
+			st->conflicts_left_image += unres[v];
+		else
+			st->conflicts_left += unres[v];
+	}
+	rc = 0;
+done:
+	free(lab);
+	free(dirty);
+	free(unres);
+	free(k.pchain_start);
+	free(k.pchain);
+	free(k.normal);
+	free(k.split);
+	free(k.chain_dirty);
+	free(k.xy);
+	free(k.base);
+	free(k.seg);
+	free(k.pts);
+	free(k.stamp);
+	free(k.mark);
+	free(k.fpre);
+	free(k.flist);
+	free(k.sg.cstart);
+	free(k.sg.items);
+	free(k.pg.cstart);
+	free(k.pg.items);
+	return rc;
+}
+
+int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                        const struct fct_plane *planes, size_t nplanes,
+                        const struct fct_chain_params *p, struct fct_chain_stats *st,
+                        struct fct_err *err)
+{
+	struct fct_chain_stats local;
+	if (!st)
+		st = &local;
+	memset(st, 0, sizeof *st);
+	st->tolerance = p->threshold * c->mean_edge;
+	double tol2 = st->tolerance * st->tolerance;
+	size_t maxlen = 0;
+	for (size_t i = 0; i < c->n; i++)
+		if (c->start[i + 1] - c->start[i] > maxlen)
+			maxlen = c->start[i + 1] - c->start[i];
+	size_t *stack = fct_alloc_array(2 * maxlen + 2, sizeof *stack, err);
+	if (!stack)
+		return -1;
+	for (size_t i = 0; i < c->n; i++)
+		if (simplify_chain(m, c, i, tol2, stack, st, err)) {
+			free(stack);
+			return -1;
+		}
+	if (p->keep_topology && keep_topology(c, m, patch, planes, nplanes, tol2, stack, st, err)) {
+		free(stack);
+		return -1;
+	}
+	free(stack);
+
+	/* The figures of the result. */
+	unsigned char *seen = calloc(m->nv ? m->nv : 1, 1);
+	if (!seen)
+		return fct_fail(err, "out of memory");
+	for (size_t i = 0; i < c->n; i++) {
+		size_t last = c->start[i];
+		for (size_t q = c->start[i]; q < c->start[i + 1]; q++) {
+			if (!c->keep[q])
+				continue;
+			if (!seen[c->vert[q]])
+				seen[c->vert[q]] = 1, st->kept_vertices++;
+			if (q == last)
+				continue;
+			st->segments++;
+			if (q - last >= 2) {
+				double d2;
+				farthest(m, c, last, q, &d2);
+				if (sqrt(d2) > st->max_dev)
+					st->max_dev = sqrt(d2);
+			}
+			last = q;
+		}
+	}
+	free(seen);
+	return 0;
+}
+
+int fct_simpchain(struct fct_mesh *m, const struct fct_chain_params *p,
+                  struct fct_chains *ch, struct fct_chain_stats *st, struct fct_err *err)
+{
+	struct fct_plane *planes = NULL;
+	size_t nplanes = 0;
+	int32_t *patch = NULL;
+	int present = 0, rc = -1;
+	struct fct_chains c;
+	memset(&c, 0, sizeof c);
+	size_t *keepv = NULL;
+	uint32_t *map = NULL;
+	if (fct_planes_get(m, &planes, &nplanes, err))
+		return -1;
+	if (fct_patches_get(m, &patch, &present, fct_mesh_find_elem(m, "plane") ? (long)nplanes : -1, err))
+		goto done;
+	if (!present) {
+		fct_fail(err, m->nf ? "faces have no patch property (label them with segplanes)"
+		                    : "no faces with a patch property (label them with segplanes)");
+		goto done;
+	}
+	if (fct_chains_extract(&c, m, patch, err) ||
+	    fct_chains_simplify(&c, m, patch, planes, nplanes, p, st, err))
+		goto done;
+
+	/* Kept vertices in their original order, and the edges between them. */
+	map = fct_alloc_array(m->nv, sizeof *map, err);
+	if (!map)
+		goto done;
+	for (size_t v = 0; v < m->nv; v++)
+		map[v] = UINT32_MAX;
+	for (size_t q = 0; q < c.start[c.n]; q++)
+		if (c.keep[q])
+			map[c.vert[q]] = 0;
+	size_t nk = 0;
+	for (size_t v = 0; v < m->nv; v++)
+		if (map[v] == 0)
+			nk++;
+	keepv = fct_alloc_array(nk, sizeof *keepv, err);
+	if (!keepv)
+		goto done;
+	nk = 0;
+	for (size_t v = 0; v < m->nv; v++)
+		if (map[v] == 0)
+			map[v] = (uint32_t)nk, keepv[nk++] = v;
+	size_t ne = 0;
+	for (size_t i = 0; i < c.n; i++)
+		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++)
+			ne += c.keep[q];
+	if (fct_mesh_gather_faces(m, NULL, 0, err) || fct_mesh_gather_vertices(m, keepv, nk, err))
+		goto done;
+	m->has_faces = 0;
+	while (m->face.nprops)
+		fct_elem_remove(&m->face, m->face.props[0].name);
+	fct_mesh_remove_elem(m, "edge");
+	struct fct_elem *e = fct_mesh_add_elem(m, "edge", ne, err);
+	if (!e)
+		goto done;
+	static const char *const names[] = { "vertex1", "vertex2", "patch1", "patch2" };
+	for (int x = 0; x < 4; x++)
+		if (!fct_elem_add_scalar(e, names[x], FCT_INT32, err))
+			goto done;
+	struct fct_prop *col[4];
+	for (int x = 0; x < 4; x++)
+		col[x] = fct_elem_find(e, names[x]);
+	size_t row = 0;
+	for (size_t i = 0; i < c.n; i++) {
+		size_t last = c.start[i];
+		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++) {
+			if (!c.keep[q])
+				continue;
+			int32_t *d[4];
+			for (int x = 0; x < 4; x++)
+				d[x] = (int32_t *)col[x]->data;
+			d[0][row] = (int32_t)map[c.vert[last]];
+			d[1][row] = (int32_t)map[c.vert[q]];
+			d[2][row] = c.left[i];
+			d[3][row] = c.right[i] >= 0 ? c.right[i] : -1;
+			row++;
+			last = q;
+		}
+	}
+	rc = 0;
+done:
+	free(planes);
+	free(patch);
+	free(map);
+	free(keepv);
+	if (!rc && ch)
+		*ch = c;
+	else
+		fct_chains_free(&c);
+	return rc;
+}
