@@ -31,7 +31,7 @@ static const char usage[] =
 	"      --fallback      a refused move falls back to the best lower-rank one\n"
 	"                      within the bound (default: the vertex is kept)\n"
 	"      --max-move d    refuse moves longer than d, in the units of the\n"
-	"                      coordinates (default the mean edge length)\n"
+	"                      coordinates, or inf (default the mean edge length)\n"
 	"      --orthogonal angle\n"
 	"                      snap planes within angle degrees of orthogonal or\n"
 	"                      parallel to an exact frame with a common up axis\n"
@@ -67,7 +67,10 @@ int main(int argc, char **argv)
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("projverts (facet) " FCT_VERSION); exit(0);
-		case OPT_MAXMOVE: par.max_move = fct_opt_double("--max-move", optarg, 0, HUGE_VAL); break;
+		case OPT_MAXMOVE:
+			par.max_move = !strcmp(optarg, "inf") ? HUGE_VAL
+			             : fct_opt_double("--max-move", optarg, 0, HUGE_VAL);
+			break;
 		case OPT_ORTHO:
 			par.ortho_angle = fct_opt_double("--orthogonal", optarg, 0, 40);
 			if (!(par.ortho_angle > 0))
