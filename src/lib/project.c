@@ -62,7 +62,7 @@ int fct_project_point(const double *normals, const double *offsets, size_t k, co
 			delta[0][c] = r * normals[c];
 		f.rank = 1;
 	} else {
-		if (k > (size_t)1 << 20)
+		if (k > (size_t)1 << 26)
 			return fct_fail(err, "vertex on %zu planes: too many", k);
 		int m = (int)k, n = 3, mn = m < 3 ? m : 3, lwork = 64 + 8 * m, info = 0;
 		double stack[STACK_ROWS * 3 * 2 + STACK_ROWS + 64 + 8 * STACK_ROWS];
@@ -454,7 +454,7 @@ int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weigh
 		} else {
 			double bestd = HUGE_VAL;
 			const double *bax = NULL;
-			for (size_t f = 0; f < nframes; f++)
+			for (size_t f = 0; f < (nframes ? 1 : 0); f++)   /* the main frame only */
 				for (int k = 0; k < 2; k++) {
 					double dd = fabs(fct_v3_dot(nv, axes[f][k]));
 					if (dd < bestd)
@@ -710,7 +710,8 @@ static int cmp_pair(const void *x, const void *y)
 }
 
 /* Pairs of patches that share mesh edges, weighted by the edges' length
- * (edges among more than four patches, non-manifold clutter, are skipped). */
+ * (edges among more than four patches, non-manifold clutter, are skipped);
+ * the caller weighs them again. */
 static int adjacent_pairs(const struct fct_mesh *m, const struct fct_adj *adj,
                           const int32_t *patch, struct fct_plane_pair **out, size_t *nout,
                           struct fct_err *err)
@@ -857,6 +858,18 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		size_t npairs = 0;
 		if (adjacent_pairs(m, &adj, patch, &pairs, &npairs, err))
 			goto out;
+		/* Weigh each adjacent pair by its smaller patch's area: the planes
+		 * of large patches are the reliable ones, and small patches of a
+		 * noisy or curved surface meet at every angle. */
+		area = fct_alloc_array(npl, sizeof *area, err);
+		cen = fct_alloc_array(3 * npl, sizeof *cen, err);
+		if (!area || !cen)
+			goto out;
+		patch_moments(m, patch, npl, area, cen);
+		for (size_t k = 0; k < npairs; k++) {
+			double a = area[pairs[k].a], b = area[pairs[k].b];
+			pairs[k].w = a < b ? a : b;
+		}
 		double angle = p->scale_angle > 0 ? p->scale_angle
 		             : p->ortho_angle > 0 ? p->ortho_angle : FCT_PROJECT_SCALE_ANGLE;
 		if (fct_depth_scale_solve(pl, npl, pairs, npairs, have_pose ? inv : NULL, cyl, angle,
@@ -872,8 +885,10 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		}
 	}
 	if (p->ortho_angle > 0) {
-		area = fct_alloc_array(npl, sizeof *area, err);
-		cen = fct_alloc_array(3 * npl, sizeof *cen, err);
+		if (!area)
+			area = fct_alloc_array(npl, sizeof *area, err);
+		if (!cen)
+			cen = fct_alloc_array(3 * npl, sizeof *cen, err);
 		if (!area || !cen)
 			goto out;
 		patch_moments(m, patch, npl, area, cen);

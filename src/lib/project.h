@@ -92,8 +92,8 @@ int fct_project_texcoord(const struct fct_camera *cam, const double *inv_pose, c
  *     frames; vertical planes left over are only made vertical);
  *  3. a normal within A of +-up becomes +-up; a vertical one becomes the
  *     nearest signed horizontal axis of its frame; any other normal within A
- *     of perpendicular to a horizontal axis of some frame loses its
- *     component along the nearest such axis;
+ *     of perpendicular to a horizontal axis of the main (heaviest) frame
+ *     loses its component along the nearer such axis;
  *  4. a changed plane turns about the point of the old plane nearest to
  *     pivot[3i..3i+2] (NULL, or a non-finite pivot: the point of the old
  *     plane nearest the origin).
@@ -127,7 +127,7 @@ int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weigh
  * log lambda, inliers chosen again twice).  */
 struct fct_plane_pair {
 	uint32_t a, b;         /* plane indices */
-	double w;              /* weight (shared boundary length) */
+	double w;              /* weight (fct_project_mesh: the smaller patch's area) */
 };
 struct fct_scale_result {
 	double scale;          /* lambda; 1 when nothing constrains it */
