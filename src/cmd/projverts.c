@@ -110,6 +110,9 @@ int main(int argc, char **argv)
 		         name, st.no_pixel);
 	if (st.scaled && st.scale_res.pairs == 0)
 		fct_warn("%s: no pair of adjacent planes constrains the depth scale: left at 1", name);
+	else if (st.scaled && st.scale_res.inliers < 3)
+		fct_warn("%s: depth scale %.6g rests on %zu pair%s of planes only", name,
+		         st.scale_res.scale, st.scale_res.inliers, st.scale_res.inliers == 1 ? "" : "s");
 
 	if (fct_header_add_provenance(&m, "projverts", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err)) {

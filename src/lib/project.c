@@ -574,8 +574,12 @@ int fct_depth_scale_solve(const struct fct_plane *pl, size_t n, const struct fct
 		}
 		if (!(a * b < 0) || fabs(a) < 1e-12 || fabs(b) < 1e-12)
 			continue;
+		/* Planes within 20 degrees of parallel as they are (fragments of
+		 * one surface) would need a wild scale to meet at right angles. */
+		if (fabs(a + b) > cos(FCT_PROJECT_SCALE_PARALLEL * DEG))
+			continue;
 		double l = sqrt(-b / a);
-		if (!(l >= 1e-3 && l <= 1e3))
+		if (!(l >= 1 / FCT_PROJECT_SCALE_RANGE && l <= FCT_PROJECT_SCALE_RANGE))
 			continue;
 		lam[k] = l, wt[k] = pairs[k].w;
 		order[nprop++] = k;
@@ -858,18 +862,28 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		size_t npairs = 0;
 		if (adjacent_pairs(m, &adj, patch, &pairs, &npairs, err))
 			goto out;
-		/* Weigh each adjacent pair by its smaller patch's area: the planes
-		 * of large patches are the reliable ones, and small patches of a
-		 * noisy or curved surface meet at every angle. */
+		/* Weigh each adjacent pair by its smaller patch's area, and leave
+		 * out patches under 1% of the labelled area: the planes of large
+		 * patches are the reliable ones, while small patches of a noisy,
+		 * curved or cluttered surface meet at every angle (and more of
+		 * them look orthogonal the more depth is stretched). */
 		area = fct_alloc_array(npl, sizeof *area, err);
 		cen = fct_alloc_array(3 * npl, sizeof *cen, err);
 		if (!area || !cen)
 			goto out;
 		patch_moments(m, patch, npl, area, cen);
+		double total = 0;
+		for (size_t i = 0; i < npl; i++)
+			total += area[i];
+		size_t kept = 0;
 		for (size_t k = 0; k < npairs; k++) {
-			double a = area[pairs[k].a], b = area[pairs[k].b];
-			pairs[k].w = a < b ? a : b;
+			double a = area[pairs[k].a], b = area[pairs[k].b], w = a < b ? a : b;
+			if (w >= FCT_PROJECT_SCALE_MIN_AREA * total && w > 0) {
+				pairs[kept] = pairs[k];
+				pairs[kept++].w = w;
+			}
 		}
+		npairs = kept;
 		double angle = p->scale_angle > 0 ? p->scale_angle
 		             : p->ortho_angle > 0 ? p->ortho_angle : FCT_PROJECT_SCALE_ANGLE;
 		if (fct_depth_scale_solve(pl, npl, pairs, npairs, have_pose ? inv : NULL, cyl, angle,

@@ -41,6 +41,10 @@
 #define FCT_PROJECT_RANK_TOL 1e-2       /* singular value ratio: planes ~1.15 degrees apart act as one */
 #define FCT_PROJECT_MAX_MOVE_EDGES 1.0  /* default bound: the mean edge length */
 #define FCT_PROJECT_SCALE_ANGLE 5.0     /* degrees from orthogonal for a depth-scale inlier */
+#define FCT_PROJECT_SCALE_PARALLEL 20.0 /* pairs closer to parallel propose no scale */
+#define FCT_PROJECT_SCALE_RANGE 10.0    /* scales proposed lie in [1/10, 10] */
+#define FCT_PROJECT_SCALE_MIN_AREA 0.01 /* fct_project_mesh: patches under this fraction
+                                           of the labelled area pair with none */
 
 struct fct_project_params {
 	double max_move;        /* largest move kept, in coordinate units; < 0: max_move_edges
@@ -120,7 +124,8 @@ int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weigh
  * 1, lambda)), so planes i, j become orthogonal when
  *     a_ij + b_ij / lambda^2 = 0,
  * a_ij summing n_i n_j over the unscaled axes and b_ij over the scaled ones.
- * Each pair with a_ij b_ij < 0 proposes lambda_ij = sqrt(-b_ij / a_ij); the
+ * Each pair with a_ij b_ij < 0, not within 20 degrees of parallel as it
+ * is, proposes lambda_ij = sqrt(-b_ij / a_ij) when in [0.1, 10]; the
  * proposal (of the 1000 heaviest pairs) that makes the largest weight of
  * pairs orthogonal to within angle degrees wins, and lambda then minimises
  * the weighted sum of squared cosines of those inliers (golden section on

@@ -62,7 +62,7 @@ run_case 0 "projverts -o $TMP/tent1.ply $D/pv_tent.ply && cp $TMP/tent1.ply $TMP
 run_case 0 "cmp $TMP/tent1.ply $TMP/tent2.ply"
 run_case 0 "projverts < $D/pv_tent.ply > $TMP/tent3.ply && projverts < $D/pv_tent.ply | cmp - $TMP/tent3.ply"
 # Run twice: the second run moves nothing further.
-run_case 0 "projverts -v $TMP/tent1.ply 2> $TMP/again.err > /dev/null"
+run_case 0 "projverts -v -o $TMP/again.ply $TMP/tent1.ply 2> $TMP/again.err"
 check_num "tent: a second run moves at most rounding" "$(report max_move $TMP/again.err)" "<" 1e-15
 
 # Without a camera: s t are left as they were, with a warning.
@@ -79,7 +79,8 @@ check_num "nost: s of the ridge vertex" "$(absdiff "$(field 5 "$(vertex 2 $TMP/n
 # Bad input.
 run_case 1 "projverts $D/pv_nopatch.ply" "" "projverts: $D/pv_nopatch.ply: no face property patch"
 run_case 1 "projverts $D/pv_noplane.ply" "" "projverts: $D/pv_noplane.ply: no plane element"
-run_case 1 "projverts < /dev/null" "" "projverts: <stdin>"
+: > "$TMP/nothing"
+run_case 1 "projverts < $TMP/nothing" "" "projverts: <stdin>"
 run_case 1 "printf 'ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n' | projverts" "" "projverts: "
 run_case 0 "projverts -a -v -o $TMP/empty.ply $D/pv_empty.ply 2> $TMP/empty.err"
 check_true "empty: written back empty" grep -q '^element vertex 0$' $TMP/empty.ply

@@ -620,7 +620,7 @@ static void test_room_depth_scale(void)
 	struct fct_project_stats st;
 	CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
 	CHECK_MSG(fabs(st.scale_res.scale / lambda0 - 1) < 1e-9, "scale %.12g", st.scale_res.scale);
-	CHECK(st.scale_res.inliers >= 20);
+	CHECK(st.scale_res.inliers >= 12);   /* walls, floor and ceiling: the boxes are under 1% */
 	double maxd = 0;
 	for (size_t v = 0; v < m.nv; v++) {
 		double d = sqrt(fct_v3_dist2(m.xyz + 3 * v, s.mesh.xyz + 3 * v));
