@@ -478,6 +478,19 @@ static void tilt(double n[3], double a, struct fct_rng *rng)
 		n[c] = cos(a) * n[c] + sin(a) * b[c];
 }
 
+/* Tilt every plane by deg degrees (random axes from seed) about its point
+ * nearest the origin. */
+static void tilt_planes(struct fct_plane *pl, size_t n, double deg, uint64_t seed)
+{
+	struct fct_rng rng;
+	fct_rng_seed(&rng, seed);
+	for (size_t i = 0; i < n; i++) {
+		double q[3] = { -pl[i].d * pl[i].n[0], -pl[i].d * pl[i].n[1], -pl[i].d * pl[i].n[2] };
+		tilt(pl[i].n, deg * M_PI / 180, &rng);
+		pl[i].d = -fct_v3_dot(pl[i].n, q);
+	}
+}
+
 /* --orthogonal on the room's planes each tilted by 2 degrees: pairs that
  * were orthogonal or parallel are exactly so again (1e-9), with the true up;
  * the normals are back within 2 degrees of the truth; the vertices lie on
@@ -492,14 +505,7 @@ static void test_room_orthogonal(void)
 	size_t n, n2;
 	CHECK_INT(fct_planes_get(&m, &truth, &n, &err), 0);
 	CHECK_INT(fct_planes_get(&m, &pl, &n2, &err), 0);
-	struct fct_rng rng;
-	fct_rng_seed(&rng, 9);
-	for (size_t i = 0; i < n; i++) {
-		/* Tilt about the point of the plane nearest the origin. */
-		double q[3] = { -pl[i].d * pl[i].n[0], -pl[i].d * pl[i].n[1], -pl[i].d * pl[i].n[2] };
-		tilt(pl[i].n, 2 * M_PI / 180, &rng);
-		pl[i].d = -fct_v3_dot(pl[i].n, q);
-	}
+	tilt_planes(pl, n, 2, 9);
 	CHECK_INT(fct_planes_set(&m, pl, n, &err), 0);
 	struct fct_project_params par;
 	fct_project_params_default(&par);
@@ -639,13 +645,7 @@ static void test_room_depth_scale(void)
 	/* Noisy planes (each tilted by 0.5 degrees): the scale within 1%. */
 	free(pl);
 	CHECK_INT(fct_planes_get(&m2, &pl, &n, &err), 0);
-	struct fct_rng rng;
-	fct_rng_seed(&rng, 3);
-	for (size_t i = 0; i < n; i++) {
-		double q[3] = { -pl[i].d * pl[i].n[0], -pl[i].d * pl[i].n[1], -pl[i].d * pl[i].n[2] };
-		tilt(pl[i].n, 0.5 * M_PI / 180, &rng);
-		pl[i].d = -fct_v3_dot(pl[i].n, q);
-	}
+	tilt_planes(pl, n, 0.5, 3);
 	CHECK_INT(fct_planes_set(&m2, pl, n, &err), 0);
 	par.max_move = HUGE_VAL;
 	CHECK_INT(fct_project_mesh(&m2, &par, &st, &err), 0);
