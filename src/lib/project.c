@@ -163,14 +163,33 @@ static int principal_vector(const double m[9], double v[3], struct fct_err *err)
 	return 0;
 }
 
-/* Indices 0..n-1 by weight, heaviest first, ties by index. */
-static const double *sort_weight;
-static int by_weight(const void *x, const void *y)
+/* Sort idx[0..n) by key[idx[.]], largest first, ties by index (reentrant:
+ * the keys travel with the indices).  0 or -1 (out of memory). */
+struct keyed {
+	double k;
+	size_t i;
+};
+
+static int keyed_desc(const void *x, const void *y)
 {
-	size_t i = *(const size_t *)x, j = *(const size_t *)y;
-	if (sort_weight[i] != sort_weight[j])
-		return sort_weight[i] > sort_weight[j] ? -1 : 1;
-	return (i > j) - (i < j);
+	const struct keyed *a = x, *b = y;
+	if (a->k != b->k)
+		return a->k > b->k ? -1 : 1;
+	return (a->i > b->i) - (a->i < b->i);
+}
+
+static int sort_by_key(size_t *idx, size_t n, const double *key, struct fct_err *err)
+{
+	struct keyed *t = fct_alloc_array(n, sizeof *t, err);
+	if (!t)
+		return -1;
+	for (size_t j = 0; j < n; j++)
+		t[j].k = key[idx[j]], t[j].i = idx[j];
+	qsort(t, n, sizeof *t, keyed_desc);
+	for (size_t j = 0; j < n; j++)
+		idx[j] = t[j].i;
+	free(t);
+	return 0;
 }
 
 enum { MAX_CANDIDATES = 1000, MAX_FRAMES = 256 };
@@ -320,8 +339,8 @@ int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weigh
 	/* 1. up. */
 	for (size_t i = 0; i < n; i++)
 		order[i] = i;
-	sort_weight = w;
-	qsort(order, n, sizeof *order, by_weight);
+	if (sort_by_key(order, n, w, err))
+		goto out;
 	size_t ncand = n < MAX_CANDIDATES ? n : MAX_CANDIDATES;
 	long best = -1;
 	double best_score = -1;
@@ -378,8 +397,8 @@ int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weigh
 				idx[m++] = i;
 		if (m == 0)
 			break;
-		sort_weight = phi;
-		qsort(idx, m, sizeof *idx, by_weight);   /* descending azimuth; reversed below */
+		if (sort_by_key(idx, m, phi, err))   /* descending azimuth; reversed below */
+			goto out;
 		az.n = m;
 		az.cum[0] = 0;
 		for (size_t k = 0; k < m; k++) {
@@ -589,8 +608,8 @@ int fct_depth_scale_solve(const struct fct_plane *pl, size_t n, const struct fct
 		rc = 0;
 		goto out;
 	}
-	sort_weight = wt;
-	qsort(order, nprop, sizeof *order, by_weight);
+	if (sort_by_key(order, nprop, wt, err))
+		goto out;
 	const double sin_t = sin(angle * DEG);
 	double best = lam[order[0]], best_score = -1;
 	size_t ncand = nprop < MAX_CANDIDATES ? nprop : MAX_CANDIDATES;
