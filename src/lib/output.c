@@ -16,6 +16,17 @@ int fct_out_open(struct fct_out *o, const char *path, struct fct_err *err)
 		o->f = stdout;
 		return 0;
 	}
+	struct stat st;
+	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+		if (!(o->path = fct_strdup(path, err)))
+			return -1;
+		if (!(o->f = fopen(path, "wb"))) {
+			int e = errno;
+			fct_out_abort(o);
+			return fct_fail(err, "%s: %s", path, strerror(e));
+		}
+		return 0;
+	}
 	char *dir = fct_path_dir(path, err);
 	if (!dir)
 		return -1;
@@ -71,7 +82,7 @@ int fct_out_commit(struct fct_out *o, struct fct_err *err)
 		fct_out_abort(o);
 		return -1;
 	}
-	if (rename(o->tmp, o->path) != 0) {
+	if (o->tmp && rename(o->tmp, o->path) != 0) {
 		fct_fail(err, "%s: %s", o->path, strerror(errno));
 		fct_out_abort(o);
 		return -1;

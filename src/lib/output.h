@@ -2,7 +2,9 @@
  *
  * A named output is written to a temporary file in the same folder and
  * renamed over the name only when everything was written, so a failed run
- * never leaves a half-written file.  "-" or NULL means stdout. */
+ * never leaves a half-written file.  "-" or NULL means stdout.  A name that
+ * is not a regular file (/dev/null, a FIFO, a terminal) is written directly:
+ * renaming over it would replace the device with a file. */
 #ifndef FCT_OUTPUT_H
 #define FCT_OUTPUT_H
 
@@ -13,7 +15,7 @@
 struct fct_out {
 	FILE *f;
 	char *path;   /* NULL for stdout */
-	char *tmp;
+	char *tmp;    /* the temporary file; NULL when writing path directly */
 };
 
 int fct_out_open(struct fct_out *o, const char *path, struct fct_err *err);

@@ -75,4 +75,13 @@ run_case 0 "meshconv tests/data/obj_fuzz_uaf.obj >/dev/null"
 cp "$TMP/bun_zipper_res2.le.ply" "$TMP/in.ply"
 cp "$TMP/bun_zipper_res2.le.ply" "$TMP/scan.ply"
 run_case 0 "cd $TMP && meshconv -a scan.ply > scan_ascii.ply && meshconv -f binary_big_endian in.ply | meshconv | cmp - in.ply"
+# -o to something that is not a regular file (a FIFO here; /dev/null in
+# real use) writes into it and leaves it what it was, not a renamed file.
+mkfifo "$TMP/fifo"
+wc -c <"$TMP/fifo" >"$TMP/fifo.count" &
+run_case 0 "meshconv -o $TMP/fifo $bunny"
+wait
+check_true "-o FIFO stays a FIFO" test -p "$TMP/fifo"
+check_num "-o FIFO carried the mesh" "$(cat "$TMP/fifo.count")" ">" 1000
+
 finish
