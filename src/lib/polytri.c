@@ -22,6 +22,17 @@ struct rec {
 	int8_t e, outside, cons;
 };
 
+/* A wedge seen from a vertex v: the rays v -> ra and v -> rb (counter-
+ * clockwise), looking through the window edge ea-eb (ea on ra's side),
+ * edge e of triangle t on v's side. */
+struct funnel {
+	int32_t ra, rb, ea, eb, t, e;
+};
+
+/* The greedy method follows a wedge through at most this many triangles
+ * per vertex expansion before it falls back to the k-d tree. */
+#define FUNNEL_STEPS 16
+
 /* The triangulation: triangle t has corners tv[3t..3t+2] counter-clockwise,
  * edge e running from corner e to corner e+1, tn[3t+e] the triangle across
  * edge e (-1 on the hull), tf[t] the constrained bits of its edges and the
@@ -30,11 +41,14 @@ struct ct {
 	const double *xy;
 	size_t np, nt;
 	int32_t *tv, *tn, *vt;
+	uint32_t *deg;           /* greedy: triangles around v when last counted */
 	uint8_t *tf;
 	uint32_t *stamp, epoch;
 	/* scratch, grown as needed */
 	int32_t *ring, *cav, *left, *right, *poly, *newt, *stack, *cones, *direct;
 	size_t ring_cap, cav_cap, left_cap, right_cap, poly_cap, newt_cap, stack_cap, cones_cap, direct_cap;
+	struct funnel *fun;
+	size_t fun_cap;
 	size_t nring, ncav, nleft, nright, nnew;
 	struct rec *recs;
 	size_t rec_cap;
@@ -44,9 +58,9 @@ struct ct {
 
 static void ct_free(struct ct *c)
 {
-	free(c->tv), free(c->tn), free(c->vt), free(c->tf), free(c->stamp);
+	free(c->tv), free(c->tn), free(c->vt), free(c->tf), free(c->stamp), free(c->deg);
 	free(c->ring), free(c->cav), free(c->left), free(c->right), free(c->poly);
-	free(c->newt), free(c->stack), free(c->recs), free(c->cones), free(c->direct);
+	free(c->newt), free(c->stack), free(c->recs), free(c->cones), free(c->direct), free(c->fun);
 }
 
 static int push32(int32_t **a, size_t *n, size_t *cap, int32_t v, struct fct_err *err)
@@ -108,6 +122,8 @@ static int around(struct ct *c, int32_t v)
 				return -1;
 		}
 	}
+	if (c->deg)
+		c->deg[v] = (uint32_t)(c->nring < UINT32_MAX ? c->nring : UINT32_MAX);
 	return 0;
 }
 
@@ -681,6 +697,31 @@ static int box_in_cones(const struct ct *c, int32_t v, const struct kdnode *nd, 
 	return 0;
 }
 
+static int push_funnel(struct ct *c, size_t *n, int32_t ra, int32_t rb, int32_t ea, int32_t eb,
+                       int32_t t, int e)
+{
+	if (*n >= c->fun_cap && fct_grow((void **)&c->fun, &c->fun_cap, *n + 1, sizeof *c->fun, c->err))
+		return -1;
+	c->fun[(*n)++] = (struct funnel){ ra, rb, ea, eb, t, e };
+	return 0;
+}
+
+/* May a point beyond the segment a-b (seen from v) be within squared
+ * distance R of v?  Decided with a margin, so it only says no when the
+ * segment is surely farther. */
+static int window_near(const struct ct *c, int32_t v, int32_t a, int32_t b, double R)
+{
+	if (R == HUGE_VAL)
+		return 1;
+	const double *p = &c->xy[2 * v], *pa = &c->xy[2 * a], *pb = &c->xy[2 * b];
+	double dx = pb[0] - pa[0], dy = pb[1] - pa[1];
+	double l2 = dx * dx + dy * dy;
+	double s = l2 > 0 ? ((p[0] - pa[0]) * dx + (p[1] - pa[1]) * dy) / l2 : 0;
+	s = s < 0 ? 0 : s > 1 ? 1 : s;
+	double qx = pa[0] + s * dx - p[0], qy = pa[1] + s * dy - p[1];
+	return qx * qx + qy * qy <= R * (1 + 1e-9) + 1e-300;
+}
+
 /* Every inside triangle around v has three constrained edges. */
 static int finished(struct ct *c, int32_t v, int *rc)
 {
@@ -695,11 +736,17 @@ static int finished(struct ct *c, int32_t v, int *rc)
 	return 1;
 }
 
-/* Take the candidate v - w if it is a valid diagonal: 1 taken, 0 not, -1. */
+/* Take the candidate v - w if it is a valid diagonal: 1 taken, 0 not, -1.
+ * The search starts at the end with fewer triangles around it when last
+ * seen (fans from one vertex of a long boundary have thousands). */
 static int try_pair(struct ct *c, int32_t v, int32_t w)
 {
 	int32_t t;
 	int e;
+	if (c->deg[w] < c->deg[v]) {
+		int32_t s = v;
+		v = w, w = s;
+	}
 	switch (find_start(c, v, w, &t, &e)) {
 	case FS_EDGE:
 		if ((c->tf[t] & (1u << e)) || !(c->tf[t] & F_INSIDE))
@@ -738,8 +785,11 @@ static int greedy(struct ct *c)
 	struct pheap ph = { 0 }, vh = { 0 };
 	double *r2 = fct_alloc_array(np, sizeof *r2, c->err);
 	int rc = -1;
-	if (!r2 || kd_build(&kd, c->xy, np, c->err))
+	c->deg = fct_alloc_array(np, sizeof *c->deg, c->err);
+	if (!r2 || !c->deg || kd_build(&kd, c->xy, np, c->err))
 		goto out;
+	for (size_t v = 0; v < np; v++)
+		c->deg[v] = 6;
 	/* The vertex heap holds (r_v^2, v) as pairs with b unused. */
 	for (size_t v = 0; v < np; v++) {
 		r2[v] = 0;
@@ -773,31 +823,71 @@ static int greedy(struct ct *c)
 		/* What can still start at v: the unconstrained edges at v (direct
 		 * candidates) and the wedges of inside triangles (v, a, b) whose
 		 * far edge a-b is unconstrained (a segment into such a wedge must
-		 * cross a-b).  Constraints only accumulate, so a segment that
-		 * fits none of these now never will: filtering is exact. */
-		size_t ncone = 0, ndirect = 0;
+		 * cross a-b).  Each wedge is followed through the triangulation
+		 * as a funnel: across its window edge lies a triangle whose third
+		 * vertex is either inside the wedge (a visible vertex, a direct
+		 * candidate, splitting the wedge in two) or beside it (narrowing
+		 * the window); a window that is constrained, or farther than R,
+		 * closes.  Wedges still open after FUNNEL_STEPS steps are searched
+		 * in the k-d tree by angle alone.  Constraints only accumulate, so
+		 * a segment outside every wedge now never becomes valid: nothing
+		 * is missed. */
+		size_t ncone = 0, ndirect = 0, nfun = 0, steps = 0;
 		double R = HUGE_VAL;
+		if (r2[v] == 0) {
+			for (size_t k = 0; k < c->nring; k++) {
+				int32_t t = c->ring[k];
+				int i = vidx(c, t, (int32_t)v);
+				double d = dist2(c->xy, v, (uint32_t)c->tv[3 * (size_t)t + (i + 1) % 3]);
+				R = d < R ? d : R;
+			}
+		} else {
+			R = 4 * r2[v];
+		}
+		if (!(R > r2[v]))
+			R = HUGE_VAL;
 		for (size_t k = 0; k < c->nring; k++) {
 			int32_t t = c->ring[k];
 			int i = vidx(c, t, (int32_t)v);
 			int32_t a = c->tv[3 * (size_t)t + (i + 1) % 3], b = c->tv[3 * (size_t)t + (i + 2) % 3];
-			if (r2[v] == 0) {
-				double d = dist2(c->xy, v, (uint32_t)a);
-				R = d < R ? d : R;
-			}
 			if (!(c->tf[t] & F_INSIDE))
 				continue;
-			if (!(c->tf[t] & (1u << ((i + 1) % 3))) &&
-			    (push32(&c->cones, &ncone, &c->cones_cap, a, c->err) ||
-			     push32(&c->cones, &ncone, &c->cones_cap, b, c->err)))
+			if (!(c->tf[t] & (1u << ((i + 1) % 3))) && window_near(c, (int32_t)v, a, b, R) &&
+			    push_funnel(c, &nfun, a, b, a, b, t, (i + 1) % 3))
 				goto out;
 			if (!(c->tf[t] & (1u << i)) && push32(&c->direct, &ndirect, &c->direct_cap, a, c->err))
 				goto out;
 		}
-		if (r2[v] != 0)
-			R = 4 * r2[v];
-		if (!(R > r2[v]))
-			R = HUGE_VAL;
+		while (nfun) {
+			struct funnel f = c->fun[--nfun];
+			if (steps >= FUNNEL_STEPS) {
+				if (push32(&c->cones, &ncone, &c->cones_cap, f.ra, c->err) ||
+				    push32(&c->cones, &ncone, &c->cones_cap, f.rb, c->err))
+					goto out;
+				continue;
+			}
+			steps++;
+			int32_t u = c->tn[3 * (size_t)f.t + f.e];
+			if (u < 0)
+				continue;
+			const int32_t *pu = &c->tv[3 * (size_t)u];
+			int32_t w = pu[0] != f.ea && pu[0] != f.eb ? pu[0] : pu[1] != f.ea && pu[1] != f.eb ? pu[1] : pu[2];
+			double oa = orient(c, (int32_t)v, f.ra, w), ob = orient(c, (int32_t)v, f.rb, w);
+			int e1 = eidx(c, u, f.ea, w), e2 = eidx(c, u, w, f.eb);
+			int open1 = !(c->tf[u] & (1u << e1)) && window_near(c, (int32_t)v, f.ea, w, R);
+			int open2 = !(c->tf[u] & (1u << e2)) && window_near(c, (int32_t)v, w, f.eb, R);
+			if (oa > 0 && ob < 0) {
+				if (push32(&c->direct, &ndirect, &c->direct_cap, w, c->err) ||
+				    (open1 && push_funnel(c, &nfun, f.ra, w, f.ea, w, u, e1)) ||
+				    (open2 && push_funnel(c, &nfun, w, f.rb, w, f.eb, u, e2)))
+					goto out;
+			} else if (oa <= 0) {
+				if (open2 && push_funnel(c, &nfun, f.ra, f.rb, w, f.eb, u, e2))
+					goto out;
+			} else if (open1 && push_funnel(c, &nfun, f.ra, f.rb, f.ea, w, u, e1)) {
+				goto out;
+			}
+		}
 		for (size_t k = 0; k < ndirect; k++) {
 			uint32_t w = (uint32_t)c->direct[k];
 			double d = dist2(c->xy, v, w);

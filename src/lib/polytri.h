@@ -28,26 +28,35 @@
  *    end reaches the other end through inside triangles crossing only
  *    unconstrained edges; an accepted segment is inserted like a loop edge;
  *  - candidates are produced lazily in increasing length: each vertex v has
- *    a radius r_v up to which its pairs have been produced; pairs come from
- *    a k-d tree range query over the annulus (r_v, R], R doubling; a pair is
- *    produced by whichever end reaches it first.  A pair of length L is taken
- *    from the candidate heap only when L <= min r_v, so no shorter pair can
- *    still be missing, and the order is the global (length, lower index,
- *    higher index) order of the paper's sorted list;
- *  - a vertex stops producing pairs once every inside triangle around it has
- *    three constrained edges (nothing can start there any more); the whole
- *    run stops when no unconstrained inside edge is left.
- * Memory is O(n) plus the pending candidates.  Time is O(n log n) for
- * boundaries whose vertices' greedy edges are short compared with the
- * spacing of unrelated boundary parts (zig-zags, combs, convex and typical
- * simplified patch outlines: O(n log n) candidates, walks of O(1)
- * triangles).  Adversarial shapes (many vertices close in the plane but
- * mutually invisible, with long greedy edges) can need more candidates; a
- * budget of 64 n + 65536 candidates and 256 n + 2^20 walk steps bounds
- * the work, after which the edges the constrained triangulation still holds
- * are taken shortest first (they cross nothing, so this completes a valid
- * triangulation) and budget_hits counts the event.  The result is then not
- * exactly the greedy one, but never quadratic.
+ *    a radius r_v up to which its pairs have been produced, doubled at each
+ *    expansion; a pair is produced by whichever end reaches it first.  A
+ *    pair of length L is taken from the candidate heap only when
+ *    L <= min r_v, so no shorter pair can still be missing, and the order
+ *    is the global (length, lower index, higher index) order of the
+ *    paper's sorted list;
+ *  - an expansion of v produces only segments that can still be valid: the
+ *    unconstrained edges at v, and vertices seen through the wedges of the
+ *    inside triangles at v whose far edge is unconstrained, each wedge
+ *    followed as a funnel through at most 16 triangles (a vertex inside the
+ *    funnel is a candidate and splits it; a constrained or distant window
+ *    closes it), the wedges still open then searched by angle in a k-d
+ *    tree.  Constraints only accumulate, so nothing skipped could have
+ *    become valid later: the result equals the brute-force greedy (tested
+ *    edge for edge);
+ *  - a vertex stops expanding once every inside triangle around it has three
+ *    constrained edges; the run stops when no unconstrained inside edge is
+ *    left.
+ * Memory is O(n) plus the pending candidates.  On long boundaries (100000
+ * vertices: zig-zag strips, a two-vertex side facing a zig-zag, random
+ * star-shaped polygons, a circle) it produces 1 to 3 candidates per vertex
+ * and runs in about 0.5 to 3 s, against 0.1 to 0.4 s for the CDT alone.
+ * Shapes where many vertices are near one another yet hidden far behind
+ * constraints can need more candidates; a budget of 64 n + 65536
+ * candidates and 256 n + 2^20 walk steps bounds the work, after which the
+ * edges the constrained triangulation still holds are taken (they cross
+ * nothing, so this completes a valid triangulation) and budget_hits counts
+ * the event.  The result is then not exactly the greedy one, but the
+ * work stays O(n) candidates and walk steps (times a heap's log n).
  *
  * Each triangle comes out counter-clockwise (fct_orient2d > 0).  For n loop
  * vertices (counted once per loop they are on) and h holes, a simple
