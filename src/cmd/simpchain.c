@@ -85,9 +85,13 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	double total_s = fct_now() - t0, cpu_s = fct_cpu_time() - c0;
 
-	if (st.conflicts_left)
-		fct_warn("%zu crossings between original boundary edges remain in the patch planes",
-		         st.conflicts_left);
+	/* Warn about the map tripatch triangulates in: the image when there is
+	 * one, else the patch planes. */
+	int image = fct_elem_find(&m.vertex, "s") && fct_elem_find(&m.vertex, "t");
+	size_t left = image ? st.conflicts_left_image : st.conflicts_left;
+	if (left)
+		fct_warn("%zu crossings of the input's own boundary edges remain in the %s", left,
+		         image ? "image" : "patch planes");
 	double me = chains.mean_edge;
 	fct_report("vertices_in", "%zu", nv);
 	fct_report("faces_in", "%zu", nf);
@@ -107,6 +111,7 @@ int main(int argc, char **argv)
 	fct_report("crossings_plain", "%zu", st.conflicts_plain);
 	fct_report("crossing_points", "%zu", st.topology_points);
 	fct_report("crossings_left", "%zu", st.conflicts_left);
+	fct_report("crossings_left_image", "%zu", st.conflicts_left_image);
 	fct_report("rounds", "%zu", st.rounds);
 	fct_report("read_s", "%.4f", read_s);
 	fct_report("simplify_s", "%.4f", simp_s);

@@ -39,21 +39,33 @@
  * identical boundary, by iterative end-point fit in 3-D (Duda and Hart): the
  * farthest point from the segment between the kept ends (distance to the
  * segment, not the line) is kept while that distance exceeds threshold times
- * the mean edge length of the mesh.  Junctions are never removed.  A closed
- * chain starts at its junction, or for a loop at its point farthest from the
- * loop's centroid (a corner, for a polygon), is split at its point farthest
- * from there, and keeps at least three points.  Then, patch by patch, the
- * simplified chains are projected onto the patch plane (or, without a plane
- * element, onto the plane of the patch's area-weighted normal) and checked
- * with exact predicates (predicates.h): two simplified segments may not
- * cross, touch or overlap except at a shared kept vertex, and no kept vertex
- * may lie strictly inside the sliver between a simplified segment and the
- * original points it replaces (which would move it to the other side of that
- * boundary: a hole leaving its patch, say).  A segment in conflict is split
- * at its farthest point, and the check repeats until nothing is in conflict
- * or only original mesh edges are (the input boundary itself crosses in that
- * projection; counted in conflicts_left).  A uniform grid per patch keeps
- * each check near linear in the patch's boundary.
+ * the mean edge length of the mesh.  One pass then drops kept points the
+ * bound does not need (the fit's first split of a U-shaped chain lands
+ * anywhere on its far side, which then needs both corners as well).
+ * Junctions are never removed.  A closed chain starts at its junction, or
+ * for a loop at its point farthest from the loop's centroid (a corner, for a
+ * polygon), is split at its point farthest from there, and keeps at least
+ * three points.
+ *
+ * Crossings.  Then the simplified chains are checked with exact predicates
+ * (predicates.h) in two kinds of 2-D map: each patch's plane (its plane
+ * element's, or without one the area-weighted normal of its faces), with
+ * the chains of that patch; and, when the vertices carry image coordinates
+ * s t, the image, with all the chains at once (a view's image is a planar
+ * map of everything it saw, so there a narrow hole or unlabelled region may
+ * not collapse either; a cylindrical panorama's wrapping s is checked patch
+ * by patch, unwrapped).  In a map, two simplified segments may not cross,
+ * touch or overlap except at a shared kept vertex, and no kept vertex may lie
+ * strictly inside the sliver between a simplified segment and the original
+ * points it replaces (it would change sides of that boundary: a hole leaving
+ * its patch, say).  A segment in conflict is split at its farthest point (its
+ * halves refitted to the tolerance), and the check repeats until nothing is
+ * in conflict.  Conflicts the input already has are not chased: when the
+ * original edges of the two spans already conflict in that map (noise folds
+ * a boundary over itself in a plane seen obliquely, or an occlusion boundary
+ * has points on both surfaces), the pair is counted in conflicts_left and
+ * left alone, and so is a sliver whose own original edges conflict.  A
+ * uniform grid per map keeps each check near linear in the boundary's size.
  */
 #ifndef FCT_CHAIN_H
 #define FCT_CHAIN_H
