@@ -14,9 +14,10 @@
  * patch touches itself the next edge is the first one clockwise from the
  * way back, so loops that touch at a vertex come out as separate loops),
  * mapped to 2-D and triangulated by polytri.h:
- *   1. in image coordinates (s*W, t*H with W, H from the camera comment, or
- *      s, t without one) when the vertices have s and t -- the paper's
- *      choice;
+ *   1. in image coordinates (s*W, t*H with W, H from the camera comment,
+ *      snapped to pixel centres within 1e-3 pixel so that vertices on one
+ *      image line are exactly collinear; or s, t without a camera) when
+ *      the vertices have s and t -- the paper's choice;
  *   2. else, or when the loops are not simple there (crossing, touching
  *      along an edge, two vertices on one pixel, wrong nesting), in the
  *      patch plane's own frame (the plane element's normal, or the Newell
