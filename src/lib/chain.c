@@ -749,10 +749,16 @@ struct checker {
 	                             local index of their first point */
 	uint32_t *flist;          /* the local indices of those edges, increasing */
 	size_t nflist;
-	size_t cap_xy, cap_base, cap_seg, cap_pts, cap_stamp, cap_mark, cap_fpre, cap_flist;
+	uint32_t **fpre_of, **flist_of;   /* fpre and flist of each check, kept from
+	                                     round to round (the input does not change) */
+	size_t *nflist_of;
+	size_t cap_xy, cap_base, cap_seg, cap_pts, cap_stamp, cap_mark;
 	struct grid sg, pg;
 	unsigned char *split;     /* per chain position: split the segment starting here */
 	unsigned char *chain_dirty;
+	unsigned char *chain_new; /* chains split in the last round */
+	unsigned char *checked;   /* per check: done once (later rounds test only
+	                             the pairs with a new segment) */
 	const struct fct_prop *ps, *pt;   /* image coordinates, or NULL */
 	int wrap;                 /* s wraps round (a cylindrical panorama) */
 };
@@ -836,6 +842,7 @@ struct pair_ctx {
 	struct checker *k;
 	size_t s;                 /* the segment being tested */
 	int original;             /* the segments are original edges: flag them */
+	int all;                  /* test every pair, not only those with a new segment */
 	size_t conflicts, unresolved;
 };
 
@@ -846,9 +853,17 @@ static void test_cell(void *ctx, uint32_t cell, uint32_t item)
 	(void)item;
 	size_t s = pc->s;
 	const struct seg *a = &k->seg[s];
+	int snew = pc->all || k->chain_new[k->list[a->chain]];
+	if (!snew)
+		return;
 	for (uint32_t x = k->sg.cstart[cell]; x < k->sg.cstart[cell + 1]; x++) {
 		uint32_t t = k->sg.items[x];
-		if (t <= s || k->stamp[t] == s + 1)
+		if (t == s || k->stamp[t] == s + 1)
+			continue;
+		/* A pair of two new segments (or any pair when testing all) is
+		 * tested from its lower one; a new against an old one from the new. */
+		int tnew = pc->all || k->chain_new[k->list[k->seg[t].chain]];
+		if (tnew && t < s)
 			continue;
 		k->stamp[t] = (uint32_t)(s + 1);
 		const struct seg *b = &k->seg[t];
@@ -892,6 +907,8 @@ static int find_pairs(struct checker *k, struct pair_ctx *pc, double x0, double 
 		          (uint32_t)s, fill_cell, &k->sg);
 	grid_fixup(&k->sg);
 	for (size_t s = 0; s < n; s++) {
+		if (!pc->all && !k->chain_new[k->list[k->seg[s].chain]])
+			continue;
 		pc->s = s;
 		seg_cells(&k->sg, lxy(k, &k->seg[s], k->seg[s].i), lxy(k, &k->seg[s], k->seg[s].j),
 		          (uint32_t)s, test_cell, pc);
@@ -984,9 +1001,11 @@ static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
  * chains in k->chain_dirty.  Adds the conflicts found, and those inherited
  * from the input (not pursued), to *conflicts and *unresolved.  -1 when out
  * of memory. */
-static int check_patch(struct checker *k, size_t p, int image, size_t *conflicts,
+static int check_patch(struct checker *k, size_t v, int count_only, size_t *conflicts,
                        size_t *unresolved, struct fct_err *err)
 {
+	size_t p = v / 2;
+	int image = (int)(v % 2);
 	const struct fct_chains *c = k->c;
 	size_t c0 = k->pchain_start[p], nc = k->pchain_start[p + 1] - c0;
 	k->list = k->pchain + c0, k->nlist = nc;
@@ -1002,9 +1021,12 @@ static int check_patch(struct checker *k, size_t p, int image, size_t *conflicts
 	if (fct_grow((void **)&k->xy, &k->cap_xy, 2 * (npt ? npt : 1), sizeof *k->xy, err) ||
 	    fct_grow((void **)&k->seg, &k->cap_seg, npt ? npt : 1, sizeof *k->seg, err) ||
 	    fct_grow((void **)&k->pts, &k->cap_pts, npt ? npt : 1, sizeof *k->pts, err) ||
-	    fct_grow((void **)&k->mark, &k->cap_mark, npt ? npt : 1, sizeof *k->mark, err) ||
-	    fct_grow((void **)&k->fpre, &k->cap_fpre, npt + 1, sizeof *k->fpre, err))
+	    fct_grow((void **)&k->mark, &k->cap_mark, npt ? npt : 1, sizeof *k->mark, err))
 		return -1;
+	int first = !k->fpre_of[v];
+	if (first && !(k->fpre_of[v] = calloc(npt + 1, sizeof *k->fpre)))
+		return fct_fail(err, "out of memory");
+	k->fpre = k->fpre_of[v];
 
 	/* Project; list the original edges. */
 	double u[3] = { 1, 0, 0 }, w[3] = { 0, 1, 0 }, ref = HUGE_VAL;
@@ -1033,28 +1055,32 @@ static int check_patch(struct checker *k, size_t p, int image, size_t *conflicts
 			}
 			x0 = o[0] < x0 ? o[0] : x0, x1 = o[0] > x1 ? o[0] : x1;
 			y0 = o[1] < y0 ? o[1] : y0, y1 = o[1] > y1 ? o[1] : y1;
-			if (q > s) {
+			if (first && q > s) {
 				struct seg *g = &k->seg[k->nseg++];
 				g->chain = (uint32_t)x, g->i = q - 1, g->j = q;
 			}
 		}
 	}
-	/* The original edges that already conflict in this map. */
-	struct pair_ctx pc = { k, 0, 1, 0, 0 };
-	memset(k->fpre, 0, (npt + 1) * sizeof *k->fpre);
-	if (find_pairs(k, &pc, x0, y0, x1, y1, err))
-		return -1;
-	k->nflist = 0;
-	for (size_t l = 0; l < npt; l++)
-		k->nflist += k->fpre[l + 1];
-	if (fct_grow((void **)&k->flist, &k->cap_flist, k->nflist ? k->nflist : 1, sizeof *k->flist, err))
-		return -1;
-	k->nflist = 0;
-	for (size_t l = 0; l < npt; l++) {
-		if (k->fpre[l + 1])
-			k->flist[k->nflist++] = (uint32_t)l;
-		k->fpre[l + 1] = (uint32_t)k->nflist;
+	/* The original edges that already conflict in this map, found on the
+	 * first check. */
+	struct pair_ctx pc = { k, 0, 1, 1, 0, 0 };
+	if (first) {
+		if (find_pairs(k, &pc, x0, y0, x1, y1, err))
+			return -1;
+		size_t nf = 0;
+		for (size_t l = 0; l < npt; l++)
+			nf += k->fpre[l + 1];
+		if (!(k->flist_of[v] = fct_alloc_array(nf, sizeof *k->flist, err)))
+			return -1;
+		nf = 0;
+		for (size_t l = 0; l < npt; l++) {
+			if (k->fpre[l + 1])
+				k->flist_of[v][nf++] = (uint32_t)l;
+			k->fpre[l + 1] = (uint32_t)nf;
+		}
+		k->nflist_of[v] = nf;
 	}
+	k->flist = k->flist_of[v], k->nflist = k->nflist_of[v];
 
 	/* The simplified segments and kept points. */
 	k->nseg = 0;
@@ -1075,7 +1101,15 @@ static int check_patch(struct checker *k, size_t p, int image, size_t *conflicts
 	}
 	memset(k->mark, 0, k->nseg);
 	pc.original = 0;
-	if (find_pairs(k, &pc, x0, y0, x1, y1, err) || sliver_checks(k, &pc, nkept, err))
+	pc.all = count_only || !k->checked[v];
+	k->checked[v] = 1;
+	if (find_pairs(k, &pc, x0, y0, x1, y1, err))
+		return -1;
+	if (count_only) {
+		*unresolved += pc.unresolved;
+		return 0;
+	}
+	if (sliver_checks(k, &pc, nkept, err))
 		return -1;
 	for (size_t s = 0; s < k->nseg; s++)
 		if (k->mark[s]) {
@@ -1135,7 +1169,13 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 	k.chain_dirty = calloc(c->n ? c->n : 1, 1);
 	dirty = malloc(2 * np + 2);
 	unres = calloc(2 * np + 2, sizeof *unres);
-	if (!k.pchain_start || !k.pchain || !k.normal || !k.split || !k.chain_dirty || !dirty || !unres) {
+	k.fpre_of = calloc(2 * np + 2, sizeof *k.fpre_of);
+	k.checked = calloc(2 * np + 2, 1);
+	k.chain_new = calloc(c->n ? c->n : 1, 1);
+	k.flist_of = calloc(2 * np + 2, sizeof *k.flist_of);
+	k.nflist_of = calloc(2 * np + 2, sizeof *k.nflist_of);
+	if (!k.pchain_start || !k.pchain || !k.normal || !k.split || !k.chain_dirty || !dirty || !unres ||
+	    !k.fpre_of || !k.flist_of || !k.nflist_of || !k.checked || !k.chain_new) {
 		fct_fail(err, "out of memory");
 		goto done;
 	}
@@ -1223,12 +1263,13 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 			dirty[v] = 0;
 			size_t conf = 0;
 			unres[v] = 0;
-			if (check_patch(&k, v / 2, (int)(v % 2), &conf, &unres[v], err))
+			if (check_patch(&k, v, 0, &conf, &unres[v], err))
 				goto done;
 			if (st->rounds == 0)
 				st->conflicts_plain += conf;
 		}
 		st->rounds++;
+		memset(k.chain_new, 0, c->n);
 		for (size_t ci = 0; ci < c->n; ci++) {
 			if (!k.chain_dirty[ci])
 				continue;
@@ -1249,6 +1290,7 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 						endpoint_fit(m, c, last, kk, tol2, stack);
 						endpoint_fit(m, c, kk, q, tol2, stack);
 						st->topology_points++;
+						k.chain_new[ci] = 1;
 						size_t a = (size_t)label_id(lab, np, c->left[ci]);
 						dirty[2 * a] = 1;
 						dirty[2 * a + 1] |= k.ps && k.wrap;
@@ -1266,6 +1308,14 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 		}
 		if (!any)
 			break;
+	}
+	/* The conflicts left, inherited from the input: one pass over all pairs
+	 * (the rounds after the first test only pairs with a new segment). */
+	for (size_t v = 0; v < nv2; v++) {
+		size_t conf = 0;
+		unres[v] = 0;
+		if (k.checked[v] && check_patch(&k, v, 1, &conf, &unres[v], err))
+			goto done;
 	}
 	for (size_t v = 0; v < nv2; v++) {
 		if (v % 2)
@@ -1289,8 +1339,15 @@ done:
 	free(k.pts);
 	free(k.stamp);
 	free(k.mark);
-	free(k.fpre);
-	free(k.flist);
+	for (size_t v = 0; k.fpre_of && v < 2 * np + 2; v++)
+		free(k.fpre_of[v]);
+	for (size_t v = 0; k.flist_of && v < 2 * np + 2; v++)
+		free(k.flist_of[v]);
+	free(k.fpre_of);
+	free(k.flist_of);
+	free(k.checked);
+	free(k.chain_new);
+	free(k.nflist_of);
 	free(k.sg.cstart);
 	free(k.sg.items);
 	free(k.pg.cstart);
