@@ -760,6 +760,7 @@ struct checker {
 	unsigned char *checked;   /* per check: done once (later rounds test only
 	                             the pairs with a new segment) */
 	const struct fct_prop *ps, *pt;   /* image coordinates, or NULL */
+	double W, H;              /* the camera's image size (1 without a camera) */
 	int wrap;                 /* s wraps round (a cylindrical panorama) */
 };
 
@@ -996,6 +997,20 @@ static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
 	return 0;
 }
 
+/* An image coordinate in pixels within 1e-3 pixel of a pixel centre k + 0.5
+ * is put on it, exactly as tripatch does before it triangulates (dm2mesh's
+ * vertices sit on pixel centres, float s t miss them by up to 1e-4 pixel),
+ * so that both judge the same points: three vertices on one image row,
+ * column or diagonal are then exactly collinear for both.  scale 1: no
+ * camera, nothing to snap to. */
+static double snap_pixel(double x, double scale)
+{
+	if (scale == 1 || !isfinite(x))
+		return x;
+	double r = floor(x) + 0.5;
+	return fabs(x - r) < 1e-3 ? r : x;
+}
+
 /* Check patch p's simplified chains in its plane (image 0) or in image
  * coordinates (image 1); mark the segments to split in k->split and their
  * chains in k->chain_dirty.  Adds the conflicts found, and those inherited
@@ -1040,14 +1055,14 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 		for (size_t q = s; q < e; q++) {
 			double *o = k->xy + 2 * (k->base[x] + (q - s));
 			if (image) {
-				o[0] = fct_prop_get(k->ps, c->vert[q]);
-				o[1] = fct_prop_get(k->pt, c->vert[q]);
+				o[0] = snap_pixel(fct_prop_get(k->ps, c->vert[q]) * k->W, k->W);
+				o[1] = snap_pixel(fct_prop_get(k->pt, c->vert[q]) * k->H, k->H);
 				if (k->wrap) {
 					/* Unwrap s to within half a turn of the patch's
 					 * first point. */
 					if (ref == HUGE_VAL)
 						ref = o[0];
-					o[0] -= floor(o[0] - ref + 0.5);
+					o[0] -= k->W * floor((o[0] - ref) / k->W + 0.5);
 				}
 			} else {
 				const double *P = pt(k->m, c, q);
@@ -1249,7 +1264,9 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 	if (!k.ps || !k.pt || k.ps->count_type || k.pt->count_type)
 		k.ps = k.pt = NULL;
 	struct fct_camera cam;
-	k.wrap = fct_header_camera(m, &cam, NULL) == 1 && cam.kind == FCT_CAMERA_CYLINDRICAL;
+	int have_cam = fct_header_camera(m, &cam, NULL) == 1 && cam.width > 0 && cam.height > 0;
+	k.wrap = have_cam && cam.kind == FCT_CAMERA_CYLINDRICAL;
+	k.W = have_cam ? cam.width : 1, k.H = have_cam ? cam.height : 1;
 	size_t nv2 = 2 * np + 2;
 	memset(dirty, 0, nv2);
 	for (size_t p = 0; p < np; p++)

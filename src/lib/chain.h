@@ -51,7 +51,9 @@
  * (predicates.h) in two kinds of 2-D map: each patch's plane (its plane
  * element's, or without one the area-weighted normal of its faces), with
  * the chains of that patch; and, when the vertices carry image coordinates
- * s t, the image, with all the chains at once (a view's image is a planar
+ * s t, the image (in pixels, s W and t H of the camera comment, snapped to
+ * pixel centres within 1e-3 pixel as tripatch does, so both judge the same
+ * points), with all the chains at once (a view's image is a planar
  * map of everything it saw, so there a narrow hole or unlabelled region may
  * not collapse either; a cylindrical panorama's wrapping s is checked patch
  * by patch, unwrapped).  In a map, two simplified segments may not cross,
