@@ -45,7 +45,7 @@ for k in 0 1 2; do
 	gen $k
 	case $k in
 	0) what="zig-zag strip" ;;
-	1) what="2-vertex base under a zig-zag (fan)" ;;
+	1) what="2-vertex side facing a zig-zag" ;;
 	*) what="random star" ;;
 	esac
 	ref=$($T "meshconv '$dir/$k.ply' >/dev/null")
