@@ -535,130 +535,141 @@ static int simplify_chain(const struct fct_mesh *m, struct fct_chains *c, size_t
 
 /* Crossing checks ---------------------------------------------------------- */
 
-/* A uniform grid over a patch's 2-D points: items in cells, CSR. */
-struct grid {
-	double x0, y0, h, inv;
-	int nx, ny;
-	uint32_t *cstart;    /* nx * ny + 1 */
-	uint32_t *items;
-	size_t cap_cstart, cap_items, nitems;
+/* A static tree of 2-D boxes (median splits along the wider side), to find
+ * the items whose boxes meet a query box in O(log n + answers) however
+ * unevenly the items lie.  Boxes are exact minima and maxima of the
+ * coordinates, so two closed segments that meet always have meeting boxes:
+ * no padding is needed. */
+struct box_node {
+	double b[4];              /* xmin ymin xmax ymax */
+	uint32_t lo, hi;          /* items idx[lo .. hi) */
+	uint32_t left;            /* children left, left + 1; 0 for a leaf */
 };
 
-static int cell_of(double v, double o, double inv, int n)
+struct box_tree {
+	double *box;              /* 4 per item, filled by the caller */
+	uint32_t *idx;
+	struct box_node *node;
+	size_t n, nnode;
+	size_t cap_box, cap_idx, cap_node;
+};
+
+#define BOX_LEAF 8
+
+static int box_tree_reserve(struct box_tree *t, size_t n, struct fct_err *err)
 {
-	double x = (v - o) * inv;
-	if (!(x > 0))
-		return 0;
-	if (x >= n - 1)
-		return n - 1;
-	return (int)x;
+	t->n = n;
+	return fct_grow((void **)&t->box, &t->cap_box, 4 * (n ? n : 1), sizeof *t->box, err) ||
+	       fct_grow((void **)&t->idx, &t->cap_idx, n ? n : 1, sizeof *t->idx, err) ||
+	       fct_grow((void **)&t->node, &t->cap_node, 2 * (n / (BOX_LEAF / 2) + 1), sizeof *t->node, err)
+	       ? -1 : 0;
 }
 
-static void grid_shape(struct grid *g, double x0, double y0, double x1, double y1, size_t target)
+/* Centre of item i along axis a, twice (no rounding), ties by index. */
+static int box_before(const struct box_tree *t, uint32_t i, uint32_t j, int a)
 {
-	double w = x1 - x0, h = y1 - y0;
-	double t = (double)(target ? target : 1);
-	double cell = sqrt(w * h / t);
-	if (!(cell >= w / t))
-		cell = w / t;
-	if (!(cell >= h / t))
-		cell = h / t;
-	if (!(cell > 0) || !isfinite(cell))
-		cell = 1;
-	g->x0 = x0, g->y0 = y0, g->h = cell, g->inv = 1 / cell;
-	double nx = floor(w / cell) + 1, ny = floor(h / cell) + 1;
-	double lim = 2 * t + 2;
-	g->nx = (int)(nx < lim ? nx : lim);
-	g->ny = (int)(ny < lim ? ny : lim);
-	if (g->nx < 1)
-		g->nx = 1;
-	if (g->ny < 1)
-		g->ny = 1;
+	double ci = t->box[4 * (size_t)i + (size_t)a] + t->box[4 * (size_t)i + 2 + (size_t)a];
+	double cj = t->box[4 * (size_t)j + (size_t)a] + t->box[4 * (size_t)j + 2 + (size_t)a];
+	return ci < cj || (ci == cj && i < j);
 }
 
-/* Call fn for every cell segment ab may touch (conservatively: each column
- * strip it crosses, the rows of its y-range there, padded). */
-typedef void (*cell_fn)(void *ctx, uint32_t cell, uint32_t item);
-
-static void seg_cells(const struct grid *g, const double *a, const double *b, uint32_t item,
-                      cell_fn fn, void *ctx)
+/* Put the items of idx[lo .. hi) that come before the median first
+ * (quickselect, median-of-three pivots). */
+static void box_select(struct box_tree *t, uint32_t lo, uint32_t hi, uint32_t mid, int a)
 {
-	if (a[0] > b[0]) {
-		const double *t = a;
-		a = b, b = t;
-	}
-	double pad = g->h * 1e-6;
-	int c0 = cell_of(a[0] - pad, g->x0, g->inv, g->nx), c1 = cell_of(b[0] + pad, g->x0, g->inv, g->nx);
-	double dx = b[0] - a[0], dy = b[1] - a[1];
-	for (int cx = c0; cx <= c1; cx++) {
-		double ylo, yhi;
-		if (c0 == c1 || !(dx > 0)) {
-			ylo = a[1] < b[1] ? a[1] : b[1];
-			yhi = a[1] < b[1] ? b[1] : a[1];
-		} else {
-			double xl = g->x0 + cx * g->h, xr = xl + g->h;
-			if (xl < a[0])
-				xl = a[0];
-			if (xr > b[0])
-				xr = b[0];
-			double yl = a[1] + dy * ((xl - a[0]) / dx), yr = a[1] + dy * ((xr - a[0]) / dx);
-			ylo = yl < yr ? yl : yr;
-			yhi = yl < yr ? yr : yl;
-			if (cx == c0 && a[1] < ylo)
-				ylo = a[1];
-			if (cx == c0 && a[1] > yhi)
-				yhi = a[1];
-			if (cx == c1 && b[1] < ylo)
-				ylo = b[1];
-			if (cx == c1 && b[1] > yhi)
-				yhi = b[1];
+	uint32_t *x = t->idx;
+	while (hi - lo > 2) {
+		uint32_t m = lo + (hi - lo) / 2, l = hi - 1;
+		if (box_before(t, x[m], x[lo], a)) { uint32_t q = x[m]; x[m] = x[lo]; x[lo] = q; }
+		if (box_before(t, x[l], x[lo], a)) { uint32_t q = x[l]; x[l] = x[lo]; x[lo] = q; }
+		if (box_before(t, x[l], x[m], a)) { uint32_t q = x[l]; x[l] = x[m]; x[m] = q; }
+		uint32_t pivot = x[m];
+		uint32_t i = lo, j = hi - 1;
+		for (;;) {
+			while (box_before(t, x[i], pivot, a))
+				i++;
+			while (box_before(t, pivot, x[j], a))
+				j--;
+			if (i >= j)
+				break;
+			uint32_t q = x[i]; x[i] = x[j]; x[j] = q;
+			i++, j--;
 		}
-		int r0 = cell_of(ylo - pad, g->y0, g->inv, g->ny), r1 = cell_of(yhi + pad, g->y0, g->inv, g->ny);
-		for (int r = r0; r <= r1; r++)
-			fn(ctx, (uint32_t)r * (uint32_t)g->nx + (uint32_t)cx, item);
+		/* x[lo .. j] <= pivot <= x[j + 1 .. hi) */
+		if (mid <= j)
+			hi = j + 1;
+		else
+			lo = j + 1;
+	}
+	if (hi - lo == 2 && box_before(t, x[lo + 1], x[lo], a)) {
+		uint32_t q = x[lo]; x[lo] = x[lo + 1]; x[lo + 1] = q;
 	}
 }
 
-static void count_cell(void *ctx, uint32_t cell, uint32_t item)
+static void box_tree_build(struct box_tree *t)
 {
-	(void)item;
-	((struct grid *)ctx)->cstart[cell + 1]++;
+	for (size_t i = 0; i < t->n; i++)
+		t->idx[i] = (uint32_t)i;
+	t->nnode = 1;
+	t->node[0].lo = 0, t->node[0].hi = (uint32_t)t->n;
+	/* Nodes are made in breadth-first order: node k's children come after it. */
+	for (size_t k = 0; k < t->nnode; k++) {
+		struct box_node *nd = &t->node[k];
+		double b[4] = { HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+		for (uint32_t i = nd->lo; i < nd->hi; i++) {
+			const double *q = t->box + 4 * (size_t)t->idx[i];
+			b[0] = q[0] < b[0] ? q[0] : b[0], b[1] = q[1] < b[1] ? q[1] : b[1];
+			b[2] = q[2] > b[2] ? q[2] : b[2], b[3] = q[3] > b[3] ? q[3] : b[3];
+		}
+		memcpy(nd->b, b, sizeof b);
+		nd->left = 0;
+		if (nd->hi - nd->lo <= BOX_LEAF)
+			continue;
+		uint32_t lo = nd->lo, hi = nd->hi, mid = lo + (hi - lo) / 2;
+		box_select(t, lo, hi, mid, b[2] - b[0] >= b[3] - b[1] ? 0 : 1);
+		nd->left = (uint32_t)t->nnode;
+		t->node[t->nnode].lo = lo, t->node[t->nnode++].hi = mid;
+		t->node[t->nnode].lo = mid, t->node[t->nnode++].hi = hi;
+	}
 }
 
-static void fill_cell(void *ctx, uint32_t cell, uint32_t item)
+static int box_meet(const double *a, const double *b)
 {
-	struct grid *g = ctx;
-	g->items[g->cstart[cell]++] = item;
+	return a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3];
 }
 
-static int grid_alloc_cells(struct grid *g, struct fct_err *err)
+/* Call fn(ctx, item) for every item whose box meets q; stops early when fn
+ * returns non-zero. */
+static void box_tree_query(const struct box_tree *t, const double q[4],
+                           int (*fn)(void *ctx, uint32_t item), void *ctx)
 {
-	size_t ncell = (size_t)g->nx * (size_t)g->ny;
-	if (fct_grow((void **)&g->cstart, &g->cap_cstart, ncell + 1, sizeof *g->cstart, err))
-		return -1;
-	memset(g->cstart, 0, (ncell + 1) * sizeof *g->cstart);
-	return 0;
+	uint32_t stack[128];
+	int n = 0;
+	if (!t->n)
+		return;
+	stack[n++] = 0;
+	while (n) {
+		const struct box_node *nd = &t->node[stack[--n]];
+		if (!box_meet(nd->b, q))
+			continue;
+		if (nd->left) {
+			if (n + 2 > 128)
+				abort();    /* median splits: depth is at most log2(n) */
+			stack[n++] = nd->left + 1;
+			stack[n++] = nd->left;
+			continue;
+		}
+		for (uint32_t i = nd->lo; i < nd->hi; i++)
+			if (box_meet(t->box + 4 * (size_t)t->idx[i], q) && fn(ctx, t->idx[i]))
+				return;
+	}
 }
 
-/* After counting into cstart[cell + 1]: prefix sums, room for the items;
- * filling then advances cstart[cell], and grid_fixup restores the starts. */
-static int grid_prepare(struct grid *g, struct fct_err *err)
+static void box_tree_free(struct box_tree *t)
 {
-	size_t ncell = (size_t)g->nx * (size_t)g->ny;
-	for (size_t i = 0; i < ncell; i++)
-		g->cstart[i + 1] += g->cstart[i];
-	g->nitems = g->cstart[ncell];
-	if (fct_grow((void **)&g->items, &g->cap_items, g->nitems ? g->nitems : 1, sizeof *g->items, err))
-		return -1;
-	return 0;
-}
-
-static void grid_fixup(struct grid *g)
-{
-	size_t ncell = (size_t)g->nx * (size_t)g->ny;
-	for (size_t i = ncell; i > 0; i--)
-		g->cstart[i] = g->cstart[i - 1];
-	g->cstart[0] = 0;
+	free(t->box);
+	free(t->idx);
+	free(t->node);
 }
 
 static int sgn(double x)
@@ -743,7 +754,6 @@ struct checker {
 	struct seg *seg;
 	size_t nseg;
 	uint32_t *pts;            /* kept points: local index */
-	uint32_t *stamp;
 	unsigned char *mark;      /* per segment: split it */
 	uint32_t *fpre;           /* prefix counts of crossing original edges by the
 	                             local index of their first point */
@@ -752,8 +762,8 @@ struct checker {
 	uint32_t **fpre_of, **flist_of;   /* fpre and flist of each check, kept from
 	                                     round to round (the input does not change) */
 	size_t *nflist_of;
-	size_t cap_xy, cap_base, cap_seg, cap_pts, cap_stamp, cap_mark;
-	struct grid sg, pg;
+	size_t cap_xy, cap_base, cap_seg, cap_pts, cap_mark;
+	struct box_tree sg, pg;      /* segments, kept points */
 	unsigned char *split;     /* per chain position: split the segment starting here */
 	unsigned char *chain_dirty;
 	unsigned char *chain_new; /* chains split in the last round */
@@ -847,74 +857,95 @@ struct pair_ctx {
 	size_t conflicts, unresolved;
 };
 
-static void test_cell(void *ctx, uint32_t cell, uint32_t item)
+static int test_pair(void *ctx, uint32_t t)
 {
 	struct pair_ctx *pc = ctx;
 	struct checker *k = pc->k;
-	(void)item;
 	size_t s = pc->s;
-	const struct seg *a = &k->seg[s];
-	int snew = pc->all || k->chain_new[k->list[a->chain]];
-	if (!snew)
-		return;
-	for (uint32_t x = k->sg.cstart[cell]; x < k->sg.cstart[cell + 1]; x++) {
-		uint32_t t = k->sg.items[x];
-		if (t == s || k->stamp[t] == s + 1)
-			continue;
-		/* A pair of two new segments (or any pair when testing all) is
-		 * tested from its lower one; a new against an old one from the new. */
-		int tnew = pc->all || k->chain_new[k->list[k->seg[t].chain]];
-		if (tnew && t < s)
-			continue;
-		k->stamp[t] = (uint32_t)(s + 1);
-		const struct seg *b = &k->seg[t];
-		if (!seg_pair_conflict(k, a, b))
-			continue;
-		if (pc->original) {
-			/* Flag both edges (fpre holds flags until made prefix counts). */
-			k->fpre[local_of(k, a->chain, a->i) + 1] = 1;
-			k->fpre[local_of(k, b->chain, b->i) + 1] = 1;
-			continue;
-		}
-		pc->conflicts++;
-		if (inherited(k, a, b)) {
-			pc->unresolved++;
-			continue;
-		}
-		k->mark[s] = 1;
-		k->mark[t] = 1;
+	if (t == s)
+		return 0;
+	/* A pair of two new segments (or any pair when testing all) is tested
+	 * from its lower one; a new against an old one from the new. */
+	int tnew = pc->all || k->chain_new[k->list[k->seg[t].chain]];
+	if (tnew && t < s)
+		return 0;
+	const struct seg *a = &k->seg[s], *b = &k->seg[t];
+	if (!seg_pair_conflict(k, a, b))
+		return 0;
+	if (pc->original) {
+		/* Flag both edges (fpre holds flags until made prefix counts). */
+		k->fpre[local_of(k, a->chain, a->i) + 1] = 1;
+		k->fpre[local_of(k, b->chain, b->i) + 1] = 1;
+		return 0;
 	}
+	pc->conflicts++;
+	if (inherited(k, a, b)) {
+		pc->unresolved++;
+		return 0;
+	}
+	k->mark[s] = 1;
+	k->mark[t] = 1;
+	return 0;
 }
 
-/* Put k->seg[0..nseg) into the segment grid (shaped for the patch's
- * bounding box) and test the pairs sharing a cell. */
-static int find_pairs(struct checker *k, struct pair_ctx *pc, double x0, double y0, double x1,
-                      double y1, struct fct_err *err)
+/* Put k->seg[0..nseg) into the box tree and test the pairs whose boxes
+ * meet. */
+static int find_pairs(struct checker *k, struct pair_ctx *pc, struct fct_err *err)
 {
 	size_t n = k->nseg;
-	if (fct_grow((void **)&k->stamp, &k->cap_stamp, n ? n : 1, sizeof *k->stamp, err))
+	struct box_tree *t = &k->sg;
+	if (box_tree_reserve(t, n, err))
 		return -1;
-	memset(k->stamp, 0, n * sizeof *k->stamp);
-	grid_shape(&k->sg, x0, y0, x1, y1, 2 * n);
-	if (grid_alloc_cells(&k->sg, err))
-		return -1;
-	for (size_t s = 0; s < n; s++)
-		seg_cells(&k->sg, lxy(k, &k->seg[s], k->seg[s].i), lxy(k, &k->seg[s], k->seg[s].j),
-		          (uint32_t)s, count_cell, &k->sg);
-	if (grid_prepare(&k->sg, err))
-		return -1;
-	for (size_t s = 0; s < n; s++)
-		seg_cells(&k->sg, lxy(k, &k->seg[s], k->seg[s].i), lxy(k, &k->seg[s], k->seg[s].j),
-		          (uint32_t)s, fill_cell, &k->sg);
-	grid_fixup(&k->sg);
+	for (size_t s = 0; s < n; s++) {
+		const double *a = lxy(k, &k->seg[s], k->seg[s].i), *b = lxy(k, &k->seg[s], k->seg[s].j);
+		double *q = t->box + 4 * s;
+		q[0] = a[0] < b[0] ? a[0] : b[0], q[2] = a[0] < b[0] ? b[0] : a[0];
+		q[1] = a[1] < b[1] ? a[1] : b[1], q[3] = a[1] < b[1] ? b[1] : a[1];
+	}
+	box_tree_build(t);
 	for (size_t s = 0; s < n; s++) {
 		if (!pc->all && !k->chain_new[k->list[k->seg[s].chain]])
 			continue;
 		pc->s = s;
-		seg_cells(&k->sg, lxy(k, &k->seg[s], k->seg[s].i), lxy(k, &k->seg[s], k->seg[s].j),
-		          (uint32_t)s, test_cell, pc);
+		double q[4];
+		memcpy(q, t->box + 4 * s, sizeof q);
+		box_tree_query(t, q, test_pair, pc);
 	}
 	return 0;
+}
+
+struct sliver_ctx {
+	struct checker *k;
+	const double *P, *A, *B;  /* the span's points, the segment's ends */
+	size_t n;
+	double dev2;
+	uint32_t va, vb;          /* the segment's vertices */
+	int inside;
+};
+
+/* Is kept point q strictly inside the sliver (and not an end of it)? */
+static int sliver_point(void *ctx, uint32_t q)
+{
+	struct sliver_ctx *sc = ctx;
+	struct checker *k = sc->k;
+	const struct fct_chains *c = k->c;
+	uint32_t lq = k->pts[q];
+	const double *o = k->xy + 2 * (size_t)lq;
+	if (seg_dist2(o, sc->A, sc->B) > sc->dev2)
+		return 0;
+	size_t lo = 0, hi = k->nlist;
+	while (hi - lo > 1) {
+		size_t mid = (lo + hi) / 2;
+		if (k->base[mid] <= lq)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	uint32_t vq = c->vert[c->start[k->list[lo]] + (lq - k->base[lo])];
+	if (vq == sc->va || vq == sc->vb || !inside_polygon(sc->P, sc->n, o))
+		return 0;
+	sc->inside = 1;
+	return 1;
 }
 
 /* A kept point strictly inside the sliver between a simplified segment and
@@ -925,25 +956,16 @@ static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
                          struct fct_err *err)
 {
 	const struct fct_chains *c = k->c;
-	struct grid *g = &k->pg;
-	g->x0 = k->sg.x0, g->y0 = k->sg.y0, g->h = k->sg.h, g->inv = k->sg.inv;
-	g->nx = k->sg.nx, g->ny = k->sg.ny;
-	if (grid_alloc_cells(g, err))
+	struct box_tree *t = &k->pg;
+	if (box_tree_reserve(t, nkept, err))
 		return -1;
-	for (int pass = 0; pass < 2; pass++) {
-		for (size_t q = 0; q < nkept; q++) {
-			const double *o = k->xy + 2 * (size_t)k->pts[q];
-			uint32_t cell = (uint32_t)cell_of(o[1], g->y0, g->inv, g->ny) * (uint32_t)g->nx +
-			                (uint32_t)cell_of(o[0], g->x0, g->inv, g->nx);
-			if (pass == 0)
-				g->cstart[cell + 1]++;
-			else
-				g->items[g->cstart[cell]++] = (uint32_t)q;
-		}
-		if (pass == 0 && grid_prepare(g, err))
-			return -1;
+	for (size_t q = 0; q < nkept; q++) {
+		const double *o = k->xy + 2 * (size_t)k->pts[q];
+		double *b = t->box + 4 * q;
+		b[0] = b[2] = o[0], b[1] = b[3] = o[1];
 	}
-	grid_fixup(g);
+	box_tree_build(t);
+	struct sliver_ctx sc = { k, NULL, NULL, NULL, 0, 0, 0, 0, 0 };
 	for (size_t s = 0; s < k->nseg; s++) {
 		const struct seg *sg = &k->seg[s];
 		size_t f0, f1;
@@ -953,46 +975,26 @@ static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
 		const double *P = lxy(k, sg, sg->i);
 		size_t n = sg->j - sg->i + 1;
 		const double *A = P, *B = P + 2 * (n - 1);
-		double bx0 = HUGE_VAL, by0 = HUGE_VAL, bx1 = -HUGE_VAL, by1 = -HUGE_VAL, dev2 = 0;
-		for (size_t q = 0; q < n; q++) {
-			const double *o = P + 2 * q;
-			bx0 = o[0] < bx0 ? o[0] : bx0, bx1 = o[0] > bx1 ? o[0] : bx1;
-			by0 = o[1] < by0 ? o[1] : by0, by1 = o[1] > by1 ? o[1] : by1;
+		double q[4] = { HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL }, dev2 = 0;
+		for (size_t x = 0; x < n; x++) {
+			const double *o = P + 2 * x;
+			q[0] = o[0] < q[0] ? o[0] : q[0], q[2] = o[0] > q[2] ? o[0] : q[2];
+			q[1] = o[1] < q[1] ? o[1] : q[1], q[3] = o[1] > q[3] ? o[1] : q[3];
 			double d = seg_dist2(o, A, B);
 			dev2 = d > dev2 ? d : dev2;
 		}
 		/* The sliver lies in the hull of its points, so within sqrt(dev2) of
 		 * the segment: a cheap, generously rounded filter before the exact
 		 * parity test. */
-		dev2 = dev2 * (1 + 1e-6) + 1e-300;
-		int r0 = cell_of(by0, g->y0, g->inv, g->ny), r1 = cell_of(by1, g->y0, g->inv, g->ny);
-		int q0 = cell_of(bx0, g->x0, g->inv, g->nx), q1 = cell_of(bx1, g->x0, g->inv, g->nx);
-		uint32_t va = c->vert[sg->i], vb = c->vert[sg->j];
-		for (int r = r0; r <= r1 && !k->mark[s]; r++)
-			for (int cx = q0; cx <= q1 && !k->mark[s]; cx++) {
-				uint32_t cell = (uint32_t)r * (uint32_t)g->nx + (uint32_t)cx;
-				for (uint32_t x = g->cstart[cell]; x < g->cstart[cell + 1]; x++) {
-					uint32_t lq = k->pts[g->items[x]];
-					const double *o = k->xy + 2 * (size_t)lq;
-					if (o[0] < bx0 || o[0] > bx1 || o[1] < by0 || o[1] > by1 ||
-					    seg_dist2(o, A, B) > dev2)
-						continue;
-					size_t lo = 0, hi = k->nlist;
-					while (hi - lo > 1) {
-						size_t mid = (lo + hi) / 2;
-						if (k->base[mid] <= lq)
-							lo = mid;
-						else
-							hi = mid;
-					}
-					uint32_t vq = c->vert[c->start[k->list[lo]] + (lq - k->base[lo])];
-					if (vq == va || vq == vb || !inside_polygon(P, n, o))
-						continue;
-					k->mark[s] = 1;
-					pc->conflicts++;
-					break;
-				}
-			}
+		sc.P = P, sc.A = A, sc.B = B, sc.n = n;
+		sc.dev2 = dev2 * (1 + 1e-6) + 1e-300;
+		sc.va = c->vert[sg->i], sc.vb = c->vert[sg->j];
+		sc.inside = 0;
+		box_tree_query(t, q, sliver_point, &sc);
+		if (sc.inside) {
+			k->mark[s] = 1;
+			pc->conflicts++;
+		}
 	}
 	return 0;
 }
@@ -1047,7 +1049,6 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 	double u[3] = { 1, 0, 0 }, w[3] = { 0, 1, 0 }, ref = HUGE_VAL;
 	if (!image)
 		plane_frame(k->normal[p], u, w);
-	double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
 	k->nseg = 0;
 	for (size_t x = 0; x < nc; x++) {
 		size_t ci = k->list[x];
@@ -1068,8 +1069,6 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 				const double *P = pt(k->m, c, q);
 				o[0] = fct_v3_dot(P, u), o[1] = fct_v3_dot(P, w);
 			}
-			x0 = o[0] < x0 ? o[0] : x0, x1 = o[0] > x1 ? o[0] : x1;
-			y0 = o[1] < y0 ? o[1] : y0, y1 = o[1] > y1 ? o[1] : y1;
 			if (first && q > s) {
 				struct seg *g = &k->seg[k->nseg++];
 				g->chain = (uint32_t)x, g->i = q - 1, g->j = q;
@@ -1080,7 +1079,7 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 	 * first check. */
 	struct pair_ctx pc = { k, 0, 1, 1, 0, 0 };
 	if (first) {
-		if (find_pairs(k, &pc, x0, y0, x1, y1, err))
+		if (find_pairs(k, &pc, err))
 			return -1;
 		size_t nf = 0;
 		for (size_t l = 0; l < npt; l++)
@@ -1118,7 +1117,7 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 	pc.original = 0;
 	pc.all = count_only || !k->checked[v];
 	k->checked[v] = 1;
-	if (find_pairs(k, &pc, x0, y0, x1, y1, err))
+	if (find_pairs(k, &pc, err))
 		return -1;
 	if (count_only) {
 		*unresolved += pc.unresolved;
@@ -1354,7 +1353,6 @@ done:
 	free(k.base);
 	free(k.seg);
 	free(k.pts);
-	free(k.stamp);
 	free(k.mark);
 	for (size_t v = 0; k.fpre_of && v < 2 * np + 2; v++)
 		free(k.fpre_of[v]);
@@ -1365,10 +1363,8 @@ done:
 	free(k.checked);
 	free(k.chain_new);
 	free(k.nflist_of);
-	free(k.sg.cstart);
-	free(k.sg.items);
-	free(k.pg.cstart);
-	free(k.pg.items);
+	box_tree_free(&k.sg);
+	box_tree_free(&k.pg);
 	return rc;
 }
 
