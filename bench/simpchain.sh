@@ -5,7 +5,9 @@
 # strong noise (dm2mesh's jump cuts shred it into thousands of holes: many
 # chains and crossing checks), and two interleaved combs: two patches of a
 # 1000x200 grid whose one boundary runs round 250 teeth 2 cells wide and 180
-# long, narrower than the tolerance (3.4 cells).  Beside each, meshconv passing
+# long, narrower than the tolerance (3.4 cells); and one polygon of 100000
+# points along y = exp(40 x) (every point but a few in one cell of any
+# uniform grid).  Beside each, meshconv passing
 # the same file through (read + write, the floor of any stage) in the same
 # run.  Medians of RUNS runs: simpchain's CPU seconds (-v cpu_s), meshconv's
 # whole command.
@@ -44,9 +46,16 @@ awk 'BEGIN {
 	}
 	print "0 0 1 0"; print "0 0 1 0" }' | meshconv >"$dir/comb.ply"
 
+awk -v n=100000 'BEGIN {
+	print "ply\nformat ascii 1.0\nelement vertex " n + 1 "\nproperty double x\nproperty double y\nproperty double z"
+	print "element face 1\nproperty list int int vertex_indices\nproperty int patch\nend_header"
+	for (i = 0; i < n; i++) { x = i / n; print x, exp(40 * x), 0 }
+	print 0, exp(40), 0
+	line = n + 1; for (i = 0; i <= n; i++) line = line " " i; print line, 0 }' | meshconv >"$dir/expo.ply"
+
 echo "simpchain: labelled meshes (bench/gen_chain views of mkscene's room; a comb), default threshold 3; medians of $RUNS runs"
 row "input" "faces" "simpchain" "meshconv" "kept" "chains" "x-points" "x-left"
-for f in v640 v2048 shred comb; do
+for f in v640 v2048 shred comb expo; do
 	simpchain -v "$dir/$f.ply" 2>"$dir/fig" >/dev/null
 	row "$f" "$(fig faces_in)" "$(cpu "$dir/$f.ply")" "$($T "meshconv '$dir/$f.ply' >/dev/null")" \
 		"$(fig vertices_kept)" "$(($(fig chains) + $(fig loops)))" "$(fig crossing_points)" \

@@ -67,7 +67,9 @@
  * a boundary over itself in a plane seen obliquely, or an occlusion boundary
  * has points on both surfaces), the pair is counted in conflicts_left and
  * left alone, and so is a sliver whose own original edges conflict.  A
- * uniform grid per map keeps each check near linear in the boundary's size.
+ * median-split tree of the segments' and points' boxes finds the candidate
+ * pairs in O(n log n) however unevenly the points lie, and after the first
+ * round only pairs with a newly split chain are tested again.
  */
 #ifndef FCT_CHAIN_H
 #define FCT_CHAIN_H

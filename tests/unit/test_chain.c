@@ -566,6 +566,46 @@ static void test_edge_cases(void)
 	fct_mesh_free(&m);
 }
 
+/* One polygon of 3000 points along y = exp(40 x), closed by a point above
+ * the first: nearly all points crowd one corner of the bounding box (the
+ * uniform grid of an earlier version put them in one cell and took
+ * quadratic time).  Whatever is kept, nothing may cross. */
+static void test_uneven(void)
+{
+	struct fct_mesh m;
+	fct_mesh_init(&m);
+	size_t n = 3000;
+	uint32_t *f = malloc((n + 1) * sizeof *f);
+	for (size_t i = 0; i < n; i++) {
+		double x = (double)i / (double)n;
+		fct_mesh_add_vertex(&m, x, exp(40 * x), 0, &err);
+		f[i] = (uint32_t)i;
+	}
+	fct_mesh_add_vertex(&m, 0, exp(40), 0, &err);
+	f[n] = (uint32_t)n;
+	fct_mesh_add_face(&m, f, n + 1, &err);
+	free(f);
+	int32_t lab = 0;
+	fct_patches_set(&m, &lab, &err);
+	struct fct_plane pl = { { 0, 0, 1 }, 0, 1, 0 };
+	fct_planes_set(&m, &pl, 1, &err);
+	for (int pass = 0; pass < 2; pass++) {
+		struct fct_mesh w;
+		struct fct_chains ch;
+		struct fct_chain_stats st;
+		CHECK_INT(fct_mesh_copy(&w, &m, &err), 0);
+		CHECK_INT(simp(&w, pass ? 1 : 0, 1, &ch, &st), 0);
+		CHECK_INT(ch.loops, 1);
+		CHECK(w.nv >= 3);
+		CHECK(st.max_dev <= st.tolerance);
+		CHECK_INT(crossings(&w, 1), 0);
+		check_wire(&w, 1);
+		fct_chains_free(&ch);
+		fct_mesh_free(&w);
+	}
+	fct_mesh_free(&m);
+}
+
 /* A rendered view of mkscene's room with Kinect-class noise, meshed like
  * dm2mesh, each face labelled with the true patch of the majority of its
  * corners' pixels: the invariants on a real-sized boundary.  FCT_TEST_DUMP=
@@ -671,6 +711,7 @@ int main(void)
 	test_junction();
 	test_dip();
 	test_edge_cases();
+	test_uneven();
 	test_room();
 	CHECK_DONE();
 }
