@@ -45,6 +45,14 @@ int fct_camera_project(const struct fct_camera *cam, const double p[3], double *
 	return 1;
 }
 
+double fct_snap_pixel_centre(double x)
+{
+	if (!isfinite(x))
+		return x;
+	double r = floor(x) + 0.5;
+	return fabs(x - r) < 1e-3 ? r : x;
+}
+
 /* Skip blanks (and, for files, line ends and commas of JSON arrays). */
 static const char *skip_space(const char *s)
 {

@@ -32,6 +32,12 @@ void fct_camera_ray(const struct fct_camera *cam, double u, double v, double ray
 int fct_camera_project(const struct fct_camera *cam, const double p[3], double *u, double *v,
                        double *depth);
 
+/* A texture coordinate scaled to pixels (s W or t H, pixel centres at
+ * k + 0.5 in these units) within 1e-3 pixel of a centre is put on it:
+ * dm2mesh's vertices sit on pixel centres but float s t miss them by up to
+ * 1e-4 pixel, which turns three vertices on one image line into a sliver. */
+double fct_snap_pixel_centre(double x);
+
 /* Parse the text of a camera comment after "camera": "pinhole W H fx fy cx cy"
  * or "cylindrical W H f cy theta0".  0 or -1 (message set). */
 int fct_camera_parse(const char *text, struct fct_camera *cam, struct fct_err *err);

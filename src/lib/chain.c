@@ -784,19 +784,6 @@ static const double *lxy(const struct checker *k, const struct seg *s, size_t po
 	return k->xy + 2 * local_of(k, s->chain, pos);
 }
 
-/* Projection frame of a normal: u, w with u x w = n. */
-static void plane_frame(const double n[3], double u[3], double w[3])
-{
-	double ax[3] = { 0, 0, 0 };
-	int i = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
-	ax[i] = 1;
-	fct_v3_cross(u, ax, n);
-	double l = sqrt(fct_v3_dot(u, u));
-	for (int x = 0; x < 3; x++)
-		u[x] /= l;
-	fct_v3_cross(w, n, u);
-}
-
 static int seg_pair_conflict(const struct checker *k, const struct seg *a, const struct seg *b)
 {
 	const uint32_t *v = k->c->vert;
@@ -999,20 +986,6 @@ static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
 	return 0;
 }
 
-/* An image coordinate in pixels within 1e-3 pixel of a pixel centre k + 0.5
- * is put on it, exactly as tripatch does before it triangulates (dm2mesh's
- * vertices sit on pixel centres, float s t miss them by up to 1e-4 pixel),
- * so that both judge the same points: three vertices on one image row,
- * column or diagonal are then exactly collinear for both.  scale 1: no
- * camera, nothing to snap to. */
-static double snap_pixel(double x, double scale)
-{
-	if (scale == 1 || !isfinite(x))
-		return x;
-	double r = floor(x) + 0.5;
-	return fabs(x - r) < 1e-3 ? r : x;
-}
-
 /* Check patch p's simplified chains in its plane (image 0) or in image
  * coordinates (image 1); mark the segments to split in k->split and their
  * chains in k->chain_dirty.  Adds the conflicts found, and those inherited
@@ -1048,7 +1021,7 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 	/* Project; list the original edges. */
 	double u[3] = { 1, 0, 0 }, w[3] = { 0, 1, 0 }, ref = HUGE_VAL;
 	if (!image)
-		plane_frame(k->normal[p], u, w);
+		fct_plane_frame(k->normal[p], u, w);
 	k->nseg = 0;
 	for (size_t x = 0; x < nc; x++) {
 		size_t ci = k->list[x];
@@ -1056,8 +1029,8 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 		for (size_t q = s; q < e; q++) {
 			double *o = k->xy + 2 * (k->base[x] + (q - s));
 			if (image) {
-				o[0] = snap_pixel(fct_prop_get(k->ps, c->vert[q]) * k->W, k->W);
-				o[1] = snap_pixel(fct_prop_get(k->pt, c->vert[q]) * k->H, k->H);
+				o[0] = k->W == 1 ? fct_prop_get(k->ps, c->vert[q]) : fct_snap_pixel_centre(fct_prop_get(k->ps, c->vert[q]) * k->W);
+				o[1] = k->H == 1 ? fct_prop_get(k->pt, c->vert[q]) : fct_snap_pixel_centre(fct_prop_get(k->pt, c->vert[q]) * k->H);
 				if (k->wrap) {
 					/* Unwrap s to within half a turn of the patch's
 					 * first point. */

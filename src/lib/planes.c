@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom.h"
+
 int fct_planes_get(const struct fct_mesh *m, struct fct_plane **planes, size_t *n,
                    struct fct_err *err)
 {
@@ -102,4 +104,16 @@ int fct_patches_set(struct fct_mesh *m, const int32_t *patch, struct fct_err *er
 	if (m->nf)
 		memcpy(p->data, patch, m->nf * sizeof *patch);
 	return 0;
+}
+
+void fct_plane_frame(const double n[3], double e1[3], double e2[3])
+{
+	/* Start from the axis least aligned with n, so e1 is well defined. */
+	double a[3] = { 0, 0, 0 };
+	int k = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
+	a[k] = 1;
+	fct_v3_cross(e1, a, n);
+	double l = sqrt(fct_v3_dot(e1, e1));
+	e1[0] /= l, e1[1] /= l, e1[2] /= l;
+	fct_v3_cross(e2, n, e1);
 }

@@ -37,6 +37,10 @@ int fct_patches_get(const struct fct_mesh *m, int32_t **patch, int *present, lon
 /* Set the face property patch (int) from patch[0..m->nf). */
 int fct_patches_set(struct fct_mesh *m, const int32_t *patch, struct fct_err *err);
 
+/* An orthonormal frame (e1, e2) of the plane with unit normal n, with
+ * e1 x e2 = n; the same frame for the same n everywhere. */
+void fct_plane_frame(const double n[3], double e1[3], double e2[3]);
+
 /* Signed distance of p from the plane. */
 static inline double fct_plane_distance(const struct fct_plane *pl, const double p[3])
 {

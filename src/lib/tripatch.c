@@ -251,31 +251,6 @@ static int repair(struct work *w, const struct fct_tripatch_params *p, struct fc
 	return 0;
 }
 
-/* An orthonormal frame (e1, e2) of the plane with normal n, e1 x e2 = n. */
-static void plane_frame(const double n[3], double e1[3], double e2[3])
-{
-	double a[3] = { 0, 0, 0 };
-	int k = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
-	a[k] = 1;
-	fct_v3_cross(e1, a, n);
-	double l = sqrt(fct_v3_dot(e1, e1));
-	e1[0] /= l, e1[1] /= l, e1[2] /= l;
-	fct_v3_cross(e2, n, e1);
-}
-
-/* An image coordinate in pixels (s W or t H) within 1e-3 pixel of a pixel
- * centre k + 0.5 is put on it: dm2mesh's vertices sit on pixel centres, but
- * float s t miss them by up to 1e-4 pixel, which turns three vertices on
- * one image line into a sliver the greedy method would take as an ear.
- * scale is 1 (no camera): nothing to snap to. */
-static double snap(double x, double scale)
-{
-	if (scale == 1 || !isfinite(x))
-		return x;
-	double r = floor(x) + 0.5;
-	return fabs(x - r) < 1e-3 ? r : x;
-}
-
 /* Frame f of the patch's vertices: 0 image coordinates, 1 the plane.  Sets
  * w->have[f]: usable (finite, with area); mirrors it when seen from
  * behind. */
@@ -290,12 +265,12 @@ static int make_frame(struct work *w, const struct fct_mesh *m, int f, const str
 		if (!ps || !pt)
 			return 0;
 		for (size_t i = 0; i < w->nl; i++) {
-			xy[2 * i] = snap(fct_prop_get(ps, w->gl[i]) * W, W);
-			xy[2 * i + 1] = snap(fct_prop_get(pt, w->gl[i]) * H, H);
+			xy[2 * i] = W == 1 ? fct_prop_get(ps, w->gl[i]) : fct_snap_pixel_centre(fct_prop_get(ps, w->gl[i]) * W);
+			xy[2 * i + 1] = H == 1 ? fct_prop_get(pt, w->gl[i]) : fct_snap_pixel_centre(fct_prop_get(pt, w->gl[i]) * H);
 		}
 	} else {
 		double e1[3], e2[3];
-		plane_frame(n, e1, e2);
+		fct_plane_frame(n, e1, e2);
 		/* relative to the first vertex, for precision far from the origin */
 		const double *o = &m->xyz[3 * (size_t)w->gl[0]];
 		for (size_t i = 0; i < w->nl; i++) {
