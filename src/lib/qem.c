@@ -54,7 +54,7 @@ struct qem {
 	double *p;              /* positions, relative to the centre */
 	struct quad *q;         /* face planes */
 	uint32_t *bq;           /* border planes of v: bquad[bq[v]], or NOBQ */
-	double (*bquad)[10];
+	struct quad *bquad;     /* w: the border weight they carry */
 	size_t nbquad;
 	unsigned char *flag;
 	uint32_t *tri;          /* 3 per triangle; tri[3t] == DEAD once collapsed */
@@ -130,20 +130,32 @@ static int quad_solve(const double a[10], double x[3])
 #define NOBQ UINT32_MAX
 #define NOHOLE UINT32_MAX
 
-/* The quadric of the edge (a, b): its ends' face planes, and their border
- * planes when border is set. */
-static void edge_quadric(const struct qem *s, uint32_t a, uint32_t b, int border, double q[10])
+enum { FACES = 1, BORDERS = 2 };
+
+/* The quadric of the edge (a, b): its ends' face planes (parts & FACES)
+ * and border planes (parts & BORDERS); *w (may be NULL) gets the weight
+ * they carry. */
+static void edge_quadric(const struct qem *s, uint32_t a, uint32_t b, int parts, double q[10],
+                         double *w)
 {
-	for (int k = 0; k < 10; k++)
-		q[k] = s->q[a].a[k] + s->q[b].a[k];
-	if (!border)
-		return;
-	if (s->bq[a] != NOBQ)
-		for (int k = 0; k < 10; k++)
-			q[k] += s->bquad[s->bq[a]][k];
-	if (s->bq[b] != NOBQ)
-		for (int k = 0; k < 10; k++)
-			q[k] += s->bquad[s->bq[b]][k];
+	double wsum = 0;
+	memset(q, 0, sizeof(double[10]));
+	for (int side = 0; side < 2; side++) {
+		uint32_t v = side ? b : a;
+		const struct quad *qs[2] = {
+			parts & FACES ? &s->q[v] : NULL,
+			parts & BORDERS && s->bq[v] != NOBQ ? &s->bquad[s->bq[v]] : NULL,
+		};
+		for (int j = 0; j < 2; j++) {
+			if (!qs[j])
+				continue;
+			for (int k = 0; k < 10; k++)
+				q[k] += qs[j]->a[k];
+			wsum += qs[j]->w;
+		}
+	}
+	if (w)
+		*w = wsum;
 }
 
 /* How much rounding an evaluation of q at x may hold: 1e-12 of the size of
@@ -160,7 +172,7 @@ static double edge_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3]
 {
 	double q[10];
 	const double *pa = s->p + 3 * (size_t)a, *pb = s->p + 3 * (size_t)b;
-	edge_quadric(s, a, b, 1, q);
+	edge_quadric(s, a, b, FACES | BORDERS, q, NULL);
 	double best = quad_eval(q, pa);
 	memcpy(x, pa, sizeof(double[3]));
 	double e = quad_eval(q, pb);
@@ -630,11 +642,15 @@ static int collapse(struct qem *s, uint32_t e, const double x[3], uint32_t hole,
 		s->q[keep].a[k] += s->q[gone].a[k];
 	s->q[keep].w += s->q[gone].w;
 	if (s->bq[gone] != NOBQ) {
-		if (s->bq[keep] == NOBQ)
+		if (s->bq[keep] == NOBQ) {
 			s->bq[keep] = s->bq[gone];
-		else
+		} else {
+			struct quad *qk = &s->bquad[s->bq[keep]];
+			const struct quad *qg = &s->bquad[s->bq[gone]];
 			for (int k = 0; k < 10; k++)
-				s->bquad[s->bq[keep]][k] += s->bquad[s->bq[gone]][k];
+				qk->a[k] += qg->a[k];
+			qk->w += qg->w;
+		}
 	}
 	s->flag[keep] |= s->flag[gone] & BORDER;
 	s->flag[gone] &= (unsigned char)~ALIVE;
@@ -657,11 +673,14 @@ static int collapse(struct qem *s, uint32_t e, const double x[3], uint32_t hole,
 	if (lists_merge(&s->vt, s->nv, keep, gone, err))
 		return -1;
 	if (hole != NOHOLE) {
-		/* keep and hole are still on the border if they are on another loop. */
-		if (!on_border(s, keep))
-			s->flag[keep] &= (unsigned char)~BORDER;
-		if (!on_border(s, hole))
-			s->flag[hole] &= (unsigned char)~BORDER;
+		/* keep and hole are still on the border if they are on another
+		 * loop; if not, the planes that held them to the hole go too. */
+		uint32_t ends[2] = {keep, hole};
+		for (int k = 0; k < 2; k++)
+			if (!on_border(s, ends[k])) {
+				s->flag[ends[k]] &= (unsigned char)~BORDER;
+				s->bq[ends[k]] = NOBQ;
+			}
 		s->st->holes_closed++;
 	}
 
@@ -712,11 +731,14 @@ static int run_pass(struct qem *s, struct fct_err *err)
 		uint32_t e = s->heap[0].e;
 		heap_remove(s, e);
 		uint32_t a = s->ev[2 * (size_t)e], b = s->ev[2 * (size_t)e + 1];
-		double x[3], fq[10];
+		double x[3], fq[10], bqd[10], w, wb;
 		edge_cost(s, a, b, x);
-		edge_quadric(s, a, b, 0, fq);
-		double fcost = quad_eval(fq, x), w = s->q[a].w + s->q[b].w;
+		edge_quadric(s, a, b, FACES, fq, &w);
+		edge_quadric(s, a, b, BORDERS, bqd, &wb);
+		double fcost = quad_eval(fq, x), bcost = quad_eval(bqd, x);
 		double d2 = w > 0 ? fcost / w : fcost > 0 ? INFINITY : 0;
+		if (wb > 0 && bcost / wb > d2)
+			d2 = bcost / wb;
 		if (d2 > s->max_err2) {
 			s->st->refused_error++;
 			continue;
@@ -749,19 +771,16 @@ static int run_pass(struct qem *s, struct fct_err *err)
 
 /* Set-up ------------------------------------------------------------------ */
 
-/* Add a border plane to v's border quadric (made on first use; there is
- * room for one per vertex). */
+/* Add a border plane of weight w to v's border quadric (made on first use;
+ * there is room for one per border vertex). */
 static void border_plane(struct qem *s, uint32_t v, const double n[3], double d, double w)
 {
 	if (s->bq[v] == NOBQ) {
 		s->bq[v] = (uint32_t)s->nbquad++;
-		memset(s->bquad[s->bq[v]], 0, sizeof s->bquad[0]);
+		memset(&s->bquad[s->bq[v]], 0, sizeof s->bquad[0]);
 	}
-	struct quad q;
-	memset(&q, 0, sizeof q);
-	quad_add_plane(&q, n, d, w);
-	for (int k = 0; k < 10; k++)
-		s->bquad[s->bq[v]][k] += q.a[k];
+	quad_add_plane(&s->bquad[s->bq[v]], n, d, w);
+	s->bquad[s->bq[v]].w += w;
 }
 
 /* From the adjacency of the triangles: the edges and the vertex lists; lock
@@ -874,7 +893,7 @@ void fct_qem_params_default(struct fct_qem_params *p)
 {
 	p->target_faces = 0;
 	p->max_error = 0;
-	p->border_weight = 1000;
+	p->border_weight = 1;
 	p->close_holes = 0;
 }
 

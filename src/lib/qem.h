@@ -19,9 +19,13 @@
  * relative to the centre of the bounding box, so large coordinates lose no
  * precision in Q.
  *
- * The quadric distance of a collapse is sqrt(Qf(x) / W), Qf the face-plane
- * part of Q and W the area it carries: the area-weighted RMS distance of x
- * from the planes of the input faces the new vertex stands for.
+ * The quadric distance of a collapse is the larger of sqrt(Qf(x) / W), Qf
+ * the face-plane part of Q and W the area it carries (the area-weighted RMS
+ * distance of x from the planes of the input faces the new vertex stands
+ * for), and sqrt(Qb(x) / Wb) for the border planes and their weights (the
+ * weighted RMS distance of x from the border lines it stands for).  When a
+ * triangular hole is closed, the border planes of its corners that are no
+ * longer on a border are dropped.
  *
  * Order.  Edges wait in an indexed 4-ary heap keyed by cost plus 1e-6 (W_a +
  * W_b) |b - a|^2, ties going to the lower vertex numbers, so the result is
@@ -61,8 +65,7 @@
  *    target count exactly, or one more when only interior collapses, which
  *    remove two triangles, remain: always so on a closed mesh, whose count
  *    is even);
- *  - its quadric distance exceeds max_error (the distance to the face
- *    planes only: the border planes steer the order, not this bound).
+ *  - its quadric distance exceeds max_error.
  *
  * Properties.  The vertex kept is the end nearer the new position (the
  * lower index on a tie), with its row of every property; float and double
@@ -89,7 +92,7 @@
 struct fct_qem_params {
 	size_t target_faces;    /* stop at this many triangles (0: only max_error stops) */
 	double max_error;       /* largest quadric distance of a collapse; <= 0: no bound */
-	double border_weight;   /* weight of the border planes (default 1000; 0: free borders) */
+	double border_weight;   /* weight of the border planes (default 1; 0: free borders) */
 	int close_holes;        /* let collapses close triangular holes (default 0) */
 };
 
@@ -108,7 +111,7 @@ struct fct_qem_stats {
 	double max_cost;                /* largest Q(x) of a collapse done (area x length^2) */
 };
 
-/* Defaults: no target, no error bound, border weight 1000. */
+/* Defaults: no target, no error bound, border weight 1, holes kept. */
 void fct_qem_params_default(struct fct_qem_params *p);
 
 /* Decimate m in place (see above).  st (may be NULL) gets the figures.
