@@ -139,19 +139,23 @@ static void edge_quadric(const struct qem *s, uint32_t a, uint32_t b, int parts,
                          double *w)
 {
 	double wsum = 0;
-	memset(q, 0, sizeof(double[10]));
-	for (int side = 0; side < 2; side++) {
-		uint32_t v = side ? b : a;
-		const struct quad *qs[2] = {
-			parts & FACES ? &s->q[v] : NULL,
-			parts & BORDERS && s->bq[v] != NOBQ ? &s->bquad[s->bq[v]] : NULL,
-		};
+	if (parts & FACES) {
+		const struct quad *qa = &s->q[a], *qb = &s->q[b];
+		for (int k = 0; k < 10; k++)
+			q[k] = qa->a[k] + qb->a[k];
+		wsum = qa->w + qb->w;
+	} else {
+		memset(q, 0, sizeof(double[10]));
+	}
+	if (parts & BORDERS) {
+		uint32_t ends[2] = {s->bq[a], s->bq[b]};
 		for (int j = 0; j < 2; j++) {
-			if (!qs[j])
+			if (ends[j] == NOBQ)
 				continue;
+			const struct quad *qe = &s->bquad[ends[j]];
 			for (int k = 0; k < 10; k++)
-				q[k] += qs[j]->a[k];
-			wsum += qs[j]->w;
+				q[k] += qe->a[k];
+			wsum += qe->w;
 		}
 	}
 	if (w)
