@@ -17,7 +17,7 @@
 
 static const char usage[] =
 	"usage: projverts [-aqv] [-o file] [--max-move d] [--orthogonal angle]\n"
-	"                 [--depth-scale-fix] [--fallback] [input]\n"
+	"                 [--depth-scale-fix] [--fallback] [--along-rays] [input]\n"
 	"Move each vertex of a mesh with face property patch and a plane element onto\n"
 	"its plane, onto the line of its two planes, or to the least-squares point of\n"
 	"its k >= 3 planes; recompute s t from the camera and pose comments.\n"
@@ -36,10 +36,13 @@ static const char usage[] =
 	"                      snap planes within angle degrees of orthogonal or\n"
 	"                      parallel to an exact frame with a common up axis\n"
 	"                      (0 < angle <= 40)\n"
+	"      --along-rays    with a camera, move a vertex on one or two planes along\n"
+	"                      its own ray (where range noise lies), keeping it on its\n"
+	"                      pixel, instead of perpendicularly as the paper does\n"
 	"  -h, --help          this help\n"
 	"      --version       print the version\n";
 
-enum { OPT_MAXMOVE = 256, OPT_ORTHO, OPT_SCALE, OPT_FALLBACK, OPT_VERSION };
+enum { OPT_MAXMOVE = 256, OPT_ORTHO, OPT_SCALE, OPT_FALLBACK, OPT_RAYS, OPT_VERSION };
 
 int main(int argc, char **argv)
 {
@@ -50,6 +53,7 @@ int main(int argc, char **argv)
 		{"orthogonal", required_argument, NULL, OPT_ORTHO},
 		{"depth-scale-fix", no_argument, NULL, OPT_SCALE},
 		{"fallback", no_argument, NULL, OPT_FALLBACK},
+		{"along-rays", no_argument, NULL, OPT_RAYS},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "aho:qv";
@@ -78,6 +82,7 @@ int main(int argc, char **argv)
 			break;
 		case OPT_SCALE: par.depth_scale_fix = 1; break;
 		case OPT_FALLBACK: par.fallback = 1; break;
+		case OPT_RAYS: par.along_rays = 1; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
@@ -133,6 +138,8 @@ int main(int argc, char **argv)
 		fct_report(key, "%zu", st.moved[k]);
 	}
 	fct_report("rejected", "%zu", st.rejected);
+	fct_report("flip_refused", "%zu", st.flip_refused);
+	fct_report("along_ray", "%zu", st.along_ray);
 	fct_report("fallback", "%zu", st.fallback);
 	fct_report("rank_deficient", "%zu", st.rank_deficient);
 	fct_report("mean_edge", "%.9g", st.mean_edge);

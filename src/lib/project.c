@@ -821,6 +821,72 @@ static int texcoord_column(struct fct_mesh *m, const char *name, struct fct_err 
 	return fct_elem_add_scalar(&m->vertex, name, t, err) ? 0 : -1;
 }
 
+/* The point where the ray from the camera centre c through x meets the
+ * plane (k = 1), or the point of the planes' line nearest that ray (k = 2),
+ * into out; 0 when the ray runs (nearly) along the plane or the line. */
+static int along_ray(const double *n, const double *d, size_t k, const double c[3],
+                     const double x[3], double out[3])
+{
+	double r[3];
+	fct_v3_sub(r, x, c);
+	double rl = sqrt(fct_v3_dot(r, r));
+	if (!(rl > 0))
+		return 0;
+	if (k == 1) {
+		double nr = fct_v3_dot(n, r);
+		if (!(fabs(nr) > 1e-3 * rl))
+			return 0;
+		double lambda = -(fct_v3_dot(n, c) + d[0]) / nr;
+		fct_v3_axpy(out, c, lambda, r);
+		return 1;
+	}
+	/* The line: direction u = n1 x n2 through the point p0 of both planes
+	 * nearest the origin; then the closest points of two lines. */
+	double u[3], p0[3], a[3], b[3];
+	fct_v3_cross(u, n, n + 3);
+	double uu = fct_v3_dot(u, u);
+	if (!(uu > 1e-6))
+		return 0;
+	fct_v3_cross(a, u, n + 3);
+	fct_v3_cross(b, n, u);
+	for (int i = 0; i < 3; i++)
+		p0[i] = (-d[0] * a[i] - d[1] * b[i]) / uu;
+	double w0[3];
+	fct_v3_sub(w0, p0, c);
+	double A = uu, B = fct_v3_dot(u, r), C = fct_v3_dot(r, r), D = fct_v3_dot(u, w0), E = fct_v3_dot(r, w0);
+	double den = A * C - B * B;
+	if (!(den > 1e-6 * A * C))
+		return 0;
+	double s = (B * E - C * D) / den;
+	fct_v3_axpy(out, p0, s, u);
+	return 1;
+}
+
+/* How many faces around vertex v (all its faces, fanned from their first
+ * corner) face against their patch's plane normal. */
+static size_t faces_against(const struct fct_mesh *m, const struct fct_adj *adj, const int32_t *patch,
+                            const struct fct_plane *pl, size_t v)
+{
+	size_t bad = 0;
+	for (uint32_t q = adj->vert_fstart[v]; q < adj->vert_fstart[v + 1]; q++) {
+		uint32_t f = adj->vert_f[q];
+		if (patch[f] < 0)
+			continue;
+		const uint32_t *fv = m->fvert + m->fstart[f];
+		uint32_t n = fct_face_size(m, f);
+		double area[3] = { 0, 0, 0 };
+		for (uint32_t i = 1; i + 1 < n; i++) {
+			double e1[3], e2[3], c[3];
+			fct_v3_sub(e1, m->xyz + 3 * (size_t)fv[i], m->xyz + 3 * (size_t)fv[0]);
+			fct_v3_sub(e2, m->xyz + 3 * (size_t)fv[i + 1], m->xyz + 3 * (size_t)fv[0]);
+			fct_v3_cross(c, e1, e2);
+			fct_v3_add(area, area, c);
+		}
+		bad += fct_v3_dot(area, pl[patch[f]].n) <= 0;
+	}
+	return bad;
+}
+
 int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
                      struct fct_project_stats *st_out, struct fct_err *err)
 {
@@ -875,6 +941,11 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	}
 	int cyl = have_cam && cam.kind == FCT_CAMERA_CYLINDRICAL;
 	int planes_changed = 0;
+	/* The camera centre in the mesh's frame: both models see from their
+	 * origin. */
+	double centre[3] = { 0, 0, 0 };
+	if (have_pose)
+		centre[0] = pose[3], centre[1] = pose[7], centre[2] = pose[11];
 
 	/* Section 8: the depth scale first (it changes shape), then snapping. */
 	if (p->depth_scale_fix) {
@@ -978,8 +1049,33 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 			r2_before += r * r;
 		}
 		struct fct_point_fit fit;
+		double x0[3];
+		memcpy(x0, x, sizeof x0);
+		size_t against = faces_against(m, &adj, patch, pl, v);
 		if (fct_project_point(nbuf, dbuf, k, x, st.bound, p->rank_tol, p->fallback, x, &fit, err))
 			goto out;
+		/* A move must not turn a face around it against its plane (a
+		 * sliver whose corner slides across its opposite edge): such a
+		 * move is refused like one over the bound. */
+		/* Range noise lies along the rays: with along_rays, a vertex on one
+		 * or two planes moves along its own ray (to the plane, or to the
+		 * point of the line nearest the ray) rather than perpendicularly,
+		 * which keeps it on its pixel, so its faces keep their orientation
+		 * in the image. */
+		if (have_cam && p->along_rays && fit.used > 0 && fit.used == fit.rank && (k == 1 || k == 2)) {
+			double y[3];
+			if (along_ray(nbuf, dbuf, k, centre, x0, y) && sqrt(fct_v3_dist2(y, x0)) <= st.bound) {
+				memcpy(x, y, sizeof y);
+				fit.move = sqrt(fct_v3_dist2(y, x0));
+				st.along_ray++;
+			}
+		}
+		int flipped = fit.used > 0 && faces_against(m, &adj, patch, pl, v) > against;
+		if (flipped) {
+			memcpy(x, x0, sizeof x0);
+			fit.used = 0;
+			st.flip_refused++;
+		}
 		int kk = k < 3 ? (int)k : 3;
 		st.by_k[kk]++;
 		if (fit.used > 0) {
@@ -989,7 +1085,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 				st.max_move = fit.move;
 			if (fit.used < fit.rank)
 				st.fallback++;
-		} else if (fit.rank > 0) {
+		} else if (fit.rank > 0 && !flipped) {
 			st.rejected++;
 		}
 		if (fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3))

@@ -57,6 +57,8 @@ struct fct_project_params {
 	double scale_angle;     /* degrees from 90 that make a pair an inlier of the scale
 	                           (default FCT_PROJECT_SCALE_ANGLE, or ortho_angle when set) */
 	int texcoords;          /* recompute s t when there is a camera (default 1) */
+	int along_rays;         /* with a camera, k = 1, 2 move along the vertex's ray
+	                           instead of perpendicularly (the paper's rule) */
 };
 
 void fct_project_params_default(struct fct_project_params *p);
@@ -157,6 +159,8 @@ struct fct_project_stats {
 	size_t by_k[4];          /* vertices on 0, 1, 2, >= 3 planes */
 	size_t moved[4];         /* of those, moved */
 	size_t rejected;         /* moves over the bound: vertex kept */
+	size_t flip_refused;     /* moves that would turn a face against its plane: kept */
+	size_t along_ray;        /* moves made along the camera's ray */
 	size_t fallback;         /* moved at a lower rank than the full solution */
 	size_t rank_deficient;   /* numerical rank below min(k, 3) */
 	double mean_edge, bound;

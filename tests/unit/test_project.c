@@ -325,6 +325,48 @@ static void test_mesh_tent(void)
 	fct_mesh_free(&m);
 }
 
+/* --along-rays: the tent's vertices move along their rays from the camera
+ * centre (0, 0, -1): a vertex on one plane lands where its ray meets the
+ * plane, and keeps its s t. */
+static void test_along_rays(void)
+{
+	struct fct_mesh m;
+	fct_mesh_init(&m);
+	double xs[4][3] = { { -1, -0.5, 1.52 }, { -1, 0.5, 1.47 }, { -0.9, -0.4, 1.56 }, { -0.8, 0.45, 1.6 } };
+	for (int i = 0; i < 4; i++)
+		fct_mesh_add_vertex(&m, xs[i][0], xs[i][1], xs[i][2], &err);
+	uint32_t f[2][3] = { { 0, 2, 1 }, { 1, 2, 3 } };
+	for (int i = 0; i < 2; i++)
+		fct_mesh_add_face(&m, f[i], 3, &err);
+	int32_t lab[2] = { 0, 0 };
+	CHECK_INT(fct_patches_set(&m, lab, &err), 0);
+	double s5 = sqrt(1.25);
+	struct fct_plane pl[1] = { { { 0.5 / s5, 0, -1 / s5 }, 2 / s5, 2, 0 } };
+	CHECK_INT(fct_planes_set(&m, pl, 1, &err), 0);
+	struct fct_camera cam = { FCT_CAMERA_PINHOLE, 100, 80, 50, 50, 49.5, 39.5, 0, 0 };
+	double pose[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -1 };
+	CHECK_INT(fct_header_set_camera(&m, &cam, &err), 0);
+	CHECK_INT(fct_header_set_pose(&m, pose, &err), 0);
+	struct fct_project_params par;
+	fct_project_params_default(&par);
+	par.along_rays = 1;
+	par.max_move = HUGE_VAL;
+	struct fct_project_stats st;
+	CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+	CHECK_INT(st.along_ray, 4);
+	/* Vertex 0: ray (-1, -0.5, 2.52) from (0, 0, -1); on z = 2 + 0.5 x at
+	 * lambda with -1 + 2.52 lambda = 2 - 0.5 lambda: lambda = 3 / 3.02. */
+	double lambda = 3 / 3.02;
+	CHECK_NEAR(m.xyz[0], -lambda, 1e-15);
+	CHECK_NEAR(m.xyz[1], -0.5 * lambda, 1e-15);
+	CHECK_NEAR(m.xyz[2], -1 + 2.52 * lambda, 1e-15);
+	/* Its pixel is unchanged: u = 49.5 + 50 * x / z_cam. */
+	const struct fct_prop *ps = fct_elem_find(&m.vertex, "s");
+	CHECK_NEAR(fct_prop_get(ps, 0), (49.5 + 50 * -1 / 2.52 + 0.5) / 100, 1e-7);
+	CHECK(st.rms_after < 1e-15);
+	fct_mesh_free(&m);
+}
+
 /* Malformed input: no patch property, no plane element, an empty mesh. */
 static void test_bad(void)
 {
@@ -856,6 +898,7 @@ int main(void)
 	test_near_parallel();
 	test_texcoord();
 	test_mesh_tent();
+	test_along_rays();
 	test_bad();
 	test_room_noise();
 	test_room_orthogonal();
