@@ -1,0 +1,154 @@
+/* segplanes - segment a mesh into planar patches by global region growing:
+ * Kang, Johnson and Szeliski, "Extraction of Concise and Realistic 3-D
+ * Models from Real Data" (DEC CRL 95/7), section 2.  The algorithm is
+ * fct_segment (segment.h); this is its command line. */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "header.h"
+#include "meshio.h"
+#include "planes.h"
+#include "segment.h"
+
+static const char usage[] =
+	"usage: segplanes [-aqv] [-c factor] [-n patches] [-o file] [--area-weighted]\n"
+	"                 [--max-rms r] [--min-faces k] [input]\n"
+	"Label the faces of a mesh with planar patches (face property patch) and add\n"
+	"their planes (element plane), by merging the adjacent patches that fit one\n"
+	"plane best until a criterion stops it.\n"
+	"  -a                 write ascii PLY\n"
+	"  -c factor          automatic criterion: merge while a union's rms is at most\n"
+	"                     factor times its local noise (default 3)\n"
+	"  -n patches         stop at this many patches instead (T_N)\n"
+	"  -o file            output file (default standard output)\n"
+	"      --area-weighted\n"
+	"                     fit each face's surface weighted by area, not its corners\n"
+	"      --max-rms r    never merge two patches whose union has rms above r\n"
+	"                     (units of the coordinates)\n"
+	"      --min-faces k  absorb patches of fewer than k faces into the neighbour\n"
+	"                     that fits them best (default 0: none)\n"
+	"  -q                 quiet\n"
+	"  -v                 report patches, noise, rms, merges and times on stderr\n"
+	"  -h, --help         this help\n"
+	"      --version      print the version\n";
+
+enum { OPT_AREA = 256, OPT_MAXRMS, OPT_MINFACES, OPT_TLS, OPT_VERSION };
+
+int main(int argc, char **argv)
+{
+	static const struct option longopts[] = {
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, OPT_VERSION},
+		{"area-weighted", no_argument, NULL, OPT_AREA},
+		{"max-rms", required_argument, NULL, OPT_MAXRMS},
+		{"min-faces", required_argument, NULL, OPT_MINFACES},
+		{"tls", no_argument, NULL, OPT_TLS},
+		{NULL, 0, NULL, 0},
+	};
+	static const char optstring[] = "ac:hn:o:qv";
+	fct_cli_init("segplanes");
+	struct fct_segment_params sp;
+	fct_segment_params_default(&sp);
+	const char *out = NULL;
+	int ascii = 0, c, factor_given = 0, tls = 0;
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		switch (c) {
+		case 'a': ascii = 1; break;
+		case 'c':
+			sp.factor = fct_opt_double("-c", optarg, 0, HUGE_VAL);
+			factor_given = 1;
+			break;
+		case 'h': fputs(usage, stdout); return 0;
+		case 'n': sp.target = fct_opt_long("-n", optarg, 1, INT32_MAX); break;
+		case 'o': out = optarg; break;
+		case 'q': fct_quiet = 1; break;
+		case 'v': fct_verbose = 1; break;
+		case OPT_VERSION: puts("segplanes (facet) " FCT_VERSION); return 0;
+		case OPT_AREA: sp.area_weighted = 1; break;
+		case OPT_MAXRMS: sp.max_rms = fct_opt_double("--max-rms", optarg, 0, HUGE_VAL); break;
+		case OPT_MINFACES: sp.min_faces = fct_opt_long("--min-faces", optarg, 0, INT32_MAX); break;
+		case OPT_TLS: tls = 1; break;
+		default: fct_bad_option(optstring, argv);
+		}
+	}
+	if (argc - optind > 1)
+		fct_usage_error("too many operands");
+	if (factor_given && sp.target > 0)
+		fct_usage_error("-c and -n exclude each other");
+	const char *input = optind < argc ? argv[optind] : "-";
+	const char *name = strcmp(input, "-") ? input : "<stdin>";
+
+	struct fct_err err;
+	struct fct_mesh m;
+	double t0 = fct_now(), c0 = fct_cpu_time();
+	if (fct_mesh_read_file(&m, input, NULL, &err))
+		fct_die_err(&err);
+	double read_s = fct_now() - t0;
+	if (m.nf == 0) {
+		fct_mesh_free(&m);
+		fct_die(1, "%s: no faces to segment (%s)", name,
+		        m.nv ? "a point cloud: mesh it first, e.g. with dm2mesh --points" : "an empty mesh");
+	}
+	/* Noise along the rays of the camera the mesh was measured with. */
+	struct fct_camera cam;
+	int hc = fct_header_camera(&m, &cam, &err);
+	if (hc < 0) {
+		fct_err_prefix(&err, "%s", name);
+		fct_die_err(&err);
+	}
+	if (hc > 0 && !tls) {
+		double pose[12];
+		int hp = fct_header_pose(&m, pose, &err);
+		if (hp < 0) {
+			fct_err_prefix(&err, "%s", name);
+			fct_die_err(&err);
+		}
+		sp.use_viewpoint = 1;
+		if (hp > 0)
+			sp.viewpoint[0] = pose[3], sp.viewpoint[1] = pose[7], sp.viewpoint[2] = pose[11];
+	}
+	int32_t *patch = malloc(m.nf * sizeof *patch);
+	if (!patch)
+		fct_die(1, "%s: out of memory for %zu faces", name, m.nf);
+	struct fct_plane *planes;
+	size_t np;
+	struct fct_segment_stats st;
+	if (fct_segment(patch, &planes, &np, &m, &sp, &st, &err)) {
+		fct_err_prefix(&err, "%s", name);
+		fct_die_err(&err);
+	}
+	double seg_s = fct_now() - t0 - read_s;
+	if (fct_patches_set(&m, patch, &err) || fct_planes_set(&m, planes, np, &err) ||
+	    fct_header_add_provenance(&m, "segplanes", argc - 1, argv + 1, &err) ||
+	    fct_mesh_write_file(&m, out, ascii, &err))
+		fct_die_err(&err);
+	double total_s = fct_now() - t0, cpu_s = fct_cpu_time() - c0;
+
+	fct_report("vertices", "%zu", m.nv);
+	fct_report("faces", "%zu", m.nf);
+	fct_report("adjacencies", "%zu", st.adjacencies);
+	fct_report("patches", "%zu", st.patches);
+	fct_report("noise", "%.9g", st.noise);
+	fct_report("max_rms", "%.9g", st.max_rms);
+	fct_report("mean_rms", "%.9g", st.mean_rms);
+	fct_report("last_ratio", "%.9g", st.last_ratio);
+	fct_report("clusters", "%zu", st.clusters);
+	fct_report("merges", "%zu", st.merges);
+	fct_report("absorbed", "%zu", st.absorbed);
+	fct_report("sweeps", "%zu", st.sweeps);
+	fct_report("evaluations", "%zu", st.evaluations);
+	fct_report("repushes", "%zu", st.repushes);
+	fct_report("read_s", "%.4f", read_s);
+	fct_report("segment_s", "%.4f", seg_s);
+	fct_report("total_s", "%.4f", total_s);
+	fct_report("cpu_s", "%.4f", cpu_s);
+	fct_report("faces_per_s", "%.0f", seg_s > 0 ? m.nf / seg_s : 0);
+	free(patch);
+	free(planes);
+	fct_mesh_free(&m);
+	return 0;
+}

@@ -1,0 +1,1213 @@
+/* segment.c - planar segmentation by global region growing (see segment.h):
+ * Kang, Johnson and Szeliski (DEC CRL 95/7), section 2 and eq. 1; the
+ * area-weighted fit answers section 7's uneven vertex density.
+ *
+ * Memory, for a mesh of F faces and E ~ 1.5 F adjacent face pairs:
+ *   region[F]   central moments of each patch, kept at its union-find root
+ *   parent[F]   union-find (a negative entry is a root: minus its face count)
+ *   pair[E]     the adjacent face pairs (after phase 1: the distinct pairs
+ *               of adjacent patches)
+ *   queue       at most one entry per pair
+ * No adjacency list is kept or merged: a queued pair names two faces, and
+ * their current patches are found through the union-find when it is popped,
+ * so a merge costs O(1) whatever the size of the patches. */
+#include "segment.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "adj.h"
+
+/* Around a non-manifold edge of more faces, only consecutive ones are paired. */
+#define MAX_ALL_PAIRS 8
+/* Phase 1 clusters: at most this many faces, and a mean square at most
+ * CLUSTER_FACTOR^2 times the reference (see cost1). */
+#define CLUSTER_FACES 64
+#define CLUSTER_FACTOR 2.0
+/* The noise of a cluster leans on its faces' local figure with the weight
+ * of this many faces. */
+#define PRIOR_FACES 8.0
+/* The mean square of a typical pair of adjacent faces on a noisy plane is
+ * about 47 times the median of e_f^2 (the least over a face and its
+ * neighbours of their least pair): 45 to 49 measured on planes and rooms
+ * with Gaussian and Kinect noise. */
+#define TYPICAL 47.0
+/* Rounding in the moments is of the order of 1e-16 times the scatter's
+ * trace: an increase of the residual below 64 times that is no increase. */
+#define ROUNDING 1.4e-14
+/* Upper bound on the fresh passes of the automatic criterion. */
+#define MAX_SWEEPS 64
+
+struct region {
+	double w;        /* total weight */
+	double c[3];     /* weighted centroid */
+	double s[6];     /* central scatter: xx yy zz xy yz xz */
+	double sse;      /* smallest eigenvalue of s: the summed squared residual */
+	double nw2;      /* w nu^2: phase 1, sum of w_f e_f^2; phase 2, the noise */
+};
+
+/* A queued pair is a 64-bit key: its cost as the bits of a non-negative
+ * float in the high half (they order as the floats do), the pair's index in
+ * the low half, so keys are unique and ties go to the lower index. */
+typedef uint64_t qkey;
+
+/* A monotone priority queue: a radix heap (Ahuja, Mehlhorn, Orlin and
+ * Tarjan, 1990).  Every key pushed is above the last one popped (a pair is
+ * pushed back only when its cost grew), which is all a radix heap needs:
+ * bucket i holds the keys whose highest bit differing from the last popped
+ * key is bit i - 1, and a key only ever moves to a lower bucket, so it
+ * costs O(1) amortised per bit of the key and the buckets are scanned
+ * sequentially.  In front of it, the next FRONT least pairs wait in a small
+ * sorted array, their faces' data prefetched: the pops jump all over the
+ * mesh, and the time goes in waiting for memory, which is better spent in
+ * parallel.  Keys pushed below the last one the heap gave up go into the
+ * front array in order. */
+#define FRONT 32
+
+struct rheap {
+	qkey *b[33];
+	size_t n[33], cap[33];
+	int sorted0;                 /* b[0] is in decreasing order */
+	uint64_t last;
+	size_t size;                 /* in the buckets */
+	qkey front[2 * FRONT];
+	int head, nfront;            /* front[head .. nfront) */
+};
+
+struct seg {
+	const struct fct_mesh *m;
+	const struct fct_segment_params *p;
+	struct region *region;
+	int32_t *parent;
+	uint32_t (*pair)[2];
+	size_t npairs;
+	struct rheap q;
+	double prior_w;          /* PRIOR_FACES times the mean face weight */
+	double typ_e2;           /* E^2: the typical pair mean square */
+	double floor2;           /* no noise below (1e-7 bounding-box diagonal)^2 */
+	double max_ms, stop;     /* max_rms^2, factor^2 */
+	size_t patches;
+	uint32_t *core;          /* absorption: each face's patch before it */
+	uint32_t *keep;          /* absorption: the core whose plane a root keeps */
+	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
+	struct fct_segment_stats st;
+	struct fct_err *err;
+};
+
+void fct_segment_params_default(struct fct_segment_params *p)
+{
+	p->target = 0;
+	p->factor = FCT_SEGMENT_FACTOR;
+	p->max_rms = HUGE_VAL;
+	p->area_weighted = 0;
+	p->min_faces = FCT_SEGMENT_MIN_FACES;
+	p->use_viewpoint = 0;
+	p->viewpoint[0] = p->viewpoint[1] = p->viewpoint[2] = 0;
+}
+
+/* Eigen solvers ----------------------------------------------------------- */
+
+static void jacobi3(double a[3][3], double v[3][3], double ev[3]);
+
+/* The smallest root of the characteristic polynomial by Halley's method
+ * from 0, where the polynomial is positive, decreasing and convex up to the
+ * root: the iterates rise to it, in two or three steps when the points are
+ * nearly planar (the common case here), some 40 ns.  Jacobi rotations take
+ * over when the iteration is slow (nearly equal eigenvalues). */
+double fct_sym3_min_eigenvalue(const double s[6])
+{
+	double a = s[0], b = s[1], c = s[2], d = s[3], e = s[4], f = s[5];
+	double t = a + b + c;
+	double m = a * b - d * d + b * c - e * e + a * c - f * f;
+	double det = a * (b * c - e * e) - d * (d * c - e * f) + f * (d * e - b * f);
+	if (!(det > 0) || !(m > 0))
+		return 0;   /* singular, up to rounding: a point, a line or a plane */
+	double x = 0;
+	for (int it = 0; it < 12; it++) {
+		double px = ((t - x) * x - m) * x + det;
+		double dp = (2 * t - 3 * x) * x - m;
+		double den = 2 * dp * dp - px * (2 * t - 6 * x);
+		if (!(dp < 0) || !(den > 0))
+			break;
+		double nx = x - 2 * px * dp / den;
+		if (!(nx > x))
+			return x;
+		if (nx - x <= 1e-16 * t)   /* below the rounding of the entries */
+			return nx;
+		x = nx;
+	}
+	/* Nearly equal eigenvalues (the polynomial is ill-conditioned there):
+	 * Jacobi rotations. */
+	double m3[3][3] = { { a, d, f }, { d, b, e }, { f, e, c } }, v[3][3], ev[3];
+	jacobi3(m3, v, ev);
+	double l = fmin(ev[0], fmin(ev[1], ev[2]));
+	return l > 0 ? l : 0;
+}
+
+/* Cyclic Jacobi rotations on the symmetric a; v gets the eigenvectors as
+ * columns, ev the eigenvalues. */
+static void jacobi3(double a[3][3], double v[3][3], double ev[3])
+{
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			v[i][j] = i == j;
+	for (int sweep = 0; sweep < 64; sweep++) {
+		double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+		double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+		if (off == 0 || off <= 1e-36 * diag)
+			break;
+		for (int p = 0; p < 2; p++)
+			for (int q = p + 1; q < 3; q++) {
+				if (a[p][q] == 0)
+					continue;
+				double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+				double t = 1 / (fabs(theta) + sqrt(theta * theta + 1));
+				if (theta < 0)
+					t = -t;
+				double c = 1 / sqrt(t * t + 1), s = t * c;
+				for (int k = 0; k < 3; k++) {   /* columns p, q */
+					double akp = a[k][p], akq = a[k][q];
+					a[k][p] = c * akp - s * akq;
+					a[k][q] = s * akp + c * akq;
+				}
+				for (int k = 0; k < 3; k++) {   /* rows p, q */
+					double apk = a[p][k], aqk = a[q][k];
+					a[p][k] = c * apk - s * aqk;
+					a[q][k] = s * apk + c * aqk;
+				}
+				for (int k = 0; k < 3; k++) {
+					double vkp = v[k][p], vkq = v[k][q];
+					v[k][p] = c * vkp - s * vkq;
+					v[k][q] = s * vkp + c * vkq;
+				}
+			}
+	}
+	for (int i = 0; i < 3; i++)
+		ev[i] = a[i][i];
+}
+
+double fct_plane_fit(struct fct_plane *pl, double w, const double c[3], const double s[6])
+{
+	(void)w;
+	double a[3][3] = {
+		{ s[0], s[3], s[5] },
+		{ s[3], s[1], s[4] },
+		{ s[5], s[4], s[2] },
+	}, v[3][3], ev[3];
+	jacobi3(a, v, ev);
+	int k = 0;   /* the smallest; ties to the lower index */
+	for (int i = 1; i < 3; i++)
+		if (ev[i] < ev[k])
+			k = i;
+	double n[3] = { v[0][k], v[1][k], v[2][k] };
+	double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	for (int i = 0; i < 3; i++)
+		pl->n[i] = n[i] / len;
+	pl->d = -(pl->n[0] * c[0] + pl->n[1] * c[1] + pl->n[2] * c[2]);
+	return ev[k] > 0 ? ev[k] : 0;
+}
+
+/* Moments ----------------------------------------------------------------- */
+
+/* r = a + b (parallel-axis rule); r may be a or b. */
+static void region_add(struct region *r, const struct region *a, const struct region *b)
+{
+	double w = a->w + b->w;
+	double d[3] = { b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2] };
+	double k = w > 0 ? a->w * b->w / w : 0;
+	double t = w > 0 ? b->w / w : 0.5;
+	double s[6] = {
+		a->s[0] + b->s[0] + k * d[0] * d[0],
+		a->s[1] + b->s[1] + k * d[1] * d[1],
+		a->s[2] + b->s[2] + k * d[2] * d[2],
+		a->s[3] + b->s[3] + k * d[0] * d[1],
+		a->s[4] + b->s[4] + k * d[1] * d[2],
+		a->s[5] + b->s[5] + k * d[0] * d[2],
+	};
+	for (int i = 0; i < 3; i++)
+		r->c[i] = a->c[i] + t * d[i];
+	memcpy(r->s, s, sizeof s);
+	r->nw2 = a->nw2 + b->nw2;
+	r->w = w;
+}
+
+/* The summed squared residual of the plane fitted to the union of a and b
+ * (the smallest eigenvalue of its scatter); *trace gets the scatter's trace. */
+static double union_sse(const struct region *a, const struct region *b, double *trace)
+{
+	double w = a->w + b->w;
+	double d[3] = { b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2] };
+	double k = w > 0 ? a->w * b->w / w : 0;
+	double s[6] = {
+		a->s[0] + b->s[0] + k * d[0] * d[0],
+		a->s[1] + b->s[1] + k * d[1] * d[1],
+		a->s[2] + b->s[2] + k * d[2] * d[2],
+		a->s[3] + b->s[3] + k * d[0] * d[1],
+		a->s[4] + b->s[4] + k * d[1] * d[2],
+		a->s[5] + b->s[5] + k * d[0] * d[2],
+	};
+	*trace = s[0] + s[1] + s[2];
+	double l = fct_sym3_min_eigenvalue(s);
+	return l > 0 ? l : 0;
+}
+
+/* The moments of face f: its corners (weight 1 each), or the area of its
+ * fan of triangles from corner 0. */
+static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, int area)
+{
+	memset(r, 0, sizeof *r);
+	uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
+	if (n == 0)
+		return;
+	const double *o = &m->xyz[3 * (size_t)m->fvert[s]];
+	if (!area || n < 3) {
+		/* Corners relative to the first, for precision. */
+		double c[3] = { 0, 0, 0 };
+		for (uint32_t k = 0; k < n; k++) {
+			const double *p = &m->xyz[3 * (size_t)m->fvert[s + k]];
+			for (int i = 0; i < 3; i++)
+				c[i] += p[i] - o[i];
+		}
+		for (int i = 0; i < 3; i++)
+			c[i] /= n;
+		for (uint32_t k = 0; k < n; k++) {
+			const double *p = &m->xyz[3 * (size_t)m->fvert[s + k]];
+			double d[3] = { p[0] - o[0] - c[0], p[1] - o[1] - c[1], p[2] - o[2] - c[2] };
+			r->s[0] += d[0] * d[0], r->s[1] += d[1] * d[1], r->s[2] += d[2] * d[2];
+			r->s[3] += d[0] * d[1], r->s[4] += d[1] * d[2], r->s[5] += d[0] * d[2];
+		}
+		for (int i = 0; i < 3; i++)
+			r->c[i] = o[i] + c[i];
+		r->w = area ? 0 : n;
+		r->sse = n > 3 ? fmax(0, fct_sym3_min_eigenvalue(r->s)) : 0;
+		return;
+	}
+	/* Area: a triangle of area A, centroid g and corners v_k has
+	 * integral (x - g)(x - g)^T dA = A/12 sum_k (v_k - g)(v_k - g)^T. */
+	int first = 1;
+	for (uint32_t k = 1; k + 1 < n; k++) {
+		const double *p1 = &m->xyz[3 * (size_t)m->fvert[s + k]];
+		const double *p2 = &m->xyz[3 * (size_t)m->fvert[s + k + 1]];
+		double u[3] = { p1[0] - o[0], p1[1] - o[1], p1[2] - o[2] };
+		double v[3] = { p2[0] - o[0], p2[1] - o[1], p2[2] - o[2] };
+		double x[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+		struct region t;
+		t.w = 0.5 * sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+		t.sse = t.nw2 = 0;
+		double g[3] = { (u[0] + v[0]) / 3, (u[1] + v[1]) / 3, (u[2] + v[2]) / 3 };
+		double q[3][3] = {
+			{ -g[0], -g[1], -g[2] },
+			{ u[0] - g[0], u[1] - g[1], u[2] - g[2] },
+			{ v[0] - g[0], v[1] - g[1], v[2] - g[2] },
+		};
+		memset(t.s, 0, sizeof t.s);
+		for (int j = 0; j < 3; j++) {
+			const double *d = q[j];
+			t.s[0] += d[0] * d[0], t.s[1] += d[1] * d[1], t.s[2] += d[2] * d[2];
+			t.s[3] += d[0] * d[1], t.s[4] += d[1] * d[2], t.s[5] += d[0] * d[2];
+		}
+		for (int i = 0; i < 6; i++)
+			t.s[i] *= t.w / 12;
+		for (int i = 0; i < 3; i++)
+			t.c[i] = g[i];
+		if (first)
+			*r = t, first = 0;
+		else
+			region_add(r, r, &t);
+	}
+	for (int i = 0; i < 3; i++)
+		r->c[i] += o[i];
+	r->sse = n > 3 ? fmax(0, fct_sym3_min_eigenvalue(r->s)) : 0;
+}
+
+/* Union-find -------------------------------------------------------------- */
+
+static uint32_t find(int32_t *parent, uint32_t x)
+{
+	while (parent[x] >= 0) {
+		int32_t p = parent[x];
+		if (parent[p] >= 0)
+			parent[x] = parent[p];   /* path halving */
+		x = (uint32_t)p;
+	}
+	return x;
+}
+
+/* Merge the patches of roots a and b, whose union has the summed squared
+ * residual sse; returns the new root (the larger patch's, the lower index
+ * on a tie). */
+static uint32_t merge(struct seg *S, uint32_t a, uint32_t b, double sse)
+{
+	int32_t *parent = S->parent;
+	if (parent[a] > parent[b] || (parent[a] == parent[b] && a > b)) {
+		uint32_t t = a;
+		a = b, b = t;
+	}
+	parent[a] += parent[b];
+	parent[b] = (int32_t)a;
+	region_add(&S->region[a], &S->region[a], &S->region[b]);
+	S->region[a].sse = sse;
+	S->patches--;
+	if (S->dirty)
+		S->dirty[a] = 1;
+	return a;
+}
+
+/* Costs ------------------------------------------------------------------- */
+
+/* Phase 1, clusters: the key of patches a and b is the summed squared
+ * residual of their union, which can only grow as a part grows, so a queued
+ * key is a lower bound and the order is exactly greedy.  Returns the key, or
+ * -1 when the pair is refused for good: a union of more than CLUSTER_FACES
+ * faces, of rms above max_rms, or of mean square above CLUSTER_FACTOR^2
+ * times the reference: the largest of E^2, the parts' own mean squares, and
+ * the lesser of the parts' local noise (mean e_f^2; the lesser, because a
+ * face across a crease has a large e_f and must not make a union look
+ * noisy). */
+static double cost1(struct seg *S, uint32_t a, uint32_t b, double *sse)
+{
+	const struct region *ra = &S->region[a], *rb = &S->region[b];
+	if (-(S->parent[a] + S->parent[b]) > CLUSTER_FACES)
+		return -1;
+	double tr, u = union_sse(ra, rb, &tr), w = ra->w + rb->w;
+	S->st.evaluations++;
+	*sse = u;
+	double ms = w > 0 ? u / w : 0;
+	if (ms > S->max_ms)
+		return -1;
+	double ref = S->typ_e2;
+	if (ra->w > 0 && rb->w > 0) {
+		double la = ra->nw2 / ra->w, lb = rb->nw2 / rb->w;
+		double l = la < lb ? la : lb;
+		ref = l > ref ? l : ref;
+	}
+	if (ra->w > 0 && ra->sse / ra->w > ref)
+		ref = ra->sse / ra->w;
+	if (rb->w > 0 && rb->sse / rb->w > ref)
+		ref = rb->sse / rb->w;
+	if (ref < S->floor2)
+		ref = S->floor2;
+	if (ms > CLUSTER_FACTOR * CLUSTER_FACTOR * ref)
+		return -1;
+	return u;
+}
+
+/* Phase 2, patches: the key of patches a and b is how far, in mean square,
+ * the smaller one moves from its own plane to the plane of the union,
+ * relative to the noise nu_l^2 of the larger one (whose figure is the more
+ * reliable):
+ *     t = (sse(a u b) - sse(a) - sse(b)) / (w_small nu_l^2).
+ * *sse gets sse(a u b), *ms its mean square. */
+static double cost2(struct seg *S, uint32_t a, uint32_t b, double *sse, double *ms)
+{
+	const struct region *ra = &S->region[a], *rb = &S->region[b];
+	double tr, u = union_sse(ra, rb, &tr), w = ra->w + rb->w;
+	S->st.evaluations++;
+	*sse = u;
+	*ms = w > 0 ? u / w : 0;
+	double inc = u - ra->sse - rb->sse - ROUNDING * tr;
+	double small = ra->w < rb->w ? ra->w : rb->w;
+	if (!(inc > 0) || !(small > 0))
+		return 0;
+	const struct region *rl = ra->w > rb->w || (ra->w == rb->w && a < b) ? ra : rb;
+	double nu2 = rl->nw2 / rl->w;
+	if (!(nu2 >= S->floor2))
+		nu2 = S->floor2;
+	if (!(nu2 > 0))
+		return HUGE_VAL;
+	return inc / (small * nu2);
+}
+
+/* The queue --------------------------------------------------------------- */
+
+/* The buckets go by the cost (the high half of a key) only: keys of equal
+ * cost wait together in bucket 0, kept in decreasing order, and leave it
+ * from the end. */
+static int bucket_of(qkey x, qkey last)
+{
+	uint32_t a = (uint32_t)(x >> 32), b = (uint32_t)(last >> 32);
+	return a == b ? 0 : 32 - __builtin_clz(a ^ b);
+}
+
+static int rh_add(struct seg *S, int i, qkey x)
+{
+	struct rheap *q = &S->q;
+	if (q->n[i] == q->cap[i] &&
+	    fct_grow((void **)&q->b[i], &q->cap[i], q->n[i] + 1, sizeof *q->b[i], S->err))
+		return -1;
+	q->b[i][q->n[i]++] = x;
+	if (i == 0)
+		q->sorted0 = 0;
+	return 0;
+}
+
+static int key_desc(const void *x, const void *y)
+{
+	qkey a = *(const qkey *)x, b = *(const qkey *)y;
+	return a < b ? 1 : a > b ? -1 : 0;
+}
+
+/* Pop the least key of the buckets into *x: 1 done, 0 empty, -1 out of
+ * memory.  A bucket emptied by redistribution gives its memory back, so the
+ * buckets hold no more than their entries and growth slack. */
+static int rh_pop_bucket(struct seg *S, qkey *x)
+{
+	struct rheap *q = &S->q;
+	if (q->size == 0)
+		return 0;
+	if (q->n[0] == 0) {
+		int i = 1;
+		while (q->n[i] == 0)
+			i++;
+		qkey min = q->b[i][0];
+		for (size_t k = 1; k < q->n[i]; k++)
+			if (q->b[i][k] < min)
+				min = q->b[i][k];
+		q->last = min;
+		size_t n = q->n[i];
+		q->n[i] = 0;
+		for (size_t k = 0; k < n; k++)
+			if (rh_add(S, bucket_of(q->b[i][k], min), q->b[i][k]))
+				return -1;
+		if (q->cap[i] > 4096) {
+			free(q->b[i]);
+			q->b[i] = NULL;
+			q->cap[i] = 0;
+		}
+	}
+	if (!q->sorted0) {
+		qsort(q->b[0], q->n[0], sizeof *q->b[0], key_desc);
+		q->sorted0 = 1;
+	}
+	*x = q->b[0][--q->n[0]];
+	q->size--;
+	return 1;
+}
+
+/* Queue pair i at cost key, which is above the last popped. */
+static int rh_push(struct seg *S, float key, size_t i)
+{
+	struct rheap *q = &S->q;
+	uint32_t bits;
+	memcpy(&bits, &key, sizeof bits);
+	qkey x = (qkey)bits << 32 | i;
+	if (x < q->last) {
+		/* Below what the buckets may hold: into the front, in order
+		 * (it holds at most FRONT: one is pushed back per pop). */
+		if (q->nfront == 2 * FRONT) {
+			memmove(q->front, q->front + q->head, (size_t)(q->nfront - q->head) * sizeof *q->front);
+			q->nfront -= q->head;
+			q->head = 0;
+		}
+		int k = q->nfront++;
+		while (k > q->head && q->front[k - 1] > x) {
+			q->front[k] = q->front[k - 1];
+			k--;
+		}
+		q->front[k] = x;
+		return 0;
+	}
+	q->size++;
+	int b = bucket_of(x, q->last);
+	if (b == 0 && q->sorted0) {
+		/* Bucket 0 stays in order: insert. */
+		if (rh_add(S, 0, x))
+			return -1;
+		size_t k = q->n[0] - 1;
+		while (k > 0 && q->b[0][k - 1] < x) {
+			q->b[0][k] = q->b[0][k - 1];
+			k--;
+		}
+		q->b[0][k] = x;
+		q->sorted0 = 1;
+		return 0;
+	}
+	return rh_add(S, b, x);
+}
+
+/* Prefetch stages for front entry k: its pair; its faces' parents; their
+ * patches' moments (two cache lines each). */
+static void fetch_parents(const struct seg *S, int k)
+{
+	const struct rheap *q = &S->q;
+	if (k >= q->nfront)
+		return;
+	const uint32_t *pr = S->pair[(uint32_t)q->front[k]];
+	__builtin_prefetch(&S->parent[pr[0]]);
+	__builtin_prefetch(&S->parent[pr[1]]);
+}
+
+static void fetch_regions(const struct seg *S, int k)
+{
+	const struct rheap *q = &S->q;
+	if (k >= q->nfront)
+		return;
+	const uint32_t *pr = S->pair[(uint32_t)q->front[k]];
+	const char *a = (const char *)&S->region[find(S->parent, pr[0])];
+	const char *b = (const char *)&S->region[find(S->parent, pr[1])];
+	__builtin_prefetch(a);
+	__builtin_prefetch(a + 64);
+	__builtin_prefetch(b);
+	__builtin_prefetch(b + 64);
+}
+
+/* Prefetch distances, in pops ahead. */
+#define AHEAD_PARENTS 8
+#define AHEAD_REGIONS 4
+
+/* Pop the least key into *x: 1 done, 0 empty, -1 out of memory.  The front
+ * is refilled FRONT at a time, its pairs prefetched; each pop then fetches
+ * ahead the parents and moments that later pops will need, so that the
+ * memory of several pops is in flight at once. */
+static int rh_pop(struct seg *S, qkey *x)
+{
+	struct rheap *q = &S->q;
+	if (q->head == q->nfront) {
+		q->head = q->nfront = 0;
+		int r = 0;
+		while (q->nfront < FRONT && (r = rh_pop_bucket(S, &q->front[q->nfront])) == 1)
+			__builtin_prefetch(&S->pair[(uint32_t)q->front[q->nfront++]]);
+		if (r < 0)
+			return -1;
+		if (q->nfront == 0)
+			return 0;
+		for (int k = 0; k < AHEAD_PARENTS; k++)
+			fetch_parents(S, k);
+		for (int k = 0; k < AHEAD_REGIONS; k++)
+			fetch_regions(S, k);
+	}
+	fetch_parents(S, q->head + AHEAD_PARENTS);
+	fetch_regions(S, q->head + AHEAD_REGIONS);
+	*x = q->front[q->head++];
+	return 1;
+}
+
+static void rh_clear(struct rheap *q)
+{
+	for (int i = 0; i < 33; i++)
+		q->n[i] = 0;
+	q->sorted0 = 1;
+	q->last = 0;
+	q->size = 0;
+	q->head = q->nfront = 0;
+}
+
+static void rh_free(struct rheap *q)
+{
+	for (int i = 0; i < 33; i++)
+		free(q->b[i]);
+	memset(q, 0, sizeof *q);
+}
+
+static float key_of(qkey x)
+{
+	uint32_t bits = (uint32_t)(x >> 32);
+	float f;
+	memcpy(&f, &bits, sizeof f);
+	return f;
+}
+
+/* Region growing ---------------------------------------------------------- */
+
+/* Phase 1: grow clusters until the queue is empty (or the target is met).
+ * Returns the number of merges, or -1 when out of memory. */
+static long grow1(struct seg *S)
+{
+	long merges = 0, target = S->p->target;
+	qkey x;
+	int r;
+	while ((r = rh_pop(S, &x)) == 1) {
+		if (target > 0 && S->patches <= (size_t)target)
+			break;
+		size_t i = (uint32_t)x;
+		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
+		if (a == b)
+			continue;
+		double sse, cost = cost1(S, a, b, &sse);
+		if (cost < 0)
+			continue;
+		if ((float)cost > key_of(x)) {
+			S->st.repushes++;
+			if (rh_push(S, (float)cost, i))
+				return -1;
+			continue;
+		}
+		merge(S, a, b, sse);
+		merges++;
+	}
+	return r < 0 ? -1 : merges;
+}
+
+/* Phase 2: pop, re-cost, merge until the queue is empty or a criterion
+ * stops it.  Returns the number of merges, or -1 when out of memory. */
+static long grow2(struct seg *S)
+{
+	long merges = 0, target = S->p->target;
+	qkey x;
+	int r;
+	while ((r = rh_pop(S, &x)) == 1) {
+		if (target > 0 && S->patches <= (size_t)target)
+			break;
+		size_t i = (uint32_t)x;
+		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
+		if (a == b)
+			continue;
+		double sse, ms, t = cost2(S, a, b, &sse, &ms);
+		if (ms > S->max_ms)
+			continue;   /* never: the union only grows */
+		if ((float)t > key_of(x)) {
+			S->st.repushes++;
+			if (rh_push(S, (float)t, i))
+				return -1;
+			continue;
+		}
+		if (target <= 0 && t > S->stop)
+			break;   /* the cheapest merge is past the criterion */
+		merge(S, a, b, sse);
+		S->st.last_ratio = sqrt(t);
+		merges++;
+	}
+	return r < 0 ? -1 : merges;
+}
+
+static int pair_cmp(const void *x, const void *y)
+{
+	const uint32_t *p = x, *q = y;
+	if (p[0] != q[0])
+		return p[0] < q[0] ? -1 : 1;
+	return p[1] < q[1] ? -1 : p[1] > q[1];
+}
+
+/* Replace the pairs by the pairs of adjacent patches (their roots, lower
+ * first); sorted and distinct when sort is set, so that a long boundary
+ * between two patches becomes one pair. */
+static void compact(struct seg *S, int sort)
+{
+	size_t n = 0;
+	for (size_t i = 0; i < S->npairs; i++) {
+		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
+		if (a == b)
+			continue;
+		S->pair[n][0] = a < b ? a : b;
+		S->pair[n][1] = a < b ? b : a;
+		n++;
+	}
+	S->npairs = n;
+	if (!sort)
+		return;
+	qsort(S->pair, n, sizeof *S->pair, pair_cmp);
+	size_t k = 0;
+	for (size_t i = 0; i < n; i++)
+		if (k == 0 || pair_cmp(S->pair[i], S->pair[k - 1]))
+			memcpy(S->pair[k++], S->pair[i], sizeof *S->pair);
+	S->npairs = k;
+}
+
+/* Fill the queue afresh with the pairs of adjacent patches whose union
+ * passes the criteria now (all of them when aiming at a target).  After
+ * the first time, only pairs with a patch that has grown since the last
+ * time are costed: the others were costed with these same patches, found
+ * past the criterion, and still are. */
+static int refill(struct seg *S, int first)
+{
+	compact(S, first);
+	rh_clear(&S->q);
+	for (size_t i = 0; i < S->npairs; i++) {
+		uint32_t a = S->pair[i][0], b = S->pair[i][1];
+		if (!first && !S->dirty[a] && !S->dirty[b])
+			continue;
+		double sse, ms, t = cost2(S, a, b, &sse, &ms);
+		if (ms > S->max_ms || (S->p->target <= 0 && t > S->stop))
+			continue;
+		if (rh_push(S, (float)t, i))
+			return -1;
+	}
+	memset(S->dirty, 0, S->m->nf);
+	return 0;
+}
+
+/* Absorb each patch of fewer than min_faces faces into the adjacent patch
+ * of at least min_faces faces whose plane fits it best: the least increase
+ * of the summed squared residual (ties to the lower root), never past
+ * max_rms.  Small patches next to small ones only (a cube's faces) stay.
+ * The host keeps its own plane (S->keep), so specks do not tilt it.  best
+ * and gain: scratch, F each. */
+static void absorb(struct seg *S, uint32_t *best, double *gain)
+{
+	size_t nf = S->m->nf;
+	int32_t small = -(int32_t)(S->p->min_faces > INT32_MAX ? INT32_MAX : S->p->min_faces);
+	for (;;) {
+		compact(S, 1);
+		for (size_t f = 0; f < nf; f++)
+			best[f] = UINT32_MAX;
+		int any = 0;
+		for (size_t i = 0; i < S->npairs; i++) {
+			uint32_t a = S->pair[i][0], b = S->pair[i][1];
+			for (int side = 0; side < 2; side++) {
+				uint32_t x = side ? b : a, y = side ? a : b;
+				if (S->parent[x] <= small || S->parent[y] > small)
+					continue;   /* x not small, or y not a host */
+				const struct region *rx = &S->region[x], *ry = &S->region[y];
+				double tr, u = union_sse(rx, ry, &tr);
+				S->st.evaluations++;
+				if (u > S->max_ms * (rx->w + ry->w))
+					continue;
+				double inc = u - rx->sse - ry->sse;
+				if (best[x] == UINT32_MAX || inc < gain[x] || (inc == gain[x] && y < best[x])) {
+					best[x] = y;
+					gain[x] = inc;
+					any = 1;
+				}
+			}
+		}
+		if (!any)
+			break;
+		size_t done = 0;
+		for (size_t x = 0; x < nf; x++) {
+			if (best[x] == UINT32_MAX)
+				continue;
+			uint32_t a = find(S->parent, (uint32_t)x), b = find(S->parent, best[x]);
+			if (a == b || S->parent[a] <= small)
+				continue;   /* already absorbed, or grown past small */
+			struct region host = S->region[b];
+			uint32_t hc = S->keep[b];
+			uint32_t r = merge(S, a, b, host.sse);
+			S->region[r] = host;
+			S->keep[r] = hc;
+			S->st.absorbed++;
+			done++;
+		}
+		if (!done)
+			break;
+	}
+}
+
+/* The pairs of adjacent faces, from the mesh's edges. */
+static int build_pairs(struct seg *S, struct fct_err *err)
+{
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, S->m, err))
+		return -1;
+	size_t n = 0;
+	for (size_t e = 0; e < adj.ne; e++) {
+		size_t k = fct_adj_edge_nfaces(&adj, e);
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		if (k <= MAX_ALL_PAIRS) {
+			for (size_t i = 0; i < k; i++)
+				for (size_t j = i + 1; j < k; j++)
+					n += fs[i] != fs[j];
+		} else {
+			for (size_t i = 0; i + 1 < k; i++)
+				n += fs[i] != fs[i + 1];
+		}
+	}
+	if (n > UINT32_MAX) {
+		fct_adj_free(&adj);
+		return fct_fail(err, "segment: %zu adjacent face pairs, more than %u", n, (unsigned)UINT32_MAX);
+	}
+	S->pair = fct_alloc_array(n, sizeof *S->pair, err);
+	if (!S->pair) {
+		fct_adj_free(&adj);
+		return -1;
+	}
+	size_t i = 0;
+	for (size_t e = 0; e < adj.ne; e++) {
+		size_t k = fct_adj_edge_nfaces(&adj, e);
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		for (size_t x = 0; x < k; x++) {
+			size_t end = k <= MAX_ALL_PAIRS ? k : x + 2 < k ? x + 2 : k;
+			for (size_t y = x + 1; y < end; y++)
+				if (fs[x] != fs[y]) {
+					S->pair[i][0] = fs[x];
+					S->pair[i][1] = fs[y];
+					i++;
+				}
+		}
+	}
+	S->npairs = n;
+	fct_adj_free(&adj);
+	return 0;
+}
+
+/* The lower median of the n non-negative floats in v, by radix selection
+ * on their bits (which order as unsigned integers); v is scratch. */
+static float median_float(const float *v, size_t n, uint32_t *count)
+{
+	if (n == 0)
+		return 0;
+	size_t rank = (n - 1) / 2;
+	uint32_t prefix = 0;
+	for (int pass = 0; pass < 2; pass++) {
+		memset(count, 0, 65536 * sizeof *count);
+		for (size_t i = 0; i < n; i++) {
+			uint32_t u;
+			memcpy(&u, &v[i], sizeof u);
+			if (pass == 1 && (u >> 16) != prefix)
+				continue;
+			count[pass ? u & 0xffff : u >> 16]++;
+		}
+		uint32_t b = 0;
+		while (rank >= count[b])
+			rank -= count[b++];
+		prefix = pass ? (prefix << 16 | b) : b;
+	}
+	float x;
+	memcpy(&x, &prefix, sizeof x);
+	return x;
+}
+
+static double now(void)
+{
+	struct timespec t;
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+/* The plane of points p = o + s u (u unit rays from the viewpoint o, s the
+ * distance along them) whose noise lies along the rays: such a plane is
+ * a.(p - o) = 1, i.e. 1/s = a.u, linear in a, so least squares in 1/s has no
+ * error in the variables (the orthogonal fit of eq. 1 is biased when the
+ * noise is not isotropic: by a degree and more on small planes seen from
+ * afar by a Kinect).  Constant weights suit noise that grows as s^2 (depth
+ * sensors measure disparity).  q = {sum u u^T (6), sum u / s (3)}.  Replaces
+ * pl's n and d and returns 1, or returns 0 (pl untouched) when the system is
+ * too ill-conditioned to trust. */
+static int ray_fit(struct fct_plane *pl, const double q[9], const double o[3])
+{
+	double a[3][3] = {
+		{ q[0], q[3], q[5] },
+		{ q[3], q[1], q[4] },
+		{ q[5], q[4], q[2] },
+	}, v[3][3], ev[3];
+	jacobi3(a, v, ev);
+	double hi = fmax(ev[0], fmax(ev[1], ev[2])), lo = fmin(ev[0], fmin(ev[1], ev[2]));
+	if (!(hi > 0) || !(lo > 1e-12 * hi))
+		return 0;
+	/* x = V diag(1/ev) V^T b */
+	double x[3] = { 0, 0, 0 };
+	for (int k = 0; k < 3; k++) {
+		double t = (v[0][k] * q[6] + v[1][k] * q[7] + v[2][k] * q[8]) / ev[k];
+		for (int i = 0; i < 3; i++)
+			x[i] += t * v[i][k];
+	}
+	double len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+	if (!(len > 0) || !isfinite(len))
+		return 0;
+	/* a.(p - o) = 1: n = a/|a|, d = -(a.o + 1)/|a|. */
+	for (int i = 0; i < 3; i++)
+		pl->n[i] = x[i] / len;
+	pl->d = -(pl->n[0] * o[0] + pl->n[1] * o[1] + pl->n[2] * o[2]) - 1 / len;
+	return 1;
+}
+
+/* Labels in the order of the smallest face index, planes, stats. */
+static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size_t *nplanes,
+                  struct fct_err *err)
+{
+	const struct fct_mesh *m = S->m;
+	size_t nf = m->nf, np = 0;
+	for (size_t f = 0; f < nf; f++)
+		patch[f] = -1;
+	for (size_t f = 0; f < nf; f++) {
+		uint32_t r = find(S->parent, (uint32_t)f);
+		if (patch[r] < 0)
+			patch[r] = (int32_t)np++;
+		patch[f] = patch[r];
+	}
+	struct fct_plane *pl = fct_alloc_array(np, sizeof *pl, err);
+	uint32_t *root = fct_alloc_array(np, sizeof *root, err);
+	double *wind = fct_alloc_array(3 * np, sizeof *wind, err);
+	uint32_t *start = fct_alloc_array(np + 1, sizeof *start, err);
+	uint32_t *order = fct_alloc_array(nf, sizeof *order, err);
+	uint32_t *stamp = fct_alloc_array(m->nv, sizeof *stamp, err);
+	if (!pl || !root || !wind || !start || !order || !stamp) {
+		free(pl), free(root), free(wind), free(start), free(order), free(stamp);
+		return -1;
+	}
+	memset(wind, 0, 3 * np * sizeof *wind);
+	memset(start, 0, (np + 1) * sizeof *start);
+	for (size_t f = 0; f < nf; f++) {
+		uint32_t l = (uint32_t)patch[f];
+		root[l] = find(S->parent, (uint32_t)f);
+		start[l + 1]++;
+		/* Vector area (fan from corner 0), for the orientation. */
+		uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
+		if (n < 3)
+			continue;
+		const double *o = &m->xyz[3 * (size_t)m->fvert[s]];
+		for (uint32_t k = 1; k + 1 < n; k++) {
+			const double *p1 = &m->xyz[3 * (size_t)m->fvert[s + k]];
+			const double *p2 = &m->xyz[3 * (size_t)m->fvert[s + k + 1]];
+			double u[3] = { p1[0] - o[0], p1[1] - o[1], p1[2] - o[2] };
+			double v[3] = { p2[0] - o[0], p2[1] - o[1], p2[2] - o[2] };
+			wind[3 * l] += u[1] * v[2] - u[2] * v[1];
+			wind[3 * l + 1] += u[2] * v[0] - u[0] * v[2];
+			wind[3 * l + 2] += u[0] * v[1] - u[1] * v[0];
+		}
+	}
+	for (size_t l = 0; l < np; l++)
+		start[l + 1] += start[l];
+	for (size_t f = 0; f < nf; f++)
+		order[start[patch[f]]++] = (uint32_t)f;
+	for (size_t l = np; l > 0; l--)
+		start[l] = start[l - 1];
+	start[0] = 0;
+	memset(stamp, 0xff, m->nv * sizeof *stamp);
+	/* Ray moments for the fit in inverse distance along the rays. */
+	double *ray = NULL;
+	if (S->p->use_viewpoint) {
+		ray = fct_alloc_array(9 * np, sizeof *ray, err);
+		if (!ray) {
+			free(pl), free(root), free(wind), free(start), free(order), free(stamp);
+			return -1;
+		}
+		memset(ray, 0, 9 * np * sizeof *ray);
+		const double *vp = S->p->viewpoint;
+		for (size_t f = 0; f < nf; f++) {
+			if (S->core && S->core[f] != S->keep[find(S->parent, (uint32_t)f)])
+				continue;   /* absorbed: not part of the plane */
+			double *q = &ray[9 * (size_t)patch[f]];
+			uint32_t s0 = m->fstart[f], n = m->fstart[f + 1] - s0;
+			double w = 1;
+			if (S->p->area_weighted) {
+				struct region t;
+				face_moments(&t, m, f, 1);
+				w = n ? t.w / n : 0;
+			}
+			for (uint32_t k = 0; k < n; k++) {
+				const double *p = &m->xyz[3 * (size_t)m->fvert[s0 + k]];
+				double u[3] = { p[0] - vp[0], p[1] - vp[1], p[2] - vp[2] };
+				double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+				if (!(len > 0))
+					continue;
+				u[0] /= len, u[1] /= len, u[2] /= len;
+				q[0] += w * u[0] * u[0], q[1] += w * u[1] * u[1], q[2] += w * u[2] * u[2];
+				q[3] += w * u[0] * u[1], q[4] += w * u[1] * u[2], q[5] += w * u[0] * u[2];
+				q[6] += w * u[0] / len, q[7] += w * u[1] / len, q[8] += w * u[2] / len;
+			}
+		}
+	}
+	double sum_rms = 0, max_rms = 0;
+	for (size_t l = 0; l < np; l++) {
+		long count = 0;
+		for (uint32_t i = start[l]; i < start[l + 1]; i++) {
+			uint32_t f = order[i];
+			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++)
+				if (stamp[m->fvert[c]] != l) {
+					stamp[m->fvert[c]] = (uint32_t)l;
+					count++;
+				}
+		}
+		const struct region *r = &S->region[root[l]];
+		double lambda = fct_plane_fit(&pl[l], r->w, r->c, r->s);
+		if (ray && ray_fit(&pl[l], &ray[9 * l], S->p->viewpoint)) {
+			/* The residual about the ray-fitted plane, from the moments. */
+			const double *n = pl[l].n, *q = r->s;
+			double e = n[0] * n[0] * q[0] + n[1] * n[1] * q[1] + n[2] * n[2] * q[2] +
+			           2 * (n[0] * n[1] * q[3] + n[1] * n[2] * q[4] + n[0] * n[2] * q[5]);
+			double o = n[0] * r->c[0] + n[1] * r->c[1] + n[2] * r->c[2] + pl[l].d;
+			lambda = e + r->w * o * o;
+		}
+		const double *wv = &wind[3 * l];
+		double dot = pl[l].n[0] * wv[0] + pl[l].n[1] * wv[1] + pl[l].n[2] * wv[2];
+		int flip = dot < 0;
+		if (dot == 0) {   /* no winding to go by: first non-zero component positive */
+			for (int i = 0; i < 3; i++)
+				if (pl[l].n[i] != 0) {
+					flip = pl[l].n[i] < 0;
+					break;
+				}
+		}
+		if (flip) {
+			for (int i = 0; i < 3; i++)
+				pl[l].n[i] = -pl[l].n[i];
+			pl[l].d = -pl[l].d;
+		}
+		pl[l].count = count;
+		pl[l].rms = r->w > 0 ? sqrt(lambda / r->w) : 0;
+		if (pl[l].rms > max_rms)
+			max_rms = pl[l].rms;
+		sum_rms += pl[l].rms * (start[l + 1] - start[l]);
+	}
+	free(root), free(wind), free(start), free(order), free(stamp);
+	free(ray);
+	S->st.patches = np;
+	S->st.max_rms = max_rms;
+	S->st.mean_rms = nf ? sum_rms / nf : 0;
+	*planes = pl;
+	*nplanes = np;
+	return 0;
+}
+
+int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
+                const struct fct_mesh *m, const struct fct_segment_params *p,
+                struct fct_segment_stats *stats, struct fct_err *err)
+{
+	double t0 = now();
+	struct seg S;
+	memset(&S, 0, sizeof S);
+	S.m = m, S.p = p, S.err = err;
+	*planes = NULL, *nplanes = 0;
+	if (stats)
+		memset(stats, 0, sizeof *stats);
+	size_t nf = m->nf;
+	if (nf > INT32_MAX)
+		return fct_fail(err, "segment: %zu faces, more than %d", nf, INT32_MAX);
+	double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+	for (size_t v = 0; v < m->nv; v++)
+		for (int i = 0; i < 3; i++) {
+			double x = m->xyz[3 * v + i];
+			if (!isfinite(x))
+				return fct_fail(err, "segment: vertex %zu: coordinate not finite", v);
+			lo[i] = x < lo[i] ? x : lo[i];
+			hi[i] = x > hi[i] ? x : hi[i];
+		}
+	if (nf == 0) {
+		if (stats)
+			stats->seconds = now() - t0;
+		return 0;
+	}
+	double diag2 = 0;
+	if (m->nv)
+		for (int i = 0; i < 3; i++)
+			diag2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+	S.floor2 = 1e-14 * diag2;
+	S.max_ms = p->max_rms < HUGE_VAL ? p->max_rms * p->max_rms : HUGE_VAL;
+	S.stop = p->factor * p->factor;
+
+	int rc = -1;
+	float *e2f = NULL, *e2g = NULL;
+	uint32_t *count = NULL, *best = NULL;
+	double *gain = NULL;
+	if (build_pairs(&S, err))
+		goto out;
+	S.st.adjacencies = S.npairs;
+	S.region = fct_alloc_array(nf, sizeof *S.region, err);
+	S.parent = fct_alloc_array(nf, sizeof *S.parent, err);
+	e2f = fct_alloc_array(nf, sizeof *e2f, err);
+	e2g = fct_alloc_array(nf, sizeof *e2g, err);
+	count = fct_alloc_array(65536, sizeof *count, err);
+	if (!S.region || !S.parent || !e2f || !e2g || !count)
+		goto out;
+	double wsum = 0;
+	for (size_t f = 0; f < nf; f++) {
+		face_moments(&S.region[f], m, f, p->area_weighted);
+		S.parent[f] = -1;
+		e2f[f] = HUGE_VALF;
+		wsum += S.region[f].w;
+	}
+	S.patches = nf;
+
+	/* Every pair's union: the first phase-1 key, and each face's least
+	 * pair mean square. */
+	for (size_t i = 0; i < S.npairs; i++) {
+		uint32_t f = S.pair[i][0], g = S.pair[i][1];
+		double tr, u = union_sse(&S.region[f], &S.region[g], &tr);
+		double w = S.region[f].w + S.region[g].w;
+		S.st.evaluations++;
+		float x = (float)(w > 0 ? u / w : 0);
+		if (x < e2f[f])
+			e2f[f] = x;
+		if (x < e2f[g])
+			e2f[g] = x;
+		if (rh_push(&S, (float)u, i))
+			goto out;
+	}
+	/* e_f^2: the least over the face and its neighbours, so that a face
+	 * across a crease, all of whose pairs are folds, still gets the noise
+	 * of the planes beside it. */
+	memcpy(e2g, e2f, nf * sizeof *e2g);
+	for (size_t i = 0; i < S.npairs; i++) {
+		uint32_t f = S.pair[i][0], g = S.pair[i][1];
+		if (e2f[g] < e2g[f])
+			e2g[f] = e2f[g];
+		if (e2f[f] < e2g[g])
+			e2g[g] = e2f[f];
+	}
+	/* E^2: TYPICAL times the median e_f^2 of the faces with a neighbour. */
+	size_t nfin = 0;
+	for (size_t f = 0; f < nf; f++)
+		if (e2g[f] < HUGE_VALF) {
+			S.region[f].nw2 = S.region[f].w * TYPICAL * e2g[f];
+			e2f[nfin++] = e2g[f];
+		} else {
+			S.region[f].nw2 = -1;   /* no neighbour: E^2, below */
+		}
+	S.typ_e2 = TYPICAL * median_float(e2f, nfin, count);
+	free(e2f), free(e2g), free(count);
+	e2f = e2g = NULL, count = NULL;
+	S.st.noise = sqrt(S.typ_e2);
+	S.prior_w = PRIOR_FACES * wsum / nf;
+	for (size_t f = 0; f < nf; f++)
+		if (S.region[f].nw2 < 0)
+			S.region[f].nw2 = S.region[f].w * S.typ_e2;
+
+	/* Phase 1: clusters. */
+	long k = grow1(&S);
+	if (k < 0)
+		goto out;
+	S.st.merges = (size_t)k;
+	S.st.clusters = S.patches;
+
+	/* Each cluster's noise: its own mean square, leaning on its faces'
+	 * local figure with the weight of PRIOR_FACES faces. */
+	for (size_t f = 0; f < nf; f++)
+		if (S.parent[f] < 0) {
+			struct region *r = &S.region[f];
+			double local = r->w > 0 ? r->nw2 / r->w : S.typ_e2;
+			r->nw2 = r->w * (r->sse + S.prior_w * local) / (r->w + S.prior_w);
+		}
+
+	/* Phase 2: patches, then fresh sweeps until one merges nothing. */
+	S.dirty = calloc(nf, 1);
+	if (!S.dirty) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	for (int first = 1;; first = 0) {
+		if (refill(&S, first) || (k = grow2(&S)) < 0)
+			goto out;
+		S.st.merges += (size_t)k;
+		if (p->target > 0 || k == 0 || S.st.sweeps == MAX_SWEEPS)
+			break;
+		S.st.sweeps++;
+	}
+	rh_free(&S.q);
+
+	if (p->min_faces > 1 && p->target <= 0) {
+		best = fct_alloc_array(nf, sizeof *best, err);
+		gain = fct_alloc_array(nf, sizeof *gain, err);
+		S.core = fct_alloc_array(nf, sizeof *S.core, err);
+		S.keep = fct_alloc_array(nf, sizeof *S.keep, err);
+		if (!best || !gain || !S.core || !S.keep)
+			goto out;
+		for (size_t f = 0; f < nf; f++) {
+			S.core[f] = find(S.parent, (uint32_t)f);
+			S.keep[f] = (uint32_t)f;
+		}
+		absorb(&S, best, gain);
+		free(best), free(gain);
+		best = NULL, gain = NULL;
+	}
+	free(S.pair);
+	S.pair = NULL;
+	if (finish(&S, patch, planes, nplanes, err))
+		goto out;
+	rc = 0;
+out:
+	free(e2f), free(e2g), free(count), free(best), free(gain);
+	free(S.region);
+	free(S.parent);
+	free(S.pair);
+	free(S.keep);
+	free(S.core);
+	free(S.dirty);
+	rh_free(&S.q);
+	S.st.seconds = now() - t0;
+	if (stats && rc == 0)
+		*stats = S.st;
+	return rc;
+}
