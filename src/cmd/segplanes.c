@@ -89,9 +89,10 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	double read_s = fct_now() - t0;
 	if (m.nf == 0) {
+		size_t nv = m.nv;
 		fct_mesh_free(&m);
 		fct_die(1, "%s: no faces to segment (%s)", name,
-		        m.nv ? "a point cloud: mesh it first, e.g. with dm2mesh --points" : "an empty mesh");
+		        nv ? "a point cloud: mesh it first, e.g. with dm2mesh --points" : "an empty mesh");
 	}
 	/* Noise along the rays of the camera the mesh was measured with. */
 	struct fct_camera cam;

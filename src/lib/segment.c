@@ -189,9 +189,8 @@ static void jacobi3(double a[3][3], double v[3][3], double ev[3])
 		ev[i] = a[i][i];
 }
 
-double fct_plane_fit(struct fct_plane *pl, double w, const double c[3], const double s[6])
+double fct_plane_fit(struct fct_plane *pl, const double c[3], const double s[6])
 {
-	(void)w;
 	double a[3][3] = {
 		{ s[0], s[3], s[5] },
 		{ s[3], s[1], s[4] },
@@ -612,9 +611,10 @@ static float key_of(qkey x)
 
 /* Region growing ---------------------------------------------------------- */
 
-/* Phase 1: grow clusters until the queue is empty (or the target is met).
- * Returns the number of merges, or -1 when out of memory. */
-static long grow1(struct seg *S)
+/* Pop, cost again, push back when the cost grew, else merge, until the
+ * queue is empty or a criterion stops it: phase 1 (clusters) or 2
+ * (patches).  Returns the number of merges, or -1 when out of memory. */
+static long grow(struct seg *S, int phase)
 {
 	long merges = 0, target = S->p->target;
 	qkey x;
@@ -626,48 +626,27 @@ static long grow1(struct seg *S)
 		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
 		if (a == b)
 			continue;
-		double sse, cost = cost1(S, a, b, &sse);
-		if (cost < 0)
-			continue;
+		double sse, ms, cost;
+		if (phase == 1) {
+			if ((cost = cost1(S, a, b, &sse)) < 0)
+				continue;   /* refused for good */
+		} else {
+			cost = cost2(S, a, b, &sse, &ms);
+			if (ms > S->max_ms)
+				continue;   /* never: the union only grows */
+		}
 		if ((float)cost > key_of(x)) {
 			S->st.repushes++;
 			if (rh_push(S, (float)cost, i))
 				return -1;
 			continue;
 		}
-		merge(S, a, b, sse);
-		merges++;
-	}
-	return r < 0 ? -1 : merges;
-}
-
-/* Phase 2: pop, re-cost, merge until the queue is empty or a criterion
- * stops it.  Returns the number of merges, or -1 when out of memory. */
-static long grow2(struct seg *S)
-{
-	long merges = 0, target = S->p->target;
-	qkey x;
-	int r;
-	while ((r = rh_pop(S, &x)) == 1) {
-		if (target > 0 && S->patches <= (size_t)target)
-			break;
-		size_t i = (uint32_t)x;
-		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
-		if (a == b)
-			continue;
-		double sse, ms, t = cost2(S, a, b, &sse, &ms);
-		if (ms > S->max_ms)
-			continue;   /* never: the union only grows */
-		if ((float)t > key_of(x)) {
-			S->st.repushes++;
-			if (rh_push(S, (float)t, i))
-				return -1;
-			continue;
+		if (phase == 2) {
+			if (target <= 0 && cost > S->stop)
+				break;   /* the cheapest merge is past the criterion */
+			S->st.last_ratio = sqrt(cost);
 		}
-		if (target <= 0 && t > S->stop)
-			break;   /* the cheapest merge is past the criterion */
 		merge(S, a, b, sse);
-		S->st.last_ratio = sqrt(t);
 		merges++;
 	}
 	return r < 0 ? -1 : merges;
@@ -1002,7 +981,7 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 				}
 		}
 		const struct region *r = &S->region[root[l]];
-		double lambda = fct_plane_fit(&pl[l], r->w, r->c, r->s);
+		double lambda = fct_plane_fit(&pl[l], r->c, r->s);
 		if (ray && ray_fit(&pl[l], &ray[9 * l], S->p->viewpoint)) {
 			/* The residual about the ray-fitted plane, from the moments. */
 			const double *n = pl[l].n, *q = r->s;
@@ -1146,7 +1125,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 			S.region[f].nw2 = S.region[f].w * S.typ_e2;
 
 	/* Phase 1: clusters. */
-	long k = grow1(&S);
+	long k = grow(&S, 1);
 	if (k < 0)
 		goto out;
 	S.st.merges = (size_t)k;
@@ -1168,7 +1147,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		goto out;
 	}
 	for (int first = 1;; first = 0) {
-		if (refill(&S, first) || (k = grow2(&S)) < 0)
+		if (refill(&S, first) || (k = grow(&S, 2)) < 0)
 			goto out;
 		S.st.merges += (size_t)k;
 		if (p->target > 0 || k == 0 || S.st.sweeps == MAX_SWEEPS)

@@ -1,72 +1,91 @@
 /* segment.h - planar segmentation of a mesh by global region growing: Kang,
  * Johnson and Szeliski, "Extraction of Concise and Realistic 3-D Models from
- * Real Data" (DEC CRL 95/7), section 2, after Hebert et al. (1995).
+ * Real Data" (DEC CRL 95/7), section 2 and eq. 1, after Hebert et al. (1995).
  *
  * Every face starts as a patch; the two adjacent patches whose union is
- * fitted best by one plane are merged, and so on, until a stop criterion
- * holds.  Two faces are adjacent when they share an edge (around a
- * non-manifold edge shared by k faces, every pair of them when k <= 8,
- * otherwise each face and the next in index order); faces that share only
- * a vertex are not.
+ * fitted best by one plane are merged, and so on, until a criterion stops
+ * it.  Two faces are adjacent when they share an edge (around a non-manifold
+ * edge of k faces, every pair of them when k <= 8, otherwise each face and
+ * the next in index order); faces that share only a vertex are not.
  *
- * The points of a patch, and how they are weighted.  By default each face
- * contributes its corners, one point per corner, all of weight 1: a vertex
- * shared by j faces of a patch counts j times (in a regular triangle grid an
- * interior vertex counts 6 times, a vertex on the patch's outline fewer).
- * This makes a patch's moments the plain sum of its faces' moments, so the
- * fit of a union is O(1).  With area weighting each face contributes the
- * exact second moments of its surface (a polygon as the fan of triangles
- * from its first corner): weight = area, so a region sampled twice as
- * densely does not pull the plane twice as hard (Kang et al. section 7).
- * A face of zero area then has no weight.
+ * Points and weights.  By default each face contributes its corners, one
+ * point of weight 1 per corner: a vertex shared by j faces of a patch
+ * counts j times (in a regular triangle grid an interior vertex counts 6
+ * times, a vertex on the patch's outline fewer).  A patch's moments are then
+ * the plain sum of its faces', so the fit of a union is O(1).  With area
+ * weighting each face contributes the exact moments of its surface (a
+ * polygon as the fan of triangles from its first corner), weight = area, so
+ * a region sampled twice as densely does not pull the plane twice as hard
+ * (section 7); a face of zero area has no weight.
  *
- * The fit (eq. 1): the plane through the weighted centroid c whose normal is
- * the eigenvector of the smallest eigenvalue lambda of the scatter matrix
- * S = sum w (p - c)(p - c)^T; the patch's mean square residual is
- * ms = lambda / sum w and its rms is sqrt(ms).  Moments are kept central
- * (weight, centroid, scatter about the centroid) and combined with the
- * parallel-axis rule, so large coordinates lose no precision.
+ * The fit (eq. 1): the plane through the weighted centroid whose normal is
+ * the eigenvector of the smallest eigenvalue of the scatter matrix
+ * S = sum w (p - c)(p - c)^T; that eigenvalue is the patch's summed squared
+ * residual sse, and its rms is sqrt(sse / sum w).  Moments are kept central
+ * (weight, centroid, scatter about it) and combined by the parallel-axis
+ * rule, so large coordinates lose no precision.
  *
- * Noise scale.  Each face f gets a local noise figure e_f: the smallest rms
- * of the union of f with one of its adjacent faces (a face and a neighbour
- * are four points, so that rms is zero on an exact plane and of the order of
- * the noise on a noisy one; taking the smallest of a face's neighbours keeps
- * it low on faces next to a crease).  E (E-bar, the paper's estimate of
- * noise and curvature) is the median of e_f over the faces that have a
- * neighbour.  The noise of a union U is the weighted mean square of its e_f,
- * pulled toward E by a prior of 8 average faces:
- *     nu^2(U) = (sum_U w_f e_f^2 + 8 w E^2) / (sum_U w_f + 8 w)
- * (w: the mean face weight), and never less than (1e-7 * the diagonal of
- * the mesh's bounding box)^2, so exact data (rounding only) still compares.
- * Because nu follows the data region by region, noise that grows with depth
- * (a Kinect's, sigma ~ z^2) is judged locally, not by one global figure.
+ * Local noise.  For each face, the least mean square of its union with one
+ * of its neighbours, then the least of that over the face and its
+ * neighbours (a face across a crease, all of whose pairs fold, gets the
+ * noise of the planes beside it): e_f^2, zero on exact planes.  Times 47
+ * (the ratio of a typical pair's mean square to that statistic, measured on
+ * noisy planes), its median over the faces is E^2: the paper's E-bar, the
+ * scale of noise and curvature, reported as `noise`.
  *
- * The merge cost of two patches is the ratio r^2 = ms(union) / nu^2(union),
- * dimensionless: the result is invariant to rotation, translation and
- * uniform scale of the input (apart from floating-point ties, which are
- * broken by face index).  The pairs wait in a priority queue with lazy
- * re-evaluation: a popped pair is costed again from the current patches and
- * pushed back when the cost grew; otherwise it is merged.  Patches are held
- * in a union-find, so a merge touches no adjacency list.  The cost of a union
- * can also fall as a part grows (it is a ratio of means, not a sum), so a
- * queued key is not always a lower bound; with the automatic criterion the
- * run therefore ends with sweeps that cost every remaining adjacent pair
- * afresh and merge again, until a sweep merges nothing.
+ * Phase 1, clusters.  Greedy merging by the sse of the union, which can
+ * only grow as a part grows, so a queued key is a lower bound: pop, cost
+ * again, push back if it grew, else merge; the order is exactly greedy.  A
+ * union is refused for good past 64 faces, past max_rms, or when its mean
+ * square exceeds 2^2 times the largest of E^2, the parts' own mean squares
+ * and the lesser of the parts' mean e_f^2.  Each cluster's noise is then
+ * nu^2 = (sse + 8 w e^2) / (w + 8 w) with w the mean face weight and e^2 the
+ * cluster's mean e_f^2: its own residual at a scale where a plane is a
+ * plane, leaning on the local figure while it is small.  Clusters follow
+ * the noise where it varies (a Kinect's grows as depth squared).
+ *
+ * Phase 2, patches.  The cost of merging patches a and b is how far, in
+ * mean square, the smaller one moves from its own plane to the plane of
+ * the union, relative to the noise of the larger:
+ *     t = (sse(a u b) - sse(a) - sse(b)) / (w_small nu_large^2),
+ * nu^2 being the weighted mean of the patch's clusters' noise (and at
+ * least (1e-7 times the bounding-box diagonal)^2, so exact data compare).
+ * t is dimensionless: the result does not change when the input is
+ * rotated, moved or scaled (up to floating-point ties, broken by index).
+ * It is not monotone, so the queue's lazy re-evaluation (merge the popped
+ * pair unless its cost grew) is greedy up to stale keys; the automatic
+ * criterion therefore ends with sweeps that cost afresh every adjacent pair
+ * whose patches changed, until one merges nothing.
  *
  * Stop criteria:
- *   target > 0      stop at that many patches (T_N of the paper);
- *   target == 0     automatic: stop when the cheapest merge has r > factor,
- *                   i.e. its rms exceeds factor times its noise nu (the
- *                   paper's threshold as a fraction of E, made local);
- *   max_rms         in both modes, a pair whose union has rms > max_rms is
- *                   never merged (a hard bound in the mesh's units).
- * Then, when min_faces > 1, a patch of fewer faces is absorbed into the
- * adjacent patch whose union with it has the smallest rms (specks left by
- * noise spikes), regardless of the criterion, but never across max_rms.
+ *   target > 0     stop at that many patches (T_N of the paper), in either
+ *                  phase;
+ *   target == 0    automatic: stop when the cheapest merge has t > factor^2,
+ *                  i.e. the smaller part would move by more than factor
+ *                  times the noise (the paper's threshold as a multiple of
+ *                  E-bar, made local);
+ *   max_rms        in both modes a union of rms above max_rms is never made
+ *                  (a hard bound in the units of the coordinates).
+ * Then, in the automatic mode and when min_faces > 1, each patch of fewer
+ * faces is absorbed into the adjacent patch of at least min_faces faces
+ * that fits it best (least increase of sse, never past max_rms): specks of
+ * noise and the faces across creases.  The host keeps its plane.  Small
+ * patches next to small ones only, such as a cube's faces, stay.
  *
- * Patches are numbered 0, 1, ... in the order of their smallest face index.
- * Each plane's normal points to the side the patch's faces face: it agrees
- * with the sum of the faces' vector areas (their winding). */
+ * The queue is a radix heap with a prefetching front (see segment.c);
+ * patches are a union-find, so no adjacency list is kept or merged and a
+ * merge is O(1): the run is O(F log F) at worst, about a microsecond a face.
+ *
+ * Output.  Patches are numbered 0, 1, ... in the order of their smallest
+ * face index.  Each plane is the fit above, or, when the points were
+ * measured along rays from a viewpoint (use_viewpoint), the least-squares
+ * plane in inverse distance along those rays, which has no error in the
+ * variables when the noise lies along the rays (the orthogonal fit is then
+ * biased, by a degree and more for small far planes of a Kinect frame).  Its
+ * normal points to the side the patch's faces face (the sum of their vector
+ * areas); rms is the residual of the points the plane was fitted to
+ * (absorbed faces excluded); count is the number of distinct vertices of
+ * the patch's faces. */
 #ifndef FCT_SEGMENT_H
 #define FCT_SEGMENT_H
 
@@ -82,12 +101,12 @@
 
 struct fct_segment_params {
 	long target;          /* T_N: stop at this many patches; 0: automatic */
-	double factor;        /* automatic: merge while rms <= factor * nu */
+	double factor;        /* automatic: merge while t <= factor^2 (see above) */
 	double max_rms;       /* never merge beyond this rms (HUGE_VAL: no bound) */
 	int area_weighted;    /* 1: area-weighted surface moments; 0: corners */
 	long min_faces;       /* absorb patches of fewer faces (0 or 1: none) */
-	int use_viewpoint;    /* 1: the points were measured along rays from viewpoint */
-	double viewpoint[3];
+	int use_viewpoint;    /* the points were measured along rays from ... */
+	double viewpoint[3];  /* ... this point: fit the planes accordingly */
 };
 
 struct fct_segment_stats {
@@ -99,14 +118,15 @@ struct fct_segment_stats {
 	size_t evaluations;   /* union fits computed */
 	size_t repushes;      /* pairs pushed back because their cost grew */
 	size_t sweeps;        /* fresh passes after the first (automatic) */
-	double noise;         /* E: the median local noise e_f */
+	double noise;         /* E-bar: sqrt(47 median e_f^2) */
 	double max_rms;       /* largest patch rms */
 	double mean_rms;      /* patch rms averaged over faces */
-	double last_ratio;    /* r of the last merge */
+	double last_ratio;    /* sqrt(t) of the last merge of phase 2 */
 	double seconds;       /* wall-clock time of fct_segment */
 };
 
-/* target 0, factor FCT_SEGMENT_FACTOR, max_rms HUGE_VAL, corners, min_faces 0. */
+/* target 0, factor FCT_SEGMENT_FACTOR, max_rms HUGE_VAL, corners,
+ * min_faces FCT_SEGMENT_MIN_FACES, no viewpoint. */
 void fct_segment_params_default(struct fct_segment_params *p);
 
 /* Segment m into planar patches.  patch (m->nf entries, the caller's) gets
@@ -119,13 +139,13 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                 const struct fct_mesh *m, const struct fct_segment_params *p,
                 struct fct_segment_stats *stats, struct fct_err *err);
 
-/* The plane fitted to the scatter of weighted points: w (total weight),
- * centroid c, central scatter s = {sxx, syy, szz, sxy, syz, sxz}.  Writes the
+/* The plane fitted to the scatter of weighted points: centroid c, central
+ * scatter s = {sxx, syy, szz, sxy, syz, sxz}.  Writes the
  * unit normal (eigenvector of the smallest eigenvalue, by Jacobi rotations)
  * and d = -n.c into pl, and returns the smallest eigenvalue.  pl->count and
  * pl->rms are left alone.  A scatter of rank < 2 gives a normal all the
  * same (some unit vector orthogonal to its spread). */
-double fct_plane_fit(struct fct_plane *pl, double w, const double c[3], const double s[6]);
+double fct_plane_fit(struct fct_plane *pl, const double c[3], const double s[6]);
 
 /* The smallest eigenvalue of the symmetric positive semi-definite 3x3
  * matrix s = {sxx, syy, szz, sxy, syz, sxz}, 0 for a singular one: a root of

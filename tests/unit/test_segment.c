@@ -491,7 +491,7 @@ static void test_eigen(void)
 		CHECK_NEAR(fct_sym3_min_eigenvalue(sm), lmin, tol + 1e-300);
 		struct fct_plane pl;
 		double cen[3] = { 1, 2, 3 };
-		double l = fct_plane_fit(&pl, 1, cen, sm);
+		double l = fct_plane_fit(&pl, cen, sm);
 		CHECK_NEAR(l, lmin, 4e-16 * spectra[k][0] + 1e-300);
 		CHECK_NEAR(pl.n[0] * pl.n[0] + pl.n[1] * pl.n[1] + pl.n[2] * pl.n[2], 1, 1e-15);
 		CHECK_NEAR(pl.n[0] * cen[0] + pl.n[1] * cen[1] + pl.n[2] * cen[2] + pl.d, 0, 1e-14);
