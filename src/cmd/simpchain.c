@@ -15,7 +15,7 @@
 #include "meshio.h"
 
 static const char usage[] =
-	"usage: simpchain [-aqv] [-o file] [-t threshold] [input]\n"
+	"usage: simpchain [-aqv] [-o file] [-t threshold] [--keep-small-loops] [input]\n"
 	"Extract the boundaries of the planar patches of a labelled mesh (face property\n"
 	"patch and element plane, as segplanes writes them), cut them into chains\n"
 	"between junctions, simplify each chain once by iterative end-point fit in 3-D\n"
@@ -27,6 +27,9 @@ static const char usage[] =
 	"  -q            quiet\n"
 	"  -t threshold  drop a chain point only within threshold mean edge lengths of\n"
 	"                its simplified segment (default 3)\n"
+	"      --keep-small-loops\n"
+	"                keep a loop (a hole or an island) that lies within the\n"
+	"                tolerance of its centre (default: drop it, filling the hole)\n"
 	"  -v            report chains, junctions, vertices kept, the largest deviation\n"
 	"                and the crossings prevented on stderr\n"
 	"  -h, --help    this help\n"
@@ -38,6 +41,7 @@ int main(int argc, char **argv)
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, 'V'},
+		{"keep-small-loops", no_argument, NULL, 'L'},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "aho:qt:v";
@@ -54,6 +58,7 @@ int main(int argc, char **argv)
 		case 't': params.threshold = fct_opt_double("-t", optarg, 0, 1e12); break;
 		case 'v': fct_verbose = 1; break;
 		case 'V': puts("simpchain (facet) " FCT_VERSION); exit(0);
+		case 'L': params.keep_small_loops = 1; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
@@ -113,6 +118,7 @@ int main(int argc, char **argv)
 	fct_report("crossings_left", "%zu", st.conflicts_left);
 	fct_report("crossings_left_image", "%zu", st.conflicts_left_image);
 	fct_report("rounds", "%zu", st.rounds);
+	fct_report("loops_dropped", "%zu", st.loops_dropped);
 	fct_report("read_s", "%.4f", read_s);
 	fct_report("simplify_s", "%.4f", simp_s);
 	fct_report("total_s", "%.4f", total_s);

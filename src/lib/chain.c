@@ -1397,6 +1397,52 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 	return 0;
 }
 
+/* Drop the loops without junction that lie within tol of their centroid:
+ * the hole or island they bound is below the model's resolution, and keeping
+ * three points of each would fill a noisy view's model with specks.  The
+ * patch around a dropped hole covers it; a dropped island's patch vanishes
+ * into the patch around it. */
+static void drop_small_loops(struct fct_chains *c, const struct fct_mesh *m,
+                             const struct fct_plane *planes, size_t nplanes, double tol,
+                             size_t *dropped)
+{
+	for (size_t i = 0; i < c->n; i++) {
+		if (c->closed[i] != 2)
+			continue;
+		size_t s = c->start[i], e = c->start[i + 1] - 1;   /* the last point repeats the first */
+		if (c->right[i] < 0) {
+			/* Against the outside, a loop is a hole (drop it) only when its
+			 * patch, on its left, lies outside it: the loop turns clockwise
+			 * about the patch's normal.  Otherwise it is the patch's own
+			 * outline, which must stay. */
+			if ((size_t)c->left[i] >= nplanes)
+				continue;
+			double area[3] = { 0, 0, 0 };
+			for (size_t q = s; q < e; q++) {
+				double x[3];
+				fct_v3_cross(x, m->xyz + 3 * (size_t)c->vert[q], m->xyz + 3 * (size_t)c->vert[q + 1]);
+				fct_v3_add(area, area, x);
+			}
+			if (fct_v3_dot(area, planes[c->left[i]].n) >= 0)
+				continue;
+		}
+		double g[3] = { 0, 0, 0 }, far = 0;
+		for (size_t q = s; q < e; q++)
+			fct_v3_add(g, g, m->xyz + 3 * (size_t)c->vert[q]);
+		for (int k = 0; k < 3; k++)
+			g[k] /= (double)(e - s);
+		for (size_t q = s; q < e; q++) {
+			double d = fct_v3_dist2(m->xyz + 3 * (size_t)c->vert[q], g);
+			if (d > far)
+				far = d;
+		}
+		if (far <= tol * tol) {
+			memset(c->keep + s, 0, e - s + 1);
+			(*dropped)++;
+		}
+	}
+}
+
 int fct_simpchain(struct fct_mesh *m, const struct fct_chain_params *p,
                   struct fct_chains *ch, struct fct_chain_stats *st, struct fct_err *err)
 {
@@ -1420,6 +1466,9 @@ int fct_simpchain(struct fct_mesh *m, const struct fct_chain_params *p,
 	if (fct_chains_extract(&c, m, patch, err) ||
 	    fct_chains_simplify(&c, m, patch, planes, nplanes, p, st, err))
 		goto done;
+	st->loops_dropped = 0;
+	if (!p->keep_small_loops)
+		drop_small_loops(&c, m, planes, nplanes, st->tolerance, &st->loops_dropped);
 
 	/* Kept vertices in their original order, and the edges between them. */
 	map = fct_alloc_array(m->nv, sizeof *map, err);

@@ -118,6 +118,9 @@ void fct_chains_free(struct fct_chains *c);
 struct fct_chain_params {
 	double threshold;      /* in mean edge lengths (default 3) */
 	int keep_topology;     /* 1 (default): prevent crossings; 0: plain end-point fit */
+	int keep_small_loops;  /* 0 (default): a loop without junction that lies within
+	                          the tolerance of its centroid is dropped, filling the
+	                          hole or absorbing the island it bounds */
 };
 
 void fct_chain_params_default(struct fct_chain_params *p);
@@ -137,6 +140,7 @@ struct fct_chain_stats {
 	                              mesh edges), in the patch planes */
 	size_t conflicts_left_image;  /* the same in image coordinates (s t) */
 	size_t rounds;             /* check-and-split rounds */
+	size_t loops_dropped;      /* loops below the tolerance, dropped */
 };
 
 /* Simplify the chains of c (extracted from m and patch) in place, setting
