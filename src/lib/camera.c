@@ -23,6 +23,15 @@ void fct_camera_ray(const struct fct_camera *cam, double u, double v, double ray
 	}
 }
 
+double fct_camera_pixel_angle(const struct fct_camera *cam)
+{
+	if (cam->kind == FCT_CAMERA_CYLINDRICAL)
+		return cam->width > 0 ? sqrt(2 * M_PI / cam->width / cam->f) : 0;
+	if (cam->kind == FCT_CAMERA_PINHOLE)
+		return 1 / sqrt(cam->fx * cam->fy);
+	return 0;
+}
+
 int fct_camera_project(const struct fct_camera *cam, const double p[3], double *u, double *v,
                        double *depth)
 {

@@ -26,6 +26,11 @@ struct fct_camera {
 /* The ray through pixel (u, v), scaled so that point = depth * ray. */
 void fct_camera_ray(const struct fct_camera *cam, double u, double v, double ray[3]);
 
+/* The lateral size of one pixel per unit depth: the geometric mean of the
+ * horizontal and vertical pixel angles (1 / sqrt(fx fy) for a pinhole,
+ * sqrt(2 pi / (W f)) for a cylinder); 0 without a camera or its width. */
+double fct_camera_pixel_angle(const struct fct_camera *cam);
+
 /* Pixel (u, v) and depth of camera-frame point p; 0 when p has none (behind
  * a pinhole camera, or on the cylinder's axis), 1 otherwise.  Cylindrical u is
  * in [-0.5, W - 0.5), wrapped around the seam. */

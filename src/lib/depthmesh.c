@@ -39,15 +39,6 @@ double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_
 	return v > 0 && v >= p->min_depth && v <= p->max_depth && isfinite(v) ? v : 0;
 }
 
-/* Lateral size of one grid step per unit depth: the geometric mean of the
- * horizontal and vertical pixel angles, times the step. */
-static double footprint(const struct fct_camera *cam, int step)
-{
-	if (cam->kind == FCT_CAMERA_CYLINDRICAL)
-		return step * sqrt(2 * M_PI / cam->width / cam->f);
-	return step / sqrt(cam->fx * cam->fy);
-}
-
 int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
                    const struct fct_depth_params *p, struct fct_grid_stats *stats,
                    struct fct_err *err)
@@ -83,7 +74,7 @@ int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct
 		for (int i = 0; i < gw; i++)
 			depth[(size_t)j * gw + i] = fct_depth_at(img, i * step, j * step, p);
 	}
-	struct fct_range_grid g = { gw, gh, NULL, col, row, depth, footprint(cam, step),
+	struct fct_range_grid g = { gw, gh, NULL, col, row, depth, step * fct_camera_pixel_angle(cam),
 	                            cam->kind == FCT_CAMERA_CYLINDRICAL };
 	if (fct_grid_mesh(m, &g, &p->grid, &cell_of, stats, err))
 		goto out;

@@ -42,8 +42,7 @@ static inline long cell_at(const struct grid *G, long i, long j)
  * apart, is within the limit. */
 static inline int joined(const struct grid *G, size_t a, size_t b, double steps)
 {
-	double da = G->g->depth[a], db = G->g->depth[b];
-	return fabs(da - db) <= G->limit * steps * (da < db ? da : db);
+	return fct_depth_joined(G->g->depth[a], G->g->depth[b], G->limit, steps);
 }
 
 /* The position of cell c, which is (i, j). */

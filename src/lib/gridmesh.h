@@ -26,6 +26,7 @@
 #ifndef FCT_GRIDMESH_H
 #define FCT_GRIDMESH_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "mesh.h"
@@ -34,6 +35,15 @@
  * rays factor into a column part and a row part as both camera models of
  * camera.h do, as depth * (col[3i], row[j], col[3i+2]) -- which saves
  * storing a position per pixel of a large depth map. */
+/* The depth-jump test that both the grid mesher and the sparse mesher apply:
+ * depths da and db, `steps` pixels (or grid steps) apart laterally, are one
+ * surface when |da - db| <= limit * steps * min(da, db), limit being
+ * max_jump times the footprint of one step per unit depth. */
+static inline int fct_depth_joined(double da, double db, double limit, double steps)
+{
+	return fabs(da - db) <= limit * steps * (da < db ? da : db);
+}
+
 struct fct_range_grid {
 	int width, height;       /* cells per row, rows */
 	const double *xyz;       /* 3 per cell, row by row; or NULL: */

@@ -9,6 +9,7 @@
 
 #include "delaunay.h"
 #include "geom.h"
+#include "gridmesh.h"
 #include "numparse.h"
 #include "ply.h"
 #include "reader.h"
@@ -124,7 +125,7 @@ static double point_depth(const struct fct_camera *cam, const double p[3])
 /* The edge a-b is one surface: its depth change is within max_jump times the
  * footprint of its image length at the nearer depth. */
 static int edge_joined(const struct fct_image_points *pts, const struct fct_camera *cam,
-                       double per_pixel, double max_jump, uint32_t a, uint32_t b)
+                       double limit, uint32_t a, uint32_t b)
 {
 	double da = point_depth(cam, &pts->xyz[3 * a]), db = point_depth(cam, &pts->xyz[3 * b]);
 	if (!(da > 0 && db > 0))
@@ -132,7 +133,7 @@ static int edge_joined(const struct fct_image_points *pts, const struct fct_came
 	double du = pts->uv[2 * a] - pts->uv[2 * b], dv = pts->uv[2 * a + 1] - pts->uv[2 * b + 1];
 	if (cam->kind == FCT_CAMERA_CYLINDRICAL && fabs(du) > cam->width / 2.0)
 		du = cam->width - fabs(du);
-	return fabs(da - db) <= max_jump * hypot(du, dv) * per_pixel * (da < db ? da : db);
+	return fct_depth_joined(da, db, limit, hypot(du, dv));
 }
 
 int fct_sparse_mesh(struct fct_mesh *m, const struct fct_image_points *pts,
@@ -147,15 +148,14 @@ int fct_sparse_mesh(struct fct_mesh *m, const struct fct_image_points *pts,
 		return fct_fail(err, "%zu points are more than 2^32", pts->n);
 	if (fct_delaunay(pts->uv, pts->n, &tri, &ntri, &st.duplicates, err))
 		return -1;
-	double per_pixel = cam->kind == FCT_CAMERA_PINHOLE ? 1 / sqrt(cam->fx * cam->fy)
-	                 : cam->kind == FCT_CAMERA_CYLINDRICAL ? sqrt(2 * M_PI / cam->width / cam->f) : 0;
+	double limit = p->max_jump * fct_camera_pixel_angle(cam);
 	double max_e2 = p->max_edge * p->max_edge;
 	size_t nf = 0;
 	for (size_t f = 0; f < ntri; f++) {
 		uint32_t *t = &tri[3 * f];
 		int ok = 1;
 		for (int k = 0; k < 3 && ok; k++)
-			if (per_pixel > 0 && !edge_joined(pts, cam, per_pixel, p->max_jump, t[k], t[(k + 1) % 3])) {
+			if (limit > 0 && !edge_joined(pts, cam, limit, t[k], t[(k + 1) % 3])) {
 				st.jump_faces++;
 				ok = 0;
 			}
