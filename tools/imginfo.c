@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "image.h"
+#include "path.h"
 
 static const char usage[] =
 	"usage: imginfo [-h] [--version] [file ...]\n"
@@ -103,7 +104,7 @@ int main(int argc, char **argv)
 			fct_die_err(&err);
 		if (i)
 			putchar('\n');
-		print_image(strcmp(files[i], "-") ? files[i] : "<stdin>", &img, fmt);
+		print_image(fct_path_display(files[i]), &img, fmt);
 		fct_image_free(&img);
 	}
 	if (fflush(stdout) || ferror(stdout))

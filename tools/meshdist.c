@@ -16,6 +16,7 @@
 #include "geom.h"
 #include "header.h"
 #include "meshio.h"
+#include "path.h"
 #include "rng.h"
 
 static const char usage[] =
@@ -132,11 +133,6 @@ static int cmp_double(const void *pa, const void *pb)
 	return (a > b) - (a < b);
 }
 
-static const char *display_name(const char *path)
-{
-	return strcmp(path, "-") ? path : "<stdin>";
-}
-
 enum { BLOCK = 4096 };
 
 /* Distances from the points pts[0..n) to the tree, into d.  Each query is
@@ -221,7 +217,7 @@ static void check_finite(const struct fct_mesh *m, const char *path)
 {
 	for (size_t i = 0; i < 3 * m->nv; i++)
 		if (!isfinite(m->xyz[i]))
-			fct_die(1, "%s: vertex %zu: coordinate is not finite", display_name(path), i / 3);
+			fct_die(1, "%s: vertex %zu: coordinate is not finite", fct_path_display(path), i / 3);
 }
 
 static void build_tree(struct fct_bvh *tree, const struct fct_mesh *m, const char *path,
@@ -230,11 +226,11 @@ static void build_tree(struct fct_bvh *tree, const struct fct_mesh *m, const cha
 	struct fct_err err;
 	double t0 = fct_now();
 	if (fct_bvh_build_mesh(tree, m, &err)) {
-		fct_err_prefix(&err, "%s", display_name(path));
+		fct_err_prefix(&err, "%s", fct_path_display(path));
 		fct_die_err(&err);
 	}
 	if (tree->ntri == 0)
-		fct_die(1, "%s: no faces to measure the distance to", display_name(path));
+		fct_die(1, "%s: no faces to measure the distance to", fct_path_display(path));
 	*seconds += fct_now() - t0;
 }
 
@@ -244,24 +240,24 @@ static void measure(const struct fct_mesh *from, const char *from_path, const st
                     long samples, struct fct_rng *r, double *per_vertex, struct direction *dir)
 {
 	if (samples == 0 || from->nv == 0) {
-		measure_vertices(from, display_name(from_path), tree, per_vertex, dir);
+		measure_vertices(from, fct_path_display(from_path), tree, per_vertex, dir);
 		return;
 	}
 	struct fct_err err;
 	struct sampler s;
 	if (sampler_init(&s, from, &err)) {
 		sampler_free(&s);
-		fct_err_prefix(&err, "%s", display_name(from_path));
+		fct_err_prefix(&err, "%s", fct_path_display(from_path));
 		fct_die_err(&err);
 	}
 	if (!(s.total > 0)) {
 		sampler_free(&s);
-		fct_die(1, "%s: -s: the faces have no area to sample", display_name(from_path));
+		fct_die(1, "%s: -s: the faces have no area to sample", fct_path_display(from_path));
 	}
-	measure_samples(&s, display_name(from_path), r, (size_t)samples, tree, dir);
+	measure_samples(&s, fct_path_display(from_path), r, (size_t)samples, tree, dir);
 	sampler_free(&s);
 	if (per_vertex)
-		measure_vertices(from, display_name(from_path), tree, per_vertex,
+		measure_vertices(from, fct_path_display(from_path), tree, per_vertex,
 		                 &(struct direction){{0, 0, 0, 0}, 0, 0});
 }
 

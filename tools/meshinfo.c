@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "header.h"
 #include "meshio.h"
+#include "path.h"
 
 static const char usage[] =
 	"usage: meshinfo [file ...]\n"
@@ -199,7 +200,7 @@ static int describe(const char *path, int *printed, struct fct_err *err)
 	if (*printed)
 		putchar('\n');
 	*printed = 1;
-	printf("file: %s\n", path && strcmp(path, "-") ? path : "<stdin>");
+	printf("file: %s\n", fct_path_display(path));
 	printf("format: %s\n", fct_format_name(fmt));
 	print_elements(&m);
 	print_comments(&m);
@@ -207,7 +208,7 @@ static int describe(const char *path, int *printed, struct fct_err *err)
 	double diag2 = print_bbox(&m);
 	int rc = print_topology(&m, diag2, err);
 	if (rc)
-		fct_err_prefix(err, "%s", path && strcmp(path, "-") ? path : "<stdin>");
+		fct_err_prefix(err, "%s", fct_path_display(path));
 	fct_mesh_free(&m);
 	return rc;
 }

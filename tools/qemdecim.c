@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "header.h"
 #include "meshio.h"
+#include "path.h"
 #include "qem.h"
 
 static const char usage[] =
@@ -69,7 +70,7 @@ int main(int argc, char **argv)
 	if (argc - optind > 1)
 		fct_usage_error("too many operands");
 	const char *in = optind < argc ? argv[optind] : NULL;
-	const char *name = in && strcmp(in, "-") ? in : "<stdin>";
+	const char *name = fct_path_display(in);
 
 	struct fct_err err;
 	struct fct_mesh m;

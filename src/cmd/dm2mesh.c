@@ -16,6 +16,7 @@
 #include "header.h"
 #include "image.h"
 #include "meshio.h"
+#include "path.h"
 #include "sparsemesh.h"
 
 static const char usage[] =
@@ -228,7 +229,7 @@ static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
 	struct fct_grid_stats st;
 	if (fct_depth_mesh(&m, &img, cam, &o->depth, &st, &err)) {
 		fct_image_free(&img);
-		fct_err_prefix(&err, "%s", strcmp(o->input, "-") ? o->input : "<stdin>");
+		fct_err_prefix(&err, "%s", fct_path_display(o->input));
 		fct_die_err(&err);
 	}
 	fct_image_free(&img);

@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "header.h"
 #include "meshio.h"
+#include "path.h"
 #include "project.h"
 
 static const char usage[] =
@@ -96,7 +97,7 @@ int main(int argc, char **argv)
 	if (fct_mesh_read_file(&m, input, NULL, &err))
 		fct_die_err(&err);
 	double read_s = fct_now() - t0;
-	const char *name = strcmp(input, "-") ? input : "<stdin>";
+	const char *name = fct_path_display(input);
 	int had_st = fct_elem_find(&m.vertex, "s") && fct_elem_find(&m.vertex, "t");
 
 	double t1 = fct_now();

@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "header.h"
 #include "meshio.h"
+#include "path.h"
 #include "planes.h"
 #include "segment.h"
 
@@ -81,7 +82,7 @@ int main(int argc, char **argv)
 	if (factor_given && sp.target > 0)
 		fct_usage_error("-c and -n exclude each other");
 	const char *input = optind < argc ? argv[optind] : "-";
-	const char *name = strcmp(input, "-") ? input : "<stdin>";
+	const char *name = fct_path_display(input);
 
 	struct fct_err err;
 	struct fct_mesh m;

@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "header.h"
 #include "meshio.h"
+#include "path.h"
 
 static const char usage[] =
 	"usage: simpchain [-aqv] [-o file] [-t threshold] [--keep-small-loops] [input]\n"
@@ -81,7 +82,7 @@ int main(int argc, char **argv)
 	double t1 = fct_now();
 	if (fct_simpchain(&m, &params, &chains, &st, &err)) {
 		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", strcmp(input, "-") ? input : "<stdin>");
+		fct_err_prefix(&err, "%s", fct_path_display(input));
 		fct_die_err(&err);
 	}
 	double simp_s = fct_now() - t1;

@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "header.h"
 #include "meshio.h"
+#include "path.h"
 #include "tripatch.h"
 
 static const char usage[] =
@@ -70,7 +71,7 @@ int main(int argc, char **argv)
 	struct fct_tripatch_stats st;
 	if (fct_tripatch(&m, &p, &st, &err)) {
 		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", strcmp(in, "-") ? in : "<stdin>");
+		fct_err_prefix(&err, "%s", fct_path_display(in));
 		fct_die_err(&err);
 	}
 	double t2 = fct_now();

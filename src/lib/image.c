@@ -18,6 +18,7 @@
 #include <sys/stat.h>
 
 #include "numparse.h"
+#include "path.h"
 
 /* Deflate cannot compress better than 1032:1 (a 258-byte match costs at
  * least 2 bits), so a PNG whose filtered rows need more bytes than its whole
@@ -523,7 +524,7 @@ int fct_image_read_stream(struct fct_image *img, FILE *f, const char *name,
 int fct_image_read_file(struct fct_image *img, const char *path,
                         enum fct_image_format *fmt, struct fct_err *err)
 {
-	if (!path || !strcmp(path, "-"))
+	if (fct_path_is_std(path))
 		return fct_image_read_stream(img, stdin, "<stdin>", fmt, err);
 	memset(img, 0, sizeof *img);
 	FILE *f = fopen(path, "rb");

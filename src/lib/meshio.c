@@ -70,7 +70,7 @@ int fct_mesh_read_file(struct fct_mesh *m, const char *path, enum fct_format *fm
                        struct fct_err *err)
 {
 	fct_mesh_init(m);
-	if (!path || !strcmp(path, "-"))
+	if (fct_path_is_std(path))
 		return fct_mesh_read_stream(m, stdin, "<stdin>", NULL, fmt, err);
 	FILE *f = fopen(path, "rb");
 	if (!f)

@@ -12,7 +12,7 @@
 int fct_out_open(struct fct_out *o, const char *path, struct fct_err *err)
 {
 	memset(o, 0, sizeof *o);
-	if (!path || !strcmp(path, "-")) {
+	if (fct_path_is_std(path)) {
 		o->f = stdout;
 		return 0;
 	}

@@ -132,3 +132,13 @@ int fct_path_has_suffix(const char *path, const char *suffix)
 	size_t n = strlen(path), k = strlen(suffix);
 	return n >= k && !strcasecmp(path + n - k, suffix);
 }
+
+int fct_path_is_std(const char *path)
+{
+	return !path || !strcmp(path, "-");
+}
+
+const char *fct_path_display(const char *path)
+{
+	return fct_path_is_std(path) ? "<stdin>" : path;
+}

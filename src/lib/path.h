@@ -11,6 +11,10 @@ char *fct_path_join(const char *dir, const char *rel, struct fct_err *err);
 /* The path of target relative to folder from (both relative to the current
  * folder or absolute); an absolute target stays absolute.  malloc'd. */
 char *fct_path_relative(const char *target, const char *from, struct fct_err *err);
+/* Is path standard input or output: NULL or "-"? */
+int fct_path_is_std(const char *path);
+/* The name of path in messages: "<stdin>" for standard input. */
+const char *fct_path_display(const char *path);
 /* Does path end in suffix, ignoring case (".obj")? */
 int fct_path_has_suffix(const char *path, const char *suffix);
 

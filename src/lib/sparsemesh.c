@@ -11,6 +11,7 @@
 #include "geom.h"
 #include "gridmesh.h"
 #include "numparse.h"
+#include "path.h"
 #include "ply.h"
 #include "reader.h"
 
@@ -106,7 +107,7 @@ int fct_image_points_read_stream(struct fct_image_points *pts, FILE *f, const ch
 int fct_image_points_read_file(struct fct_image_points *pts, const char *path, struct fct_err *err)
 {
 	memset(pts, 0, sizeof *pts);
-	if (!path || !strcmp(path, "-"))
+	if (fct_path_is_std(path))
 		return fct_image_points_read_stream(pts, stdin, "<stdin>", err);
 	FILE *f = fopen(path, "rb");
 	if (!f)
