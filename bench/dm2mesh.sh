@@ -11,7 +11,7 @@ dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-dm.XXXXXX")
 trap 'rm -rf "$dir"' EXIT
 T="$FCT_BENCH/timeit $RUNS"
 
-median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+. bench/lib.sh
 # figure KEY ARGS...: median over RUNS of dm2mesh -v's KEY.
 figure() {
 	key=$1

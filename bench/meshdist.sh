@@ -12,7 +12,7 @@ N=${DIST_N:-400}
 "$FCT_BENCH/gen_dist" "$N" >"$dir/b.ply"
 "$FCT_BENCH/gen_dist" -p "$N" >"$dir/a.ply"
 
-median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+. bench/lib.sh
 # figure KEY [meshdist options...]: median over RUNS of a -v figure.
 figure() {
 	key=$1

@@ -16,7 +16,7 @@ T="$FCT_BENCH/timeit $RUNS"
 dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-qem.XXXXXX")
 trap 'rm -rf "$dir"' EXIT
 
-median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+. bench/lib.sh
 # figure KEY ARGS...: median over RUNS of qemdecim -v's KEY.
 figure() {
 	key=$1

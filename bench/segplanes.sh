@@ -13,7 +13,7 @@ PATH=$FCT_BIN:$PATH
 dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-seg.XXXXXX")
 trap 'rm -rf "$dir"' EXIT
 
-median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+. bench/lib.sh
 # figure KEY FILE: median over RUNS of segplanes -v's KEY on FILE.
 figure() {
 	i=0

@@ -18,7 +18,7 @@ T="$FCT_BENCH/timeit $RUNS"
 dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-simpchain.XXXXXX")
 trap 'rm -rf "$dir"' EXIT
 
-median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+. bench/lib.sh
 cpu() {
 	i=0
 	while [ $i -lt "$RUNS" ]; do
