@@ -11,28 +11,7 @@
 #include "check.h"
 #include "geom.h"
 #include "rng.h"
-
-struct soup {
-	double *xyz;
-	uint32_t *tri;
-	size_t nv, ntri;
-};
-
-static void soup_alloc(struct soup *s, size_t nv, size_t ntri)
-{
-	s->nv = nv;
-	s->ntri = ntri;
-	s->xyz = malloc(sizeof *s->xyz * 3 * nv);
-	s->tri = malloc(sizeof *s->tri * 3 * ntri);
-	if (!s->xyz || !s->tri)
-		abort();
-}
-
-static void soup_free(struct soup *s)
-{
-	free(s->xyz);
-	free(s->tri);
-}
+#include "soup.h"
 
 static void build(struct fct_bvh *b, const struct soup *s)
 {
