@@ -1051,7 +1051,6 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		struct fct_point_fit fit;
 		double x0[3];
 		memcpy(x0, x, sizeof x0);
-		size_t against = faces_against(m, &adj, patch, pl, v);
 		if (fct_project_point(nbuf, dbuf, k, x, st.bound, p->rank_tol, p->fallback, x, &fit, err))
 			goto out;
 		/* A move must not turn a face around it against its plane (a
@@ -1070,7 +1069,15 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 				st.along_ray++;
 			}
 		}
-		int flipped = fit.used > 0 && faces_against(m, &adj, patch, pl, v) > against;
+		int flipped = 0;
+		if (fit.used > 0) {
+			double x1[3];
+			memcpy(x1, x, sizeof x1);
+			memcpy(x, x0, sizeof x0);
+			size_t against = faces_against(m, &adj, patch, pl, v);
+			memcpy(x, x1, sizeof x1);
+			flipped = faces_against(m, &adj, patch, pl, v) > against;
+		}
 		if (flipped) {
 			memcpy(x, x0, sizeof x0);
 			fit.used = 0;
