@@ -106,6 +106,58 @@ int fct_patches_set(struct fct_mesh *m, const int32_t *patch, struct fct_err *er
 	return 0;
 }
 
+static int integral(double v, double lo, double hi)
+{
+	return v == floor(v) && v >= lo && v <= hi;
+}
+
+int fct_wires_get(const struct fct_mesh *m, long nplanes, struct fct_wire **wires, size_t *n,
+                  int *present, struct fct_err *err)
+{
+	*wires = NULL, *n = 0, *present = 0;
+	const struct fct_elem *e = fct_mesh_find_elem(m, "edge");
+	if (!e)
+		return 0;
+	static const char *const names[] = { "vertex1", "vertex2", "patch1", "patch2" };
+	const struct fct_prop *ep[4];
+	for (int k = 0; k < 4; k++) {
+		ep[k] = fct_elem_find(e, names[k]);
+		if (!ep[k] || ep[k]->count_type != FCT_NONE)
+			return fct_fail(err, "element edge: no scalar property %s", names[k]);
+	}
+	struct fct_wire *w = fct_alloc_array(e->count, sizeof *w, err);
+	if (!w && e->count)
+		return -1;
+	double maxv = (double)m->nv - 1, maxp = nplanes >= 0 ? (double)nplanes - 1 : (double)INT32_MAX;
+	for (size_t i = 0; i < e->count; i++) {
+		double v1 = fct_prop_get(ep[0], i), v2 = fct_prop_get(ep[1], i);
+		double p1 = fct_prop_get(ep[2], i), p2 = fct_prop_get(ep[3], i);
+		if (!integral(v1, 0, maxv) || !integral(v2, 0, maxv)) {
+			free(w);
+			return fct_fail(err, "edge %zu: vertex %.17g or %.17g is not one of the %zu vertices", i,
+			                v1, v2, m->nv);
+		}
+		if (!integral(p1, -1, maxp) || !integral(p2, -1, maxp)) {
+			free(w);
+			if (nplanes >= 0)
+				return fct_fail(err, "edge %zu: patch %.17g or %.17g is neither -1 nor a plane (%ld planes)",
+				                i, p1, p2, nplanes);
+			return fct_fail(err, "edge %zu: patch %.17g or %.17g is not -1 or a patch number", i, p1, p2);
+		}
+		if (v1 == v2) {
+			free(w);
+			return fct_fail(err, "edge %zu: both ends are vertex %.0f", i, v1);
+		}
+		if (p1 < 0 && p2 < 0) {
+			free(w);
+			return fct_fail(err, "edge %zu: no patch on either side", i);
+		}
+		w[i] = (struct fct_wire){ (uint32_t)v1, (uint32_t)v2, (int32_t)p1, (int32_t)p2 };
+	}
+	*wires = w, *n = e->count, *present = 1;
+	return 0;
+}
+
 void fct_plane_frame(const double n[3], double e1[3], double e2[3])
 {
 	/* Start from the axis least aligned with n, so e1 is well defined. */

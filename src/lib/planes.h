@@ -37,6 +37,22 @@ int fct_patches_get(const struct fct_mesh *m, int32_t **patch, int *present, lon
 /* Set the face property patch (int) from patch[0..m->nf). */
 int fct_patches_set(struct fct_mesh *m, const int32_t *patch, struct fct_err *err);
 
+/* One edge of the wireframe element `edge` (simpchain's output, DESIGN.md):
+ * v1 -> v2 runs with patch p1 on its left, seen from the side its plane
+ * normal points to; p2 is on the other side; -1 is no patch. */
+struct fct_wire {
+	uint32_t v1, v2;
+	int32_t p1, p2;
+};
+
+/* The edge element of m as a malloc'd array (*present = 0, *wires NULL when
+ * m has none).  Fails on an edge element without scalar vertex1 vertex2
+ * patch1 patch2, a vertex out of range, equal ends, a patch that is neither
+ * -1 nor in [0, nplanes) (nplanes < 0: any non-negative int), or an edge
+ * with no patch on either side. */
+int fct_wires_get(const struct fct_mesh *m, long nplanes, struct fct_wire **wires, size_t *n,
+                  int *present, struct fct_err *err);
+
 /* An orthonormal frame (e1, e2) of the plane with unit normal n, with
  * e1 x e2 = n; the same frame for the same n everywhere. */
 void fct_plane_frame(const double n[3], double e1[3], double e2[3]);

@@ -413,15 +413,6 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 }
 
 /* An integer-valued property value in [lo, hi], or fail. */
-static int get_int(const struct fct_prop *p, size_t i, double lo, double hi, long *out)
-{
-	double v = fct_prop_get(p, i);
-	if (!(v == floor(v) && v >= lo && v <= hi))
-		return -1;
-	*out = (long)v;
-	return 0;
-}
-
 int fct_tripatch(struct fct_mesh *m, const struct fct_tripatch_params *p,
                  struct fct_tripatch_stats *st, struct fct_err *err)
 {
@@ -430,64 +421,37 @@ int fct_tripatch(struct fct_mesh *m, const struct fct_tripatch_params *p,
 		st = &dummy;
 	memset(st, 0, sizeof *st);
 	st->first_failure = -1;
-	struct fct_elem *e = fct_mesh_find_elem(m, "edge");
-	if (!e)
-		return fct_fail(err, "no edge element (tripatch reads simpchain's wireframe)");
-	static const char *const names[] = { "vertex1", "vertex2", "patch1", "patch2" };
-	const struct fct_prop *ep[4];
-	for (int k = 0; k < 4; k++) {
-		ep[k] = fct_elem_find(e, names[k]);
-		if (!ep[k] || ep[k]->count_type != FCT_NONE)
-			return fct_fail(err, "element edge: no scalar property %s", names[k]);
-	}
 	struct fct_plane *planes = NULL;
 	size_t nplanes = 0;
 	if (fct_planes_get(m, &planes, &nplanes, err))
 		return -1;
 	int has_planes = fct_mesh_find_elem(m, "plane") != NULL;
-	double maxp = has_planes ? (double)nplanes - 1 : (double)INT32_MAX - 1;
 	struct work w;
 	memset(&w, 0, sizeof w);
 	w.err = err;
-	int rc = -1;
+	int rc = -1, present = 0;
 	struct hedge *he = NULL;
-	size_t nhe = 0;
-	if (e->count > ((size_t)-1) / 2 / sizeof *he) {
+	struct fct_wire *wire = NULL;
+	size_t nwire = 0, nhe = 0;
+	if (fct_wires_get(m, has_planes ? (long)nplanes : -1, &wire, &nwire, &present, err))
+		goto out;
+	if (!present) {
+		fct_fail(err, "no edge element (tripatch reads simpchain's wireframe)");
+		goto out;
+	}
+	if (nwire > ((size_t)-1) / 2 / sizeof *he) {
 		fct_fail(err, "element edge: too many edges");
 		goto out;
 	}
-	he = fct_alloc_array(2 * e->count, sizeof *he, err);
-	if (!he)
+	he = fct_alloc_array(2 * nwire, sizeof *he, err);
+	if (!he && nwire)
 		goto out;
-	st->edges = e->count;
-	for (size_t i = 0; i < e->count; i++) {
-		long v1, v2, p1, p2;
-		if (get_int(ep[0], i, 0, (double)m->nv - 1, &v1) || get_int(ep[1], i, 0, (double)m->nv - 1, &v2)) {
-			fct_fail(err, "edge %zu: vertex %.17g or %.17g is not one of the %zu vertices", i,
-			         fct_prop_get(ep[0], i), fct_prop_get(ep[1], i), m->nv);
-			goto out;
-		}
-		if (get_int(ep[2], i, -1, maxp, &p1) || get_int(ep[3], i, -1, maxp, &p2)) {
-			if (has_planes)
-				fct_fail(err, "edge %zu: patch %.17g or %.17g is neither -1 nor a plane (%zu planes)", i,
-				         fct_prop_get(ep[2], i), fct_prop_get(ep[3], i), nplanes);
-			else
-				fct_fail(err, "edge %zu: patch %.17g or %.17g is not -1 or a patch number", i,
-				         fct_prop_get(ep[2], i), fct_prop_get(ep[3], i));
-			goto out;
-		}
-		if (v1 == v2) {
-			fct_fail(err, "edge %zu: both ends are vertex %ld", i, v1);
-			goto out;
-		}
-		if (p1 < 0 && p2 < 0) {
-			fct_fail(err, "edge %zu: no patch on either side", i);
-			goto out;
-		}
-		if (p1 >= 0)
-			he[nhe++] = (struct hedge){ (int32_t)p1, (uint32_t)v1, (uint32_t)v2 };
-		if (p2 >= 0)
-			he[nhe++] = (struct hedge){ (int32_t)p2, (uint32_t)v2, (uint32_t)v1 };
+	st->edges = nwire;
+	for (size_t i = 0; i < nwire; i++) {
+		if (wire[i].p1 >= 0)
+			he[nhe++] = (struct hedge){ wire[i].p1, wire[i].v1, wire[i].v2 };
+		if (wire[i].p2 >= 0)
+			he[nhe++] = (struct hedge){ wire[i].p2, wire[i].v2, wire[i].v1 };
 	}
 	qsort(he, nhe, sizeof *he, hedge_cmp);
 	/* Repeated edges once; opposite edges of one patch cancel. */
@@ -575,6 +539,6 @@ int fct_tripatch(struct fct_mesh *m, const struct fct_tripatch_params *p,
 	rc = 0;
 out:
 	work_free(&w);
-	free(he), free(planes);
+	free(he), free(wire), free(planes);
 	return rc;
 }
