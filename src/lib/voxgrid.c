@@ -1,0 +1,254 @@
+/* voxgrid.c - the sparse block volume: blocks allocated from slabs, found
+ * through an open-addressing hash (linear probing, load at most 1/2) whose
+ * slots hold the key, so that a lookup touches one cache line before the
+ * block itself. */
+#include "voxgrid.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SLAB_BLOCKS 64          /* blocks per allocation */
+
+struct slot {
+	int32_t bx, by, bz;
+	uint32_t idx;           /* block index + 1; 0 = empty */
+};
+
+struct fct_voxgrid {
+	double voxel;
+	int colour;
+	size_t limit;           /* bytes, 0 = none */
+
+	size_t n;               /* blocks */
+	struct fct_voxblock **blocks;   /* creation order */
+	size_t blocks_cap;
+
+	struct fct_voxblock **slabs;    /* SLAB_BLOCKS blocks each */
+	float **rgb_slabs;              /* 3 * 512 * SLAB_BLOCKS floats each, with colour */
+	size_t nslabs, slabs_cap, rgb_cap;
+
+	struct slot *hash;
+	size_t hcap;            /* power of two */
+};
+
+static inline size_t hash_key(int32_t bx, int32_t by, int32_t bz)
+{
+	uint64_t h = (uint64_t)(uint32_t)bx * 0x9E3779B97F4A7C15u;
+	h ^= (uint64_t)(uint32_t)by * 0xC2B2AE3D27D4EB4Fu;
+	h ^= (uint64_t)(uint32_t)bz * 0x165667B19E3779F9u;
+	h ^= h >> 29;
+	return (size_t)h;
+}
+
+struct fct_voxgrid *fct_voxgrid_new(double voxel_size, int with_colour, struct fct_err *err)
+{
+	if (!(voxel_size > 0) || !isfinite(voxel_size)) {
+		fct_fail(err, "voxel size %g is not a positive number", voxel_size);
+		return NULL;
+	}
+	struct fct_voxgrid *g = calloc(1, sizeof *g);
+	if (!g) {
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	g->voxel = voxel_size;
+	g->colour = with_colour != 0;
+	g->hcap = 64;
+	g->hash = calloc(g->hcap, sizeof *g->hash);
+	if (!g->hash) {
+		free(g);
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	return g;
+}
+
+void fct_voxgrid_free(struct fct_voxgrid *g)
+{
+	if (!g)
+		return;
+	for (size_t s = 0; s < g->nslabs; s++) {
+		free(g->slabs[s]);
+		if (g->colour)
+			free(g->rgb_slabs[s]);
+	}
+	free(g->slabs);
+	free(g->rgb_slabs);
+	free(g->blocks);
+	free(g->hash);
+	free(g);
+}
+
+double fct_voxgrid_voxel(const struct fct_voxgrid *g)
+{
+	return g->voxel;
+}
+
+int fct_voxgrid_has_colour(const struct fct_voxgrid *g)
+{
+	return g->colour;
+}
+
+size_t fct_voxgrid_count(const struct fct_voxgrid *g)
+{
+	return g->n;
+}
+
+struct fct_voxblock *fct_voxgrid_at(const struct fct_voxgrid *g, size_t i)
+{
+	return i < g->n ? g->blocks[i] : NULL;
+}
+
+size_t fct_voxgrid_block_bytes(int with_colour)
+{
+	/* the block, its share of a hash at load 1/4..1/2 (say 3 slots), its
+	 * pointer in the creation-order array (amortised doubling: 2) */
+	return sizeof(struct fct_voxblock) + 3 * sizeof(struct slot) + 2 * sizeof(void *) +
+	       (with_colour ? 3 * FCT_VOXBLOCK_N * sizeof(float) : 0);
+}
+
+/* Bytes held for nslabs slabs, a blocks array of bcap and a hash of hcap. */
+static size_t bytes_for(const struct fct_voxgrid *g, size_t nslabs, size_t bcap, size_t hcap)
+{
+	size_t slab = SLAB_BLOCKS * (sizeof(struct fct_voxblock) +
+	                             (g->colour ? 3 * FCT_VOXBLOCK_N * sizeof(float) : 0));
+	return nslabs * slab + bcap * sizeof(void *) + hcap * sizeof(struct slot) +
+	       sizeof *g;
+}
+
+size_t fct_voxgrid_bytes(const struct fct_voxgrid *g)
+{
+	return bytes_for(g, g->nslabs, g->blocks_cap, g->hcap);
+}
+
+void fct_voxgrid_set_limit(struct fct_voxgrid *g, size_t max_bytes)
+{
+	g->limit = max_bytes;
+}
+
+/* Slot of key, or the empty slot where it would go. */
+static inline struct slot *probe(const struct fct_voxgrid *g, int32_t bx, int32_t by, int32_t bz)
+{
+	size_t mask = g->hcap - 1, h = hash_key(bx, by, bz) & mask;
+	for (;;) {
+		struct slot *s = &g->hash[h];
+		if (!s->idx || (s->bx == bx && s->by == by && s->bz == bz))
+			return s;
+		h = (h + 1) & mask;
+	}
+}
+
+static int rehash(struct fct_voxgrid *g, size_t ncap, struct fct_err *err)
+{
+	struct slot *nh = fct_alloc_array(ncap, sizeof *nh, err);
+	if (!nh)
+		return -1;
+	memset(nh, 0, ncap * sizeof *nh);
+	struct slot *old = g->hash;
+	size_t ocap = g->hcap;
+	g->hash = nh;
+	g->hcap = ncap;
+	for (size_t i = 0; i < ocap; i++)
+		if (old[i].idx)
+			*probe(g, old[i].bx, old[i].by, old[i].bz) = old[i];
+	free(old);
+	return 0;
+}
+
+static int over_limit(const struct fct_voxgrid *g, size_t nslabs, size_t bcap, size_t hcap,
+                      struct fct_err *err)
+{
+	if (!g->limit)
+		return 0;
+	size_t need = bytes_for(g, nslabs, bcap, hcap);
+	if (need <= g->limit)
+		return 0;
+	return fct_fail(err, "voxel grid: %zu blocks of %g-unit voxels need %.1f MB, over the limit of %.1f MB",
+	                g->n + 1, g->voxel, need / 1e6, g->limit / 1e6);
+}
+
+static struct fct_voxblock *create(struct fct_voxgrid *g, int32_t bx, int32_t by, int32_t bz,
+                                   struct fct_err *err)
+{
+	if (g->n >= UINT32_MAX - 1) {
+		fct_fail(err, "voxel grid: too many blocks");
+		return NULL;
+	}
+	/* capacities after this insertion, checked against the limit first */
+	size_t hcap = g->hcap;
+	while (2 * (g->n + 1) > hcap)
+		hcap *= 2;
+	size_t nslabs = g->n / SLAB_BLOCKS + 1 > g->nslabs ? g->n / SLAB_BLOCKS + 1 : g->nslabs;
+	size_t bcap = g->blocks_cap;
+	if (g->n + 1 > bcap)
+		bcap = bcap ? 2 * bcap : 64;
+	if (over_limit(g, nslabs, bcap, hcap, err))
+		return NULL;
+	if (hcap != g->hcap && rehash(g, hcap, err))
+		return NULL;
+	if (fct_grow((void **)&g->blocks, &g->blocks_cap, g->n + 1, sizeof *g->blocks, err))
+		return NULL;
+	if (nslabs > g->nslabs) {
+		size_t rc = g->rgb_cap;
+		if (fct_grow((void **)&g->slabs, &g->slabs_cap, nslabs, sizeof *g->slabs, err) ||
+		    (g->colour && fct_grow((void **)&g->rgb_slabs, &rc, nslabs, sizeof *g->rgb_slabs, err)))
+			return NULL;
+		g->rgb_cap = rc;
+		struct fct_voxblock *slab = calloc(SLAB_BLOCKS, sizeof *slab);
+		float *rgb = NULL;
+		if (slab && g->colour)
+			rgb = calloc((size_t)SLAB_BLOCKS * 3 * FCT_VOXBLOCK_N, sizeof *rgb);
+		if (!slab || (g->colour && !rgb)) {
+			free(slab);
+			fct_fail(err, "voxel grid: out of memory at %zu blocks (%.1f MB)", g->n,
+			         fct_voxgrid_bytes(g) / 1e6);
+			return NULL;
+		}
+		g->slabs[g->nslabs] = slab;
+		if (g->colour)
+			g->rgb_slabs[g->nslabs] = rgb;
+		g->nslabs++;
+	}
+	size_t s = g->n / SLAB_BLOCKS, k = g->n % SLAB_BLOCKS;
+	struct fct_voxblock *b = &g->slabs[s][k];
+	b->bx = bx, b->by = by, b->bz = bz;
+	b->rgb = g->colour ? g->rgb_slabs[s] + k * 3 * FCT_VOXBLOCK_N : NULL;
+	g->blocks[g->n] = b;
+	struct slot *sl = probe(g, bx, by, bz);
+	sl->bx = bx, sl->by = by, sl->bz = bz;
+	sl->idx = (uint32_t)(g->n + 1);
+	g->n++;
+	return b;
+}
+
+struct fct_voxblock *fct_voxgrid_block(struct fct_voxgrid *g, int32_t bx, int32_t by, int32_t bz,
+                                       int create_it, struct fct_err *err)
+{
+	struct slot *s = probe(g, bx, by, bz);
+	if (s->idx)
+		return g->blocks[s->idx - 1];
+	return create_it ? create(g, bx, by, bz, err) : NULL;
+}
+
+struct fct_voxblock *fct_voxgrid_voxel_at(struct fct_voxgrid *g, int32_t i, int32_t j, int32_t k,
+                                          int create_it, int *local, struct fct_err *err)
+{
+	int32_t bx = fct_vox_block_of(i), by = fct_vox_block_of(j), bz = fct_vox_block_of(k);
+	*local = (int)(i - 8 * bx) + 8 * ((int)(j - 8 * by) + 8 * (int)(k - 8 * bz));
+	return fct_voxgrid_block(g, bx, by, bz, create_it, err);
+}
+
+int fct_voxgrid_get(const struct fct_voxgrid *g, int32_t i, int32_t j, int32_t k,
+                    float *sdf, float *weight)
+{
+	int local;
+	struct fct_voxblock *b = fct_voxgrid_voxel_at((struct fct_voxgrid *)g, i, j, k, 0, &local, NULL);
+	if (!b) {
+		*sdf = *weight = 0;
+		return 0;
+	}
+	*sdf = b->sdf[local];
+	*weight = b->weight[local];
+	return 1;
+}
