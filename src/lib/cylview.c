@@ -249,7 +249,7 @@ int fct_cylview_check_panorama(const struct fct_image *img, const struct fct_cam
 	}
 	double seam = d[W - 1];
 	qsort(d, (size_t)W - 1, sizeof *d, cmp_double);
-	double p99 = d[(size_t)floor(0.5 * (W - 2))];
+	double p99 = d[(size_t)floor(0.99 * (W - 2))];
 	free(d);
 	double range = img->type == FCT_PIX_U8 ? 255 : img->type == FCT_PIX_U16 ? 65535
 	             : (hi > lo ? hi - lo : 0);
