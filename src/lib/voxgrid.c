@@ -231,6 +231,11 @@ struct fct_voxblock *fct_voxgrid_block(struct fct_voxgrid *g, int32_t bx, int32_
 	return create_it ? create(g, bx, by, bz, err) : NULL;
 }
 
+long fct_voxgrid_index(const struct fct_voxgrid *g, int32_t bx, int32_t by, int32_t bz)
+{
+	return (long)probe(g, bx, by, bz)->idx - 1;
+}
+
 struct fct_voxblock *fct_voxgrid_voxel_at(struct fct_voxgrid *g, int32_t i, int32_t j, int32_t k,
                                           int create_it, int *local, struct fct_err *err)
 {

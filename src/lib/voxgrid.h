@@ -72,6 +72,10 @@ struct fct_voxblock *fct_voxgrid_block(struct fct_voxgrid *g, int32_t bx, int32_
 size_t fct_voxgrid_count(const struct fct_voxgrid *g);
 struct fct_voxblock *fct_voxgrid_at(const struct fct_voxgrid *g, size_t i);
 
+/* Creation index of block (bx, by, bz), or -1 when absent (a read-only
+ * lookup; fct_voxgrid_at(g, index) is the block). */
+long fct_voxgrid_index(const struct fct_voxgrid *g, int32_t bx, int32_t by, int32_t bz);
+
 /* Bytes one block costs, hash slots and the block-pointer array included
  * (an estimate for refusing before allocating: n blocks cost about
  * n * fct_voxgrid_block_bytes(c)). */

@@ -1,0 +1,586 @@
+/* test_mcubes.c - marching cubes on analytic fields with known answers:
+ * every sign pattern of one cube closed by a positive shell, random and
+ * checkerboard fields (all faces ambiguous), a sphere, a torus, planes,
+ * block borders, colour, min_weight, and tiles joined by exact welding. */
+#include <stdlib.h>
+
+#include "adj.h"
+#include "check.h"
+#include "mcubes.h"
+#include "rng.h"
+
+static struct fct_err err;
+
+typedef double (*field_fn)(const double p[3], const void *arg);
+
+/* Fill voxels lo..hi (inclusive) with f, weight 1 where |f| <= trunc (world
+ * units); blocks are created only where some voxel is written. */
+static struct fct_voxgrid *fill(double voxel, const int lo[3], const int hi[3], field_fn f,
+                                const void *arg, double trunc, int colour)
+{
+	struct fct_voxgrid *g = fct_voxgrid_new(voxel, colour, &err);
+	if (!g)
+		abort();
+	for (int k = lo[2]; k <= hi[2]; k++)
+		for (int j = lo[1]; j <= hi[1]; j++)
+			for (int i = lo[0]; i <= hi[0]; i++) {
+				double p[3] = { i * voxel, j * voxel, k * voxel };
+				double d = f(p, arg);
+				if (!(fabs(d) <= trunc))
+					continue;
+				int v;
+				struct fct_voxblock *b = fct_voxgrid_voxel_at(g, i, j, k, 1, &v, &err);
+				if (!b)
+					abort();
+				b->sdf[v] = (float)d;
+				b->weight[v] = 1;
+				if (colour) {
+					b->rgb[3 * v] = (float)(10 * i);
+					b->rgb[3 * v + 1] = 100;
+					b->rgb[3 * v + 2] = (float)(200 - 3 * k);
+				}
+			}
+	return g;
+}
+
+/* Topology of a triangle mesh. */
+struct topo {
+	size_t border, nonmanifold, ne;
+	long euler;
+	int oriented;           /* every two-face edge walked once each way */
+	long components;
+	long duplicates;        /* vertices at the same position as another */
+};
+
+static struct topo topology(const struct fct_mesh *m)
+{
+	struct topo t;
+	memset(&t, 0, sizeof t);
+	struct fct_adj a;
+	if (fct_adj_build(&a, m, &err))
+		abort();
+	t.border = a.nborder;
+	t.nonmanifold = a.nnonmanifold;
+	t.ne = a.ne;
+	t.euler = (long)m->nv - (long)a.ne + (long)m->nf;
+	int *dir = calloc(a.ne + 1, sizeof *dir);
+	uint32_t *label = malloc((m->nf + 1) * sizeof *label);
+	for (size_t f = 0; f < m->nf; f++)
+		for (uint32_t k = 0; k < 3; k++) {
+			uint32_t u = m->fvert[3 * f + k], v = m->fvert[3 * f + (k + 1) % 3];
+			uint32_t e = a.face_e[3 * f + k];
+			if (e != FCT_ADJ_NONE)
+				dir[e] += u < v ? 1 : -1;
+		}
+	t.oriented = 1;
+	for (size_t e = 0; e < a.ne; e++)
+		if (fct_adj_edge_nfaces(&a, e) == 2 && dir[e] != 0)
+			t.oriented = 0;
+	t.components = fct_adj_components(&a, label, &err);
+	free(dir);
+	free(label);
+	fct_adj_free(&a);
+	struct fct_mesh c;
+	if (fct_mesh_copy(&c, m, &err))
+		abort();
+	t.duplicates = fct_mesh_weld_exact(&c, &err);
+	fct_mesh_free(&c);
+	return t;
+}
+
+/* Signed volume enclosed (positive when the normals point outwards). */
+static double volume(const struct fct_mesh *m)
+{
+	double v = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		const double *a = m->xyz + 3 * m->fvert[3 * f], *b = m->xyz + 3 * m->fvert[3 * f + 1],
+		             *c = m->xyz + 3 * m->fvert[3 * f + 2];
+		v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+		      a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+	}
+	return v;
+}
+
+static double area(const struct fct_mesh *m)
+{
+	double s = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		const double *a = m->xyz + 3 * m->fvert[3 * f], *b = m->xyz + 3 * m->fvert[3 * f + 1],
+		             *c = m->xyz + 3 * m->fvert[3 * f + 2];
+		double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+		double w[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+		double x = u[1] * w[2] - u[2] * w[1], y = u[2] * w[0] - u[0] * w[2], z = u[0] * w[1] - u[1] * w[0];
+		s += 0.5 * sqrt(x * x + y * y + z * z);
+	}
+	return s;
+}
+
+static const float *prop(const struct fct_mesh *m, const char *name)
+{
+	struct fct_prop *p = fct_elem_find(&m->vertex, name);
+	return p && p->type == FCT_FLOAT32 ? p->data : NULL;
+}
+
+/* Fields ------------------------------------------------------------------ */
+
+struct sphere {
+	double c[3], r;
+};
+
+static double sphere_f(const double p[3], const void *arg)
+{
+	const struct sphere *s = arg;
+	double d[3] = { p[0] - s->c[0], p[1] - s->c[1], p[2] - s->c[2] };
+	return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - s->r;
+}
+
+struct torus {
+	double R, r;
+};
+
+static double torus_f(const double p[3], const void *arg)
+{
+	const struct torus *t = arg;
+	double q = sqrt(p[0] * p[0] + p[1] * p[1]) - t->R;
+	return sqrt(q * q + p[2] * p[2]) - t->r;
+}
+
+struct plane {
+	double n[3], d;
+};
+
+static double plane_f(const double p[3], const void *arg)
+{
+	const struct plane *pl = arg;
+	return pl->n[0] * p[0] + pl->n[1] * p[1] + pl->n[2] * p[2] + pl->d;
+}
+
+/* Tests ------------------------------------------------------------------- */
+
+static int closed_ok(const struct topo *t)
+{
+	return t->border == 0 && t->nonmanifold == 0 && t->oriented && t->duplicates == 0;
+}
+
+/* Every sign pattern of the cube (1..2)^3, random magnitudes, inside a
+ * positive shell: a closed, oriented, manifold surface whose volume is
+ * positive; the single-corner pattern has its exact answer. */
+static void test_all_patterns(void)
+{
+	struct fct_rng rng;
+	fct_rng_seed(&rng, 7);
+	int ok = 1, vol_ok = 1, euler_ok = 1, amb_seen = 0;
+	for (int trial = 0; trial < 40; trial++)
+		for (int cfg = 0; cfg < 256; cfg++) {
+			struct fct_voxgrid *g = fct_voxgrid_new(1, 0, &err);
+			for (int k = 0; k < 4; k++)
+				for (int j = 0; j < 4; j++)
+					for (int i = 0; i < 4; i++) {
+						/* put the cube across the block corner at voxel 8 */
+						int v;
+						struct fct_voxblock *b = fct_voxgrid_voxel_at(g, i + 6, j + 6, k + 6, 1, &v, &err);
+						int in = i >= 1 && i <= 2 && j >= 1 && j <= 2 && k >= 1 && k <= 2;
+						int c = (i - 1) + 2 * (j - 1) + 4 * (k - 1);
+						double mag = trial ? 0.05 + fct_rng_uniform(&rng) : 1;
+						b->sdf[v] = (float)(in && (cfg >> c & 1) ? -mag : mag);
+						b->weight[v] = 1;
+					}
+			struct fct_mesh m;
+			struct fct_mcubes_stats st;
+			if (fct_mcubes_stats(g, 0, NULL, NULL, &m, &st, &err))
+				abort();
+			amb_seen += st.ambiguous > 0;
+			struct topo t = topology(&m);
+			ok &= closed_ok(&t) && (cfg == 0) == (m.nf == 0);
+			vol_ok &= cfg == 0 || volume(&m) > 0;
+			euler_ok &= t.euler == 2 * t.components;
+			if (trial == 0 && cfg == 1) {
+				/* one corner at -1, its six neighbours at +1: the three
+				 * edges cross at mid-edge, other cubes add the rest of an
+				 * octahedron: 6 vertices, 8 faces */
+				CHECK_INT(m.nv, 6);
+				CHECK_INT(m.nf, 8);
+				CHECK_NEAR(volume(&m), 4.0 / 3 * 0.125, 1e-12);
+			}
+			fct_mesh_free(&m);
+			fct_voxgrid_free(g);
+		}
+	CHECK(ok);
+	CHECK(vol_ok);
+	CHECK(euler_ok);
+	CHECK(amb_seen > 0);
+}
+
+/* Random and checkerboard fields in a 12^3 region (across block borders)
+ * closed by a positive shell. */
+static void test_random_fields(void)
+{
+	struct fct_rng rng;
+	fct_rng_seed(&rng, 11);
+	int ok = 1, euler_ok = 1;
+	size_t amb = 0, centres = 0;
+	for (int trial = 0; trial < 30; trial++) {
+		struct fct_voxgrid *g = fct_voxgrid_new(0.5, 0, &err);
+		for (int k = -6; k < 8; k++)
+			for (int j = -6; j < 8; j++)
+				for (int i = -6; i < 8; i++) {
+					int v;
+					struct fct_voxblock *b = fct_voxgrid_voxel_at(g, i, j, k, 1, &v, &err);
+					int shell = i == -6 || i == 7 || j == -6 || j == 7 || k == -6 || k == 7;
+					double s;
+					if (shell)
+						s = 1;
+					else if (trial == 0)
+						s = (i + j + k) & 1 ? 1 : -1;   /* checkerboard, all ties */
+					else if (trial == 1)
+						s = ((i + j + k) & 1 ? 1 : -1) * (1 + 0.01 * fct_rng_uniform(&rng));
+					else
+						s = fct_rng_uniform(&rng) - 0.5;
+					b->sdf[v] = (float)s;
+					b->weight[v] = 1;
+				}
+		struct fct_mesh m, m2;
+		struct fct_mcubes_stats st;
+		if (fct_mcubes_stats(g, 0.5f, NULL, NULL, &m, &st, &err) ||
+		    fct_mcubes(g, 0.5f, NULL, NULL, &m2, &err))
+			abort();
+		amb += st.ambiguous;
+		centres += st.centres;
+		struct topo t = topology(&m);
+		ok &= closed_ok(&t) && t.nonmanifold == 0 && m.nf > 0 && volume(&m) > 0;
+		euler_ok &= t.euler % 2 == 0;
+		/* deterministic */
+		ok &= m.nv == m2.nv && m.nf == m2.nf &&
+		      !memcmp(m.xyz, m2.xyz, 3 * m.nv * sizeof *m.xyz) &&
+		      !memcmp(m.fvert, m2.fvert, 3 * m.nf * sizeof *m.fvert);
+		if (!ok) {
+			fprintf(stderr, "trial %d: border %zu nonmanifold %zu oriented %d dup %ld\n", trial,
+			        t.border, t.nonmanifold, t.oriented, t.duplicates);
+			break;
+		}
+		fct_mesh_free(&m);
+		fct_mesh_free(&m2);
+		fct_voxgrid_free(g);
+	}
+	CHECK(ok);
+	CHECK(euler_ok);
+	CHECK(amb > 1000);
+	CHECK(centres > 0);
+}
+
+/* A sphere of radius 1 m at 0.05 m voxels (20 voxels), off the lattice, in
+ * a band of 3 voxels: closed, genus 0, every vertex within 1% of the radius,
+ * normals radial, no duplicates; the band crosses many block borders. */
+static void test_sphere(void)
+{
+	struct sphere s = { { 0.013, -0.021, 0.037 }, 1.0 };
+	int lo[3] = { -24, -24, -24 }, hi[3] = { 24, 24, 24 };
+	double vox = 0.05;
+	struct fct_voxgrid *g = fill(vox, lo, hi, sphere_f, &s, 3 * vox, 0);
+	struct fct_mesh m;
+	struct fct_mcubes_stats st;
+	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, &m, &st, &err), 0);
+	struct topo t = topology(&m);
+	CHECK_INT(t.border, 0);
+	CHECK_INT(t.nonmanifold, 0);
+	CHECK(t.oriented);
+	CHECK_INT(t.euler, 2);
+	CHECK_INT(t.components, 1);
+	CHECK_INT(t.duplicates, 0);
+	double maxe = 0, sume = 0, mindot = 1;
+	const float *nx = prop(&m, "nx"), *ny = prop(&m, "ny"), *nz = prop(&m, "nz");
+	CHECK(nx && ny && nz);
+	for (size_t v = 0; v < m.nv; v++) {
+		double d[3] = { m.xyz[3 * v] - s.c[0], m.xyz[3 * v + 1] - s.c[1], m.xyz[3 * v + 2] - s.c[2] };
+		double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+		double e = fabs(r - s.r);
+		maxe = e > maxe ? e : maxe;
+		sume += e;
+		double dot = (nx[v] * d[0] + ny[v] * d[1] + nz[v] * d[2]) / r;
+		mindot = dot < mindot ? dot : mindot;
+	}
+	/* chords of a 20-voxel sphere sag by at most r(1 - cos(asin(1/2r)))
+	 * between lattice points: the vertex error is a fraction of that */
+	CHECK(maxe < 0.01 * s.r);
+	CHECK(sume / (double)m.nv < 0.001 * s.r);
+	CHECK(mindot > 0.995);
+	double V = 4.0 / 3 * M_PI;
+	CHECK_NEAR(volume(&m) / V, 1, 0.01);
+	CHECK_NEAR(area(&m) / (4 * M_PI), 1, 0.01);
+	/* the grid is 48^3 voxels' worth of band only */
+	CHECK(fct_voxgrid_count(g) < 7 * 7 * 7);
+	CHECK_INT(st.voxels, fct_voxgrid_count(g) * 512);
+	fprintf(stderr, "sphere: %zu vertices, %zu faces, max err %.3g%%, mean %.3g%% of r\n",
+	        m.nv, m.nf, 100 * maxe / s.r, 100 * sume / (double)m.nv / s.r);
+	fct_mesh_free(&m);
+	fct_voxgrid_free(g);
+}
+
+static void test_torus(void)
+{
+	struct torus tr = { 6.0, 2.5 };
+	int lo[3] = { -20, -20, -7 }, hi[3] = { 20, 20, 7 };
+	struct fct_voxgrid *g = fill(0.5, lo, hi, torus_f, &tr, 1.0, 0);
+	struct fct_mesh m;
+	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	struct topo t = topology(&m);
+	CHECK_INT(t.border, 0);
+	CHECK_INT(t.nonmanifold, 0);
+	CHECK(t.oriented);
+	CHECK_INT(t.euler, 0);
+	CHECK_INT(t.components, 1);
+	CHECK_NEAR(volume(&m) / (2 * M_PI * M_PI * tr.R * tr.r * tr.r), 1, 0.02);
+	fct_mesh_free(&m);
+	fct_voxgrid_free(g);
+}
+
+/* A horizontal plane z = 2.3 over observed voxels x, y in 0..16: a disk of
+ * area 16 x 16 voxels at exactly z = 2.3, normals +z; a tilted plane: every
+ * vertex on it (the field is linear, so interpolation is exact). */
+static void test_planes(void)
+{
+	struct plane p = { { 0, 0, 1 }, -2.3 };
+	int lo[3] = { 0, 0, -3 }, hi[3] = { 16, 16, 9 };
+	struct fct_voxgrid *g = fill(1, lo, hi, plane_f, &p, 100, 0);
+	struct fct_mesh m;
+	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	struct topo t = topology(&m);
+	CHECK_INT(t.euler, 1);
+	CHECK_INT(t.nonmanifold, 0);
+	CHECK_INT(t.border, 64);
+	CHECK(t.oriented);
+	CHECK_INT(m.nv, 17 * 17);
+	CHECK_INT(m.nf, 2 * 16 * 16);
+	CHECK_NEAR(area(&m), 256, 1e-9);
+	double maxz = 0, minnz = 1;
+	const float *nz = prop(&m, "nz");
+	for (size_t v = 0; v < m.nv; v++) {
+		maxz = fmax(maxz, fabs(m.xyz[3 * v + 2] - 2.3));
+		minnz = fmin(minnz, nz[v]);
+	}
+	CHECK(maxz < 1e-6);
+	CHECK_NEAR(minnz, 1, 1e-6);
+	/* orientation: triangle normals +z (to the positive side) */
+	int up = 1;
+	for (size_t f = 0; f < m.nf; f++) {
+		const double *a = m.xyz + 3 * m.fvert[3 * f], *b = m.xyz + 3 * m.fvert[3 * f + 1],
+		             *c = m.xyz + 3 * m.fvert[3 * f + 2];
+		up &= (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0;
+	}
+	CHECK(up);
+	fct_mesh_free(&m);
+	fct_voxgrid_free(g);
+
+	struct plane q = { { 0.36, -0.48, 0.8 }, 0.123 };
+	int lo2[3] = { -10, -10, -10 }, hi2[3] = { 10, 10, 10 };
+	g = fill(0.1, lo2, hi2, plane_f, &q, 0.25, 0);
+	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	t = topology(&m);
+	CHECK_INT(t.euler, 1);
+	CHECK_INT(t.nonmanifold, 0);
+	CHECK(t.oriented);
+	double maxd = 0, mindot = 1;
+	const float *nx = prop(&m, "nx"), *ny = prop(&m, "ny");
+	nz = prop(&m, "nz");
+	for (size_t v = 0; v < m.nv; v++) {
+		maxd = fmax(maxd, fabs(plane_f(m.xyz + 3 * v, &q)));
+		mindot = fmin(mindot, nx[v] * q.n[0] + ny[v] * q.n[1] + nz[v] * q.n[2]);
+	}
+	CHECK(maxd < 1e-6);
+	CHECK(mindot > 0.99999);
+	CHECK(m.nf > 500);
+	fct_mesh_free(&m);
+	fct_voxgrid_free(g);
+}
+
+/* Colour interpolated along the edge: red = 10 i at voxel i. */
+static void test_colour(void)
+{
+	struct plane p = { { 1, 0, 0 }, -3.25 };   /* x = 3.25 */
+	int lo[3] = { 0, 0, 0 }, hi[3] = { 6, 4, 4 };
+	struct fct_voxgrid *g = fill(1, lo, hi, plane_f, &p, 100, 1);
+	struct fct_mesh m;
+	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	struct fct_prop *r = fct_elem_find(&m.vertex, "red"), *gr = fct_elem_find(&m.vertex, "green"),
+	                *bl = fct_elem_find(&m.vertex, "blue");
+	CHECK(r && gr && bl && r->type == FCT_UINT8);
+	CHECK_INT(m.nv, 25);
+	int ok = 1;
+	for (size_t v = 0; r && gr && bl && v < m.nv; v++) {
+		int k = (int)lrint(m.xyz[3 * v + 2]);
+		ok &= fct_prop_get(r, v) == 33 && fct_prop_get(gr, v) == 100 &&
+		      fct_prop_get(bl, v) == 200 - 3 * k;
+	}
+	CHECK(ok);
+	fct_mesh_free(&m);
+	fct_voxgrid_free(g);
+}
+
+/* Voxels under min_weight are unobserved; a missing block too. */
+static void test_min_weight(void)
+{
+	struct sphere s = { { 0.2, 0.1, 0.3 }, 5 };
+	int lo[3] = { -8, -8, -8 }, hi[3] = { 8, 8, 8 };
+	struct fct_voxgrid *g = fill(1, lo, hi, sphere_f, &s, 2, 0);
+	/* lower the weight of every voxel with x >= 1 */
+	for (size_t b = 0; b < fct_voxgrid_count(g); b++) {
+		struct fct_voxblock *B = fct_voxgrid_at(g, b);
+		for (int v = 0; v < 512; v++)
+			if (8 * B->bx + (v & 7) >= 1 && B->weight[v] > 0)
+				B->weight[v] = 0.5f;
+	}
+	struct fct_mesh all, half;
+	CHECK_INT(fct_mcubes(g, 0.5f, NULL, NULL, &all, &err), 0);
+	CHECK_INT(fct_mcubes(g, 0.75f, NULL, NULL, &half, &err), 0);
+	struct topo t = topology(&all), h = topology(&half);
+	CHECK_INT(t.border, 0);
+	CHECK(h.border > 0);
+	CHECK_INT(h.nonmanifold, 0);
+	double maxx = -1e9;
+	for (size_t v = 0; v < half.nv; v++)
+		maxx = fmax(maxx, half.xyz[3 * v]);
+	CHECK(maxx <= 0 && maxx > -0.5);
+	fct_mesh_free(&all);
+	fct_mesh_free(&half);
+	fct_voxgrid_free(g);
+}
+
+/* Append b to a (positions and faces only). */
+static void concat(struct fct_mesh *a, const struct fct_mesh *b)
+{
+	size_t off = a->nv;
+	for (size_t v = 0; v < b->nv; v++)
+		if (fct_mesh_add_vertex(a, b->xyz[3 * v], b->xyz[3 * v + 1], b->xyz[3 * v + 2], &err) < 0)
+			abort();
+	for (size_t f = 0; f < b->nf; f++) {
+		uint32_t t[3];
+		for (int k = 0; k < 3; k++)
+			t[k] = (uint32_t)(b->fvert[3 * f + k] + off);
+		if (fct_mesh_add_face(a, t, 3, &err) < 0)
+			abort();
+	}
+}
+
+/* Triangles as position triples, rotated to start at the smallest. */
+struct ptri {
+	double p[9];
+};
+
+static int cmp_ptri(const void *a, const void *b)
+{
+	return memcmp(a, b, sizeof(struct ptri));
+}
+
+static struct ptri *ptris(const struct fct_mesh *m)
+{
+	struct ptri *t = malloc((m->nf + 1) * sizeof *t);
+	for (size_t f = 0; f < m->nf; f++) {
+		int s = 0;
+		for (int k = 1; k < 3; k++)
+			if (memcmp(m->xyz + 3 * m->fvert[3 * f + k], m->xyz + 3 * m->fvert[3 * f + s],
+			           3 * sizeof(double)) < 0)
+				s = k;
+		for (int k = 0; k < 3; k++)
+			memcpy(t[f].p + 3 * k, m->xyz + 3 * m->fvert[3 * f + (s + k) % 3], 3 * sizeof(double));
+	}
+	qsort(t, m->nf, sizeof *t, cmp_ptri);
+	return t;
+}
+
+/* Tiles: a sphere extracted whole and as 2 x 2 x 1 tiles whose borders cut
+ * blocks (x at 3, y at -5): each tile is open, the welded union is closed
+ * and has exactly the whole extraction's vertices and triangles.  The tiles
+ * are extracted from grids fused separately over their box plus a margin. */
+static void test_tiles(void)
+{
+	struct sphere s = { { 0.31, -0.17, 0.05 }, 9.2 };
+	int lo[3] = { -12, -12, -12 }, hi[3] = { 12, 12, 12 };
+	struct fct_voxgrid *g = fill(1, lo, hi, sphere_f, &s, 2.5, 0);
+	struct fct_mesh whole;
+	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &whole, &err), 0);
+	fct_voxgrid_free(g);
+	int cut[3][3] = { { -12, 3, 12 }, { -12, -5, 12 }, { -12, 12, 12 } };
+	struct fct_mesh all;
+	fct_mesh_init(&all);
+	int open_ok = 1;
+	for (int ty = 0; ty < 2; ty++)
+		for (int tx = 0; tx < 2; tx++) {
+			int32_t clo[3] = { cut[0][tx], cut[1][ty], -12 }, chi[3] = { cut[0][tx + 1], cut[1][ty + 1], 12 };
+			int flo[3], fhi[3];
+			for (int k = 0; k < 3; k++)
+				flo[k] = clo[k] - 1, fhi[k] = chi[k] + 1;
+			struct fct_voxgrid *tg = fill(1, flo, fhi, sphere_f, &s, 2.5, 0);
+			struct fct_mesh m;
+			CHECK_INT(fct_mcubes(tg, 0, clo, chi, &m, &err), 0);
+			struct topo t = topology(&m);
+			open_ok &= t.border > 0 && t.nonmanifold == 0 && m.nf > 0;
+			concat(&all, &m);
+			fct_mesh_free(&m);
+			fct_voxgrid_free(tg);
+		}
+	CHECK(open_ok);
+	long removed = fct_mesh_weld_exact(&all, &err);
+	CHECK(removed > 0);
+	struct topo t = topology(&all);
+	CHECK_INT(t.border, 0);
+	CHECK_INT(t.nonmanifold, 0);
+	CHECK(t.oriented);
+	CHECK_INT(t.euler, 2);
+	CHECK_INT(all.nv, whole.nv);
+	CHECK_INT(all.nf, whole.nf);
+	if (all.nf == whole.nf) {
+		struct ptri *a = ptris(&all), *b = ptris(&whole);
+		CHECK(!memcmp(a, b, whole.nf * sizeof *a));
+		free(a);
+		free(b);
+	}
+	fct_mesh_free(&all);
+	fct_mesh_free(&whole);
+
+	/* an empty box, a box with no surface */
+	g = fill(1, lo, hi, sphere_f, &s, 2.5, 0);
+	int32_t e0[3] = { 0, 0, 0 }, e1[3] = { 0, 5, 5 }, n1[3] = { 2, 2, 2 };
+	struct fct_mesh m;
+	CHECK_INT(fct_mcubes(g, 0, e0, e1, &m, &err), 0);
+	CHECK_INT(m.nv, 0);
+	CHECK_INT(m.nf, 0);
+	fct_mesh_free(&m);
+	CHECK_INT(fct_mcubes(g, 0, e0, n1, &m, &err), 0);
+	CHECK_INT(m.nf, 0);
+	fct_mesh_free(&m);
+	CHECK_INT(fct_mcubes(g, 0, e0, NULL, &m, &err), -1);
+	fct_voxgrid_free(g);
+}
+
+static void test_weld(void)
+{
+	struct fct_mesh m;
+	fct_mesh_init(&m);
+	double p[5][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 0, 0 }, { 0, 0, 0 } };
+	for (int v = 0; v < 5; v++)
+		fct_mesh_add_vertex(&m, p[v][0], p[v][1], p[v][2], &err);
+	uint32_t f0[3] = { 0, 1, 2 }, f1[3] = { 4, 2, 3 };
+	fct_mesh_add_face(&m, f0, 3, &err);
+	fct_mesh_add_face(&m, f1, 3, &err);
+	CHECK_INT(fct_mesh_weld_exact(&m, &err), 2);
+	CHECK_INT(m.nv, 3);
+	CHECK_INT(m.nf, 2);
+	CHECK_INT(m.fvert[3], 0);
+	CHECK_INT(m.fvert[4], 2);
+	CHECK_INT(m.fvert[5], 1);
+	fct_mesh_free(&m);
+}
+
+int main(void)
+{
+	test_all_patterns();
+	test_random_fields();
+	test_sphere();
+	test_torus();
+	test_planes();
+	test_colour();
+	test_min_weight();
+	test_tiles();
+	test_weld();
+	CHECK_DONE();
+}
