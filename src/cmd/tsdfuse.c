@@ -1,0 +1,540 @@
+/* tsdfuse - several registered range-image meshes fused into one surface:
+ * Sun, Paik, Koschan and Abidi, "3D Reconstruction of Indoor and Outdoor
+ * Scenes Using a Mobile Range Scanner", sec. 3: Hilton's true signed
+ * distance in a sparse volume, confidence-weighted averaging, optional
+ * space carving, marching cubes, and level-set curvature flow. */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "depthmesh.h"
+#include "fuse.h"
+#include "header.h"
+#include "image.h"
+#include "mcubes.h"
+#include "meshio.h"
+#include "path.h"
+#include "rangegrid.h"
+
+static const char usage[] =
+	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"
+	"               [--carve] [--weight constant | incidence | depth2]\n"
+	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
+	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--poses file]...\n"
+	"               [--conf file] [view ...]\n"
+	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
+	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
+	"the true signed distance to each view's surface, and extract the surface.\n"
+	"  -a                 write ascii PLY\n"
+	"  -K fx,fy,cx,cy     camera of the depth-image views (or a dataset name)\n"
+	"  -o file            output file (default standard output)\n"
+	"  -q                 quiet\n"
+	"  -v                 progress per view, then figures on stderr\n"
+	"      --bbox x0,y0,z0,x1,y1,z1\n"
+	"                     fuse and extract only inside this box (metres); tiles\n"
+	"                     sharing faces join without cracks\n"
+	"      --carve        space carving: close occlusion holes (watertight rooms)\n"
+	"      --conf file    Stanford/VRIP .conf naming range-grid PLY scans\n"
+	"      --curvature-flow iter\n"
+	"                     level-set mean-curvature steps after fusion (default 0)\n"
+	"      --depth-scale s\n"
+	"                     PNG depth units per metre (default 1000, or the -K name's)\n"
+	"      --min-weight w extract only voxels of at least this weight (default 0)\n"
+	"      --poses file   camera-to-world poses of the depth images: a TUM\n"
+	"                     trajectory, or one 4x4 or 3x4 file per image (repeated)\n"
+	"      --projective   Curless-Levoy depth difference instead of true distance\n"
+	"      --trunc n      band half-width in voxels (default 3)\n"
+	"      --voxel size   voxel size in metres (default 0.01)\n"
+	"      --weight w     confidence of a view: constant (default), incidence\n"
+	"                     (cosine of the viewing angle), depth2 (1/depth^2)\n"
+	"  -h, --help         this help\n"
+	"      --version      print the version\n";
+
+enum { OPT_VOXEL = 256, OPT_TRUNC, OPT_BBOX, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW,
+       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_VERSION };
+
+struct options {
+	const char *out, *K, *conf;
+	const char **poses;
+	size_t nposes;
+	int ascii, carve, flow, has_bbox, scale_given;
+	double voxel, trunc, min_weight, bbox[6], depth_scale;
+	struct fct_fuse_params fp;
+	char **views;
+	size_t nviews;
+};
+
+static void parse_options(int argc, char **argv, struct options *o)
+{
+	static const struct option longopts[] = {
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, OPT_VERSION},
+		{"voxel", required_argument, NULL, OPT_VOXEL},
+		{"trunc", required_argument, NULL, OPT_TRUNC},
+		{"bbox", required_argument, NULL, OPT_BBOX},
+		{"carve", no_argument, NULL, OPT_CARVE},
+		{"weight", required_argument, NULL, OPT_WEIGHT},
+		{"curvature-flow", required_argument, NULL, OPT_FLOW},
+		{"min-weight", required_argument, NULL, OPT_MINW},
+		{"projective", no_argument, NULL, OPT_PROJ},
+		{"depth-scale", required_argument, NULL, OPT_SCALE},
+		{"poses", required_argument, NULL, OPT_POSES},
+		{"conf", required_argument, NULL, OPT_CONF},
+		{NULL, 0, NULL, 0},
+	};
+	static const char optstring[] = "ahK:o:qv";
+	int c;
+	memset(o, 0, sizeof *o);
+	o->voxel = 0.01;
+	o->trunc = 3;
+	o->depth_scale = 1000;
+	o->poses = calloc((size_t)argc + 1, sizeof *o->poses);
+	if (!o->poses)
+		fct_die(1, "out of memory");
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		switch (c) {
+		case 'a': o->ascii = 1; break;
+		case 'h': fputs(usage, stdout); exit(0);
+		case 'K': o->K = optarg; break;
+		case 'o': o->out = optarg; break;
+		case 'q': fct_quiet = 1; break;
+		case 'v': fct_verbose = 1; break;
+		case OPT_VERSION: puts("tsdfuse (facet) " FCT_VERSION); exit(0);
+		case OPT_VOXEL: o->voxel = fct_opt_double("--voxel", optarg, 1e-6, 1e6); break;
+		case OPT_TRUNC: o->trunc = fct_opt_double("--trunc", optarg, 1, 100); break;
+		case OPT_BBOX:
+			fct_opt_doubles("--bbox", optarg, o->bbox, 6);
+			o->has_bbox = 1;
+			for (int k = 0; k < 3; k++)
+				if (!(o->bbox[k + 3] > o->bbox[k]))
+					fct_usage_error("--bbox: the box has zero volume (need x0 < x1, y0 < y1, z0 < z1)");
+			break;
+		case OPT_CARVE: o->carve = 1; break;
+		case OPT_WEIGHT:
+			if (!strcmp(optarg, "constant"))
+				o->fp.weight = FCT_FUSE_CONSTANT;
+			else if (!strcmp(optarg, "incidence"))
+				o->fp.weight = FCT_FUSE_INCIDENCE;
+			else if (!strcmp(optarg, "depth2"))
+				o->fp.weight = FCT_FUSE_DEPTH2;
+			else
+				fct_usage_error("--weight: \"%s\": expected constant, incidence or depth2", optarg);
+			break;
+		case OPT_FLOW: o->flow = (int)fct_opt_long("--curvature-flow", optarg, 0, 10000); break;
+		case OPT_MINW: o->min_weight = fct_opt_double("--min-weight", optarg, 0, 1e30); break;
+		case OPT_PROJ: o->fp.projective = 1; break;
+		case OPT_SCALE:
+			o->depth_scale = fct_opt_double("--depth-scale", optarg, 1e-300, 1e300);
+			o->scale_given = 1;
+			break;
+		case OPT_POSES: o->poses[o->nposes++] = optarg; break;
+		case OPT_CONF: o->conf = optarg; break;
+		default: fct_bad_option(optstring, argv);
+		}
+	}
+	o->views = argv + optind;
+	o->nviews = (size_t)(argc - optind);
+	if (!o->nviews && !o->conf)
+		fct_usage_error("no views: give meshes, depth images or --conf");
+	o->fp.band = o->trunc * o->voxel;
+}
+
+/* Is path an image (PNG or PFM) rather than a mesh? */
+static int is_image(const char *path)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return 0;
+	unsigned char b[4] = { 0 };
+	size_t n = fread(b, 1, 4, f);
+	fclose(f);
+	return n >= 3 && ((b[0] == 0x89 && b[1] == 'P' && b[2] == 'N') ||
+	                  (b[0] == 'P' && (b[1] == 'f' || b[1] == 'F') && (b[2] == '\n' || b[2] == '\r')));
+}
+
+/* A TUM trajectory: lines "timestamp tx ty tz qx qy qz qw", # comments. */
+struct traj {
+	size_t n;
+	double *t;          /* timestamps */
+	double *pose;       /* 12 per line */
+};
+
+static int traj_read(struct traj *tr, const char *path, struct fct_err *err)
+{
+	memset(tr, 0, sizeof *tr);
+	FILE *f = fopen(path, "r");
+	if (!f)
+		return fct_fail(err, "%s: cannot open", path);
+	char line[1024];
+	size_t cap = 0, pcap = 0;
+	long no = 0;
+	int rc = 0;
+	while (fgets(line, sizeof line, f)) {
+		no++;
+		double v[8];
+		char extra[2];
+		if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
+			continue;
+		int n = sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %lf %1s", &v[0], &v[1], &v[2], &v[3],
+		               &v[4], &v[5], &v[6], &v[7], extra);
+		if (n != 8) {
+			rc = fct_fail(err, "%s:%ld: expected timestamp tx ty tz qx qy qz qw", path, no);
+			break;
+		}
+		double qn = sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
+		if (!(fabs(qn - 1) < 1e-2)) {
+			rc = fct_fail(err, "%s:%ld: not a unit quaternion (norm %g)", path, no, qn);
+			break;
+		}
+		if (fct_grow((void **)&tr->t, &cap, tr->n + 1, sizeof *tr->t, err) ||
+		    fct_grow((void **)&tr->pose, &pcap, 12 * (tr->n + 1), sizeof *tr->pose, err)) {
+			rc = -1;
+			break;
+		}
+		double *p = &tr->pose[12 * tr->n];
+		fct_quat_pose(v[4] / qn, v[5] / qn, v[6] / qn, v[7] / qn, p);
+		p[3] = v[1], p[7] = v[2], p[11] = v[3];
+		tr->t[tr->n++] = v[0];
+	}
+	fclose(f);
+	if (!rc && !tr->n)
+		rc = fct_fail(err, "%s: no poses", path);
+	return rc;
+}
+
+/* Does the file hold a TUM trajectory (a first data line of 8 numbers)? */
+static int is_trajectory(const char *path)
+{
+	FILE *f = fopen(path, "r");
+	if (!f)
+		return 0;
+	char line[1024];
+	int yes = 0;
+	while (fgets(line, sizeof line, f)) {
+		if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
+			continue;
+		double v[9];
+		yes = sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3], &v[4],
+		             &v[5], &v[6], &v[7], &v[8]) == 8;
+		break;
+	}
+	fclose(f);
+	return yes;
+}
+
+static double mesh_area(const struct fct_mesh *m)
+{
+	double a = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		const uint32_t *v = &m->fvert[m->fstart[f]];
+		for (uint32_t k = 2; k < fct_face_size(m, f); k++) {
+			double e1[3], e2[3], n[3];
+			for (int i = 0; i < 3; i++) {
+				e1[i] = m->xyz[3 * v[k - 1] + i] - m->xyz[3 * v[0] + i];
+				e2[i] = m->xyz[3 * v[k] + i] - m->xyz[3 * v[0] + i];
+			}
+			n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+			n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+			n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+			double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+			if (isfinite(l))
+				a += l / 2;
+		}
+	}
+	return a;
+}
+
+static double machine_bytes(void)
+{
+	long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+	return pages > 0 && size > 0 ? (double)pages * (double)size : 4e9;
+}
+
+/* Everything one view needs: its mesh, camera and pose. */
+struct loaded {
+	struct fct_mesh mesh;
+	struct fct_fuse_view view;
+	char name[512];
+};
+
+/* Load view number idx (operands first, then the .conf scans). */
+static void load_view(struct options *o, size_t idx, const struct fct_conf *conf,
+                      const struct traj *tr, const struct fct_camera *dcam,
+                      const struct fct_depth_params *dp, struct loaded *L)
+{
+	struct fct_err err;
+	memset(&L->view, 0, sizeof L->view);
+	if (idx >= o->nviews) {
+		const struct fct_conf_scan *s = &conf->scans[idx - o->nviews];
+		snprintf(L->name, sizeof L->name, "%s", s->path);
+		struct fct_mesh raw;
+		if (fct_mesh_read_file(&raw, s->path, NULL, &err))
+			fct_die_err(&err);
+		struct fct_grid_params gp = { 10, FCT_DEFAULT_MIN_FACES };
+		double step;
+		int rc = fct_range_grid_mesh(&L->mesh, &raw, &gp, &step, &err);
+		fct_mesh_free(&raw);
+		if (rc) {
+			fct_err_prefix(&err, "%s", s->path);
+			fct_die_err(&err);
+		}
+		for (size_t v = 0; v < L->mesh.nv; v++)
+			fct_pose_apply(s->pose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
+		memcpy(L->view.pose, s->pose, sizeof s->pose);
+		L->view.cam.kind = FCT_CAMERA_NONE;
+		L->view.ortho_step = step;
+	} else if (is_image(o->views[idx])) {
+		const char *path = o->views[idx];
+		snprintf(L->name, sizeof L->name, "%s", path);
+		if (dcam->kind == FCT_CAMERA_NONE)
+			fct_usage_error("%s: a depth image needs -K", path);
+		double pose[12];
+		if (tr && tr->n) {
+			/* Match a TUM timestamp in the file name, else take the idx-th. */
+			const char *base = strrchr(path, '/');
+			base = base ? base + 1 : path;
+			char *end;
+			double ts = strtod(base, &end);
+			size_t best = idx;
+			if (end != base && (*end == '.' && (end[1] < '0' || end[1] > '9'))) {
+				double bd = HUGE_VAL;
+				for (size_t i = 0; i < tr->n; i++)
+					if (fabs(tr->t[i] - ts) < bd)
+						bd = fabs(tr->t[i] - ts), best = i;
+			}
+			if (best >= tr->n)
+				fct_die(1, "%s: no pose for it in the trajectory (%zu poses)", path, tr->n);
+			memcpy(pose, &tr->pose[12 * best], sizeof pose);
+		} else {
+			if (o->nposes != o->nviews)
+				fct_usage_error("%zu depth views but %zu --poses files", o->nviews, o->nposes);
+			if (fct_pose_read_file(o->poses[idx], pose, &err))
+				fct_die_err(&err);
+		}
+		struct fct_image img;
+		if (fct_image_read_file(&img, path, NULL, &err))
+			fct_die_err(&err);
+		struct fct_camera cam = *dcam;
+		if (cam.width == 0)
+			cam.width = img.width, cam.height = img.height;
+		if (cam.width != img.width || cam.height != img.height)
+			fct_die(1, "%s: image is %dx%d, the camera %dx%d", path, img.width, img.height,
+			        cam.width, cam.height);
+		int rc = fct_depth_mesh(&L->mesh, &img, &cam, dp, NULL, &err);
+		fct_image_free(&img);
+		if (rc) {
+			fct_err_prefix(&err, "%s", path);
+			fct_die_err(&err);
+		}
+		for (size_t v = 0; v < L->mesh.nv; v++)
+			fct_pose_apply(pose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
+		memcpy(L->view.pose, pose, sizeof pose);
+		L->view.cam = cam;
+	} else {
+		const char *path = o->views[idx];
+		snprintf(L->name, sizeof L->name, "%s", fct_path_display(path));
+		if (fct_mesh_read_file(&L->mesh, path, NULL, &err))
+			fct_die_err(&err);
+		int c = fct_header_camera(&L->mesh, &L->view.cam, &err);
+		if (c < 0) {
+			fct_err_prefix(&err, "%s", L->name);
+			fct_die_err(&err);
+		}
+		if (c == 0)
+			fct_die(1, "%s: no camera comment: tsdfuse needs each view's camera (dm2mesh writes it)", L->name);
+		c = fct_header_pose(&L->mesh, L->view.pose, &err);
+		if (c < 0) {
+			fct_err_prefix(&err, "%s", L->name);
+			fct_die_err(&err);
+		}
+		if (c == 0)
+			fct_die(1, "%s: no pose comment: tsdfuse needs each view's camera-to-world pose (dm2mesh --pose)", L->name);
+		if (fct_pose_check(L->view.pose, 1e-3, &err)) {
+			fct_err_prefix(&err, "%s: pose", L->name);
+			fct_die_err(&err);
+		}
+	}
+	if (L->mesh.nf == 0)
+		fct_die(1, "%s: empty view (no faces)", L->name);
+	for (size_t v = 0; v < L->mesh.nv; v++)
+		if (!(isfinite(L->mesh.xyz[3 * v]) && isfinite(L->mesh.xyz[3 * v + 1]) &&
+		      isfinite(L->mesh.xyz[3 * v + 2])))
+			fct_die(1, "%s: vertex %zu is not finite", L->name, v);
+	L->view.mesh = &L->mesh;
+}
+
+int main(int argc, char **argv)
+{
+	fct_cli_init("tsdfuse");
+	struct options o;
+	parse_options(argc, argv, &o);
+	struct fct_err err;
+	struct fct_conf conf = { 0 };
+	if (o.conf && fct_conf_read(&conf, o.conf, &err))
+		fct_die_err(&err);
+	struct fct_camera dcam = { 0 };
+	struct fct_depth_params dp;
+	fct_depth_params_default(&dp);
+	dp.texcoords = 0;
+	if (o.K) {
+		double scale, k[4];
+		if (!fct_camera_named(o.K, &dcam, &scale)) {
+			if (!o.scale_given)
+				o.depth_scale = scale;
+		} else {
+			fct_opt_doubles("-K", o.K, k, 4);
+			if (!(k[0] > 0 && k[1] > 0))
+				fct_usage_error("-K: focal lengths must be positive");
+			dcam.kind = FCT_CAMERA_PINHOLE;
+			dcam.fx = k[0], dcam.fy = k[1], dcam.cx = k[2], dcam.cy = k[3];
+		}
+	}
+	dp.depth_scale = o.depth_scale;
+	dp.scale_float = o.scale_given;
+	struct traj tr = { 0 };
+	if (o.nposes == 1 && is_trajectory(o.poses[0]) && traj_read(&tr, o.poses[0], &err))
+		fct_die_err(&err);
+
+	size_t nv = o.nviews + conf.n;
+	struct loaded *L = calloc(nv, sizeof *L);
+	struct fct_range_image *ri = calloc(nv, sizeof *ri);
+	if (!L || !ri)
+		fct_die(1, "out of memory");
+	double t0 = fct_now();
+	/* Read every view first: the memory estimate needs their extents. */
+	double area = 0, lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+	for (size_t i = 0; i < nv; i++) {
+		load_view(&o, i, &conf, &tr, &dcam, &dp, &L[i]);
+		area += mesh_area(&L[i].mesh);
+		for (size_t v = 0; v < L[i].mesh.nv; v++)
+			for (int k = 0; k < 3; k++) {
+				double x = L[i].mesh.xyz[3 * v + k];
+				lo[k] = x < lo[k] ? x : lo[k];
+				hi[k] = x > hi[k] ? x : hi[k];
+			}
+	}
+	double read_s = fct_now() - t0;
+	double vox = o.voxel, band = o.fp.band;
+	if (o.has_bbox)
+		for (int k = 0; k < 3; k++) {
+			lo[k] = fmax(lo[k], o.bbox[k] - 3 * vox);
+			hi[k] = fmin(hi[k], o.bbox[k + 3] + 3 * vox);
+		}
+	/* Memory: the band around the surface, in blocks, and the carving bitsets. */
+	double bs = 8 * vox, bbox_blocks = 1, est;
+	for (int k = 0; k < 3; k++)
+		bbox_blocks *= fmax(hi[k] - lo[k], 0) / bs + 3;
+	double band_blocks = 2 * area / (bs * bs) * (1 + 2 * band / bs) + 27.0 * (double)nv;
+	est = fmin(band_blocks, bbox_blocks) * (double)fct_voxgrid_block_bytes(0);
+	int32_t clo[3], chi[3];
+	for (int k = 0; k < 3; k++) {
+		double a = floor((lo[k] - band) / vox) - 2, b = ceil((hi[k] + band) / vox) + 2;
+		if (!(fabs(a) < (1 << 23) && fabs(b) < (1 << 23)))
+			fct_die(1, "--voxel %g: the views span %g m, %.3g voxels: too many for 32-bit indices",
+			        vox, hi[k] - lo[k], (hi[k] - lo[k]) / vox);
+		clo[k] = (int32_t)a, chi[k] = (int32_t)b;
+	}
+	if (o.carve)
+		est += (double)fct_carve_bytes(clo, chi);
+	double have = machine_bytes();
+	fct_report("memory_estimate_mb", "%.1f", est / 1048576);
+	if (est > 0.8 * have)
+		fct_die(1, "--voxel %g: needs about %.1f GB, the machine has %.1f GB", vox, est / 1e9, have / 1e9);
+	struct fct_voxgrid *g = fct_voxgrid_new(vox, 0, &err);
+	if (!g)
+		fct_die_err(&err);
+	fct_voxgrid_set_limit(g, (size_t)(0.85 * have));
+	if (o.has_bbox) {
+		o.fp.has_clip = 1;
+		for (int k = 0; k < 3; k++) {
+			o.fp.clip_lo[k] = (int32_t)ceil(o.bbox[k] / vox) - 2;
+			o.fp.clip_hi[k] = (int32_t)ceil(o.bbox[k + 3] / vox) + 2;
+			clo[k] = clo[k] > o.fp.clip_lo[k] ? clo[k] : o.fp.clip_lo[k];
+			chi[k] = chi[k] < o.fp.clip_hi[k] ? chi[k] : o.fp.clip_hi[k];
+		}
+	}
+
+	struct fct_fuse_stats st = { 0 };
+	double t1 = fct_now();
+	for (size_t i = 0; i < nv; i++) {
+		double tv = fct_now();
+		if (fct_fuse_view(g, &L[i].view, &o.fp, &st, &err)) {
+			fct_err_prefix(&err, "%s", L[i].name);
+			fct_die_err(&err);
+		}
+		if (fct_verbose)
+			fprintf(stderr, "tsdfuse: view %zu/%zu %s: %zu faces, %.1f ms\n", i + 1, nv, L[i].name,
+			        L[i].mesh.nf, 1e3 * (fct_now() - tv));
+	}
+	double fuse_s = fct_now() - t1;
+	double carve_s = 0;
+	size_t ncarved = 0;
+	if (o.carve) {
+		double tc = fct_now();
+		for (size_t i = 0; i < nv; i++) {
+			if (L[i].view.cam.kind == FCT_CAMERA_NONE && L[i].view.ortho_step < vox / 2)
+				L[i].view.ortho_step = vox / 2;
+			if (fct_range_image_make(&ri[i], &L[i].view, (size_t)1 << 26, &err)) {
+				fct_err_prefix(&err, "%s", L[i].name);
+				fct_die_err(&err);
+			}
+		}
+		float mark = o.min_weight > 0 ? (float)o.min_weight : 1e-3f;
+		if (fct_carve(g, ri, nv, clo, chi, band, mark, &ncarved, &err))
+			fct_die_err(&err);
+		carve_s = fct_now() - tc;
+	}
+	for (size_t i = 0; i < nv; i++) {
+		fct_range_image_free(&ri[i]);
+		fct_mesh_free(&L[i].mesh);
+	}
+	double flow_s = 0;
+	if (o.flow) {
+		double tf = fct_now();
+		if (fct_curvature_flow(g, o.flow, band, &err))
+			fct_die_err(&err);
+		flow_s = fct_now() - tf;
+	}
+	double tm = fct_now();
+	struct fct_mesh out;
+	int32_t mlo[3], mhi[3];
+	for (int k = 0; k < 3; k++) {
+		mlo[k] = (int32_t)ceil(o.bbox[k] / vox);
+		mhi[k] = (int32_t)ceil(o.bbox[k + 3] / vox);
+	}
+	if (fct_mcubes(g, (float)o.min_weight, o.has_bbox ? mlo : NULL, o.has_bbox ? mhi : NULL, &out, &err))
+		fct_die_err(&err);
+	double mc_s = fct_now() - tm;
+	fct_report("views", "%zu", nv);
+	fct_report("view_faces", "%zu", st.faces);
+	fct_report("voxels_updated", "%zu", st.voxels);
+	fct_report("border_skipped", "%zu", st.border);
+	fct_report("blocks", "%zu", fct_voxgrid_count(g));
+	fct_report("memory_mb", "%.1f", (double)fct_voxgrid_bytes(g) / 1048576);
+	fct_voxgrid_free(g);
+	if (fct_header_add_provenance(&out, "tsdfuse", argc - 1, argv + 1, &err) ||
+	    fct_mesh_write_file(&out, o.out, o.ascii, &err))
+		fct_die_err(&err);
+	fct_report("carved", "%zu", ncarved);
+	fct_report("vertices", "%zu", out.nv);
+	fct_report("faces", "%zu", out.nf);
+	fct_report("read_s", "%.4f", read_s);
+	fct_report("fuse_s", "%.4f", fuse_s);
+	fct_report("ms_per_view", "%.2f", nv ? 1e3 * fuse_s / (double)nv : 0);
+	fct_report("carve_s", "%.4f", carve_s);
+	fct_report("flow_s", "%.4f", flow_s);
+	fct_report("mcubes_s", "%.4f", mc_s);
+	fct_report("total_s", "%.4f", fct_now() - t0);
+	fct_mesh_free(&out);
+	free(L);
+	free(ri);
+	free(tr.t);
+	free(tr.pose);
+	free(o.poses);
+	fct_conf_free(&conf);
+	return 0;
+}

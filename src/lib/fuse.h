@@ -1,0 +1,102 @@
+/* fuse.h - multi-view fusion of range-image meshes in a sparse volume:
+ * Sun, Paik, Koschan and Abidi, "3D Reconstruction of Indoor and Outdoor
+ * Scenes Using a Mobile Range Scanner", sec. 3.
+ *
+ * - Hilton's implicit surface: for each voxel x near a view's mesh, its
+ *   nearest point p on that mesh and the normal n there give the signed
+ *   distance (x - p) . n (not the projective depth difference of Curless
+ *   and Levoy, offered as the baseline); views are combined by the
+ *   confidence-weighted average.  Voxels whose nearest point lies on the
+ *   mesh's border are left alone, so surfaces do not grow past the data.
+ * - Space carving: a voxel outside every view's band (not in Q) that some
+ *   view saw through (R_v < R_i along its pixel's ray) is empty; the
+ *   boundary between empty and never-seen space closes the occlusion holes,
+ *   giving watertight indoor models.  The range image R_i of each view is
+ *   recovered by rasterising its own mesh into its own camera.
+ * - A level-set mean-curvature flow on the volume removes small outlier
+ *   blobs afterwards.
+ *
+ * The volume is voxgrid.h's sparse block grid (sdf positive in free
+ * space); marching cubes (mcubes.h) extracts the surface. */
+#ifndef FCT_FUSE_H
+#define FCT_FUSE_H
+
+#include <stddef.h>
+
+#include "camera.h"
+#include "mesh.h"
+#include "voxgrid.h"
+
+/* One view: its mesh in the world frame and where it was seen from.  The
+ * sensor is cam (pinhole or cylindrical) at pose (camera-to-world), or,
+ * when cam.kind is FCT_CAMERA_NONE, an orthographic range scanner looking
+ * along -z of the frame pose (a range-grid scan) with pixels of ortho_step
+ * metres. */
+struct fct_fuse_view {
+	const struct fct_mesh *mesh;
+	struct fct_camera cam;
+	double pose[12];
+	double ortho_step;
+};
+
+enum fct_fuse_weight {
+	FCT_FUSE_CONSTANT,      /* 1 */
+	FCT_FUSE_INCIDENCE,     /* |cos| of the angle between the ray and the normal */
+	FCT_FUSE_DEPTH2         /* (1 m / depth)^2 */
+};
+
+struct fct_fuse_params {
+	double band;            /* truncation: voxels within band (metres) of a view's surface */
+	enum fct_fuse_weight weight;
+	int projective;         /* Curless-Levoy depth difference along the ray instead */
+	int has_clip;           /* update only voxels in [lo, hi] (voxel indices) */
+	int32_t clip_lo[3], clip_hi[3];
+};
+
+struct fct_fuse_stats {
+	size_t voxels;          /* voxels updated */
+	size_t border;          /* voxels skipped because their nearest point is on a border */
+	size_t faces;           /* triangles used */
+};
+
+/* Fuse view v into g.  stats may be NULL (or is added to).  0 or -1
+ * (out of memory, the grid's memory limit). */
+int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
+                  const struct fct_fuse_params *p, struct fct_fuse_stats *stats,
+                  struct fct_err *err);
+
+/* A view's range image, from its mesh rasterised into its own camera. */
+struct fct_range_image {
+	struct fct_fuse_view view;
+	double inv[12];          /* world-to-sensor */
+	int width, height;
+	double u0, v0;           /* orthographic: pixel (0, 0) is at (u0, v0) * step */
+	float *range;            /* depth (camera z, cylinder rho, or -z); 0: no data */
+};
+
+/* Rasterise v's mesh.  Orthographic views get a raster covering the mesh
+ * with pixels of v->ortho_step, at most max_pixels.  0 or -1. */
+int fct_range_image_make(struct fct_range_image *r, const struct fct_fuse_view *v,
+                         size_t max_pixels, struct fct_err *err);
+void fct_range_image_free(struct fct_range_image *r);
+
+/* Bytes that fct_carve would use for the bitsets over lo..hi. */
+size_t fct_carve_bytes(const int32_t lo[3], const int32_t hi[3]);
+
+/* Space carving over voxels lo..hi (inclusive) of g, after fusion: every
+ * voxel with weight 0 that a range image saw through is empty, every other
+ * voxel with weight 0 unknown (solid); the empty and unknown voxels next to
+ * a change of state (26-neighbourhood) are written with sdf +band (empty)
+ * or -band (unknown) and weight mark_weight, so that marching cubes closes
+ * the surface between them.  The outermost layer of the box stays unknown.
+ * *carved gets the number of empty voxels (may be NULL).  0 or -1. */
+int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t nviews,
+              const int32_t lo[3], const int32_t hi[3], double band, float mark_weight,
+              size_t *carved, struct fct_err *err);
+
+/* Level-set mean-curvature flow phi_t = |grad phi| div(grad phi / |grad phi|)
+ * for iters explicit steps of dt = voxel^2 / 8 on the observed voxels
+ * (unobserved neighbours count as +band: free space).  0 or -1. */
+int fct_curvature_flow(struct fct_voxgrid *g, int iters, double band, struct fct_err *err);
+
+#endif

@@ -1,0 +1,230 @@
+/* rangegrid.c - Stanford .conf files and range_grid scans (see rangegrid.h). */
+#include "rangegrid.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+#include "path.h"
+
+void fct_quat_pose(double x, double y, double z, double w, double pose[12])
+{
+	pose[0] = 1 - 2 * (y * y + z * z);
+	pose[1] = 2 * (x * y - z * w);
+	pose[2] = 2 * (x * z + y * w);
+	pose[4] = 2 * (x * y + z * w);
+	pose[5] = 1 - 2 * (x * x + z * z);
+	pose[6] = 2 * (y * z - x * w);
+	pose[8] = 2 * (x * z - y * w);
+	pose[9] = 2 * (y * z + x * w);
+	pose[10] = 1 - 2 * (x * x + y * y);
+	pose[3] = pose[7] = pose[11] = 0;
+}
+
+void fct_conf_free(struct fct_conf *c)
+{
+	if (!c)
+		return;
+	for (size_t i = 0; i < c->n; i++)
+		free(c->scans[i].path);
+	free(c->scans);
+	c->n = 0;
+	c->scans = NULL;
+}
+
+#define CONF_MAX (1L << 20)
+
+int fct_conf_read(struct fct_conf *c, const char *path, struct fct_err *err)
+{
+	c->n = 0;
+	c->scans = NULL;
+	size_t cap = 0;
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return fct_fail(err, "%s: %s", path, strerror(errno));
+	char *dir = fct_path_dir(path, err);
+	if (!dir) {
+		fclose(f);
+		return -1;
+	}
+	char line[4096];
+	long lineno = 0, total = 0;
+	int rc = 0;
+	while (fgets(line, sizeof line, f)) {
+		lineno++;
+		size_t len = strlen(line);
+		total += (long)len;
+		if (total > CONF_MAX) {
+			rc = fct_fail(err, "%s:%ld: longer than %ld bytes: not a .conf file", path, lineno, CONF_MAX);
+			break;
+		}
+		if (len == sizeof line - 1 && line[len - 1] != '\n') {
+			rc = fct_fail(err, "%s:%ld: line too long", path, lineno);
+			break;
+		}
+		char kw[32], name[4000];
+		double v[7];
+		char extra[2];
+		int n = sscanf(line, "%31s %3999s %lf %lf %lf %lf %lf %lf %lf %1s", kw, name,
+		               &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], extra);
+		if (n <= 0 || kw[0] == '#' || !strcmp(kw, "camera"))
+			continue;
+		if (strcmp(kw, "bmesh") && strcmp(kw, "mesh")) {
+			rc = fct_fail(err, "%s:%ld: \"%s\": expected camera, bmesh or mesh", path, lineno, kw);
+			break;
+		}
+		if (n != 9) {
+			rc = fct_fail(err, "%s:%ld: expected %s FILE tx ty tz qx qy qz qw", path, lineno, kw);
+			break;
+		}
+		int finite = 1;
+		for (int k = 0; k < 7; k++)
+			finite &= isfinite(v[k]);
+		double qn = sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
+		if (!finite || !(fabs(qn - 1) <= 1e-3)) {
+			rc = fct_fail(err, "%s:%ld: the quaternion is not a unit quaternion (norm %g)", path, lineno, qn);
+			break;
+		}
+		if (fct_grow((void **)&c->scans, &cap, c->n + 1, sizeof *c->scans, err)) {
+			rc = -1;
+			break;
+		}
+		struct fct_conf_scan *s = &c->scans[c->n];
+		s->path = fct_path_join(dir, name, err);
+		if (!s->path) {
+			rc = -1;
+			break;
+		}
+		c->n++;
+		s->line = lineno;
+		/* The scanalyze/VRIP quaternion is applied conjugated (checked on
+		 * the bunny: the other way round puts bun045 40 mm off). */
+		fct_quat_pose(-v[3] / qn, -v[4] / qn, -v[5] / qn, v[6] / qn, s->pose);
+		s->pose[3] = v[0], s->pose[7] = v[1], s->pose[11] = v[2];
+	}
+	if (!rc && ferror(f))
+		rc = fct_fail(err, "%s: read error", path);
+	if (!rc && c->n == 0)
+		rc = fct_fail(err, "%s: no bmesh line: not a .conf file", path);
+	fclose(f);
+	free(dir);
+	if (rc)
+		fct_conf_free(c);
+	return rc;
+}
+
+/* obj_info NAME VALUE as a positive integer, or -1. */
+static long obj_info_long(const struct fct_mesh *m, const char *name)
+{
+	size_t n = strlen(name);
+	for (size_t i = 0; i < m->ncomments; i++) {
+		const char *t = m->comments[i].text;
+		if (m->comments[i].obj_info && !strncmp(t, name, n) && (t[n] == ' ' || t[n] == '\t')) {
+			char *end;
+			long v = strtol(t + n, &end, 10);
+			return v > 0 ? v : -1;
+		}
+	}
+	return -1;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* Depth along the scanner's ray is D0 - z: an offset large against the scan
+ * so that the relative jump test of gridmesh.h becomes an absolute one in z
+ * with footprint step / D0. */
+#define DEPTH_OFFSET 1e4
+
+int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
+                        const struct fct_grid_params *p, double *step, struct fct_err *err)
+{
+	fct_mesh_init(out);
+	const struct fct_elem *e = fct_mesh_find_elem(m, "range_grid");
+	const struct fct_prop *ix = e ? fct_elem_find(e, "vertex_indices") : NULL;
+	if (!e || !ix || ix->count_type == FCT_NONE)
+		return fct_fail(err, "no range_grid element with a vertex_indices list");
+	long w = obj_info_long(m, "num_cols"), h = obj_info_long(m, "num_rows");
+	if (w < 1 || h < 1)
+		return fct_fail(err, "range_grid without obj_info num_cols and num_rows");
+	if ((size_t)w * (size_t)h != e->count)
+		return fct_fail(err, "range_grid has %zu cells, num_cols * num_rows = %ld", e->count, w * h);
+	size_t nc = e->count;
+	double *xyz = fct_alloc_array(nc, 3 * sizeof *xyz, err);
+	double *depth = fct_alloc_array(nc, sizeof *depth, err);
+	double *gaps = fct_alloc_array(nc, sizeof *gaps, err);
+	int rc = -1;
+	if (!xyz || !depth || !gaps)
+		goto done;
+	for (size_t c = 0; c < nc; c++) {
+		size_t k = ix->off[c + 1] - ix->off[c];
+		depth[c] = 0;
+		xyz[3 * c] = xyz[3 * c + 1] = xyz[3 * c + 2] = 0;
+		if (k == 0)
+			continue;
+		double v = fct_prop_get(ix, ix->off[c]);
+		if (k > 1 || !(v >= 0 && v < (double)m->nv)) {
+			fct_fail(err, "range_grid cell %zu: %s", c,
+			         k > 1 ? "more than one vertex" : "vertex index out of range");
+			goto done;
+		}
+		const double *q = &m->xyz[3 * (size_t)v];
+		if (!(isfinite(q[0]) && isfinite(q[1]) && isfinite(q[2])))
+			continue;
+		memcpy(&xyz[3 * c], q, 3 * sizeof *q);
+		depth[c] = DEPTH_OFFSET - q[2];
+	}
+	/* The grid step: the median distance between neighbouring cells. */
+	size_t ng = 0;
+	for (size_t c = 0; c < nc; c++) {
+		size_t i = c % (size_t)w;
+		if (!(depth[c] > 0))
+			continue;
+		if (i + 1 < (size_t)w && depth[c + 1] > 0)
+			gaps[ng++] = sqrt(fct_v3_dist2(&xyz[3 * c], &xyz[3 * c + 3]));
+		else if (c + (size_t)w < nc && depth[c + (size_t)w] > 0)
+			gaps[ng++] = sqrt(fct_v3_dist2(&xyz[3 * c], &xyz[3 * (c + (size_t)w)]));
+	}
+	if (ng == 0) {
+		fct_fail(err, "range_grid: no two neighbouring cells with data");
+		goto done;
+	}
+	qsort(gaps, ng, sizeof *gaps, cmp_double);
+	double st = gaps[ng / 2];
+	if (step)
+		*step = st;
+	struct fct_range_grid g = { (int)w, (int)h, xyz, NULL, NULL, depth, st / DEPTH_OFFSET, 0 };
+	if (fct_grid_mesh(out, &g, p, NULL, NULL, err))
+		goto done;
+	/* Orient towards the scanner at +z. */
+	double nz = 0;
+	for (size_t f = 0; f < out->nf; f++) {
+		const uint32_t *t = &out->fvert[out->fstart[f]];
+		double a[3], b[3], n[3];
+		fct_v3_sub(a, &out->xyz[3 * t[1]], &out->xyz[3 * t[0]]);
+		fct_v3_sub(b, &out->xyz[3 * t[2]], &out->xyz[3 * t[0]]);
+		fct_v3_cross(n, a, b);
+		nz += n[2];
+	}
+	if (nz < 0)
+		for (size_t f = 0; f < out->nf; f++) {
+			uint32_t *t = &out->fvert[out->fstart[f]];
+			uint32_t x = t[1];
+			t[1] = t[2];
+			t[2] = x;
+		}
+	rc = 0;
+done:
+	free(xyz);
+	free(depth);
+	free(gaps);
+	if (rc)
+		fct_mesh_free(out);
+	return rc;
+}
