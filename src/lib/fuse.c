@@ -5,9 +5,9 @@
  * Nearest points.  Hilton finds each band voxel's nearest point on the
  * view's mesh with a k-D tree.  Range-image meshes have triangles far
  * smaller than voxels, so here the search is a closest-point transform by
- * propagation: every triangle is splatted exactly into the voxels within
- * one voxel of it (its bounding box grown by one voxel), which gives the
- * true nearest triangle of every voxel that close to the surface; then the
+ * propagation: every triangle is splatted exactly into the voxels of its
+ * bounding box grown by half a voxel, which gives a connected shell of
+ * voxels around the surface with their nearest triangle; then the
  * band is grown layer by layer (26-neighbours), each new voxel taking the
  * best of its finished neighbours' triangles and walking downhill on the
  * mesh (across the edge or around the vertex where its closest point lies)
@@ -40,6 +40,7 @@ struct scratch {
 	size_t cap, n;           /* hash capacity (power of two), blocks */
 	struct sblock **blk;
 	size_t blkcap;
+	struct sblock *last;     /* the block found last (most lookups repeat it) */
 };
 
 static uint64_t block_key(int32_t bx, int32_t by, int32_t bz)
@@ -95,12 +96,14 @@ static int scratch_rehash(struct scratch *s, size_t cap, struct fct_err *err)
 static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, int32_t bz,
                                     int create, struct fct_err *err)
 {
+	if (s->last && s->last->bx == bx && s->last->by == by && s->last->bz == bz)
+		return s->last;
 	uint64_t k = block_key(bx, by, bz);
 	if (s->cap) {
 		size_t h = key_hash(k, s->cap);
 		while (s->keys[h] != UINT64_MAX) {
 			if (s->keys[h] == k)
-				return s->blk[s->slot[h]];
+				return s->last = s->blk[s->slot[h]];
 			h = (h + 1) & (s->cap - 1);
 		}
 	}
@@ -126,7 +129,7 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	s->keys[h] = k;
 	s->slot[h] = (uint32_t)s->n;
 	s->blk[s->n++] = b;
-	return b;
+	return s->last = b;
 }
 
 static inline int local_index(int32_t i, int32_t j, int32_t k)
@@ -582,7 +585,9 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	int layers = (int)ceil(band / vox) + 1;
 	if (layers > 200)
 		layers = 200;
-	/* Splat: each triangle into the voxels of its box grown by one voxel. */
+	/* Splat: each triangle into the voxels of its box grown by half a
+	 * voxel, a connected shell around the surface; the walks of the
+	 * propagation correct what this misses. */
 	for (size_t t = 0; t < G.nt; t++) {
 		if (isnan(G.tn[3 * t]))
 			continue;
@@ -592,8 +597,8 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		int bad = 0;
 		for (int k = 0; k < 3; k++) {
 			double a = G.xyz[3 * tv[0] + k], b = G.xyz[3 * tv[1] + k], c = G.xyz[3 * tv[2] + k];
-			bad |= index_of(fmin(a, fmin(b, c)) - vox, vox, &lo[k], 1);
-			bad |= index_of(fmax(a, fmax(b, c)) + vox, vox, &hi[k], 0);
+			bad |= index_of(fmin(a, fmin(b, c)) - vox / 2, vox, &lo[k], 1);
+			bad |= index_of(fmax(a, fmax(b, c)) + vox / 2, vox, &hi[k], 0);
 		}
 		if (bad) {
 			fct_fail(err, "triangle %zu is too far from the origin for the voxel size", t);
@@ -615,6 +620,14 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 						cur[ncur++] = (struct vref){ i, j, k };
 					}
 				}
+	}
+	for (size_t c = 0; c < ncur; c++) {
+		struct vref x0 = cur[c];
+		struct sblock *b = scratch_block(&s, fct_vox_block_of(x0.i), fct_vox_block_of(x0.j),
+		                                 fct_vox_block_of(x0.k), 0, err);
+		int l = local_index(x0.i, x0.j, x0.k);
+		double x[3] = { x0.i * vox, x0.j * vox, x0.k * vox };
+		b->tri[l] = walk(&G, b->tri[l], x, &b->d2[l]);
 	}
 	/* Grow the band layer by layer. */
 	double reach2 = (band + vox) * (band + vox);
