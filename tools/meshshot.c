@@ -235,7 +235,8 @@ static void bbox(const struct fct_mesh *m, double lo[3], double hi[3])
 			lo[k] = hi[k] = 0;
 }
 
-static void choose_view(const struct opts *o, const struct fct_mesh *m, struct fct_view *v)
+static void choose_view(const struct opts *o, const struct fct_mesh *m, int reserve,
+                        struct fct_view *v)
 {
 	struct fct_err err;
 	struct fct_camera cam;
@@ -321,7 +322,11 @@ static void choose_view(const struct opts *o, const struct fct_mesh *m, struct f
 	fct_v3_sub(eye, target, dir);
 	if (fct_view_look_at(v, eye, target, up, o->fov, W, H, &err))
 		fct_die(1, "--view %s: %s", view, err.msg);
+	/* Fit into the picture less the legend's strip on the right. */
+	if (reserve > 0 && reserve < W / 2)
+		v->width = W - reserve;
 	fct_view_fit(v, target, m->xyz, m->nv, 0.05);
+	v->width = W;
 }
 
 /* A vertex property as doubles (NULL when absent); fails on a list. */
@@ -460,6 +465,22 @@ static double *vertex_normals(const struct fct_mesh *m, const double *q, const u
 				vn[3 * (size_t)t[c] + j] += n[j];
 	}
 	return vn;
+}
+
+/* The width the legend of a picture h pixels high takes at the right edge. */
+static int legend_width(const struct scene *sc, const char *name, int h)
+{
+	int scale = h >= 300 ? 2 : 1, tw = 0, w, hh;
+	char lab[40];
+	double v[3] = { sc->hi, 0.5 * (sc->lo + sc->hi), sc->lo };
+	for (int i = 0; i < 3; i++) {
+		snprintf(lab, sizeof lab, "%.4g", v[i]);
+		fct_text_size(lab, scale, &w, &hh);
+		tw = w > tw ? w : tw;
+	}
+	fct_text_size(name, scale, &w, &hh);
+	int bar = 8 * scale + 9 * scale + tw;      /* bar, tick and gap, labels */
+	return (w > bar ? w : bar) + 12 * scale;
 }
 
 static void draw_legend(const struct opts *o, struct fct_image *img, const struct scene *sc)
@@ -650,7 +671,8 @@ int main(int argc, char **argv)
 
 	struct fct_view view;
 	memset(&view, 0, sizeof view);
-	choose_view(&o, &m, &view);
+	int H0 = o.height ? o.height : 600;
+	choose_view(&o, &m, mode == M_SCALAR ? legend_width(&sc, o.scalar, H0) : 0, &view);
 	double *q = fct_alloc_array(m.nv, 3 * sizeof *q, &err);
 	if (!q)
 		fct_die_err(&err);
