@@ -24,7 +24,7 @@ static const char usage[] =
 	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"
 	"               [--carve] [--weight constant | incidence | depth2]\n"
 	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
-	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--poses file]...\n"
+	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--poses file ...]\n"
 	"               [--conf file] [view ...]\n"
 	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
 	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
