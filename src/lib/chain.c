@@ -1453,6 +1453,7 @@ int fct_simpchain(struct fct_mesh *m, const struct fct_chain_params *p,
 	struct fct_chains c;
 	memset(&c, 0, sizeof c);
 	size_t *keepv = NULL;
+	struct fct_wire *wires = NULL;
 	uint32_t *map = NULL;
 	if (fct_planes_get(m, &planes, &nplanes, err))
 		return -1;
@@ -1499,40 +1500,29 @@ int fct_simpchain(struct fct_mesh *m, const struct fct_chain_params *p,
 	m->has_faces = 0;
 	while (m->face.nprops)
 		fct_elem_remove(&m->face, m->face.props[0].name);
-	fct_mesh_remove_elem(m, "edge");
-	struct fct_elem *e = fct_mesh_add_elem(m, "edge", ne, err);
-	if (!e)
+	wires = fct_alloc_array(ne, sizeof *wires, err);
+	if (!wires && ne)
 		goto done;
-	static const char *const names[] = { "vertex1", "vertex2", "patch1", "patch2" };
-	for (int x = 0; x < 4; x++)
-		if (!fct_elem_add_scalar(e, names[x], FCT_INT32, err))
-			goto done;
-	struct fct_prop *col[4];
-	for (int x = 0; x < 4; x++)
-		col[x] = fct_elem_find(e, names[x]);
 	size_t row = 0;
 	for (size_t i = 0; i < c.n; i++) {
 		size_t last = c.start[i];
 		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++) {
 			if (!c.keep[q])
 				continue;
-			int32_t *d[4];
-			for (int x = 0; x < 4; x++)
-				d[x] = (int32_t *)col[x]->data;
-			d[0][row] = (int32_t)map[c.vert[last]];
-			d[1][row] = (int32_t)map[c.vert[q]];
-			d[2][row] = c.left[i];
-			d[3][row] = c.right[i] >= 0 ? c.right[i] : -1;
-			row++;
+			wires[row++] = (struct fct_wire){ map[c.vert[last]], map[c.vert[q]], c.left[i],
+			                                  c.right[i] >= 0 ? c.right[i] : -1 };
 			last = q;
 		}
 	}
+	if (fct_wires_set(m, wires, ne, err))
+		goto done;
 	rc = 0;
 done:
 	free(planes);
 	free(patch);
 	free(map);
 	free(keepv);
+	free(wires);
 	if (!rc && ch)
 		*ch = c;
 	else

@@ -158,6 +158,27 @@ int fct_wires_get(const struct fct_mesh *m, long nplanes, struct fct_wire **wire
 	return 0;
 }
 
+int fct_wires_set(struct fct_mesh *m, const struct fct_wire *wires, size_t n, struct fct_err *err)
+{
+	fct_mesh_remove_elem(m, "edge");
+	struct fct_elem *e = fct_mesh_add_elem(m, "edge", n, err);
+	if (!e)
+		return -1;
+	static const char *const names[] = { "vertex1", "vertex2", "patch1", "patch2" };
+	int32_t *col[4];
+	for (int k = 0; k < 4; k++) {
+		struct fct_prop *p = fct_elem_add_scalar(e, names[k], FCT_INT32, err);
+		if (!p)
+			return -1;
+		col[k] = (int32_t *)p->data;
+	}
+	for (size_t i = 0; i < n; i++) {
+		col[0][i] = (int32_t)wires[i].v1, col[1][i] = (int32_t)wires[i].v2;
+		col[2][i] = wires[i].p1, col[3][i] = wires[i].p2;
+	}
+	return 0;
+}
+
 void fct_plane_frame(const double n[3], double e1[3], double e2[3])
 {
 	/* Start from the axis least aligned with n, so e1 is well defined. */

@@ -53,6 +53,10 @@ struct fct_wire {
 int fct_wires_get(const struct fct_mesh *m, long nplanes, struct fct_wire **wires, size_t *n,
                   int *present, struct fct_err *err);
 
+/* Replace m's edge element by wires[0..n) (int vertex1 vertex2 patch1
+ * patch2). */
+int fct_wires_set(struct fct_mesh *m, const struct fct_wire *wires, size_t n, struct fct_err *err);
+
 /* An orthonormal frame (e1, e2) of the plane with unit normal n, with
  * e1 x e2 = n; the same frame for the same n everywhere. */
 void fct_plane_frame(const double n[3], double e1[3], double e2[3]);
