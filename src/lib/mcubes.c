@@ -33,6 +33,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 /* Cube geometry ----------------------------------------------------------- */
 
@@ -182,39 +185,59 @@ static void build_case(const struct geom *G, int cfg, int joinneg, struct mc_cas
 	}
 }
 
-/* Pass-1 results of one block ------------------------------------------------ */
+/* Per-block data ------------------------------------------------------------ */
 
-struct aux {
-	uint64_t bits[24];      /* crossing edges owned, axis * 8 + z, bit x + 8 y */
-	uint32_t pre[24];       /* vertices before each word, from the block's base */
-	uint32_t base;          /* first vertex of the block */
-	uint16_t neg[9][9];     /* [z][y]: bit x (0..8) set when negative */
-	uint8_t active[8][8];   /* [z][y]: bit x set when cube (x,y,z) is extracted */
-	int any_active;
+#define NONE UINT32_MAX
+
+/* A block's own voxels as bits, row z * 8 + y, bit x: negative, and
+ * observed (inside the clip box). */
+struct own {
+	uint8_t neg[64], obs[64];
+	uint32_t aux;           /* its pass-1 record, or NONE */
+	int anyobs;
 };
+
+/* Pass-1 record of a block that owns crossings or has extracted cubes. */
+struct aux {
+	uint8_t bits[3][64];    /* crossing edges it owns, per axis: row z * 8 + y, bit x */
+	uint16_t pre[3][64];    /* the block's vertices before each row */
+	uint32_t base;          /* its first vertex */
+	uint32_t nverts;
+	uint32_t block;
+	int32_t up[8];          /* block + (k & 1, k >> 1 & 1, k >> 2): its index, -1 absent */
+	uint16_t neg[9][9];     /* [z][y]: bit x (0..8) set when negative */
+	uint8_t active[64];     /* row z * 8 + y: bit x set when cube (x, y, z) is extracted */
+	uint8_t any_active;
+};
+
+/* The sdf around the current block, local -1..9 on each axis (only the
+ * voxels a central difference at 0..8 reads); NaN where unobserved. */
+#define CW 11
+#define CIDX(x, y, z) ((x) + 1 + CW * ((y) + 1 + CW * ((z) + 1)))
 
 struct ctx {
 	const struct fct_voxgrid *g;
 	float thr;
 	int colour;
 	double voxel;
-	const int32_t *lo, *hi;
 	struct geom G;
 	struct mc_case table[256];
+	uint8_t ntri[256], ncentre[256];
+	uint8_t pop8[256];
 
 	/* the current block and its 26 neighbours, looked up on demand */
 	const struct fct_voxblock *nb[27];
 	unsigned nb_done;
 	int32_t bx, by, bz;
+	float val[CW * CW * CW];
 
-	/* vertices */
-	size_t nv, vcap, ncap, ccap;
+	/* output columns */
 	double *xyz;
-	float *nrm;
-	uint8_t *rgb;
-	/* triangles */
-	size_t nt, tcap;
+	float *nrm[3];
+	uint8_t *rgb[3];
 	uint32_t *tri;
+	uint8_t *used;
+	size_t nv, nt, vmax, tmax;
 
 	struct fct_mcubes_stats st;
 };
@@ -223,7 +246,6 @@ static void ctx_block(struct ctx *c, const struct fct_voxblock *b)
 {
 	c->bx = b->bx, c->by = b->by, c->bz = b->bz;
 	c->nb_done = 1u << 13;
-	memset(c->nb, 0, sizeof c->nb);
 	c->nb[13] = b;
 }
 
@@ -264,46 +286,75 @@ static inline int ctx_sample(struct ctx *c, int x, int y, int z, float *s)
 	return 1;
 }
 
-/* The sdf gradient at local voxel p (observed, value s0), in units per voxel. */
-static void gradient(struct ctx *c, const int p[3], float s0, double g[3])
+/* Bits of 8 consecutive voxels: negative, observed. */
+static inline void bits8(const float *s, const float *w, float thr, unsigned *neg, unsigned *obs)
 {
-	for (int a = 0; a < 3; a++) {
-		int q[3] = { p[0], p[1], p[2] };
-		float sp, sm;
-		q[a] = p[a] + 1;
-		int hp = ctx_sample(c, q[0], q[1], q[2], &sp);
-		q[a] = p[a] - 1;
-		int hm = ctx_sample(c, q[0], q[1], q[2], &sm);
-		if (hp && hm)
-			g[a] = 0.5 * ((double)sp - (double)sm);
-		else if (hp)
-			g[a] = (double)sp - (double)s0;
-		else if (hm)
-			g[a] = (double)s0 - (double)sm;
-		else
-			g[a] = 0;
+#if defined(__SSE2__)
+	__m128 zero = _mm_setzero_ps(), t = _mm_set1_ps(thr), big = _mm_set1_ps(FLT_MAX);
+	__m128 absm = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+	__m128 s0 = _mm_loadu_ps(s), s1 = _mm_loadu_ps(s + 4);
+	__m128 w0 = _mm_loadu_ps(w), w1 = _mm_loadu_ps(w + 4);
+	*neg = (unsigned)(_mm_movemask_ps(_mm_cmplt_ps(s0, zero)) |
+	                  _mm_movemask_ps(_mm_cmplt_ps(s1, zero)) << 4);
+	__m128 o0 = _mm_and_ps(_mm_cmpge_ps(w0, t), _mm_cmple_ps(_mm_and_ps(s0, absm), big));
+	__m128 o1 = _mm_and_ps(_mm_cmpge_ps(w1, t), _mm_cmple_ps(_mm_and_ps(s1, absm), big));
+	*obs = (unsigned)(_mm_movemask_ps(o0) | _mm_movemask_ps(o1) << 4);
+#else
+	unsigned n = 0, o = 0;
+	for (int x = 0; x < 8; x++) {
+		n |= (unsigned)(s[x] < 0) << x;
+		o |= (unsigned)(w[x] >= thr && fabsf(s[x]) <= FLT_MAX) << x;
 	}
+	*neg = n, *obs = o;
+#endif
 }
 
-static int grow_vertices(struct ctx *c, size_t need, struct fct_err *err)
+/* 8 consecutive voxels into dst: the sdf where observed, NaN elsewhere. */
+static inline void vals8(const float *s, const float *w, float thr, float *dst)
 {
-	if (need > UINT32_MAX - 1)
-		return fct_fail(err, "marching cubes: more than 2^32 - 1 vertices");
-	if (need <= c->vcap)
-		return 0;
-	size_t cap = c->vcap, n3 = 3 * need;
-	size_t xc = 3 * c->vcap, nc = 3 * c->vcap, cc = 3 * c->vcap;
-	if (fct_grow((void **)&c->xyz, &xc, n3, sizeof *c->xyz, err) ||
-	    fct_grow((void **)&c->nrm, &nc, n3, sizeof *c->nrm, err) ||
-	    (c->colour && fct_grow((void **)&c->rgb, &cc, n3, 1, err)))
-		return -1;
-	cap = xc / 3;
-	if (nc / 3 < cap)
-		cap = nc / 3;
-	if (c->colour && cc / 3 < cap)
-		cap = cc / 3;
-	c->vcap = cap;
-	return 0;
+#if defined(__SSE2__)
+	__m128 t = _mm_set1_ps(thr), big = _mm_set1_ps(FLT_MAX), nan = _mm_set1_ps(NAN);
+	__m128 absm = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+	for (int h = 0; h < 8; h += 4) {
+		__m128 sv = _mm_loadu_ps(s + h), wv = _mm_loadu_ps(w + h);
+		__m128 o = _mm_and_ps(_mm_cmpge_ps(wv, t), _mm_cmple_ps(_mm_and_ps(sv, absm), big));
+		_mm_storeu_ps(dst + h, _mm_or_ps(_mm_and_ps(o, sv), _mm_andnot_ps(o, nan)));
+	}
+#else
+	for (int x = 0; x < 8; x++)
+		dst[x] = w[x] >= thr && fabsf(s[x]) <= FLT_MAX ? s[x] : NAN;
+#endif
+}
+
+static inline float val1(const struct ctx *c, const struct fct_voxblock *b, int v)
+{
+	return b && observed(c, b->sdf[v], b->weight[v]) ? b->sdf[v] : NAN;
+}
+
+/* Fill c->val around the current block. */
+static void fill_cache(struct ctx *c)
+{
+	for (int z = -1; z <= 9; z++)
+		for (int y = -1; y <= 9; y++) {
+			int outy = y < 0 || y > 8, outz = z < 0 || z > 8;
+			if (outy && outz)
+				continue;
+			int dy = (y + 8) / 8 - 1, dz = (z + 8) / 8 - 1;
+			int rv = 8 * (((y + 8) & 7) + 8 * ((z + 8) & 7));
+			float *row = c->val + CIDX(0, y, z);
+			const struct fct_voxblock *b = ctx_nb(c, 0, dy, dz);
+			if (b)
+				vals8(b->sdf + rv, b->weight + rv, c->thr, row);
+			else
+				for (int x = 0; x < 8; x++)
+					row[x] = NAN;
+			b = ctx_nb(c, 1, dy, dz);
+			row[8] = val1(c, b, rv);
+			if (!outy && !outz) {
+				row[9] = val1(c, b, rv + 1);
+				row[-1] = val1(c, ctx_nb(c, -1, dy, dz), rv + 7);
+			}
+		}
 }
 
 static uint8_t to_u8(double v)
@@ -312,176 +363,176 @@ static uint8_t to_u8(double v)
 	return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
-/* Vertex on the edge from local voxel p along axis a (both ends observed,
- * signs differ). */
-static void make_vertex(struct ctx *c, const int p[3], int a, size_t id)
+/* The sdf gradient at cache index i (observed), per voxel. */
+static inline void gradient(const float *val, int i, double g[3])
 {
-	int v0, v1, q[3] = { p[0], p[1], p[2] };
-	q[a]++;
-	const struct fct_voxblock *b0 = ctx_voxel(c, p[0], p[1], p[2], &v0);
-	const struct fct_voxblock *b1 = ctx_voxel(c, q[0], q[1], q[2], &v1);
-	float s0 = b0->sdf[v0], s1 = b1->sdf[v1];
+	static const int st[3] = { 1, CW, CW * CW };
+	double s0 = val[i];
+	for (int a = 0; a < 3; a++) {
+		float sp = val[i + st[a]], sm = val[i - st[a]];
+		int hp = sp == sp, hm = sm == sm;
+		g[a] = hp ? (hm ? 0.5 * ((double)sp - (double)sm) : (double)sp - s0)
+		          : (hm ? s0 - (double)sm : 0);
+	}
+}
+
+/* Vertex id on the edge from local voxel (x, y, z) along axis a (both ends
+ * observed, signs differ); c->val filled. */
+static void make_vertex(struct ctx *c, int x, int y, int z, int a, size_t id)
+{
+	static const int st[3] = { 1, CW, CW * CW };
+	int i0 = CIDX(x, y, z), i1 = i0 + st[a];
+	float s0 = c->val[i0], s1 = c->val[i1];
 	double t = (double)s0 / ((double)s0 - (double)s1);
 	if (!(t >= 1.0 / 256))
 		t = 1.0 / 256;
 	if (t > 255.0 / 256)
 		t = 255.0 / 256;
-	int32_t gi[3] = { 8 * c->bx + p[0], 8 * c->by + p[1], 8 * c->bz + p[2] };
-	double *x = c->xyz + 3 * id;
+	int32_t gi[3] = { 8 * c->bx + x, 8 * c->by + y, 8 * c->bz + z };
+	double *p = c->xyz + 3 * id;
 	for (int k = 0; k < 3; k++)
-		x[k] = (double)gi[k] * c->voxel;
-	x[a] = ((double)gi[a] + t) * c->voxel;
-	double g0[3], g1[3], n[3], len = 0;
-	gradient(c, p, s0, g0);
-	gradient(c, q, s1, g1);
-	for (int k = 0; k < 3; k++) {
+		p[k] = (double)gi[k] * c->voxel;
+	p[a] = ((double)gi[a] + t) * c->voxel;
+	double g0[3], g1[3], n[3];
+	gradient(c->val, i0, g0);
+	gradient(c->val, i1, g1);
+	for (int k = 0; k < 3; k++)
 		n[k] = (1 - t) * g0[k] + t * g1[k];
-		len += n[k] * n[k];
-	}
-	float *nr = c->nrm + 3 * id;
+	double len = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
 	if (len > 0) {
-		len = sqrt(len);
+		len = 1 / sqrt(len);
 		for (int k = 0; k < 3; k++)
-			nr[k] = (float)(n[k] / len);
+			c->nrm[k][id] = (float)(n[k] * len);
 	} else {
-		nr[0] = nr[1] = nr[2] = 0;
-		nr[a] = s1 >= 0 ? 1.0f : -1.0f;
+		for (int k = 0; k < 3; k++)
+			c->nrm[k][id] = 0;
+		c->nrm[a][id] = s1 >= 0 ? 1.0f : -1.0f;
 	}
 	if (c->colour) {
-		const float *r0 = b0->rgb + 3 * v0, *r1 = b1->rgb + 3 * v1;
+		int v0, v1, q[3] = { x, y, z };
+		q[a]++;
+		const struct fct_voxblock *b0 = ctx_voxel(c, x, y, z, &v0);
+		const struct fct_voxblock *b1 = ctx_voxel(c, q[0], q[1], q[2], &v1);
 		for (int k = 0; k < 3; k++)
-			c->rgb[3 * id + k] = to_u8((1 - t) * r0[k] + t * r1[k]);
+			c->rgb[k][id] = to_u8((1 - t) * b0->rgb[3 * v0 + k] + t * b1->rgb[3 * v1 + k]);
 	}
 }
 
-/* Sign and observed bits of one row of 9 voxels: local (0..8, y, z). */
-static void row_bits(struct ctx *c, int y, int z, uint16_t *neg, uint16_t *obs)
+/* Pass 0 on block B: its own bits, clipped. */
+static void pass0(const struct ctx *c, const struct fct_voxblock *B, const int32_t *lo,
+                  const int32_t *hi, struct own *o)
 {
-	unsigned n = 0, o = 0;
-	const struct fct_voxblock *b = ctx_nb(c, 0, y >> 3, z >> 3);
-	int base = 8 * ((y & 7) + 8 * (z & 7));
-	if (b) {
-		const float *s = b->sdf + base, *w = b->weight + base;
+	unsigned any = 0, xm = 0xFF;
+	if (lo)
 		for (int x = 0; x < 8; x++) {
-			n |= (unsigned)(s[x] < 0) << x;
-			o |= (unsigned)(w[x] >= c->thr && fabsf(s[x]) <= FLT_MAX) << x;
+			int64_t gx = (int64_t)8 * B->bx + x;
+			if (gx < lo[0] || gx > hi[0])
+				xm &= ~(1u << x);
 		}
+	for (int r = 0; r < 64; r++) {
+		unsigned n, ob;
+		bits8(B->sdf + 8 * r, B->weight + 8 * r, c->thr, &n, &ob);
+		if (lo) {
+			int64_t gy = (int64_t)8 * B->by + (r & 7), gz = (int64_t)8 * B->bz + (r >> 3);
+			if (gy < lo[1] || gy > hi[1] || gz < lo[2] || gz > hi[2])
+				ob = 0;
+			ob &= xm;
+		}
+		o->neg[r] = (uint8_t)n;
+		o->obs[r] = (uint8_t)ob;
+		any |= ob;
 	}
-	b = ctx_nb(c, 1, y >> 3, z >> 3);
-	if (b) {
-		float s = b->sdf[base], w = b->weight[base];
-		n |= (unsigned)(s < 0) << 8;
-		o |= (unsigned)observed(c, s, w) << 8;
-	}
-	*neg = (uint16_t)n;
-	*obs = (uint16_t)o;
+	o->anyobs = any != 0;
+	o->aux = NONE;
 }
 
-/* Bits of the 9 voxels of local row (y, z) inside the clip box. */
-static unsigned clip_row(const struct ctx *c, int y, int z)
+/* Pass 1 on block b: its edge and cube bits, counts.  Returns 1 when the
+ * block has anything (A filled), else 0. */
+static int pass1(struct ctx *c, const struct own *own, size_t b, struct aux *A, size_t *ntri,
+                 size_t *ncentre)
 {
-	if (!c->lo)
-		return 0x1FF;
-	int64_t gy = (int64_t)8 * c->by + y, gz = (int64_t)8 * c->bz + z;
-	if (gy < c->lo[1] || gy > c->hi[1] || gz < c->lo[2] || gz > c->hi[2])
-		return 0;
-	unsigned m = 0;
-	for (int x = 0; x < 9; x++) {
-		int64_t gx = (int64_t)8 * c->bx + x;
-		m |= (unsigned)(gx >= c->lo[0] && gx <= c->hi[0]) << x;
-	}
-	return m;
-}
-
-/* Pass 1 on the current block: fill A, create the block's vertices. */
-static int pass1(struct ctx *c, struct aux *A, struct fct_err *err)
-{
+	const struct fct_voxblock *B = fct_voxgrid_at(c->g, b);
+	A->block = (uint32_t)b;
+	A->up[0] = (int32_t)b;
+	for (int k = 1; k < 8; k++)
+		A->up[k] = (int32_t)fct_voxgrid_index(c->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
+		                                      B->bz + (k >> 2));
 	uint16_t obs[9][9];
-	memset(A, 0, sizeof *A);
-	int anyobs = 0;
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++) {
-			row_bits(c, y, z, &A->neg[z][y], &obs[z][y]);
-			obs[z][y] &= (uint16_t)clip_row(c, y, z);
-			anyobs |= obs[z][y];
+			int k = (y >> 3) << 1 | (z >> 3) << 2, r = (z & 7) * 8 + (y & 7);
+			unsigned n = 0, o = 0;
+			if (A->up[k] >= 0)
+				n = own[A->up[k]].neg[r], o = own[A->up[k]].obs[r];
+			if (A->up[k | 1] >= 0) {
+				n |= (unsigned)(own[A->up[k | 1]].neg[r] & 1) << 8;
+				o |= (unsigned)(own[A->up[k | 1]].obs[r] & 1) << 8;
+			}
+			A->neg[z][y] = (uint16_t)n;
+			obs[z][y] = (uint16_t)o;
 		}
-	if (!anyobs)
-		return 0;
-	size_t count = 0;
-	for (int z = 0; z < 8; z++) {
-		uint64_t bx = 0, by = 0, bz = 0;
+	unsigned anything = 0;
+	A->any_active = 0;
+	for (int z = 0; z < 8; z++)
 		for (int y = 0; y < 8; y++) {
+			int r = 8 * z + y;
 			unsigned n = A->neg[z][y], o = obs[z][y];
-			unsigned ex = (n ^ n >> 1) & o & o >> 1 & 0xFF;
-			unsigned ey = (n ^ A->neg[z][y + 1]) & o & obs[z][y + 1] & 0xFF;
-			unsigned ez = (n ^ A->neg[z + 1][y]) & o & obs[z + 1][y] & 0xFF;
-			bx |= (uint64_t)ex << 8 * y;
-			by |= (uint64_t)ey << 8 * y;
-			bz |= (uint64_t)ez << 8 * y;
 			unsigned n01 = A->neg[z][y + 1], n10 = A->neg[z + 1][y], n11 = A->neg[z + 1][y + 1];
+			A->bits[0][r] = (uint8_t)((n ^ n >> 1) & o & o >> 1);
+			A->bits[1][r] = (uint8_t)((n ^ n01) & o & obs[z][y + 1]);
+			A->bits[2][r] = (uint8_t)((n ^ n10) & o & obs[z + 1][y]);
 			unsigned all = o & obs[z][y + 1] & obs[z + 1][y] & obs[z + 1][y + 1];
 			unsigned any = n | n01 | n10 | n11, every = n & n01 & n10 & n11;
 			all &= all >> 1;
 			any |= any >> 1;
 			every &= every >> 1;
-			A->active[z][y] = (uint8_t)(all & any & ~every & 0xFF);
-			A->any_active |= A->active[z][y];
+			A->active[r] = (uint8_t)(all & any & ~every);
+			A->any_active |= A->active[r];
+			anything |= A->bits[0][r] | A->bits[1][r] | A->bits[2][r] | A->active[r];
 		}
-		A->bits[z] = bx, A->bits[8 + z] = by, A->bits[16 + z] = bz;
-	}
-	for (int w = 0; w < 24; w++) {
-		A->pre[w] = (uint32_t)count;
-		count += (size_t)__builtin_popcountll(A->bits[w]);
-	}
-	if (!count)
+	if (!anything)
 		return 0;
-	A->base = (uint32_t)c->nv;
-	if (grow_vertices(c, c->nv + count, err))
-		return -1;
-	size_t id = c->nv;
-	for (int w = 0; w < 24; w++)
-		for (uint64_t m = A->bits[w]; m; m &= m - 1) {
-			int bit = __builtin_ctzll(m);
-			int p[3] = { bit & 7, bit >> 3, w & 7 };
-			make_vertex(c, p, w >> 3, id++);
+	uint32_t count = 0;
+	for (int a = 0; a < 3; a++)
+		for (int r = 0; r < 64; r++) {
+			A->pre[a][r] = (uint16_t)count;
+			count += c->pop8[A->bits[a][r]];
 		}
-	c->nv = id;
-	return 0;
+	A->nverts = count;
+	for (int z = 0; z < 8 && A->any_active; z++)
+		for (int y = 0; y < 8; y++)
+			for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
+				int x = __builtin_ctz(m);
+				int cfg = (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
+				          (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
+				if (c->table[cfg].amb) {
+					*ntri += 12;
+					*ncentre += 4;
+				} else {
+					*ntri += c->ntri[cfg];
+					*ncentre += c->ncentre[cfg];
+				}
+			}
+	return 1;
 }
 
-/* Vertex of crossing edge e of cube (x, y, z) of the current block; auxn
- * holds the aux of the block and its upper neighbours, [dz][dy][dx]. */
-static inline uint32_t edge_vertex(const struct ctx *c, const struct aux *auxn[2][2][2],
-                                   int x, int y, int z, int e)
+/* Vertex of crossing edge e of cube (x, y, z); up holds the records of the
+ * block and its upper neighbours. */
+static inline uint32_t edge_vertex(const struct ctx *c, const struct aux *const up[8], int x, int y,
+                                   int z, int e)
 {
 	int lo = c->G.edge_lo[e], a = e >> 2;
 	int px = x + (lo & 1), py = y + (lo >> 1 & 1), pz = z + (lo >> 2 & 1);
-	const struct aux *A = auxn[pz >> 3][py >> 3][px >> 3];
-	if (!A)
+	const struct aux *A = up[(px >> 3) | (py >> 3) << 1 | (pz >> 3) << 2];
+	int r = 8 * (pz & 7) + (py & 7), bit = px & 7;
+	unsigned row = A ? A->bits[a][r] : 0;
+	if (!(row >> bit & 1))
 		abort();
-	int w = 8 * a + (pz & 7), bit = (px & 7) + 8 * (py & 7);
-	uint64_t word = A->bits[w];
-	if (!(word >> bit & 1))
-		abort();
-	return A->base + A->pre[w] + (uint32_t)__builtin_popcountll(word & ((UINT64_C(1) << bit) - 1));
+	return A->base + A->pre[a][r] + c->pop8[row & ((1u << bit) - 1)];
 }
 
-static int add_tri(struct ctx *c, uint32_t a, uint32_t b, uint32_t d, struct fct_err *err)
-{
-	if (c->nt + 1 > c->tcap / 3) {
-		if (c->nt >= UINT32_MAX / 3)
-			return fct_fail(err, "marching cubes: too many triangles");
-		if (fct_grow((void **)&c->tri, &c->tcap, 3 * (c->nt + 1), sizeof *c->tri, err))
-			return -1;
-	}
-	uint32_t *t = c->tri + 3 * c->nt++;
-	t[0] = a, t[1] = b, t[2] = d;
-	return 0;
-}
-
-/* The triangles of cube (x, y, z), sign pattern cfg. */
-static int emit_cube(struct ctx *c, const struct aux *auxn[2][2][2], int x, int y, int z, int cfg,
-                     struct fct_err *err)
+/* The triangles of cube (x, y, z) of the current block, sign pattern cfg. */
+static void emit_cube(struct ctx *c, const struct aux *const up[8], int x, int y, int z, int cfg)
 {
 	const struct mc_case *mc = &c->table[cfg];
 	struct mc_case local;
@@ -499,8 +550,8 @@ static int emit_cube(struct ctx *c, const struct aux *auxn[2][2][2], int x, int 
 			double d0 = (double)val[fc[0]] * (double)val[fc[2]];
 			double d1 = (double)val[fc[1]] * (double)val[fc[3]];
 			int c0neg = cfg >> fc[0] & 1;
-			double pos = c0neg ? d1 : d0, negp = c0neg ? d0 : d1;
-			if (!(pos >= negp))
+			double pos = c0neg ? d1 : d0, neg = c0neg ? d0 : d1;
+			if (!(pos >= neg))
 				joinneg |= 1 << f;
 		}
 		c->st.ambiguous++;
@@ -510,95 +561,70 @@ static int emit_cube(struct ctx *c, const struct aux *auxn[2][2][2], int x, int 
 		}
 	}
 	uint32_t vid[12];
-	for (int e = 0; e < 12; e++)
-		if (mc->emask >> e & 1)
-			vid[e] = edge_vertex(c, auxn, x, y, z, e);
+	for (unsigned m = mc->emask; m; m &= m - 1) {
+		int e = __builtin_ctz(m);
+		vid[e] = edge_vertex(c, up, x, y, z, e);
+		c->used[vid[e]] = 1;
+	}
 	const uint8_t *ed = mc->edge;
+	uint32_t *t = c->tri + 3 * c->nt;
 	for (int l = 0; l < mc->nloops; l++) {
 		int len = mc->len[l];
 		if (mc->centre[l]) {
-			if (grow_vertices(c, c->nv + 1, err))
-				return -1;
 			size_t id = c->nv++;
 			double p[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 }, col[3] = { 0, 0, 0 };
 			for (int i = 0; i < len; i++)
 				for (int k = 0; k < 3; k++) {
 					p[k] += c->xyz[3 * vid[ed[i]] + k];
-					n[k] += c->nrm[3 * vid[ed[i]] + k];
+					n[k] += c->nrm[k][vid[ed[i]]];
 					if (c->colour)
-						col[k] += c->rgb[3 * vid[ed[i]] + k];
+						col[k] += c->rgb[k][vid[ed[i]]];
 				}
 			double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 			for (int k = 0; k < 3; k++) {
 				c->xyz[3 * id + k] = p[k] / len;
-				c->nrm[3 * id + k] = nl > 0 ? (float)(n[k] / nl) : 0.0f;
+				c->nrm[k][id] = nl > 0 ? (float)(n[k] / nl) : 0.0f;
 				if (c->colour)
-					c->rgb[3 * id + k] = to_u8(col[k] / len);
+					c->rgb[k][id] = to_u8(col[k] / len);
 			}
+			c->used[id] = 1;
 			c->st.centres++;
-			for (int i = 0; i < len; i++)
-				if (add_tri(c, (uint32_t)id, vid[ed[i]], vid[ed[(i + 1) % len]], err))
-					return -1;
+			for (int i = 0; i < len; i++, t += 3)
+				t[0] = (uint32_t)id, t[1] = vid[ed[i]], t[2] = vid[ed[(i + 1) % len]];
+			c->nt += (size_t)len;
 		} else {
-			for (int i = 1; i + 1 < len; i++)
-				if (add_tri(c, vid[ed[0]], vid[ed[i]], vid[ed[i + 1]], err))
-					return -1;
+			for (int i = 1; i + 1 < len; i++, t += 3)
+				t[0] = vid[ed[0]], t[1] = vid[ed[i]], t[2] = vid[ed[i + 1]];
+			c->nt += (size_t)len - 2;
 		}
 		ed += len;
 	}
 	c->st.cubes++;
-	return 0;
 }
 
-/* Drop unused vertices, build the mesh. */
-static int finish(struct ctx *c, struct fct_mesh *out, struct fct_err *err)
+/* Drop the vertices no triangle uses (crossings at the rim of the observed
+ * region), keeping the order of the others. */
+static void compact(struct ctx *c, struct fct_mesh *out, uint32_t *remap)
 {
-	uint32_t *remap = fct_alloc_array(c->nv, sizeof *remap, err);
-	if (!remap)
-		return -1;
-	for (size_t v = 0; v < c->nv; v++)
-		remap[v] = UINT32_MAX;
-	for (size_t i = 0; i < 3 * c->nt; i++)
-		remap[c->tri[i]] = 0;
 	size_t n = 0;
-	for (size_t v = 0; v < c->nv; v++)
-		if (remap[v] == 0)
-			remap[v] = (uint32_t)n++;
-	int rc = -1;
-	if (fct_mesh_set_vertex_count(out, n, err) || fct_mesh_set_triangle_count(out, c->nt, err))
-		goto done;
-	static const char *nn[3] = { "nx", "ny", "nz" }, *cn[3] = { "red", "green", "blue" };
-	for (int k = 0; k < 3; k++)
-		if (!fct_elem_add_scalar(&out->vertex, nn[k], FCT_FLOAT32, err))
-			goto done;
-	if (c->colour)
-		for (int k = 0; k < 3; k++)
-			if (!fct_elem_add_scalar(&out->vertex, cn[k], FCT_UINT8, err))
-				goto done;
-	float *nc[3];
-	uint8_t *cc[3] = { NULL, NULL, NULL };
-	for (int k = 0; k < 3; k++) {
-		nc[k] = fct_elem_find(&out->vertex, nn[k])->data;
-		if (c->colour)
-			cc[k] = fct_elem_find(&out->vertex, cn[k])->data;
-	}
 	for (size_t v = 0; v < c->nv; v++) {
-		uint32_t r = remap[v];
-		if (r == UINT32_MAX)
+		remap[v] = (uint32_t)n;
+		if (!c->used[v])
 			continue;
-		for (int k = 0; k < 3; k++) {
-			out->xyz[3 * (size_t)r + k] = c->xyz[3 * v + k];
-			nc[k][r] = c->nrm[3 * v + k];
-			if (c->colour)
-				cc[k][r] = c->rgb[3 * v + k];
+		if (n != v) {
+			for (int k = 0; k < 3; k++) {
+				c->xyz[3 * n + k] = c->xyz[3 * v + k];
+				c->nrm[k][n] = c->nrm[k][v];
+				if (c->colour)
+					c->rgb[k][n] = c->rgb[k][v];
+			}
 		}
+		n++;
 	}
 	for (size_t i = 0; i < 3 * c->nt; i++)
-		out->fvert[i] = remap[c->tri[i]];
-	rc = 0;
-done:
-	free(remap);
-	return rc;
+		c->tri[i] = remap[c->tri[i]];
+	c->nv = n;
+	(void)out;
 }
 
 int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
@@ -617,66 +643,114 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 		c->thr = INFINITY;
 	c->colour = fct_voxgrid_has_colour(g);
 	c->voxel = fct_voxgrid_voxel(g);
-	c->lo = clip_lo, c->hi = clip_hi;
 	geom_init(&c->G);
-	for (int cfg = 0; cfg < 256; cfg++)
-		build_case(&c->G, cfg, 0, &c->table[cfg]);
+	for (int cfg = 0; cfg < 256; cfg++) {
+		struct mc_case *mc = &c->table[cfg];
+		build_case(&c->G, cfg, 0, mc);
+		int nt = 0, nc = 0;
+		for (int l = 0; l < mc->nloops; l++) {
+			nt += mc->centre[l] ? mc->len[l] : mc->len[l] - 2;
+			nc += mc->centre[l];
+		}
+		c->ntri[cfg] = (uint8_t)nt;
+		c->ncentre[cfg] = (uint8_t)nc;
+		c->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
+	}
 
 	int rc = -1;
-	size_t nb = fct_voxgrid_count(g), naux = 0, auxcap = 0;
+	size_t nb = fct_voxgrid_count(g), naux = 0, auxcap = 0, ntri = 0, ncentre = 0, nverts = 0;
 	struct aux *aux = NULL;
-	uint32_t *auxidx = fct_alloc_array(nb, sizeof *auxidx, err);
-	if (!auxidx)
+	uint32_t *remap = NULL;
+	struct own *own = fct_alloc_array(nb, sizeof *own, err);
+	if (!own)
 		goto done;
-	if (clip_lo && (clip_lo[0] >= clip_hi[0] || clip_lo[1] >= clip_hi[1] || clip_lo[2] >= clip_hi[2])) {
-		/* an empty box: no cubes */
-		nb = 0;
-	}
+	if (clip_lo && (clip_lo[0] >= clip_hi[0] || clip_lo[1] >= clip_hi[1] || clip_lo[2] >= clip_hi[2]))
+		nb = 0;         /* an empty box: no cubes */
+	for (size_t b = 0; b < nb; b++)
+		pass0(c, fct_voxgrid_at(g, b), clip_lo, clip_hi, &own[b]);
 	for (size_t b = 0; b < nb; b++) {
-		const struct fct_voxblock *B = fct_voxgrid_at(g, b);
-		auxidx[b] = UINT32_MAX;
-		if (clip_lo) {
-			/* blocks wholly outside the closed box [lo, hi] hold no corner */
-			int64_t lo0 = (int64_t)8 * B->bx, lo1 = (int64_t)8 * B->by, lo2 = (int64_t)8 * B->bz;
-			if (lo0 + 7 < clip_lo[0] || lo0 > clip_hi[0] || lo1 + 7 < clip_lo[1] ||
-			    lo1 > clip_hi[1] || lo2 + 7 < clip_lo[2] || lo2 > clip_hi[2])
-				continue;
-		}
+		if (!own[b].anyobs)
+			continue;
 		if (fct_grow((void **)&aux, &auxcap, naux + 1, sizeof *aux, err))
 			goto done;
-		ctx_block(c, B);
-		if (pass1(c, &aux[naux], err))
-			goto done;
-		int keep = aux[naux].any_active;
-		for (int w = 0; w < 24; w++)
-			keep |= aux[naux].bits[w] != 0;
-		if (keep)
-			auxidx[b] = (uint32_t)naux++;
-	}
-	for (size_t b = 0; b < nb; b++) {
-		if (auxidx[b] == UINT32_MAX || !aux[auxidx[b]].any_active)
+		if (!pass1(c, own, b, &aux[naux], &ntri, &ncentre))
 			continue;
-		const struct fct_voxblock *B = fct_voxgrid_at(g, b);
-		const struct aux *A = &aux[auxidx[b]];
-		const struct aux *auxn[2][2][2];
-		for (int k = 0; k < 8; k++) {
-			long i = fct_voxgrid_index(g, B->bx + (k & 1), B->by + (k >> 1 & 1), B->bz + (k >> 2));
-			auxn[k >> 2][k >> 1 & 1][k & 1] =
-				i >= 0 && auxidx[i] != UINT32_MAX ? &aux[auxidx[i]] : NULL;
+		aux[naux].base = (uint32_t)nverts;
+		nverts += aux[naux].nverts;
+		if (nverts + ncentre > UINT32_MAX - 1) {
+			fct_fail(err, "marching cubes: more than 2^32 - 1 vertices");
+			goto done;
 		}
-		ctx_block(c, B);
+		own[b].aux = (uint32_t)naux++;
+	}
+	if (ntri > UINT32_MAX / 3) {
+		fct_fail(err, "marching cubes: more than 2^32 / 3 triangles");
+		goto done;
+	}
+	if (fct_mesh_set_vertex_count(out, nverts + ncentre, err) ||
+	    fct_mesh_set_triangle_count(out, ntri, err))
+		goto done;
+	static const char *nn[3] = { "nx", "ny", "nz" }, *cn[3] = { "red", "green", "blue" };
+	for (int k = 0; k < 3; k++)
+		if (!fct_elem_add_scalar(&out->vertex, nn[k], FCT_FLOAT32, err))
+			goto done;
+	if (c->colour)
+		for (int k = 0; k < 3; k++)
+			if (!fct_elem_add_scalar(&out->vertex, cn[k], FCT_UINT8, err))
+				goto done;
+	for (int k = 0; k < 3; k++) {
+		c->nrm[k] = fct_elem_find(&out->vertex, nn[k])->data;
+		if (c->colour)
+			c->rgb[k] = fct_elem_find(&out->vertex, cn[k])->data;
+	}
+	c->xyz = out->xyz;
+	c->tri = out->fvert;
+	if (!(c->used = fct_alloc_array(nverts + ncentre, 1, err)))
+		goto done;
+	memset(c->used, 0, nverts + ncentre);
+
+	/* vertices */
+	for (size_t i = 0; i < naux; i++) {
+		const struct aux *A = &aux[i];
+		if (!A->nverts)
+			continue;
+		ctx_block(c, fct_voxgrid_at(g, A->block));
+		fill_cache(c);
+		size_t id = A->base;
+		for (int a = 0; a < 3; a++)
+			for (int r = 0; r < 64; r++)
+				for (unsigned m = A->bits[a][r]; m; m &= m - 1)
+					make_vertex(c, __builtin_ctz(m), r & 7, r >> 3, a, id++);
+	}
+	c->nv = nverts;
+	/* triangles */
+	for (size_t i = 0; i < naux; i++) {
+		const struct aux *A = &aux[i];
+		if (!A->any_active)
+			continue;
+		const struct aux *up[8];
+		for (int k = 0; k < 8; k++)
+			up[k] = A->up[k] >= 0 && own[A->up[k]].aux != NONE ? &aux[own[A->up[k]].aux] : NULL;
+		ctx_block(c, fct_voxgrid_at(g, A->block));
 		for (int z = 0; z < 8; z++)
 			for (int y = 0; y < 8; y++)
-				for (unsigned m = A->active[z][y]; m; m &= m - 1) {
+				for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
 					int x = __builtin_ctz(m);
 					int cfg = (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
 					          (A->neg[z + 1][y] >> x & 3) << 4 |
 					          (A->neg[z + 1][y + 1] >> x & 3) << 6;
-					if (emit_cube(c, auxn, x, y, z, cfg, err))
-						goto done;
+					emit_cube(c, up, x, y, z, cfg);
 				}
 	}
-	if (finish(c, out, err))
+	size_t unused = 0;
+	for (size_t v = 0; v < c->nv; v++)
+		unused += !c->used[v];
+	if (unused) {
+		if (!(remap = fct_alloc_array(c->nv, sizeof *remap, err)))
+			goto done;
+		compact(c, out, remap);
+	}
+	if (fct_mesh_set_vertex_count(out, c->nv, err) || fct_mesh_set_triangle_count(out, c->nt, err))
 		goto done;
 	c->st.blocks = nb;
 	c->st.voxels = nb * FCT_VOXBLOCK_N;
@@ -686,12 +760,10 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 done:
 	if (rc)
 		fct_mesh_free(out);
-	free(auxidx);
+	free(own);
 	free(aux);
-	free(c->xyz);
-	free(c->nrm);
-	free(c->rgb);
-	free(c->tri);
+	free(remap);
+	free(c->used);
 	free(c);
 	return rc;
 }

@@ -1,0 +1,183 @@
+/* gen_mcubes - marching-cubes throughput on synthetic grids, beside a plain
+ * pass over the same voxels, one core.
+ *   gen_mcubes [-r RUNS] room|dense     extract RUNS times, print the medians:
+ *                                       key=value lines (seconds, voxels, ...)
+ *   gen_mcubes estimate                 blocks and bytes of a 10 x 10 x 3 m room
+ *                                       band at 1 cm, counted without allocating
+ * room: a 4 x 4 x 2.5 m room at 1 cm voxels, a 0.5 m ball and a 1 x 0.6 x 0.75 m
+ * table in it, blocks only where the truncation band (4 voxels) reaches, as a
+ * fusion leaves them.  dense: a 256^3 volume, every voxel observed, a ball of
+ * radius 100 voxels (the volume scikit-image is usually timed on). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "mcubes.h"
+
+struct scene {
+	double room[3];         /* interior from 0 to room */
+	double ball[4];         /* centre, radius */
+	double table[6];        /* box lo, hi */
+};
+
+static double box_out(const double p[3], const double lo[3], const double hi[3])
+{
+	/* distance from p to the box, negative inside */
+	double q[3], out = 0, in = -1e300;
+	for (int k = 0; k < 3; k++) {
+		double c = 0.5 * (lo[k] + hi[k]), h = 0.5 * (hi[k] - lo[k]);
+		q[k] = fabs(p[k] - c) - h;
+		out += q[k] > 0 ? q[k] * q[k] : 0;
+		in = q[k] > in ? q[k] : in;
+	}
+	return out > 0 ? sqrt(out) : in;
+}
+
+/* Signed distance of the room scene, positive in free space. */
+static double room_sdf(const struct scene *s, const double p[3])
+{
+	double d = 1e300;
+	for (int k = 0; k < 3; k++) {
+		d = fmin(d, p[k]);
+		d = fmin(d, s->room[k] - p[k]);
+	}
+	double b[3] = { p[0] - s->ball[0], p[1] - s->ball[1], p[2] - s->ball[2] };
+	d = fmin(d, sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) - s->ball[3]);
+	return fmin(d, box_out(p, s->table, s->table + 3));
+}
+
+/* Blocks of the room band: those whose centre is within trunc + half a block
+ * diagonal of the surface.  fill != 0 allocates and fills them. */
+static size_t room_blocks(const struct scene *s, double vox, double trunc, struct fct_voxgrid *g,
+                          struct fct_err *err)
+{
+	double bs = 8 * vox, reach = trunc + bs * sqrt(3) / 2;
+	int32_t n[3];
+	for (int k = 0; k < 3; k++)
+		n[k] = (int32_t)ceil((s->room[k] + trunc) / bs) + 1;
+	size_t count = 0;
+	for (int32_t bz = -1; bz < n[2]; bz++)
+		for (int32_t by = -1; by < n[1]; by++)
+			for (int32_t bx = -1; bx < n[0]; bx++) {
+				double c[3] = { (8 * bx + 3.5) * vox, (8 * by + 3.5) * vox, (8 * bz + 3.5) * vox };
+				if (fabs(room_sdf(s, c)) > reach)
+					continue;
+				count++;
+				if (!g)
+					continue;
+				struct fct_voxblock *b = fct_voxgrid_block(g, bx, by, bz, 1, err);
+				if (!b)
+					fct_die_err(err);
+				for (int v = 0; v < 512; v++) {
+					double p[3] = { (8 * bx + (v & 7)) * vox, (8 * by + (v >> 3 & 7)) * vox,
+					                (8 * bz + (v >> 6)) * vox };
+					double d = room_sdf(s, p);
+					if (fabs(d) <= trunc) {
+						b->sdf[v] = (float)d;
+						b->weight[v] = 1;
+					}
+				}
+			}
+	return count;
+}
+
+static int cmp(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+static double median(double *t, int n)
+{
+	qsort(t, (size_t)n, sizeof *t, cmp);
+	return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+}
+
+int main(int argc, char **argv)
+{
+	fct_cli_init("gen_mcubes");
+	struct fct_err err;
+	int runs = 5, a = 1;
+	if (argc > 2 && !strcmp(argv[1], "-r")) {
+		runs = (int)fct_opt_long("-r", argv[2], 1, 1000);
+		a = 3;
+	}
+	if (a + 1 != argc)
+		fct_usage_error("usage: gen_mcubes [-r RUNS] room|dense|estimate");
+	const char *what = argv[a];
+	if (!strcmp(what, "estimate")) {
+		struct scene s = { { 10, 10, 3 }, { 5, 5, -10, 0 }, { 0, 0, -9, 0, 0, -9 } };
+		double trunc = 0.04;
+		size_t n = room_blocks(&s, 0.01, trunc, NULL, &err);
+		printf("room_blocks=%zu\nblock_bytes=%zu\nblock_bytes_colour=%zu\n", n,
+		       fct_voxgrid_block_bytes(0), fct_voxgrid_block_bytes(1));
+		printf("room_gb=%.3f\nroom_gb_colour=%.3f\n", n * (double)fct_voxgrid_block_bytes(0) / 1e9,
+		       n * (double)fct_voxgrid_block_bytes(1) / 1e9);
+		printf("dense_gb=%.1f\n", 1000.0 * 1000 * 300 * 8 / 1e9);
+		return 0;
+	}
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	if (!g)
+		fct_die_err(&err);
+	if (!strcmp(what, "room")) {
+		struct scene s = { { 4, 4, 2.5 }, { 2.6, 1.4, 1.2, 0.5 }, { 0.8, 2.2, 0, 1.8, 2.8, 0.75 } };
+		room_blocks(&s, 0.01, 0.04, g, &err);
+	} else if (!strcmp(what, "dense")) {
+		for (int32_t bz = 0; bz < 32; bz++)
+			for (int32_t by = 0; by < 32; by++)
+				for (int32_t bx = 0; bx < 32; bx++) {
+					struct fct_voxblock *b = fct_voxgrid_block(g, bx, by, bz, 1, &err);
+					if (!b)
+						fct_die_err(&err);
+					for (int v = 0; v < 512; v++) {
+						double x = 8 * bx + (v & 7) - 127.6, y = 8 * by + (v >> 3 & 7) - 128.3,
+						       z = 8 * bz + (v >> 6) - 127.9;
+						b->sdf[v] = (float)(0.01 * (sqrt(x * x + y * y + z * z) - 100));
+						b->weight[v] = 1;
+					}
+				}
+	} else {
+		fct_usage_error("gen_mcubes: unknown scene %s", what);
+	}
+	size_t nb = fct_voxgrid_count(g);
+	double *tm = malloc((size_t)runs * sizeof *tm), *tr = malloc((size_t)runs * sizeof *tr);
+	if (!tm || !tr)
+		fct_die(1, "out of memory");
+	struct fct_mesh m;
+	struct fct_mcubes_stats st;
+	double sum = 0;
+	for (int r = 0; r < runs; r++) {
+		/* reference: one pass reading every sdf and weight value */
+		double t0 = fct_now();
+		float acc[8] = { 0 };
+		for (size_t b = 0; b < nb; b++) {
+			const struct fct_voxblock *B = fct_voxgrid_at(g, b);
+			for (int v = 0; v < 512; v += 8)
+				for (int k = 0; k < 8; k++)
+					acc[k] += B->sdf[v + k] * B->weight[v + k];
+		}
+		for (int k = 0; k < 8; k++)
+			sum += acc[k];
+		tr[r] = fct_now() - t0;
+		t0 = fct_now();
+		if (fct_mcubes_stats(g, 0, NULL, NULL, &m, &st, &err))
+			fct_die_err(&err);
+		tm[r] = fct_now() - t0;
+		if (r + 1 < runs)
+			fct_mesh_free(&m);
+	}
+	double vox = (double)nb * 512;
+	double t = median(tm, runs), t_ref = median(tr, runs);
+	printf("blocks=%zu\nvoxels=%.0f\nvertices=%zu\nfaces=%zu\ncubes=%zu\n", nb, vox, m.nv, m.nf,
+	       st.cubes);
+	printf("mcubes_s=%.5f\nmcubes_mvox_s=%.1f\nref_s=%.5f\nref_mvox_s=%.1f\nchecksum=%.3g\n", t,
+	       vox / t / 1e6, t_ref, vox / t_ref / 1e6, sum);
+	printf("grid_mb=%.1f\n", fct_voxgrid_bytes(g) / 1e6);
+	fct_mesh_free(&m);
+	fct_voxgrid_free(g);
+	free(tm);
+	free(tr);
+	return 0;
+}
