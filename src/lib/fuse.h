@@ -96,7 +96,8 @@ int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t
 
 /* Level-set mean-curvature flow phi_t = |grad phi| div(grad phi / |grad phi|)
  * for iters explicit steps of dt = voxel^2 / 8 on the observed voxels
- * (unobserved neighbours count as +band: free space).  0 or -1. */
+ * (unobserved neighbours mirror the voxel: no flux across the edge of the
+ * data).  0 or -1. */
 int fct_curvature_flow(struct fct_voxgrid *g, int iters, double band, struct fct_err *err);
 
 #endif
