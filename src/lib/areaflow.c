@@ -1,0 +1,845 @@
+/* areaflow.c - area decreasing flow with crease strength by tensor voting:
+ * Sun, Paik, Koschan and Abidi, "3D Reconstruction of Indoor and Outdoor
+ * Scenes Using a Mobile Range Scanner", sec. 2, eqs. (2), (3) and (4); and
+ * Laplacian and Taubin smoothing (Taubin, "A signal processing approach to
+ * fair surface design", SIGGRAPH 1995) as baselines.
+ *
+ * Work is split into a fixed number of chunks of vertices (or faces) taken
+ * by threads; every vertex writes only its own slots and per-chunk sums are
+ * added in chunk order, so the result is the same for any thread count. */
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "adj.h"
+#include "areaflow.h"
+#include "geom.h"
+
+void fct_areaflow_params_default(struct fct_areaflow_params *p)
+{
+	p->method = FCT_SMOOTH_AREAFLOW;
+	p->lambda = 1;
+	p->iterations = -1;
+	p->max_iterations = 10;
+	p->tol = 0.02;
+	p->window = 2.5;
+	p->sigma = 1.5;
+	p->delta = 0.3;
+	p->crease = 1;
+	p->lap_lambda = 0.5;
+	p->taubin_mu = -0.53;
+	p->threads = 0;
+}
+
+/* Eq. (3) ---------------------------------------------------------------- */
+
+/* The sums A and B of eq. (3) for one umbrella triangle (v, p1, p2). */
+static inline void step_terms(const double v[3], const double p1[3], const double p2[3],
+                              const double n[3], double *A, double *B)
+{
+	double a[3], b[3], d[3];
+	fct_v3_sub(a, p1, v);
+	fct_v3_sub(b, p2, v);
+	fct_v3_sub(d, a, b);
+	double an = fct_v3_dot(a, n), bn = fct_v3_dot(b, n), dn = fct_v3_dot(d, n);
+	*A += bn * fct_v3_dot(a, d) - an * fct_v3_dot(b, d);
+	*B += fct_v3_dot(d, d) - dn * dn;
+}
+
+static inline double step_solve(double A, double B, double lambda, double dvn)
+{
+	double den = B + lambda;
+	if (!(den > 0) || !isfinite(den))
+		return 0;
+	double l = (A - lambda * dvn) / den;
+	return isfinite(l) ? l : 0;
+}
+
+double fct_areaflow_step(const double v[3], const double v0[3], const double n[3],
+                         const double *ring, size_t ntri, double lambda)
+{
+	double A = 0, B = 0, dv[3];
+	for (size_t i = 0; i < ntri; i++)
+		step_terms(v, ring + 6 * i, ring + 6 * i + 3, n, &A, &B);
+	fct_v3_sub(dv, v, v0);
+	return step_solve(A, B, lambda, fct_v3_dot(dv, n));
+}
+
+/* Eq. (4) ---------------------------------------------------------------- */
+
+static void normalize_or(double v[3], const double *fallback)
+{
+	double len = sqrt(fct_v3_dot(v, v));
+	if (len > 0 && isfinite(len)) {
+		v[0] /= len, v[1] /= len, v[2] /= len;
+		return;
+	}
+	if (fallback) {
+		double f[3] = { fallback[0], fallback[1], fallback[2] };
+		double fl = sqrt(fct_v3_dot(f, f));
+		if (fl > 0 && isfinite(fl)) {
+			v[0] = f[0] / fl, v[1] = f[1] / fl, v[2] = f[2] / fl;
+			return;
+		}
+	}
+	v[0] = 0, v[1] = 0, v[2] = 1;
+}
+
+void fct_sym3_eigen(const double t[6], double nu[3], double e1[3], const double *hint)
+{
+	double a00 = t[0], a01 = t[1], a02 = t[2], a11 = t[3], a12 = t[4], a22 = t[5];
+	double p1 = a01 * a01 + a02 * a02 + a12 * a12;
+	double q = (a00 + a11 + a22) / 3;
+	double b00 = a00 - q, b11 = a11 - q, b22 = a22 - q;
+	double p2 = b00 * b00 + b11 * b11 + b22 * b22 + 2 * p1;
+	double l1, l2, l3;
+	if (!(p2 > 0) || !isfinite(p2)) {
+		l1 = l2 = l3 = isfinite(q) ? q : 0;
+	} else {
+		double p = sqrt(p2 / 6);
+		double c00 = b00 / p, c11 = b11 / p, c22 = b22 / p;
+		double c01 = a01 / p, c02 = a02 / p, c12 = a12 / p;
+		double det = c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) +
+		             c02 * (c01 * c12 - c11 * c02);
+		double r = det / 2;
+		r = r < -1 ? -1 : r > 1 ? 1 : r;
+		double phi = acos(r) / 3;
+		l1 = q + 2 * p * cos(phi);
+		l3 = q + 2 * p * cos(phi + 2.0943951023931954923);
+		l2 = 3 * q - l1 - l3;
+		if (l2 > l1) { double s = l1; l1 = l2; l2 = s; }
+		if (l3 > l2) { double s = l2; l2 = l3; l3 = s; }
+		if (l2 > l1) { double s = l1; l1 = l2; l2 = s; }
+	}
+	nu[0] = l1, nu[1] = l2, nu[2] = l3;
+
+	/* e1 spans the null space of M = t - l1 I: the largest cross product of
+	 * two of M's rows when its rank is 2. */
+	double r0[3] = { a00 - l1, a01, a02 }, r1[3] = { a01, a11 - l1, a12 };
+	double r2[3] = { a02, a12, a22 - l1 };
+	double c[3][3];
+	fct_v3_cross(c[0], r0, r1);
+	fct_v3_cross(c[1], r0, r2);
+	fct_v3_cross(c[2], r1, r2);
+	double best = 0;
+	int bi = -1;
+	for (int i = 0; i < 3; i++) {
+		double d = fct_v3_dot(c[i], c[i]);
+		if (d > best) best = d, bi = i;
+	}
+	double scale = fabs(l1) + fabs(l2) + fabs(l3);
+	if (bi >= 0 && best > 1e-18 * scale * scale * scale * scale && isfinite(best)) {
+		double len = sqrt(best);
+		for (int k = 0; k < 3; k++)
+			e1[k] = c[bi][k] / len;
+		return;
+	}
+	/* l1 repeated: its eigenspace is orthogonal to M's largest row (or is
+	 * everything when M vanishes); take hint's part in it. */
+	double h[3] = { 0, 0, 1 };
+	if (hint)
+		h[0] = hint[0], h[1] = hint[1], h[2] = hint[2];
+	const double *rows[3] = { r0, r1, r2 };
+	double rb = 0;
+	int ri = -1;
+	for (int i = 0; i < 3; i++) {
+		double d = fct_v3_dot(rows[i], rows[i]);
+		if (d > rb) rb = d, ri = i;
+	}
+	if (ri >= 0 && rb > 1e-18 * scale * scale && isfinite(rb)) {
+		double rl = sqrt(rb), u[3] = { rows[ri][0] / rl, rows[ri][1] / rl, rows[ri][2] / rl };
+		double hu = fct_v3_dot(h, u);
+		fct_v3_axpy(e1, h, -hu, u);
+		/* hint along the row: any unit vector orthogonal to it */
+		double other[3] = { fabs(u[0]) < 0.6 ? 1 : 0, fabs(u[0]) < 0.6 ? 0 : 1, 0 };
+		double o[3];
+		fct_v3_cross(o, u, other);
+		normalize_or(e1, o);
+		return;
+	}
+	normalize_or(h, NULL);
+	e1[0] = h[0], e1[1] = h[1], e1[2] = h[2];
+}
+
+/* Accumulates the votes of eq. (4) at one vertex. */
+struct vote {
+	double t[6];    /* xx xy xz yy yz zz */
+	double nbar[3];
+	double wsum;
+};
+
+/* The vote of the face with centroid p and unit normal n, weight mu, at q:
+ * n transported along the arc from p to q, in the plane of n and pq, whose
+ * tangent at p is perpendicular to n (n' = 2 (n.w) w - n, the reflection of
+ * n about the chord's perpendicular w in that plane). */
+static inline void vote_add(struct vote *vt, const double q[3], const double p[3],
+                            const double n[3], double mu)
+{
+	double pq[3], c[3], w[3], nn[3];
+	fct_v3_sub(pq, q, p);
+	fct_v3_cross(c, pq, n);
+	fct_v3_cross(w, c, pq);
+	double wl = fct_v3_dot(w, w);
+	if (wl > 0 && isfinite(wl)) {
+		wl = 1 / sqrt(wl);
+		w[0] *= wl, w[1] *= wl, w[2] *= wl;
+		double nw = 2 * fct_v3_dot(n, w);
+		nn[0] = nw * w[0] - n[0], nn[1] = nw * w[1] - n[1], nn[2] = nw * w[2] - n[2];
+	} else {
+		/* p at q, or pq along n: no arc to follow */
+		nn[0] = n[0], nn[1] = n[1], nn[2] = n[2];
+	}
+	vt->t[0] += mu * nn[0] * nn[0];
+	vt->t[1] += mu * nn[0] * nn[1];
+	vt->t[2] += mu * nn[0] * nn[2];
+	vt->t[3] += mu * nn[1] * nn[1];
+	vt->t[4] += mu * nn[1] * nn[2];
+	vt->t[5] += mu * nn[2] * nn[2];
+	vt->nbar[0] += mu * nn[0];
+	vt->nbar[1] += mu * nn[1];
+	vt->nbar[2] += mu * nn[2];
+	vt->wsum += mu;
+}
+
+static double vote_strength(const struct vote *vt, double delta)
+{
+	if (!(vt->wsum > 0) || !isfinite(vt->wsum))
+		return 0;
+	double nu[3], e1[3], nb[3];
+	for (int k = 0; k < 3; k++)
+		nb[k] = vt->nbar[k] / vt->wsum;
+	fct_sym3_eigen(vt->t, nu, e1, nb);
+	if (!(nu[0] > 0) || !isfinite(nu[0]))
+		return 0;
+	if (fabs(fct_v3_dot(nb, e1)) < delta)
+		return 1;
+	double s = (nu[1] - nu[2]) / nu[0];
+	return s > 0 ? (s < 1 ? s : 1) : 0;
+}
+
+double fct_crease_strength(const double q[3], const double *p, const double *n,
+                           const double *mu, size_t m, double delta)
+{
+	struct vote vt;
+	memset(&vt, 0, sizeof vt);
+	for (size_t i = 0; i < m; i++)
+		if (mu[i] > 0)
+			vote_add(&vt, q, p + 3 * i, n + 3 * i, mu[i]);
+	return vote_strength(&vt, delta);
+}
+
+/* Threads ---------------------------------------------------------------- */
+
+enum { NCHUNK = 256, MAX_THREADS = 64, MAX_EXPAND = 64, NCOLOR = 64 };
+
+struct flow;
+typedef void chunk_fn(struct flow *F, int tid, size_t lo, size_t hi, int chunk);
+
+struct job {
+	struct flow *F;
+	chunk_fn *fn;
+	size_t n;
+	atomic_int next;
+};
+
+struct job_arg {
+	struct job *job;
+	int tid;
+};
+
+static void *job_worker(void *arg)
+{
+	struct job_arg *a = arg;
+	struct job *j = a->job;
+	for (;;) {
+		int c = atomic_fetch_add(&j->next, 1);
+		if (c >= NCHUNK)
+			break;
+		size_t lo = j->n * (size_t)c / NCHUNK, hi = j->n * (size_t)(c + 1) / NCHUNK;
+		if (lo < hi)
+			j->fn(j->F, a->tid, lo, hi, c);
+	}
+	return NULL;
+}
+
+/* Per-thread scratch of the window gathering. */
+struct scratch {
+	uint32_t *vstamp, *fstamp, *queue;
+	uint32_t stamp;
+};
+
+struct flow {
+	struct fct_mesh *m;
+	const struct fct_adj *adj;
+	const struct fct_areaflow_params *p;
+	double *cur, *next;       /* positions */
+	const double *x0;         /* input positions */
+	double *fn, *fc;          /* unit face normals (0 for no area), centroids */
+	double *fa;               /* face area vectors (twice the area) */
+	double *s;                /* crease strength */
+	unsigned char *held;      /* 1: does not move */
+	uint32_t *order;          /* moving vertices by colour */
+	size_t color_start[NCOLOR + 1], color_lo;
+	uint32_t *corner;         /* parallel to adj->vert_f: v's corner in that face */
+	uint32_t *nbr, *nbr_start;  /* vertex neighbours (Laplacian) */
+	double lambda_abs, radius2, sigma2, factor;
+	double part[NCHUNK], part2[NCHUNK];
+	double partmax[NCHUNK];
+	int nthreads;
+	struct scratch sc[MAX_THREADS];
+};
+
+/* Run fn over [0, n) in NCHUNK chunks on F->nthreads threads. */
+static void run(struct flow *F, chunk_fn *fn, size_t n)
+{
+	struct job j = { F, fn, n, 0 };
+	memset(F->part, 0, sizeof F->part);
+	memset(F->part2, 0, sizeof F->part2);
+	memset(F->partmax, 0, sizeof F->partmax);
+	struct job_arg args[MAX_THREADS];
+	pthread_t th[MAX_THREADS];
+	int started = 0;
+	for (int t = 1; t < F->nthreads; t++) {
+		args[t] = (struct job_arg){ &j, t };
+		if (pthread_create(&th[t], NULL, job_worker, &args[t]))
+			break;   /* fewer threads: the rest is done by those running */
+		started = t;
+	}
+	args[0] = (struct job_arg){ &j, 0 };
+	job_worker(&args[0]);
+	for (int t = 1; t <= started; t++)
+		pthread_join(th[t], NULL);
+}
+
+static double sum_parts(const double *part)
+{
+	double s = 0;
+	for (int c = 0; c < NCHUNK; c++)
+		s += part[c];
+	return s;
+}
+
+/* Per-iteration geometry -------------------------------------------------- */
+
+static void faces_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	const struct fct_mesh *m = F->m;
+	const double *x = F->cur;
+	for (size_t f = lo; f < hi; f++) {
+		uint32_t b = m->fstart[f], k = m->fstart[f + 1] - b;
+		double a[3] = { 0, 0, 0 }, c[3] = { 0, 0, 0 };
+		for (uint32_t i = 0; i < k; i++) {
+			const double *p = x + 3 * (size_t)m->fvert[b + i];
+			const double *q = x + 3 * (size_t)m->fvert[b + (i + 1 == k ? 0 : i + 1)];
+			/* Newell: the vector area, exact for triangles */
+			a[0] += (p[1] - q[1]) * (p[2] + q[2]);
+			a[1] += (p[2] - q[2]) * (p[0] + q[0]);
+			a[2] += (p[0] - q[0]) * (p[1] + q[1]);
+			fct_v3_add(c, c, p);
+		}
+		double *fa = F->fa + 3 * f, *fn = F->fn + 3 * f, *fc = F->fc + 3 * f;
+		double len = sqrt(fct_v3_dot(a, a));
+		for (int j = 0; j < 3; j++) {
+			fa[j] = isfinite(len) ? a[j] : 0;
+			fn[j] = len > 0 && isfinite(len) ? a[j] / len : 0;
+			fc[j] = k ? c[j] / k : 0;
+		}
+	}
+}
+
+
+/* Eq. (4) at every vertex: the faces of the geodesic window are gathered by
+ * a breadth-first walk from the vertex through the vertices of faces whose
+ * centroid is within the radius; the distance is the straight one to the
+ * centroid, which is the geodesic one up to the curvature over the window,
+ * while the walk keeps to the surface connected to the vertex. */
+static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	const struct fct_mesh *m = F->m;
+	const struct fct_adj *A = F->adj;
+	struct scratch *sc = &F->sc[tid];
+	double sum = 0;
+	for (size_t v = lo; v < hi; v++) {
+		if (A->vert_fstart[v] == A->vert_fstart[v + 1]) {
+			F->s[v] = 0;
+			continue;
+		}
+		if (++sc->stamp == 0) {
+			memset(sc->vstamp, 0, sizeof *sc->vstamp * m->nv);
+			memset(sc->fstamp, 0, sizeof *sc->fstamp * (m->nf ? m->nf : 1));
+			sc->stamp = 1;
+		}
+		uint32_t st = sc->stamp;
+		const double *q = F->cur + 3 * v;
+		struct vote vt;
+		memset(&vt, 0, sizeof vt);
+		size_t head = 0, tail = 0;
+		sc->queue[tail++] = (uint32_t)v;
+		sc->vstamp[v] = st;
+		while (head < tail) {
+			uint32_t u = sc->queue[head++];
+			for (uint32_t i = A->vert_fstart[u]; i < A->vert_fstart[u + 1]; i++) {
+				uint32_t f = A->vert_f[i];
+				if (sc->fstamp[f] == st)
+					continue;
+				sc->fstamp[f] = st;
+				const double *c = F->fc + 3 * (size_t)f;
+				double d2 = fct_v3_dist2(c, q);
+				if (!(d2 <= F->radius2) && u != v)
+					continue;   /* the umbrella always votes (M > I) */
+				const double *n = F->fn + 3 * (size_t)f;
+				if (n[0] != 0 || n[1] != 0 || n[2] != 0)
+					vote_add(&vt, q, c, n, exp(-d2 / F->sigma2));
+				if (m->fstart[f + 1] - m->fstart[f] > MAX_EXPAND)
+					continue;   /* no walk through huge polygons (quadratic) */
+				for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
+					uint32_t x = m->fvert[k];
+					if (sc->vstamp[x] != st) {
+						sc->vstamp[x] = st;
+						sc->queue[tail++] = x;
+					}
+				}
+			}
+		}
+		double s = vote_strength(&vt, F->p->delta);
+		F->s[v] = s;
+		sum += s;
+	}
+	F->part[chunk] = sum;
+}
+
+/* The other two corners of the i-th face of vertex v (vert_f[i]; a polygon:
+ * v's neighbours there). */
+static inline void corner_ring(const struct flow *F, uint32_t i, uint32_t *p1, uint32_t *p2)
+{
+	const struct fct_mesh *m = F->m;
+	uint32_t f = F->adj->vert_f[i], b = m->fstart[f], k = m->fstart[f + 1] - b;
+	uint32_t j = F->corner[i];
+	*p1 = m->fvert[b + (j + 1 == k ? 0 : j + 1)];
+	*p2 = m->fvert[b + (j == 0 ? k - 1 : j - 1)];
+}
+
+/* One step of eq. (3), scaled by exp(-5 s), at the vertices order[lo..hi)
+ * of the colour being swept, in place: no two vertices of one colour share
+ * a face, so each sees its neighbours as the earlier colours left them
+ * (Gauss-Seidel), whatever the thread count.  The normal is the
+ * area-weighted normal of the umbrella as it is at that moment. */
+static void flow_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid;
+	const struct fct_adj *A = F->adj;
+	double *x = F->cur;
+	double sum = 0;
+	for (size_t k = lo; k < hi; k++) {
+		size_t v = F->order[F->color_lo + k];
+		double *p = x + 3 * v;
+		double n[3] = { 0, 0, 0 };
+		for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
+			uint32_t p1, p2;
+			double a[3], b[3], c[3];
+			corner_ring(F, i, &p1, &p2);
+			fct_v3_sub(a, x + 3 * (size_t)p1, p);
+			fct_v3_sub(b, x + 3 * (size_t)p2, p);
+			fct_v3_cross(c, a, b);
+			fct_v3_add(n, n, c);
+		}
+		double len = sqrt(fct_v3_dot(n, n));
+		if (!(len > 0) || !isfinite(len))
+			continue;   /* no normal: the vertex stays */
+		n[0] /= len, n[1] /= len, n[2] /= len;
+		double a = 0, b = 0, dv[3];
+		for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
+			uint32_t p1, p2;
+			corner_ring(F, i, &p1, &p2);
+			step_terms(p, x + 3 * (size_t)p1, x + 3 * (size_t)p2, n, &a, &b);
+		}
+		fct_v3_sub(dv, p, F->x0 + 3 * v);
+		double l = step_solve(a, b, F->lambda_abs, fct_v3_dot(dv, n));
+		if (F->p->crease)
+			l *= exp(-5 * F->s[v]);
+		double q[3];
+		fct_v3_axpy(q, p, l, n);
+		if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
+			continue;
+		p[0] = q[0], p[1] = q[1], p[2] = q[2];
+		sum += fabs(l);
+	}
+	F->part[chunk] += sum;
+}
+
+/* Colours for the Gauss-Seidel sweep: greedy in vertex order, the smallest
+ * colour no earlier vertex sharing a face has; vertices that find all
+ * NCOLOR - 1 colours taken get the last, swept on one thread in order.
+ * order lists the moving vertices by colour, then index. */
+static int build_colours(struct flow *F, struct fct_err *err)
+{
+	const struct fct_mesh *m = F->m;
+	const struct fct_adj *A = F->adj;
+	unsigned char *col = fct_alloc_array(m->nv, 1, err);
+	F->order = fct_alloc_array(m->nv, sizeof *F->order, err);
+	if (!col || !F->order) {
+		free(col);
+		return -1;
+	}
+	size_t count[NCOLOR];
+	memset(count, 0, sizeof count);
+	for (size_t v = 0; v < m->nv; v++) {
+		uint64_t used = 0;
+		for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
+			uint32_t f = A->vert_f[i];
+			for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
+				uint32_t u = m->fvert[k];
+				if (u < v)
+					used |= (uint64_t)1 << col[u];
+			}
+		}
+		int c = 0;
+		while (c < NCOLOR - 1 && (used >> c & 1))
+			c++;
+		col[v] = (unsigned char)c;
+		if (!F->held[v])
+			count[c]++;
+	}
+	size_t at = 0;
+	for (int c = 0; c < NCOLOR; c++) {
+		F->color_start[c] = at;
+		at += count[c];
+	}
+	F->color_start[NCOLOR] = at;
+	size_t fill[NCOLOR];
+	memcpy(fill, F->color_start, sizeof fill);
+	for (size_t v = 0; v < m->nv; v++)
+		if (!F->held[v])
+			F->order[fill[col[v]]++] = (uint32_t)v;
+	free(col);
+	return 0;
+}
+
+/* One umbrella-Laplacian step with factor F->factor into F->next. */
+static void laplace_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid;
+	const double *x = F->cur;
+	double sum = 0;
+	for (size_t v = lo; v < hi; v++) {
+		const double *p = x + 3 * v;
+		double *o = F->next + 3 * v;
+		o[0] = p[0], o[1] = p[1], o[2] = p[2];
+		uint32_t b = F->nbr_start[v], e = F->nbr_start[v + 1];
+		if (b == e)
+			continue;
+		double c[3] = { 0, 0, 0 };
+		for (uint32_t i = b; i < e; i++)
+			fct_v3_add(c, c, x + 3 * (size_t)F->nbr[i]);
+		double d[3], q[3];
+		for (int k = 0; k < 3; k++)
+			d[k] = c[k] / (double)(e - b) - p[k];
+		fct_v3_axpy(q, p, F->factor, d);
+		if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
+			continue;
+		o[0] = q[0], o[1] = q[1], o[2] = q[2];
+		sum += sqrt(fct_v3_dist2(q, p));
+	}
+	F->part[chunk] = sum;
+}
+
+/* Distances from the input: sum, sum over moving vertices, max. */
+static void offset_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid;
+	double sum = 0, mx = 0;
+	for (size_t v = lo; v < hi; v++) {
+		double d = sqrt(fct_v3_dist2(F->cur + 3 * v, F->x0 + 3 * v));
+		sum += d;
+		if (d > mx)
+			mx = d;
+	}
+	F->part[chunk] = sum;
+	F->partmax[chunk] = mx;
+}
+
+/* The driver -------------------------------------------------------------- */
+
+static int alloc_doubles(double **p, size_t n, size_t k, struct fct_err *err)
+{
+	size_t c;
+	if (fct_mul_size(n ? n : 1, k, &c))
+		return fct_fail(err, "too many elements (%zu)", n);
+	*p = fct_alloc_array(c, sizeof **p, err);
+	return *p ? 0 : -1;
+}
+
+static int build_neighbours(struct flow *F, struct fct_err *err)
+{
+	const struct fct_adj *A = F->adj;
+	size_t nv = F->m->nv;
+	F->nbr_start = fct_alloc_array(nv + 1, sizeof *F->nbr_start, err);
+	F->nbr = fct_alloc_array(2 * A->ne, sizeof *F->nbr, err);
+	if (!F->nbr_start || !F->nbr)
+		return -1;
+	memset(F->nbr_start, 0, sizeof *F->nbr_start * (nv + 1));
+	for (size_t e = 0; e < A->ne; e++) {
+		F->nbr_start[A->edge_v[2 * e] + 1]++;
+		F->nbr_start[A->edge_v[2 * e + 1] + 1]++;
+	}
+	for (size_t v = 0; v < nv; v++)
+		F->nbr_start[v + 1] += F->nbr_start[v];
+	uint32_t *fill = fct_alloc_array(nv, sizeof *fill, err);
+	if (!fill)
+		return -1;
+	memcpy(fill, F->nbr_start, sizeof *fill * nv);
+	for (size_t e = 0; e < A->ne; e++) {
+		uint32_t a = A->edge_v[2 * e], b = A->edge_v[2 * e + 1];
+		F->nbr[fill[a]++] = b;
+		F->nbr[fill[b]++] = a;
+	}
+	free(fill);
+	return 0;
+}
+
+/* F->corner: faces are listed at each vertex in increasing order, once
+ * each, so walking the faces in order fills each vertex's list in order. */
+static int build_corners(struct flow *F, struct fct_err *err)
+{
+	const struct fct_mesh *m = F->m;
+	const struct fct_adj *A = F->adj;
+	size_t n = A->vert_fstart[m->nv];
+	uint32_t *fill = fct_alloc_array(m->nv, sizeof *fill, err);
+	F->corner = fct_alloc_array(n, sizeof *F->corner, err);
+	if (!fill || !F->corner) {
+		free(fill);
+		return -1;
+	}
+	memcpy(fill, A->vert_fstart, sizeof *fill * m->nv);
+	for (size_t f = 0; f < m->nf; f++)
+		for (uint32_t j = 0; j < m->fstart[f + 1] - m->fstart[f]; j++) {
+			uint32_t v = m->fvert[m->fstart[f] + j];
+			if (fill[v] > A->vert_fstart[v] && A->vert_f[fill[v] - 1] == f)
+				continue;   /* v repeated in f: its first corner */
+			if (fill[v] >= A->vert_fstart[v + 1] || A->vert_f[fill[v]] != f)
+				abort();
+			F->corner[fill[v]++] = j;
+		}
+	free(fill);
+	return 0;
+}
+
+static int scratch_alloc(struct flow *F, struct fct_err *err)
+{
+	size_t nv = F->m->nv, nf = F->m->nf;
+	for (int t = 0; t < F->nthreads; t++) {
+		struct scratch *sc = &F->sc[t];
+		sc->vstamp = calloc(nv ? nv : 1, sizeof *sc->vstamp);
+		sc->fstamp = calloc(nf ? nf : 1, sizeof *sc->fstamp);
+		sc->queue = fct_alloc_array(nv, sizeof *sc->queue, err);
+		sc->stamp = 0;
+		if (!sc->vstamp || !sc->fstamp || !sc->queue)
+			return fct_fail(err, "out of memory for the voting windows of %zu vertices", nv);
+	}
+	return 0;
+}
+
+static void flow_free(struct flow *F)
+{
+	free(F->next);
+	free(F->fn);
+	free(F->fc);
+	free(F->fa);
+	free(F->s);
+	free(F->held);
+	free(F->nbr);
+	free(F->nbr_start);
+	free(F->corner);
+	free(F->order);
+	for (int t = 0; t < MAX_THREADS; t++) {
+		free(F->sc[t].vstamp);
+		free(F->sc[t].fstamp);
+		free(F->sc[t].queue);
+	}
+}
+
+static int thread_count(int want)
+{
+	if (want <= 0) {
+		long n = sysconf(_SC_NPROCESSORS_ONLN);
+		want = n > 0 ? (int)(n < MAX_THREADS ? n : MAX_THREADS) : 1;
+	}
+	return want < MAX_THREADS ? want : MAX_THREADS;
+}
+
+/* Face geometry, vertex normals and (when needed) crease strength of the
+ * current positions; returns the mean s over vertices with faces. */
+static double geometry(struct flow *F, int want_crease, size_t nwith)
+{
+	run(F, faces_chunk, F->m->nf);
+	if (!want_crease)
+		return 0;
+	run(F, crease_chunk, F->m->nv);
+	return nwith ? sum_parts(F->part) / (double)nwith : 0;
+}
+
+int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double *crease,
+                 struct fct_areaflow_stats *st, struct fct_err *err)
+{
+	struct fct_areaflow_stats dummy;
+	if (!st)
+		st = &dummy;
+	memset(st, 0, sizeof *st);
+	for (size_t i = 0; i < 3 * m->nv; i++)
+		if (!isfinite(m->xyz[i]))
+			return fct_fail(err, "vertex %zu: coordinate is not finite", i / 3);
+	if (m->nv > UINT32_MAX - 1)
+		return fct_fail(err, "too many vertices (%zu)", m->nv);
+
+	struct flow F;
+	memset(&F, 0, sizeof F);
+	struct fct_adj adj;
+	memset(&adj, 0, sizeof adj);
+	F.m = m;
+	F.p = p;
+	F.adj = &adj;
+	F.nthreads = thread_count(p->threads);
+	st->threads = (size_t)F.nthreads;
+	int rc = -1;
+	double *x0 = NULL;
+	if (fct_adj_build(&adj, m, err) ||
+	    alloc_doubles(&x0, m->nv, 3, err) || alloc_doubles(&F.next, m->nv, 3, err) ||
+	    alloc_doubles(&F.fn, m->nf, 3, err) || alloc_doubles(&F.fc, m->nf, 3, err) ||
+	    alloc_doubles(&F.fa, m->nf, 3, err) ||
+	    alloc_doubles(&F.s, m->nv, 1, err) ||
+	    !(F.held = fct_alloc_array(m->nv, 1, err)))
+		goto out;
+	F.x0 = x0;
+	memcpy(x0, m->xyz, sizeof *x0 * 3 * m->nv);
+	memset(F.s, 0, sizeof *F.s * (m->nv ? m->nv : 1));
+	F.cur = m->xyz;
+
+	/* Mean edge length of the input: the unit of lambda, window, sigma. */
+	double esum = 0;
+	for (size_t e = 0; e < adj.ne; e++)
+		esum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
+		                          m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+	double edge = adj.ne ? esum / (double)adj.ne : 0;
+	if (!isfinite(edge))
+		edge = 0;
+	st->edge = edge;
+	F.lambda_abs = p->lambda * edge * edge;
+	F.radius2 = p->window * edge * p->window * edge;
+	F.sigma2 = p->sigma * edge * p->sigma * edge;
+	if (!(F.sigma2 > 0))
+		F.sigma2 = 1;
+
+	size_t nwith = 0;
+	for (size_t v = 0; v < m->nv; v++) {
+		int has = adj.vert_fstart[v] < adj.vert_fstart[v + 1];
+		nwith += has;
+		st->isolated += !has;
+		F.held[v] = !has;
+	}
+	if (p->method == FCT_SMOOTH_AREAFLOW)
+		for (size_t e = 0; e < adj.ne; e++)
+			if (fct_adj_edge_nfaces(&adj, e) > 2)
+				F.held[adj.edge_v[2 * e]] = F.held[adj.edge_v[2 * e + 1]] = 1;
+	for (size_t v = 0; v < m->nv; v++)
+		st->moving += !F.held[v];
+	st->held = m->nv - st->moving - st->isolated;
+
+	if (p->method == FCT_SMOOTH_AREAFLOW && (build_corners(&F, err) || build_colours(&F, err)))
+		goto out;
+	int need_crease = (p->method == FCT_SMOOTH_AREAFLOW && p->crease) || crease;
+	if (need_crease && scratch_alloc(&F, err))
+		goto out;
+	if ((p->method == FCT_SMOOTH_LAPLACIAN || p->method == FCT_SMOOTH_TAUBIN) &&
+	    build_neighbours(&F, err))
+		goto out;
+
+	int maxit = p->iterations >= 0 ? p->iterations : p->max_iterations;
+	if (!(edge > 0))
+		maxit = 0;   /* no edge of any length: nothing can move */
+	for (int it = 0; it < maxit; it++) {
+		double moved;
+		if (p->method == FCT_SMOOTH_AREAFLOW) {
+			double ms = geometry(&F, p->crease, nwith);
+			if (p->crease)
+				st->mean_crease = ms;
+			moved = 0;
+			for (int c = 0; c < NCOLOR; c++) {
+				F.color_lo = F.color_start[c];
+				int nt = F.nthreads;
+				if (c == NCOLOR - 1)
+					F.nthreads = 1;   /* the crowded vertices, in order */
+				if (F.color_start[c + 1] > F.color_start[c]) {
+					run(&F, flow_chunk, F.color_start[c + 1] - F.color_start[c]);
+					moved += sum_parts(F.part);
+				}
+				F.nthreads = nt;
+			}
+		} else {
+			F.factor = p->lap_lambda;
+			run(&F, laplace_chunk, m->nv);
+			moved = sum_parts(F.part);
+			if (p->method == FCT_SMOOTH_TAUBIN) {
+				double *t = F.cur; F.cur = F.next; F.next = t;
+				F.factor = p->taubin_mu;
+				run(&F, laplace_chunk, m->nv);
+				moved = sum_parts(F.part);
+			}
+			double *t = F.cur; F.cur = F.next; F.next = t;
+		}
+		st->iterations = it + 1;
+		st->last_move = st->moving ? moved / (double)st->moving : 0;
+		if (p->iterations < 0 && st->last_move < p->tol * edge)
+			break;
+	}
+	if (F.cur != m->xyz) {
+		memcpy(m->xyz, F.cur, sizeof *m->xyz * 3 * m->nv);
+		F.next = F.cur;     /* the buffer we own */
+		F.cur = m->xyz;
+	}
+	if (crease) {
+		st->mean_crease = geometry(&F, 1, nwith);
+		memcpy(crease, F.s, sizeof *crease * m->nv);
+	}
+	run(&F, offset_chunk, m->nv);
+	st->mean_offset = st->moving ? sum_parts(F.part) / (double)st->moving : 0;
+	for (int c = 0; c < NCHUNK; c++)
+		if (F.partmax[c] > st->max_offset)
+			st->max_offset = F.partmax[c];
+	rc = 0;
+out:
+	/* every failure comes before the first move, so m is unchanged */
+	free(x0);
+	flow_free(&F);
+	fct_adj_free(&adj);
+	return rc;
+}
+
+void fct_vertex_normals(const struct fct_mesh *m, double *vn)
+{
+	memset(vn, 0, sizeof *vn * 3 * m->nv);
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t b = m->fstart[f], k = m->fstart[f + 1] - b;
+		double a[3] = { 0, 0, 0 };
+		for (uint32_t i = 0; i < k; i++) {
+			const double *p = m->xyz + 3 * (size_t)m->fvert[b + i];
+			const double *q = m->xyz + 3 * (size_t)m->fvert[b + (i + 1 == k ? 0 : i + 1)];
+			a[0] += (p[1] - q[1]) * (p[2] + q[2]);
+			a[1] += (p[2] - q[2]) * (p[0] + q[0]);
+			a[2] += (p[0] - q[0]) * (p[1] + q[1]);
+		}
+		for (uint32_t i = 0; i < k; i++) {
+			double *n = vn + 3 * (size_t)m->fvert[b + i];
+			fct_v3_add(n, n, a);
+		}
+	}
+	for (size_t v = 0; v < m->nv; v++) {
+		double *n = vn + 3 * v, len = sqrt(fct_v3_dot(n, n));
+		for (int j = 0; j < 3; j++)
+			n[j] = len > 0 && isfinite(len) ? n[j] / len : 0;
+	}
+}
