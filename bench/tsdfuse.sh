@@ -1,0 +1,54 @@
+#!/bin/sh
+# tsdfuse: time per 640x480 view of mkscene's room (four views) at 2 cm and
+# 1 cm voxels, true distance beside the projective baseline (--projective),
+# carving against fusion, marching cubes throughput, and the Stanford bunny
+# (ten scans, 0.5 mm) judged with meshdist both ways.  Goals (issue 7):
+# true distance under 50 ms per view at 2 cm and 150 ms at 1 cm on one core;
+# carving at most twice the fusion; marching cubes above 150 M voxels/s;
+# bunny within 0.10 mm both ways.  Medians of RUNS runs.
+set -eu
+: "${FCT_BIN:=build/bin}" "${RUNS:=3}"
+PATH=$FCT_BIN:$PATH
+dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-tsd.XXXXXX")
+trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+
+mkscene --views 4 -o "$dir/room" 2>/dev/null
+V=""
+for i in 00 01 02 03; do
+	dm2mesh --camera "$dir/room/view$i.camera" --pose "$dir/room/view$i.pose" \
+		-o "$dir/v$i.ply" "$dir/room/view$i.depth.pfm"
+	V="$V $dir/v$i.ply"
+done
+# figure KEY ARGS...: median over RUNS of tsdfuse -v's KEY.
+figure() {
+	key=$1
+	shift
+	i=0
+	while [ $i -lt "$RUNS" ]; do
+		tsdfuse -v "$@" 2>&1 >/dev/null | sed -n "s/^tsdfuse: $key=//p"
+		i=$((i + 1))
+	done | median
+}
+row() { printf '%-52s %12s\n' "$1" "$2"; }
+echo "tsdfuse: mkscene room, four 640x480 views (610k faces each)"
+for vox in 0.02 0.01; do
+	row "true distance, ms per view at $vox m" "$(figure ms_per_view --voxel $vox $V)"
+	row "projective, ms per view at $vox m" "$(figure ms_per_view --projective --voxel $vox $V)"
+done
+row "fusion s at 0.02 m (4 views)" "$(figure fuse_s --voxel 0.02 $V)"
+row "carving s at 0.02 m (4 views)" "$(figure carve_s --carve --voxel 0.02 $V)"
+mc=$(figure mcubes_s --voxel 0.01 $V)
+blocks=$(figure blocks --voxel 0.01 $V)
+row "marching cubes s at 0.01 m ($blocks blocks)" "$mc"
+row "marching cubes M voxels/s" "$(awk -v b="$blocks" -v s="$mc" 'BEGIN { printf "%.0f", b * 512 / s / 1e6 }')"
+
+B=/work/shared/data/stanford_bunny
+if [ -r "$B/data/bun.conf" ]; then
+	t=$(figure total_s --voxel 0.0005 --conf "$B/data/bun.conf")
+	tsdfuse --voxel 0.0005 --conf "$B/data/bun.conf" -o "$dir/bun.ply"
+	meshdist -H "$dir/bun.ply" "$B/reconstruction/bun_zipper.ply" >"$dir/d"
+	row "bunny 0.5 mm: total s" "$t"
+	row "bunny accuracy mm (output to bun_zipper)" "$(awk '$1 == "mean" { printf "%.4f", $2 * 1000 }' "$dir/d")"
+	row "bunny completeness mm (bun_zipper to output)" "$(awk '$1 == "ba_mean" { printf "%.4f", $2 * 1000 }' "$dir/d")"
+fi
