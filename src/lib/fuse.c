@@ -835,8 +835,8 @@ int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t
 	for (size_t k = 0; k < nz; k++)
 		for (size_t j = 0; j < ny; j++) {
 			/* A = dilation of C | K, B = dilation of U | K, U = ~(C | K). */
-			memset(A, 0, nw * 8);
-			memset(B, 0, nw * 8);
+			memset(A, 0, 3 * nw * 8);
+			memset(B, 0, 3 * nw * 8);
 			for (int dz = -1; dz <= 1; dz++)
 				for (int dy = -1; dy <= 1; dy++) {
 					if ((k == 0 && dz < 0) || (k + 1 == nz && dz > 0) || (j == 0 && dy < 0) ||

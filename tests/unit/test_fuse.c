@@ -1,0 +1,133 @@
+/* test_fuse.c - true signed distances of a hand-made view, the same view
+ * twice, border voxels, the .conf quaternion, and carving marks. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "check.h"
+#include "fuse.h"
+#include "mcubes.h"
+#include "rangegrid.h"
+
+/* A square [-1,1]^2 at z = 0.503 facing -z (towards a camera at the
+ * origin looking along +z), split into n x n cells. */
+static void square(struct fct_mesh *m, int n, double z)
+{
+	struct fct_err err;
+	fct_mesh_init(m);
+	for (int j = 0; j <= n; j++)
+		for (int i = 0; i <= n; i++)
+			fct_mesh_add_vertex(m, -1 + 2.0 * i / n, -1 + 2.0 * j / n, z, &err);
+	for (int j = 0; j < n; j++)
+		for (int i = 0; i < n; i++) {
+			uint32_t a = (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
+			uint32_t t1[3] = { a, c, b }, t2[3] = { b, c, d };
+			fct_mesh_add_face(m, t1, 3, &err);
+			fct_mesh_add_face(m, t2, 3, &err);
+		}
+}
+
+static void view_of(struct fct_fuse_view *v, const struct fct_mesh *m)
+{
+	*v = (struct fct_fuse_view){ 0 };
+	v->mesh = m;
+	v->cam = (struct fct_camera){ FCT_CAMERA_PINHOLE, 64, 64, 32, 32, 31.5, 31.5, 0, 0 };
+	double id[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
+	for (int k = 0; k < 12; k++)
+		v->pose[k] = id[k];
+}
+
+static void test_plane(void)
+{
+	struct fct_err err;
+	struct fct_mesh m;
+	square(&m, 40, 0.503);
+	struct fct_fuse_view v;
+	view_of(&v, &m);
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 } };
+	struct fct_fuse_stats st = { 0 };
+	CHECK(fct_fuse_view(g, &v, &p, &st, &err) == 0);
+	/* Voxel (0, 0, k) is at z = 0.01 k: sdf = 0.503 - z in front (free
+	 * space towards the camera is positive), within the band only. */
+	float s, w;
+	for (int k = 48; k <= 53; k++) {
+		CHECK(fct_voxgrid_get(g, 0, 0, k, &s, &w));
+		CHECK_NEAR(s, 0.503 - 0.01 * k, 1e-6);
+		CHECK_NEAR(w, 1, 0);
+	}
+	CHECK(fct_voxgrid_get(g, 0, 0, 54, &s, &w) == 0 || w == 0);
+	/* Beyond the square's border (x > 1) nothing is written. */
+	CHECK(fct_voxgrid_get(g, 102, 0, 50, &s, &w) == 0 || w == 0);
+	CHECK(st.border > 0);
+	/* The same view again: distances unchanged, weight 2. */
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	CHECK(fct_voxgrid_get(g, 3, -7, 52, &s, &w));
+	CHECK_NEAR(s, 0.503 - 0.52, 1e-6);
+	CHECK_NEAR(w, 2, 0);
+	/* Marching cubes puts the surface back at z = 0.503. */
+	struct fct_mesh out;
+	CHECK(fct_mcubes(g, 0, NULL, NULL, &out, &err) == 0);
+	CHECK(out.nv > 100);
+	double worst = 0;
+	for (size_t i = 0; i < out.nv; i++)
+		worst = fmax(worst, fabs(out.xyz[3 * i + 2] - 0.503));
+	CHECK_NEAR(worst, 0, 1e-6);
+	fct_mesh_free(&out);
+	/* Curvature flow leaves a plane where it is. */
+	CHECK(fct_curvature_flow(g, 10, 0.03, &err) == 0);
+	CHECK(fct_voxgrid_get(g, 3, -7, 52, &s, &w));
+	CHECK_NEAR(s, 0.503 - 0.52, 1e-6);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
+}
+
+static void test_carve(void)
+{
+	struct fct_err err;
+	struct fct_mesh m;
+	square(&m, 40, 0.5);
+	struct fct_fuse_view v;
+	view_of(&v, &m);
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 } };
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	struct fct_range_image r;
+	CHECK(fct_range_image_make(&r, &v, 1 << 20, &err) == 0);
+	/* The centre pixel sees the square at depth 0.5. */
+	CHECK_NEAR(r.range[32 * 64 + 32], 0.5, 1e-6);
+	int32_t lo[3] = { -20, -20, 0 }, hi[3] = { 20, 20, 60 };
+	size_t carved = 0;
+	CHECK(fct_carve(g, &r, 1, lo, hi, 0.03, 1e-3f, &carved, &err) == 0);
+	CHECK(carved > 1000);
+	/* The voxel at z = 0.1 on the axis is empty space, not marked (all its
+	 * neighbours are empty too); the marks sit at the frustum's edge. */
+	float s, w;
+	int got = fct_voxgrid_get(g, 0, 0, 10, &s, &w);
+	CHECK_MSG(got == 0 || w == 0, "voxel (0, 0, 10): sdf %g weight %g", s, w);
+	fct_range_image_free(&r);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
+}
+
+static void test_quat(void)
+{
+	double P[12];
+	/* 90 degrees about z: x -> y. */
+	fct_quat_pose(0, 0, sqrt(0.5), sqrt(0.5), P);
+	CHECK_NEAR(P[0], 0, 1e-15);
+	CHECK_NEAR(P[4], 1, 1e-15);
+	CHECK_NEAR(P[1], -1, 1e-15);
+	CHECK_NEAR(P[10], 1, 1e-15);
+	struct fct_conf c;
+	struct fct_err err;
+	CHECK(fct_conf_read(&c, "/nonexistent/x.conf", &err) == -1);
+}
+
+int main(void)
+{
+	test_plane();
+	test_carve();
+	test_quat();
+	CHECK_DONE();
+}
