@@ -30,16 +30,16 @@ static const char usage[] =
 	"      --iterations n exactly n iterations (0: none; default: until the mean\n"
 	"                     move is below --tol, at most --max-iterations)\n"
 	"      --lambda l     areaflow: weight of the squared distance from the input\n"
-	"                     in squared mean edge lengths (default 1); laplacian and\n"
+	"                     in squared median edge lengths (default 1); laplacian and\n"
 	"                     taubin: the step factor (default 0.5)\n"
 	"      --mu m         taubin: the negative step factor (default -0.53)\n"
 	"      --max-iterations n\n"
 	"                     bound of the automatic stop (default 10)\n"
-	"      --tol t        stop when the mean move is below t mean edge lengths\n"
+	"      --tol t        stop when the mean move is below t median edge\n"
 	"                     (default 0.02)\n"
-	"      --window w     geodesic radius of the crease vote, in mean edge\n"
+	"      --window w     geodesic radius of the crease vote, in median edge\n"
 	"                     lengths (default 2.5)\n"
-	"      --sigma s      vote weight exp(-(d/s)^2), s in mean edge lengths\n"
+	"      --sigma s      vote weight exp(-(d/s)^2), s in median edge lengths\n"
 	"                     (default 1.5)\n"
 	"      --delta d      eq. 4: crease when the mean voted normal is within d of\n"
 	"                     perpendicular to the main direction (default 0.3)\n"
@@ -198,7 +198,7 @@ int main(int argc, char **argv)
 	fct_report("held", "%zu", st.held);
 	fct_report("isolated", "%zu", st.isolated);
 	fct_report("iterations", "%d", st.iterations);
-	fct_report("mean_edge", "%.9g", st.edge);
+	fct_report("median_edge", "%.9g", st.edge);
 	fct_report("last_move", "%.9g", st.last_move);
 	fct_report("mean_offset", "%.9g", st.mean_offset);
 	fct_report("max_offset", "%.9g", st.max_offset);

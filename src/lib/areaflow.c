@@ -574,6 +574,37 @@ static int alloc_doubles(double **p, size_t n, size_t k, struct fct_err *err)
 	return *p ? 0 : -1;
 }
 
+/* The k-th smallest of a[0..n) (a is reordered): quickselect with the
+ * median of three as pivot. */
+static double select_kth(double *a, size_t n, size_t k)
+{
+	size_t lo = 0, hi = n - 1;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		double x = a[lo], y = a[mid], z = a[hi];
+		double piv = x < y ? (y < z ? y : (x < z ? z : x)) : (x < z ? x : (y < z ? z : y));
+		size_t i = lo, j = hi;
+		while (i <= j) {
+			while (a[i] < piv) i++;
+			while (a[j] > piv) j--;
+			if (i <= j) {
+				double t = a[i]; a[i] = a[j]; a[j] = t;
+				i++;
+				if (j == 0)
+					break;
+				j--;
+			}
+		}
+		if (k <= j)
+			hi = j;
+		else if (k >= i)
+			lo = i;
+		else
+			return a[k];
+	}
+	return a[k];
+}
+
 static int build_neighbours(struct flow *F, struct fct_err *err)
 {
 	const struct fct_adj *A = F->adj;
@@ -719,14 +750,21 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	memset(F.s, 0, sizeof *F.s * (m->nv ? m->nv : 1));
 	F.cur = m->xyz;
 
-	/* Mean edge length of the input: the unit of lambda, window, sigma. */
-	double esum = 0;
-	for (size_t e = 0; e < adj.ne; e++)
-		esum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
-		                          m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
-	double edge = adj.ne ? esum / (double)adj.ne : 0;
-	if (!isfinite(edge))
-		edge = 0;
+	/* Median edge length of the input: the unit of lambda, window and
+	 * sigma (the median, as the long edges across depth jumps and grazing
+	 * surfaces of range meshes would inflate a mean). */
+	double *el = NULL;
+	if (alloc_doubles(&el, adj.ne, 1, err))
+		goto out;
+	size_t nel = 0;
+	for (size_t e = 0; e < adj.ne; e++) {
+		double d = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
+		                             m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+		if (isfinite(d))
+			el[nel++] = d;
+	}
+	double edge = nel ? select_kth(el, nel, nel / 2) : 0;
+	free(el);
 	st->edge = edge;
 	F.lambda_abs = p->lambda * edge * edge;
 	F.radius2 = p->window * edge * p->window * edge;

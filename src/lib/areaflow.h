@@ -29,19 +29,19 @@ enum fct_smooth_method {
 struct fct_areaflow_params {
 	enum fct_smooth_method method;
 	/* eq. (2): the weight of the squared distance moved from the input, in
-	 * squared mean edge lengths of the input (so it does not depend on the
+	 * squared median edge lengths of the input (so it does not depend on the
 	 * units); default 1. */
 	double lambda;
 	/* > 0: exactly this many iterations; 0: none (only the crease strength
 	 * is computed); < 0: until the mean move of an iteration is below
-	 * tol mean edge lengths, at most max_iterations (default -1, 10, 0.02). */
+	 * tol median edge lengths, at most max_iterations (default -1, 10, 0.02). */
 	int iterations;
 	int max_iterations;
 	double tol;
-	/* Tensor voting: faces whose centroid lies within window mean edge
+	/* Tensor voting: faces whose centroid lies within window median edge
 	 * lengths of the vertex, reached through faces that do (the geodesic
 	 * window), vote with weight exp(-(d / sigma)^2), d the centroid's
-	 * distance, sigma in mean edge lengths (defaults 2.5 and 1.5); delta is
+	 * distance, sigma in median edge lengths (defaults 2.5 and 1.5); delta is
 	 * the threshold of eq. (4) on the mean voted normal (default 0.3). */
 	double window, sigma, delta;
 	int crease;          /* 1 (default): scale the step by exp(-5 s); 0: s = 0 */
@@ -55,7 +55,7 @@ void fct_areaflow_params_default(struct fct_areaflow_params *p);
 /* What a run did. */
 struct fct_areaflow_stats {
 	int iterations;        /* done */
-	double edge;           /* mean edge length of the input */
+	double edge;           /* median edge length of the input */
 	double last_move;      /* mean distance moved in the last iteration */
 	double mean_offset;    /* mean distance of the moving vertices from the input */
 	double max_offset;     /* largest distance of a vertex from the input */
