@@ -320,10 +320,18 @@ int main(int argc, char **argv)
 					                        shown ? ", " : "", f);
 					shown++;
 				}
-			fct_die(1, "%s: %zu face%s (%s%s) lie whole in no view: give more views "
-			        "(--count) or a wider --fov%s", mname, ast.uncovered,
-			        ast.uncovered == 1 ? "" : "s", list, ast.uncovered > shown ? ", ..." : "",
-			        o.split ? "" : ", or let them be split");
+			char msg[600];
+			snprintf(msg, sizeof msg, "%s: %zu face%s (%s%s) lie whole in no view: give more "
+			         "views (--count) or a wider --fov%s", mname, ast.uncovered,
+			         ast.uncovered == 1 ? "" : "s", list, ast.uncovered > shown ? ", ..." : "",
+			         o.split ? "" : ", or let them be split");
+			free(view_of);
+			free(views);
+			free(names);
+			free(want);
+			fct_image_free(&img);
+			fct_mesh_free(&m);
+			fct_die(1, "%s", msg);
 		}
 		for (size_t f = 0; f < m.nf; f++)
 			want[view_of[f]] = 1;
