@@ -331,30 +331,28 @@ static inline float val1(const struct ctx *c, const struct fct_voxblock *b, int 
 	return b && observed(c, b->sdf[v], b->weight[v]) ? b->sdf[v] : NAN;
 }
 
-/* Fill c->val around the current block. */
+/* Start the cache of the current block: its own voxels, and "not read yet"
+ * (-inf) around them; the neighbours' voxels, which cost a cache miss
+ * each, are read only when a vertex needs them (cval). */
 static void fill_cache(struct ctx *c)
 {
-	for (int z = -1; z <= 9; z++)
-		for (int y = -1; y <= 9; y++) {
-			int outy = y < 0 || y > 8, outz = z < 0 || z > 8;
-			if (outy && outz)
-				continue;
-			int dy = (y + 8) / 8 - 1, dz = (z + 8) / 8 - 1;
-			int rv = 8 * (((y + 8) & 7) + 8 * ((z + 8) & 7));
-			float *row = c->val + CIDX(0, y, z);
-			const struct fct_voxblock *b = ctx_nb(c, 0, dy, dz);
-			if (b)
-				vals8(b->sdf + rv, b->weight + rv, c->thr, row);
-			else
-				for (int x = 0; x < 8; x++)
-					row[x] = NAN;
-			b = ctx_nb(c, 1, dy, dz);
-			row[8] = val1(c, b, rv);
-			if (!outy && !outz) {
-				row[9] = val1(c, b, rv + 1);
-				row[-1] = val1(c, ctx_nb(c, -1, dy, dz), rv + 7);
-			}
-		}
+	for (int i = 0; i < CW * CW * CW; i++)
+		c->val[i] = -INFINITY;
+	const struct fct_voxblock *b = c->nb[13];
+	for (int r = 0; r < 64; r++)
+		vals8(b->sdf + 8 * r, b->weight + 8 * r, c->thr, c->val + CIDX(0, r & 7, r >> 3));
+}
+
+/* The cached value of local voxel (x, y, z), reading it on first use. */
+static inline float cval(struct ctx *c, int x, int y, int z)
+{
+	float *p = c->val + CIDX(x, y, z);
+	if (*p == -INFINITY) {
+		int v;
+		const struct fct_voxblock *b = ctx_voxel(c, x, y, z, &v);
+		*p = val1(c, b, v);
+	}
+	return *p;
 }
 
 static uint8_t to_u8(double v)
@@ -363,13 +361,12 @@ static uint8_t to_u8(double v)
 	return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
-/* The sdf gradient at cache index i (observed), per voxel. */
-static inline void gradient(const float *val, int i, double g[3])
+/* The sdf gradient at local voxel p (observed, value s0), per voxel. */
+static inline void gradient(struct ctx *c, int x, int y, int z, double s0, double g[3])
 {
-	static const int st[3] = { 1, CW, CW * CW };
-	double s0 = val[i];
 	for (int a = 0; a < 3; a++) {
-		float sp = val[i + st[a]], sm = val[i - st[a]];
+		float sp = cval(c, x + (a == 0), y + (a == 1), z + (a == 2));
+		float sm = cval(c, x - (a == 0), y - (a == 1), z - (a == 2));
 		int hp = sp == sp, hm = sm == sm;
 		g[a] = hp ? (hm ? 0.5 * ((double)sp - (double)sm) : (double)sp - s0)
 		          : (hm ? s0 - (double)sm : 0);
@@ -377,12 +374,12 @@ static inline void gradient(const float *val, int i, double g[3])
 }
 
 /* Vertex id on the edge from local voxel (x, y, z) along axis a (both ends
- * observed, signs differ); c->val filled. */
+ * observed, signs differ); c->val started. */
 static void make_vertex(struct ctx *c, int x, int y, int z, int a, size_t id)
 {
-	static const int st[3] = { 1, CW, CW * CW };
-	int i0 = CIDX(x, y, z), i1 = i0 + st[a];
-	float s0 = c->val[i0], s1 = c->val[i1];
+	int q[3] = { x, y, z };
+	q[a]++;
+	float s0 = c->val[CIDX(x, y, z)], s1 = cval(c, q[0], q[1], q[2]);
 	double t = (double)s0 / ((double)s0 - (double)s1);
 	if (!(t >= 1.0 / 256))
 		t = 1.0 / 256;
@@ -394,8 +391,8 @@ static void make_vertex(struct ctx *c, int x, int y, int z, int a, size_t id)
 		p[k] = (double)gi[k] * c->voxel;
 	p[a] = ((double)gi[a] + t) * c->voxel;
 	double g0[3], g1[3], n[3];
-	gradient(c->val, i0, g0);
-	gradient(c->val, i1, g1);
+	gradient(c, x, y, z, s0, g0);
+	gradient(c, q[0], q[1], q[2], s1, g1);
 	for (int k = 0; k < 3; k++)
 		n[k] = (1 - t) * g0[k] + t * g1[k];
 	double len = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
@@ -409,8 +406,7 @@ static void make_vertex(struct ctx *c, int x, int y, int z, int a, size_t id)
 		c->nrm[a][id] = s1 >= 0 ? 1.0f : -1.0f;
 	}
 	if (c->colour) {
-		int v0, v1, q[3] = { x, y, z };
-		q[a]++;
+		int v0, v1;
 		const struct fct_voxblock *b0 = ctx_voxel(c, x, y, z, &v0);
 		const struct fct_voxblock *b1 = ctx_voxel(c, q[0], q[1], q[2], &v1);
 		for (int k = 0; k < 3; k++)
@@ -715,6 +711,11 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 		if (!A->nverts)
 			continue;
 		ctx_block(c, fct_voxgrid_at(g, A->block));
+		for (int k = 1; k < 8; k++) {
+			int n = (k & 1) + 1 + 3 * ((k >> 1 & 1) + 1 + 3 * ((k >> 2) + 1));
+			c->nb[n] = A->up[k] >= 0 ? fct_voxgrid_at(g, (size_t)A->up[k]) : NULL;
+			c->nb_done |= 1u << n;
+		}
 		fill_cache(c);
 		size_t id = A->base;
 		for (int a = 0; a < 3; a++)

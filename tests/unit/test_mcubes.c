@@ -310,8 +310,6 @@ static void test_sphere(void)
 	/* the grid is 48^3 voxels' worth of band only */
 	CHECK(fct_voxgrid_count(g) < 7 * 7 * 7);
 	CHECK_INT(st.voxels, fct_voxgrid_count(g) * 512);
-	fprintf(stderr, "sphere: %zu vertices, %zu faces, max err %.3g%%, mean %.3g%% of r\n",
-	        m.nv, m.nf, 100 * maxe / s.r, 100 * sume / (double)m.nv / s.r);
 	fct_mesh_free(&m);
 	fct_voxgrid_free(g);
 }
