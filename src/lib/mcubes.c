@@ -223,6 +223,7 @@ struct ctx {
 	struct geom G;
 	struct mc_case table[256];
 	uint8_t ntri[256], ncentre[256];
+	uint8_t tedge[256][36];         /* the triangles' edges, when no loop has a centre */
 	uint8_t pop8[256];
 
 	/* the current block and its 26 neighbours, looked up on demand */
@@ -230,6 +231,10 @@ struct ctx {
 	unsigned nb_done;
 	int32_t bx, by, bz;
 	float val[CW * CW * CW];
+	/* gradients at the corners 0..8 of the current block, valid where
+	 * gstamp equals epoch */
+	double grad[729][3];
+	uint32_t gstamp[729], epoch;
 
 	/* output columns */
 	double *xyz;
@@ -336,6 +341,10 @@ static inline float val1(const struct ctx *c, const struct fct_voxblock *b, int 
  * each, are read only when a vertex needs them (cval). */
 static void fill_cache(struct ctx *c)
 {
+	if (++c->epoch == 0) {
+		memset(c->gstamp, 0, sizeof c->gstamp);
+		c->epoch = 1;
+	}
 	for (int i = 0; i < CW * CW * CW; i++)
 		c->val[i] = -INFINITY;
 	const struct fct_voxblock *b = c->nb[13];
@@ -373,6 +382,17 @@ static inline void gradient(struct ctx *c, int x, int y, int z, double s0, doubl
 	}
 }
 
+/* The gradient at corner (x, y, z) in 0..8, computed once per block. */
+static inline const double *corner_gradient(struct ctx *c, int x, int y, int z, double s0)
+{
+	int i = x + 9 * (y + 9 * z);
+	if (c->gstamp[i] != c->epoch) {
+		c->gstamp[i] = c->epoch;
+		gradient(c, x, y, z, s0, c->grad[i]);
+	}
+	return c->grad[i];
+}
+
 /* Vertex id on the edge from local voxel (x, y, z) along axis a (both ends
  * observed, signs differ); c->val started. */
 static void make_vertex(struct ctx *c, int x, int y, int z, int a, size_t id)
@@ -390,9 +410,9 @@ static void make_vertex(struct ctx *c, int x, int y, int z, int a, size_t id)
 	for (int k = 0; k < 3; k++)
 		p[k] = (double)gi[k] * c->voxel;
 	p[a] = ((double)gi[a] + t) * c->voxel;
-	double g0[3], g1[3], n[3];
-	gradient(c, x, y, z, s0, g0);
-	gradient(c, q[0], q[1], q[2], s1, g1);
+	double n[3];
+	const double *g0 = corner_gradient(c, x, y, z, s0);
+	const double *g1 = corner_gradient(c, q[0], q[1], q[2], s1);
 	for (int k = 0; k < 3; k++)
 		n[k] = (1 - t) * g0[k] + t * g1[k];
 	double len = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
@@ -532,6 +552,23 @@ static void emit_cube(struct ctx *c, const struct aux *const up[8], int x, int y
 {
 	const struct mc_case *mc = &c->table[cfg];
 	struct mc_case local;
+	uint32_t vid[12];
+	if (!mc->amb && !c->ncentre[cfg]) {
+		/* the common case: the tabulated fans */
+		for (unsigned m = mc->emask; m; m &= m - 1) {
+			int e = __builtin_ctz(m);
+			vid[e] = edge_vertex(c, up, x, y, z, e);
+			c->used[vid[e]] = 1;
+		}
+		uint32_t *t = c->tri + 3 * c->nt;
+		const uint8_t *te = c->tedge[cfg];
+		int n = 3 * c->ntri[cfg];
+		for (int j = 0; j < n; j++)
+			t[j] = vid[te[j]];
+		c->nt += c->ntri[cfg];
+		c->st.cubes++;
+		return;
+	}
 	if (mc->amb) {
 		/* asymptotic decider on each ambiguous face, from exact products */
 		float val[8];
@@ -556,7 +593,6 @@ static void emit_cube(struct ctx *c, const struct aux *const up[8], int x, int y
 			mc = &local;
 		}
 	}
-	uint32_t vid[12];
 	for (unsigned m = mc->emask; m; m &= m - 1) {
 		int e = __builtin_ctz(m);
 		vid[e] = edge_vertex(c, up, x, y, z, e);
@@ -649,6 +685,13 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 			nc += mc->centre[l];
 		}
 		c->ntri[cfg] = (uint8_t)nt;
+		const uint8_t *ed = mc->edge;
+		for (int l = 0, j = 0; l < mc->nloops; ed += mc->len[l], l++)
+			for (int i = 1; i + 1 < mc->len[l] && !mc->centre[l]; i++, j += 3) {
+				c->tedge[cfg][j] = ed[0];
+				c->tedge[cfg][j + 1] = ed[i];
+				c->tedge[cfg][j + 2] = ed[i + 1];
+			}
 		c->ncentre[cfg] = (uint8_t)nc;
 		c->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
 	}
