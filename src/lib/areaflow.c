@@ -234,7 +234,8 @@ double fct_crease_strength(const double q[3], const double *p, const double *n,
 
 /* Threads ---------------------------------------------------------------- */
 
-enum { NCHUNK = 256, MAX_THREADS = 64, MAX_EXPAND = 64, NCOLOR = 64 };
+enum { NCHUNK = 256, MAX_THREADS = 64, MAX_EXPAND = 64, NCOLOR = 64,
+       MAX_VOTES = 64 /* bound of M: the first faces of the walk, nearest rings first */ };
 
 struct flow;
 typedef void chunk_fn(struct flow *F, int tid, size_t lo, size_t hi, int chunk);
@@ -357,7 +358,10 @@ static void faces_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk
  * a breadth-first walk from the vertex through the vertices of faces whose
  * centroid is within the radius; the distance is the straight one to the
  * centroid, which is the geodesic one up to the curvature over the window,
- * while the walk keeps to the surface connected to the vertex. */
+ * while the walk keeps to the surface connected to the vertex.  The walk
+ * stops after MAX_VOTES votes (M is bounded; the walk visits the rings
+ * nearest the vertex first), which bounds the cost on noisy meshes whose
+ * edge lengths are mostly noise. */
 static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 {
 	const struct fct_mesh *m = F->m;
@@ -378,10 +382,10 @@ static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chun
 		const double *q = F->cur + 3 * v;
 		struct vote vt;
 		memset(&vt, 0, sizeof vt);
-		size_t head = 0, tail = 0;
+		size_t head = 0, tail = 0, votes = 0;
 		sc->queue[tail++] = (uint32_t)v;
 		sc->vstamp[v] = st;
-		while (head < tail) {
+		while (head < tail && votes < MAX_VOTES) {
 			uint32_t u = sc->queue[head++];
 			for (uint32_t i = A->vert_fstart[u]; i < A->vert_fstart[u + 1]; i++) {
 				uint32_t f = A->vert_f[i];
@@ -393,8 +397,10 @@ static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chun
 				if (!(d2 <= F->radius2) && u != v)
 					continue;   /* the umbrella always votes (M > I) */
 				const double *n = F->fn + 3 * (size_t)f;
-				if (n[0] != 0 || n[1] != 0 || n[2] != 0)
+				if (n[0] != 0 || n[1] != 0 || n[2] != 0) {
 					vote_add(&vt, q, c, n, exp(-d2 / F->sigma2));
+					votes++;
+				}
 				if (m->fstart[f + 1] - m->fstart[f] > MAX_EXPAND)
 					continue;   /* no walk through huge polygons (quadratic) */
 				for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {

@@ -1,0 +1,44 @@
+#!/bin/sh
+# areaflow speed: a 1M-vertex range mesh (mkscene's room, 1280x800, Kinect
+# noise at 0.0015 z^2, meshed at every pixel) smoothed for 5 iterations with
+# the default window, crease strength included, on 1 thread and on every
+# processor; beside Taubin x5 and the time to read and write the mesh
+# (meshconv).  Goal: < 3 s.  Then the distance to the exact scene at step 4.
+set -eu
+: "${FCT_BIN:=build/bin}" "${RUNS:=3}"
+PATH=$FCT_BIN:$PATH
+dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-af.XXXXXX")
+trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+mkscene -q --size 1280x800 --fx 1050 --noise kinect:0.0015 -o "$dir/room"
+dm2mesh -q --camera "$dir/room/view00.camera" --pose "$dir/room/view00.pose" -o "$dir/r.ply" "$dir/room/view00.depth.pfm"
+# figure KEY args...: median over RUNS of an areaflow -v figure.
+figure() {
+	key=$1
+	shift
+	i=0
+	while [ $i -lt "$RUNS" ]; do
+		areaflow -v "$@" "$dir/r.ply" 2>&1 >/dev/null | sed -n "s/^areaflow: $key=//p"
+		i=$((i + 1))
+	done | median
+}
+nv=$(meshconv -v "$dir/r.ply" 2>&1 >/dev/null | sed -n 's/^meshconv: vertices=//p')
+echo "areaflow: mkscene room 1280x800, kinect:0.0015, $nv vertices; $(nproc) processors; medians of $RUNS runs"
+printf '%-52s %10s\n' "what" "seconds"
+printf '%-52s %10.3f\n' "areaflow x5, crease, 1 thread (smoothing only)" "$(figure smooth_s --iterations 5 --threads 1)"
+printf '%-52s %10.3f\n' "areaflow x5, crease, all threads (smoothing only)" "$(figure smooth_s --iterations 5)"
+printf '%-52s %10.3f\n' "areaflow x5 --no-crease, 1 thread" "$(figure smooth_s --iterations 5 --no-crease --threads 1)"
+printf '%-52s %10.3f\n' "reference: taubin x5, 1 thread" "$(figure smooth_s --iterations 5 --method taubin --threads 1)"
+printf '%-52s %10.3f\n' "reference: meshconv read+write" "$("$FCT_BENCH/timeit" "$RUNS" "meshconv '$dir/r.ply' >/dev/null")"
+echo "goal: areaflow x5 with crease < 3 s"
+echo
+dm2mesh -q --step 4 --camera "$dir/room/view00.camera" --pose "$dir/room/view00.pose" -o "$dir/r4.ply" "$dir/room/view00.depth.pfm"
+d() { meshdist "$1" "$dir/room/scene.ply" | awk '$1 == "mean" { printf "%.6f", $2 }'; }
+echo "distance to the exact room (mean, metres), the same view at step 4:"
+echo "  raw $(d "$dir/r4.ply")"
+for m in "areaflow" "areaflow --no-crease" "laplacian" "taubin"; do
+	set -- $m
+	case $1 in areaflow) shift; o="$*" ;; *) o="--method $1" ;; esac
+	areaflow $o --iterations 5 -o "$dir/o.ply" "$dir/r4.ply"
+	echo "  $m x5 $(d "$dir/o.ply")"
+done
