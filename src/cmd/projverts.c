@@ -18,10 +18,12 @@
 
 static const char usage[] =
 	"usage: projverts [-aqv] [-o file] [--max-move d] [--orthogonal angle]\n"
-	"                 [--depth-scale-fix] [--fallback] [--along-rays] [input]\n"
-	"Move each vertex of a mesh with face property patch and a plane element onto\n"
-	"its plane, onto the line of its two planes, or to the least-squares point of\n"
-	"its k >= 3 planes; recompute s t from the camera and pose comments.\n"
+	"                 [--depth-scale-fix] [--fallback] [--along-rays] [--no-tear]\n"
+	"                 [input]\n"
+	"Move each vertex of a mesh with face property patch (or of a wireframe with\n"
+	"the edge element of simpchain) and a plane element onto its plane, onto the\n"
+	"line of its two planes, or to the least-squares point of its k >= 3 planes;\n"
+	"recompute s t from the camera and pose comments.\n"
 	"  -a                  write ascii PLY\n"
 	"  -o file             output file (default standard output)\n"
 	"  -q                  quiet\n"
@@ -40,10 +42,12 @@ static const char usage[] =
 	"      --along-rays    with a camera, move a vertex on one or two planes along\n"
 	"                      its own ray (where range noise lies), keeping it on its\n"
 	"                      pixel, instead of perpendicularly as the paper does\n"
+	"      --no-tear       keep a wireframe vertex whose planes do not meet near it\n"
+	"                      (default: tear it, one copy per plane along its ray)\n"
 	"  -h, --help          this help\n"
 	"      --version       print the version\n";
 
-enum { OPT_MAXMOVE = 256, OPT_ORTHO, OPT_SCALE, OPT_FALLBACK, OPT_RAYS, OPT_VERSION };
+enum { OPT_MAXMOVE = 256, OPT_ORTHO, OPT_SCALE, OPT_FALLBACK, OPT_RAYS, OPT_NOTEAR, OPT_VERSION };
 
 int main(int argc, char **argv)
 {
@@ -55,6 +59,7 @@ int main(int argc, char **argv)
 		{"depth-scale-fix", no_argument, NULL, OPT_SCALE},
 		{"fallback", no_argument, NULL, OPT_FALLBACK},
 		{"along-rays", no_argument, NULL, OPT_RAYS},
+		{"no-tear", no_argument, NULL, OPT_NOTEAR},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "aho:qv";
@@ -84,6 +89,7 @@ int main(int argc, char **argv)
 		case OPT_SCALE: par.depth_scale_fix = 1; break;
 		case OPT_FALLBACK: par.fallback = 1; break;
 		case OPT_RAYS: par.along_rays = 1; break;
+		case OPT_NOTEAR: par.tear = 0; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
@@ -140,6 +146,12 @@ int main(int argc, char **argv)
 	}
 	fct_report("rejected", "%zu", st.rejected);
 	fct_report("flip_refused", "%zu", st.flip_refused);
+	fct_report("torn", "%zu", st.torn);
+	fct_report("tear_copies", "%zu", st.tear_copies);
+	fct_report("straightened", "%zu", st.straightened);
+	fct_report("straight_refused", "%zu", st.straight_refused);
+	fct_report("cross_refused", "%zu", st.cross_refused);
+	fct_report("ray_fallback", "%zu", st.ray_fallback);
 	fct_report("along_ray", "%zu", st.along_ray);
 	fct_report("fallback", "%zu", st.fallback);
 	fct_report("rank_deficient", "%zu", st.rank_deficient);

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "adj.h"
+#include "chain.h"
 #include "geom.h"
 #include "header.h"
 
@@ -30,6 +31,8 @@ void fct_project_params_default(struct fct_project_params *p)
 	p->rank_tol = FCT_PROJECT_RANK_TOL;
 	p->scale_angle = FCT_PROJECT_SCALE_ANGLE;
 	p->texcoords = 1;
+	p->tear = 1;
+	p->straighten = 1;
 }
 
 static double norm3(const double v[3])
@@ -787,6 +790,36 @@ static int adjacent_pairs(const struct fct_mesh *m, const struct fct_adj *adj,
 	return 0;
 }
 
+/* The same from a wireframe: each edge between two patches, by its length. */
+static int wire_pairs(const struct fct_mesh *m, const struct fct_wire *w, size_t nw,
+                      struct fct_plane_pair **out, size_t *nout, struct fct_err *err)
+{
+	struct fct_plane_pair *pp = fct_alloc_array(nw, sizeof *pp, err);
+	if (!pp && nw)
+		return -1;
+	size_t n = 0;
+	for (size_t i = 0; i < nw; i++) {
+		if (w[i].p1 < 0 || w[i].p2 < 0 || w[i].p1 == w[i].p2)
+			continue;
+		uint32_t a = (uint32_t)w[i].p1, b = (uint32_t)w[i].p2;
+		pp[n].a = a < b ? a : b;
+		pp[n].b = a < b ? b : a;
+		pp[n].w = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)w[i].v1, m->xyz + 3 * (size_t)w[i].v2));
+		n++;
+	}
+	if (n)
+		qsort(pp, n, sizeof *pp, cmp_pair);
+	size_t k = 0;
+	for (size_t i = 0; i < n; i++) {
+		if (k && pp[k - 1].a == pp[i].a && pp[k - 1].b == pp[i].b)
+			pp[k - 1].w += pp[i].w;
+		else
+			pp[k++] = pp[i];
+	}
+	*out = pp, *nout = k;
+	return 0;
+}
+
 /* Area and area-weighted centroid of each patch (polygons fanned). */
 static void patch_moments(const struct fct_mesh *m, const int32_t *patch, size_t np,
                           double *area, double *cen)
@@ -811,6 +844,52 @@ static void patch_moments(const struct fct_mesh *m, const int32_t *patch, size_t
 	for (size_t i = 0; i < np; i++)
 		for (int q = 0; q < 3; q++)
 			cen[3 * i + q] = area[i] > 0 ? cen[3 * i + q] / area[i] : NAN;
+}
+
+/* The same from a wireframe: each patch's boundary (its edges with the
+ * patch on the left, holes running the other way) fanned from its first
+ * vertex, the signed areas taken along the plane normal. */
+static int wire_moments(const struct fct_mesh *m, const struct fct_wire *w, size_t nw,
+                        const struct fct_plane *pl, size_t np, double *area, double *cen,
+                        struct fct_err *err)
+{
+	double *apex = fct_alloc_array(3 * np, sizeof *apex, err);
+	unsigned char *seen = calloc(np ? np : 1, 1);
+	if (!apex || !seen) {
+		free(apex), free(seen);
+		return apex ? fct_fail(err, "out of memory") : -1;
+	}
+	for (size_t i = 0; i < np; i++)
+		area[i] = 0, cen[3 * i] = cen[3 * i + 1] = cen[3 * i + 2] = 0;
+	for (size_t i = 0; i < nw; i++)
+		for (int side = 0; side < 2; side++) {
+			int32_t p = side ? w[i].p2 : w[i].p1;
+			if (p < 0)
+				continue;
+			const double *a = m->xyz + 3 * (size_t)(side ? w[i].v2 : w[i].v1),
+			             *b = m->xyz + 3 * (size_t)(side ? w[i].v1 : w[i].v2);
+			double *o = apex + 3 * (size_t)p;
+			if (!seen[p]) {
+				memcpy(o, a, 3 * sizeof *o);
+				seen[p] = 1;
+			}
+			double u[3], v[3], x[3];
+			fct_v3_sub(u, a, o);
+			fct_v3_sub(v, b, o);
+			fct_v3_cross(x, u, v);
+			double ar = fct_v3_dot(x, pl[p].n) / 2;
+			area[p] += ar;
+			for (int q = 0; q < 3; q++)
+				cen[3 * (size_t)p + q] += ar * (o[q] + a[q] + b[q]) / 3;
+		}
+	for (size_t i = 0; i < np; i++) {
+		for (int q = 0; q < 3; q++)
+			cen[3 * i + q] = area[i] > 0 ? cen[3 * i + q] / area[i] : NAN;
+		if (!(area[i] > 0))
+			area[i] = 0;
+	}
+	free(apex), free(seen);
+	return 0;
 }
 
 /* Make sure m has a scalar vertex column name (float when added). */
@@ -862,6 +941,395 @@ static int along_ray(const double *n, const double *d, size_t k, const double c[
 	return 1;
 }
 
+/* The distinct planes of each vertex, ascending, as lists lab[lstart[v] ..
+ * lstart[v + 1]): the patches of its faces, or of its wires' two sides. */
+static int vertex_labels(const struct fct_mesh *m, const struct fct_adj *adj, const int32_t *patch,
+                         const struct fct_wire *wire, size_t nwire, size_t **lstart_out,
+                         uint32_t **lab_out, struct fct_err *err)
+{
+	size_t *lstart = fct_alloc_array(m->nv + 1, sizeof *lstart, err);
+	if (!lstart)
+		return -1;
+	memset(lstart, 0, (m->nv + 1) * sizeof *lstart);
+	/* Count an upper bound per vertex, fill, then sort and squeeze. */
+	if (wire) {
+		for (size_t i = 0; i < nwire; i++) {
+			lstart[wire[i].v1 + 1] += 2;
+			lstart[wire[i].v2 + 1] += 2;
+		}
+	} else {
+		for (size_t v = 0; v < m->nv; v++)
+			lstart[v + 1] = adj->vert_fstart[v + 1] - adj->vert_fstart[v];
+	}
+	for (size_t v = 0; v < m->nv; v++)
+		lstart[v + 1] += lstart[v];
+	uint32_t *lab = fct_alloc_array(lstart[m->nv] ? lstart[m->nv] : 1, sizeof *lab, err);
+	size_t *fill = fct_alloc_array(m->nv ? m->nv : 1, sizeof *fill, err);
+	if (!lab || !fill) {
+		free(lstart), free(lab), free(fill);
+		return -1;
+	}
+	memcpy(fill, lstart, m->nv * sizeof *fill);
+	if (wire) {
+		for (size_t i = 0; i < nwire; i++) {
+			int32_t p[2] = { wire[i].p1, wire[i].p2 };
+			uint32_t ends[2] = { wire[i].v1, wire[i].v2 };
+			for (int e = 0; e < 2; e++)
+				for (int s = 0; s < 2; s++)
+					if (p[s] >= 0)
+						lab[fill[ends[e]]++] = (uint32_t)p[s];
+		}
+	} else {
+		for (size_t v = 0; v < m->nv; v++)
+			for (uint32_t q = adj->vert_fstart[v]; q < adj->vert_fstart[v + 1]; q++)
+				if (patch[adj->vert_f[q]] >= 0)
+					lab[fill[v]++] = (uint32_t)patch[adj->vert_f[q]];
+	}
+	size_t out = 0;
+	for (size_t v = 0; v < m->nv; v++) {
+		uint32_t *l = lab + lstart[v];
+		size_t k = fill[v] - lstart[v];
+		qsort(l, k, sizeof *l, cmp_u32);
+		lstart[v] = out;
+		for (size_t q = 0; q < k; q++)
+			if (q == 0 || l[q] != l[q - 1])
+				lab[out++] = l[q];
+	}
+	lstart[m->nv] = out;
+	free(fill);
+	*lstart_out = lstart, *lab_out = lab;
+	return 0;
+}
+
+static uint32_t copy_of(const size_t *lstart, const uint32_t *lab, const long *first, size_t v,
+                        int32_t p)
+{
+	for (size_t q = 1; q < lstart[v + 1] - lstart[v]; q++)
+		if (lab[lstart[v] + q] == (uint32_t)p)
+			return (uint32_t)(first[v] + (long)q - 1);
+	return (uint32_t)v;
+}
+
+/* The copies of a torn vertex x0 seen from centre, one per plane
+ * (normals n, offsets d), along its ray into out[3k]; 0 when one of the
+ * rays meets its plane too obliquely, behind the camera or too far. */
+static int tear_copies(const double *n, const double *d, size_t k, const double centre[3],
+                       const double x0[3], double bound, double *out)
+{
+	double r[3];
+	fct_v3_sub(r, x0, centre);
+	double len = sqrt(fct_v3_dot(r, r));
+	if (!(len > 0))
+		return 0;
+	for (size_t q = 0; q < k; q++) {
+		double nr = fct_v3_dot(n + 3 * q, r);
+		if (fabs(nr) < FCT_PROJECT_TEAR_COS * len)
+			return 0;
+		/* x0 + s r on the plane: n.(x0 + s r) + d = 0 */
+		double s = -(fct_v3_dot(n + 3 * q, x0) + d[q]) / nr;
+		if (!(1 + s > 0) || !(fabs(s) * len <= FCT_PROJECT_TEAR_EDGES * bound))
+			return 0;
+		fct_v3_axpy(out + 3 * q, x0, s, r);
+	}
+	return 1;
+}
+
+/* Tear the vertices tv[0..nt) (ascending; vertex tv[i] has the planes
+ * lab[lstart[tv[i]]..] and copies txyz[3 * (tstart[i] + q)] for them) out
+ * of m's wireframe *wirep[0..*nwp) as fct_project_mesh describes; the new
+ * wires replace the old. */
+static int tear_apply(struct fct_mesh *m, const size_t *lstart, const uint32_t *lab, const size_t *tv,
+                      const size_t *tstart, size_t nt, const double *txyz, struct fct_wire **wirep,
+                      size_t *nwp, size_t *added, struct fct_err *err)
+{
+	const struct fct_wire *wire = *wirep;
+	size_t nw = *nwp;
+	int rc = -1;
+	size_t nv = m->nv, extra = tstart[nt] - nt;
+	size_t *src = fct_alloc_array(nv + extra, sizeof *src, err);
+	long *first = fct_alloc_array(nv ? nv : 1, sizeof *first, err);   /* copy index of plane 2.. */
+	struct fct_wire *out = fct_alloc_array(nw ? 2 * nw : 1, sizeof *out, err);
+	if (!src || !first || !out)
+		goto done;
+	for (size_t v = 0; v < nv; v++)
+		src[v] = v, first[v] = -1;
+	size_t at = nv;
+	for (size_t i = 0; i < nt; i++) {
+		first[tv[i]] = (long)at;
+		for (size_t q = 1; q < tstart[i + 1] - tstart[i]; q++)
+			src[at++] = tv[i];
+	}
+	if (fct_mesh_gather_vertices(m, src, nv + extra, err))
+		goto done;
+	for (size_t i = 0; i < nt; i++) {
+		size_t k = tstart[i + 1] - tstart[i];
+		for (size_t q = 0; q < k; q++) {
+			size_t v = q == 0 ? tv[i] : (size_t)first[tv[i]] + q - 1;
+			memcpy(m->xyz + 3 * v, txyz + 3 * (tstart[i] + q), 3 * sizeof *m->xyz);
+		}
+	}
+	/* The vertex standing for v on plane p. */
+#define COPY(v, p) (first[v] < 0 ? (v) : copy_of(lstart, lab, first, (v), (p)))
+	size_t no = 0;
+	for (size_t e = 0; e < nw; e++) {
+		struct fct_wire w = wire[e];
+		uint32_t a1 = w.v1, b1 = w.v2, a2 = w.v1, b2 = w.v2;
+		if (w.p1 >= 0)
+			a1 = COPY(w.v1, w.p1), b1 = COPY(w.v2, w.p1);
+		if (w.p2 >= 0)
+			a2 = COPY(w.v1, w.p2), b2 = COPY(w.v2, w.p2);
+		if (w.p1 < 0 || w.p2 < 0 || (a1 == a2 && b1 == b2)) {
+			out[no++] = (struct fct_wire){ w.p1 >= 0 ? a1 : a2, w.p1 >= 0 ? b1 : b2, w.p1, w.p2 };
+		} else {
+			out[no++] = (struct fct_wire){ a1, b1, w.p1, -1 };
+			out[no++] = (struct fct_wire){ a2, b2, -1, w.p2 };
+		}
+	}
+#undef COPY
+	free(*wirep);
+	*wirep = out, *nwp = no, out = NULL;
+	*added = extra;
+	rc = 0;
+done:
+	free(src), free(first), free(out);
+	return rc;
+}
+
+/* The wireframe's edges in the image, to refuse a change that would make
+ * two boundary edges of one patch cross there (tripatch triangulates each
+ * patch in the image, which needs simple polygons): a uniform grid of
+ * cells, each listing the edges whose box meets it.  An edge whose end
+ * moves is listed again (stale entries cost a test, nothing more); edges
+ * without a pixel at both ends are never listed. */
+struct guard_node {
+	uint32_t edge, next;
+};
+struct wire_guard {
+	const struct fct_wire *w;
+	const unsigned char *dead;     /* edges to ignore (may be NULL) */
+	double *px;                    /* the pixel of each vertex (NaN: none) */
+	double lo[2], h;
+	size_t nx, ny;
+	uint32_t *head, *stamp, query;
+	size_t nw;
+	struct guard_node *pool;
+	size_t npool, pool_cap;
+};
+
+static void guard_free(struct wire_guard *g)
+{
+	free(g->px), free(g->head), free(g->stamp), free(g->pool);
+	memset(g, 0, sizeof *g);
+}
+
+static void guard_pixel(const struct fct_camera *cam, const double *inv, const double x[3], double out[2])
+{
+	double s, t;
+	if (fct_project_texcoord(cam, inv, x, &s, &t))
+		out[0] = s * cam->width, out[1] = t * cam->height;
+	else
+		out[0] = out[1] = NAN;
+}
+
+static void guard_cells(const struct wire_guard *g, const double a[2], const double b[2], size_t c[4])
+{
+	for (int q = 0; q < 2; q++) {
+		double lo = (fmin(a[q], b[q]) - g->lo[q]) / g->h, hi = (fmax(a[q], b[q]) - g->lo[q]) / g->h;
+		size_t n = q ? g->ny : g->nx;
+		c[q] = lo < 0 ? 0 : lo >= (double)n ? n - 1 : (size_t)lo;
+		c[2 + q] = hi < 0 ? 0 : hi >= (double)n ? n - 1 : (size_t)hi;
+	}
+}
+
+static int guard_add(struct wire_guard *g, size_t e, struct fct_err *err)
+{
+	const double *a = g->px + 2 * (size_t)g->w[e].v1, *b = g->px + 2 * (size_t)g->w[e].v2;
+	if (!isfinite(a[0]) || !isfinite(b[0]))
+		return 0;
+	size_t c[4];
+	guard_cells(g, a, b, c);
+	for (size_t y = c[1]; y <= c[3]; y++)
+		for (size_t x = c[0]; x <= c[2]; x++) {
+			if (fct_grow((void **)&g->pool, &g->pool_cap, g->npool + 1, sizeof *g->pool, err))
+				return -1;
+			if (g->npool >= UINT32_MAX)
+				return fct_fail(err, "too many wireframe edges");
+			size_t cell = y * g->nx + x;
+			g->pool[g->npool] = (struct guard_node){ (uint32_t)e, g->head[cell] };
+			g->head[cell] = (uint32_t)g->npool++;
+		}
+	return 0;
+}
+
+static int guard_init(struct wire_guard *g, const struct fct_mesh *m, const struct fct_camera *cam,
+                      const double *inv, const struct fct_wire *w, size_t nw, struct fct_err *err)
+{
+	memset(g, 0, sizeof *g);
+	g->w = w, g->nw = nw;
+	g->px = fct_alloc_array(2 * (m->nv ? m->nv : 1), sizeof *g->px, err);
+	g->stamp = fct_alloc_array(nw ? nw : 1, sizeof *g->stamp, err);
+	if (!g->px || !g->stamp)
+		return -1;
+	memset(g->stamp, 0, (nw ? nw : 1) * sizeof *g->stamp);
+	double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
+	for (size_t v = 0; v < m->nv; v++) {
+		guard_pixel(cam, inv, m->xyz + 3 * v, g->px + 2 * v);
+		for (int q = 0; q < 2 && isfinite(g->px[2 * v]); q++)
+			lo[q] = fmin(lo[q], g->px[2 * v + q]), hi[q] = fmax(hi[q], g->px[2 * v + q]);
+	}
+	if (!(lo[0] <= hi[0]))
+		lo[0] = lo[1] = 0, hi[0] = hi[1] = 1;
+	/* About one cell per edge. */
+	double wx = fmax(hi[0] - lo[0], 1e-9), wy = fmax(hi[1] - lo[1], 1e-9);
+	double cells = nw < 16 ? 16 : nw > (1u << 20) ? (double)(1u << 20) : (double)nw;
+	g->h = fmax(sqrt(wx * wy / cells), fmax(wx, wy) / 4096);
+	g->lo[0] = lo[0], g->lo[1] = lo[1];
+	g->nx = (size_t)(wx / g->h) + 1, g->ny = (size_t)(wy / g->h) + 1;
+	g->head = fct_alloc_array(g->nx * g->ny, sizeof *g->head, err);
+	if (!g->head)
+		return -1;
+	memset(g->head, 0xff, g->nx * g->ny * sizeof *g->head);
+	for (size_t e = 0; e < nw; e++)
+		if (guard_add(g, e, err))
+			return -1;
+	return 0;
+}
+
+/* Would the segment from vertex a at pa to vertex b at pb, a boundary of
+ * patches p1 and p2 (-1: none), meet another edge of those patches?  Edge
+ * skip_edge and the edges touching vertex skip are ignored; vertex moved is
+ * taken at pmoved. */
+static int guard_crosses(struct wire_guard *g, uint32_t a, const double pa[2], uint32_t b,
+                         const double pb[2], int32_t p1, int32_t p2, uint32_t skip, size_t skip_edge,
+                         uint32_t moved, const double pmoved[2])
+{
+	if (!isfinite(pa[0]) || !isfinite(pb[0]))
+		return 1;
+	if (++g->query == 0) {
+		memset(g->stamp, 0, (g->nw ? g->nw : 1) * sizeof *g->stamp);
+		g->query = 1;
+	}
+	size_t c[4];
+	guard_cells(g, pa, pb, c);
+	for (size_t y = c[1]; y <= c[3]; y++)
+		for (size_t x = c[0]; x <= c[2]; x++)
+			for (uint32_t n = g->head[y * g->nx + x]; n != UINT32_MAX; n = g->pool[n].next) {
+				uint32_t e = g->pool[n].edge;
+				if (g->stamp[e] == g->query)
+					continue;
+				g->stamp[e] = g->query;
+				const struct fct_wire *f = g->w + e;
+				if ((g->dead && g->dead[e]) || e == skip_edge || f->v1 == skip || f->v2 == skip)
+					continue;
+				int mine = (p1 >= 0 && (f->p1 == p1 || f->p2 == p1)) ||
+				           (p2 >= 0 && (f->p1 == p2 || f->p2 == p2));
+				if (!mine)
+					continue;
+				const double *c1 = f->v1 == moved ? pmoved : g->px + 2 * (size_t)f->v1;
+				const double *c2 = f->v2 == moved ? pmoved : g->px + 2 * (size_t)f->v2;
+				if (!isfinite(c1[0]) || !isfinite(c2[0]))
+					continue;
+				if (fct_segments_conflict(pa, pb, c1, c2, a, b, f->v1, f->v2))
+					return 1;
+			}
+	return 0;
+}
+
+/* Drop the vertices of crease chains that projection put on the line of
+ * their two planes (see fct_project_mesh), renumbering the rest. */
+static int straighten(struct fct_mesh *m, const struct fct_plane *pl, double bound,
+                      const struct fct_camera *cam, const double *inv, struct fct_wire **wirep,
+                      size_t *nwp, size_t *dropped, size_t *kept, struct fct_err *err)
+{
+	struct fct_wire *w = *wirep;
+	size_t nw = *nwp, nv = m->nv;
+	int rc = -1;
+	struct wire_guard g;
+	memset(&g, 0, sizeof g);
+	/* Each vertex's first two edges, and its edge count. */
+	size_t *inc = fct_alloc_array(2 * (nv ? nv : 1), sizeof *inc, err);
+	uint32_t *deg = fct_alloc_array(nv ? nv : 1, sizeof *deg, err);
+	unsigned char *dead = calloc(nw ? nw : 1, 1), *gone = calloc(nv ? nv : 1, 1);
+	size_t *keep = NULL;
+	uint32_t *map = NULL;
+	if (!inc || !deg || !dead || !gone) {
+		if (inc && deg)
+			fct_fail(err, "out of memory");
+		goto done;
+	}
+	memset(deg, 0, nv * sizeof *deg);
+	if (cam) {
+		if (guard_init(&g, m, cam, inv, w, nw, err))
+			goto done;
+		g.dead = dead;
+	}
+	for (size_t e = 0; e < nw; e++) {
+		uint32_t ends[2] = { w[e].v1, w[e].v2 };
+		for (int q = 0; q < 2; q++) {
+			if (deg[ends[q]] < 2)
+				inc[2 * (size_t)ends[q] + deg[ends[q]]] = e;
+			deg[ends[q]]++;
+		}
+	}
+	size_t ndrop = 0;
+	for (size_t v = 0; v < nv; v++) {
+		if (deg[v] != 2)
+			continue;
+		size_t e1 = inc[2 * v], e2 = inc[2 * v + 1];
+		if (e1 == e2)
+			continue;
+		/* e1 as x -> v and e2 as v -> y, each with its (left, right). */
+		struct fct_wire a = w[e1], b = w[e2];
+		if (a.v2 != v)
+			a = (struct fct_wire){ a.v2, a.v1, a.p2, a.p1 };
+		if (b.v1 != v)
+			b = (struct fct_wire){ b.v2, b.v1, b.p2, b.p1 };
+		if (a.p1 != b.p1 || a.p2 != b.p2 || a.p1 < 0 || a.p2 < 0 || a.p1 == a.p2 || a.v1 == b.v2)
+			continue;
+		const double *x = m->xyz + 3 * v;
+		double tol = 1e-9 * (bound + fabs(x[0]) + fabs(x[1]) + fabs(x[2]));
+		if (fabs(fct_plane_distance(&pl[a.p1], x)) > tol || fabs(fct_plane_distance(&pl[a.p2], x)) > tol)
+			continue;
+		if (cam && guard_crosses(&g, a.v1, g.px + 2 * (size_t)a.v1, b.v2, g.px + 2 * (size_t)b.v2, a.p1,
+		                         a.p2, (uint32_t)v, (size_t)-1, UINT32_MAX, NULL)) {
+			(*kept)++;
+			continue;
+		}
+		/* x -> y replaces both; y's record of e2 becomes e1. */
+		w[e1] = (struct fct_wire){ a.v1, b.v2, a.p1, a.p2 };
+		dead[e2] = 1, gone[v] = 1, ndrop++;
+		if (cam && guard_add(&g, e1, err))
+			goto done;
+		uint32_t y = b.v2;
+		for (int q = 0; q < 2 && q < (int)deg[y]; q++)
+			if (inc[2 * (size_t)y + q] == e2)
+				inc[2 * (size_t)y + q] = e1;
+	}
+	if (ndrop) {
+		keep = fct_alloc_array(nv - ndrop ? nv - ndrop : 1, sizeof *keep, err);
+		map = fct_alloc_array(nv, sizeof *map, err);
+		if (!keep || !map)
+			goto done;
+		size_t nk = 0;
+		for (size_t v = 0; v < nv; v++)
+			if (!gone[v])
+				map[v] = (uint32_t)nk, keep[nk++] = v;
+		size_t ne = 0;
+		for (size_t e = 0; e < nw; e++)
+			if (!dead[e])
+				w[ne++] = (struct fct_wire){ map[w[e].v1], map[w[e].v2], w[e].p1, w[e].p2 };
+		if (fct_mesh_gather_vertices(m, keep, nk, err))
+			goto done;
+		*nwp = ne;
+	}
+	*dropped = ndrop;
+	rc = 0;
+done:
+	guard_free(&g);
+	free(inc), free(deg), free(dead), free(gone), free(keep), free(map);
+	return rc;
+}
+
 /* How many faces around vertex v (all its faces, fanned from their first
  * corner) face against their patch's plane normal. */
 static size_t faces_against(const struct fct_mesh *m, const struct fct_adj *adj, const int32_t *patch,
@@ -900,6 +1368,14 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	memset(&adj, 0, sizeof adj);
 	double *nbuf = NULL, *dbuf = NULL, *area = NULL, *cen = NULL;
 	uint32_t *lab = NULL;
+	size_t *lstart = NULL;
+	struct wire_guard guard;
+	memset(&guard, 0, sizeof guard);
+	size_t *wstart = NULL, *wlist = NULL;
+	size_t *tv = NULL, *tstart = NULL, tv_cap = 0, tstart_cap = 0, txyz_cap = 0, tstart_n = 0;
+	double *txyz = NULL;
+	struct fct_wire *wire = NULL;
+	size_t nwire = 0;
 	struct fct_plane_pair *pairs = NULL;
 
 	if (fct_planes_get(m, &pl, &npl, err))
@@ -910,19 +1386,31 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	}
 	if (fct_patches_get(m, &patch, &present, (long)npl, err))
 		goto out;
-	if (!present) {
-		fct_fail(err, "no face property patch (the labels of segplanes)");
-		goto out;
+	/* A mesh without faces may be a wireframe (simpchain's output): its
+	 * vertices then take their planes from the edges' two sides. */
+	int wired = 0;
+	if (!present || (m->nf == 0 && fct_mesh_find_elem(m, "edge"))) {
+		if (fct_wires_get(m, (long)npl, &wire, &nwire, &wired, err))
+			goto out;
+		if (!wired) {
+			fct_fail(err, "no face property patch (the labels of segplanes) nor edge element "
+			              "(simpchain's wireframe)");
+			goto out;
+		}
 	}
 	st.nvert = m->nv, st.nplanes = npl;
 	if (fct_adj_build(&adj, m, err))
 		goto out;
+	if (vertex_labels(m, &adj, patch, wire, nwire, &lstart, &lab, err))
+		goto out;
 
 	double sum = 0;
-	for (size_t e = 0; e < adj.ne; e++)
-		sum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
-		                         m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
-	st.mean_edge = adj.ne ? sum / (double)adj.ne : 0;
+	size_t nedges = wired ? nwire : adj.ne;
+	for (size_t e = 0; e < nedges; e++)
+		sum += wired ? sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)wire[e].v1, m->xyz + 3 * (size_t)wire[e].v2))
+		             : sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
+		                                 m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+	st.mean_edge = nedges ? sum / (double)nedges : 0;
 
 	struct fct_camera cam;
 	double pose[12], inv[12];
@@ -950,7 +1438,8 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	/* Section 8: the depth scale first (it changes shape), then snapping. */
 	if (p->depth_scale_fix) {
 		size_t npairs = 0;
-		if (adjacent_pairs(m, &adj, patch, &pairs, &npairs, err))
+		if (wired ? wire_pairs(m, wire, nwire, &pairs, &npairs, err)
+		          : adjacent_pairs(m, &adj, patch, &pairs, &npairs, err))
 			goto out;
 		/* Weigh each adjacent pair by its smaller patch's area, and leave
 		 * out patches under 1% of the labelled area: the planes of large
@@ -961,7 +1450,9 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		cen = fct_alloc_array(3 * npl, sizeof *cen, err);
 		if (!area || !cen)
 			goto out;
-		patch_moments(m, patch, npl, area, cen);
+		if (wired ? wire_moments(m, wire, nwire, pl, npl, area, cen, err)
+		          : (patch_moments(m, patch, npl, area, cen), 0))
+			goto out;
 		double total = 0;
 		for (size_t i = 0; i < npl; i++)
 			total += area[i];
@@ -995,7 +1486,9 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 			cen = fct_alloc_array(3 * npl, sizeof *cen, err);
 		if (!area || !cen)
 			goto out;
-		patch_moments(m, patch, npl, area, cen);
+		if (wired ? wire_moments(m, wire, nwire, pl, npl, area, cen, err)
+		          : (patch_moments(m, patch, npl, area, cen), 0))
+			goto out;
 		double prior[3], down[3] = { 0, -1, 0 };
 		int use_prior = have_cam || have_pose;
 		if (have_pose) {
@@ -1014,38 +1507,46 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	}
 
 	/* Section 5. */
-	size_t maxdeg = 0;
-	for (size_t v = 0; v < m->nv; v++) {
-		size_t d = adj.vert_fstart[v + 1] - adj.vert_fstart[v];
-		if (d > maxdeg)
-			maxdeg = d;
-	}
+	size_t maxdeg = 1;
+	for (size_t v = 0; v < m->nv; v++)
+		if (lstart[v + 1] - lstart[v] > maxdeg)
+			maxdeg = lstart[v + 1] - lstart[v];
 	nbuf = fct_alloc_array(3 * maxdeg, sizeof *nbuf, err);
 	dbuf = fct_alloc_array(maxdeg, sizeof *dbuf, err);
-	lab = fct_alloc_array(maxdeg, sizeof *lab, err);
-	if (!nbuf || !dbuf || !lab)
+	if (!nbuf || !dbuf)
 		goto out;
 	st.bound = p->max_move >= 0 ? p->max_move : p->max_move_edges * st.mean_edge;
+	int guarded = wired && have_cam;
+	if (guarded) {
+		if (guard_init(&guard, m, &cam, have_pose ? inv : NULL, wire, nwire, err))
+			goto out;
+		wstart = fct_alloc_array(m->nv + 1, sizeof *wstart, err);
+		wlist = fct_alloc_array(2 * (nwire ? nwire : 1), sizeof *wlist, err);
+		if (!wstart || !wlist)
+			goto out;
+		memset(wstart, 0, (m->nv + 1) * sizeof *wstart);
+		for (size_t e = 0; e < nwire; e++)
+			wstart[wire[e].v1 + 1]++, wstart[wire[e].v2 + 1]++;
+		for (size_t v = 0; v < m->nv; v++)
+			wstart[v + 1] += wstart[v];
+		for (size_t e = 0; e < nwire; e++)
+			wlist[wstart[wire[e].v1]++] = e, wlist[wstart[wire[e].v2]++] = e;
+		for (size_t v = m->nv; v > 0; v--)
+			wstart[v] = wstart[v - 1];
+		wstart[0] = 0;
+	}
 	double move_sum = 0, r2_before = 0, r2_after = 0;
 	size_t nres = 0;
 	for (size_t v = 0; v < m->nv; v++) {
-		size_t k = 0;
-		for (uint32_t q = adj.vert_fstart[v]; q < adj.vert_fstart[v + 1]; q++)
-			if (patch[adj.vert_f[q]] >= 0)
-				lab[k++] = (uint32_t)patch[adj.vert_f[q]];
-		qsort(lab, k, sizeof *lab, cmp_u32);
-		size_t u = 0;
-		for (size_t q = 0; q < k; q++)
-			if (u == 0 || lab[q] != lab[u - 1])
-				lab[u++] = lab[q];
-		k = u;
+		const uint32_t *vl = lab + lstart[v];
+		size_t k = lstart[v + 1] - lstart[v];
 		for (size_t q = 0; q < k; q++) {
-			memcpy(nbuf + 3 * q, pl[lab[q]].n, 3 * sizeof *nbuf);
-			dbuf[q] = pl[lab[q]].d;
+			memcpy(nbuf + 3 * q, pl[vl[q]].n, 3 * sizeof *nbuf);
+			dbuf[q] = pl[vl[q]].d;
 		}
 		double *x = m->xyz + 3 * v;
 		for (size_t q = 0; q < k; q++) {
-			double r = fct_plane_distance(&pl[lab[q]], x);
+			double r = fct_plane_distance(&pl[vl[q]], x);
 			r2_before += r * r;
 		}
 		struct fct_point_fit fit;
@@ -1083,6 +1584,66 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 			fit.used = 0;
 			st.flip_refused++;
 		}
+		/* Refused, or a rank-deficient point that lies on none of the
+		 * planes (parallel planes apart: it went between them). */
+		int refused = fit.used == 0 && fit.rank > 0 && !flipped, apart = 0;
+		if (fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3))
+			for (size_t q = 0; q < k; q++)
+				apart |= fabs(fct_plane_distance(&pl[vl[q]], x)) > FCT_PROJECT_TEAR_APART * st.bound;
+		/* A move must not make the patch's boundary cross itself in the
+		 * image, where tripatch triangulates it. */
+		int crossing = 0;
+		if (guarded && fit.used > 0 && !apart) {
+			double q[2];
+			guard_pixel(&cam, have_pose ? inv : NULL, x, q);
+			crossing = !isfinite(q[0]);
+			for (size_t i = wstart[v]; i < wstart[v + 1] && !crossing; i++) {
+				const struct fct_wire *f = wire + wlist[i];
+				uint32_t o = f->v1 == v ? f->v2 : f->v1;
+				crossing = guard_crosses(&guard, (uint32_t)v, q, o, guard.px + 2 * (size_t)o, f->p1, f->p2,
+				                         UINT32_MAX, wlist[i], (uint32_t)v, q);
+			}
+			if (crossing) {
+				memcpy(x, x0, sizeof x0);
+				fit.used = 0;
+				st.cross_refused++;
+			} else {
+				memcpy(guard.px + 2 * v, q, sizeof q);
+				for (size_t i = wstart[v]; i < wstart[v + 1]; i++)
+					if (guard_add(&guard, wlist[i], err))
+						goto out;
+			}
+		}
+		/* What the image allows instead: along the vertex's ray onto each
+		 * of its planes, which keeps its pixel -- one plane: the vertex
+		 * moves; more: it is torn. */
+		int torn = 0, rayed = 0;
+		if (wired && p->tear && have_cam && k >= 1 && !flipped && (refused || apart || crossing)) {
+			if (fct_grow((void **)&txyz, &txyz_cap, 3 * (tstart_n + k), sizeof *txyz, err))
+				goto out;
+			if (tear_copies(nbuf, dbuf, k, centre, x0, st.bound, txyz + 3 * tstart_n)) {
+				if (k == 1) {
+					memcpy(x, txyz + 3 * tstart_n, sizeof x0);
+					rayed = 1;
+					st.ray_fallback++;
+				} else {
+					if (fct_grow((void **)&tv, &tv_cap, st.torn + 1, sizeof *tv, err) ||
+					    fct_grow((void **)&tstart, &tstart_cap, st.torn + 2, sizeof *tstart, err))
+						goto out;
+					tv[st.torn] = v, tstart[st.torn] = tstart_n;
+					tstart_n += k;
+					tstart[++st.torn] = tstart_n;
+					memcpy(x, txyz + 3 * (tstart_n - k), sizeof x0);
+					torn = 1;
+				}
+				fit.used = 0;
+			} else if (apart) {
+				/* between the planes is no better than where it was */
+				memcpy(x, x0, sizeof x0);
+				fit.used = 0;
+				refused = 1;
+			}
+		}
 		int kk = k < 3 ? (int)k : 3;
 		st.by_k[kk]++;
 		if (fit.used > 0) {
@@ -1092,19 +1653,27 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 				st.max_move = fit.move;
 			if (fit.used < fit.rank)
 				st.fallback++;
-		} else if (fit.rank > 0 && !flipped) {
+		} else if (refused && !torn && !rayed) {
 			st.rejected++;
 		}
 		if (fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3))
 			st.rank_deficient++;
 		for (size_t q = 0; q < k; q++) {
-			double r = fct_plane_distance(&pl[lab[q]], x);
+			double r = fct_plane_distance(&pl[vl[q]], torn ? txyz + 3 * (tstart_n - k + q) : x);
 			r2_after += r * r;
 			if (fabs(r) > st.max_after)
 				st.max_after = fabs(r);
 		}
 		nres += k;
 	}
+	if (st.torn && tear_apply(m, lstart, lab, tv, tstart, st.torn, txyz, &wire, &nwire, &st.tear_copies, err))
+		goto out;
+	if (wired && p->straighten &&
+	    straighten(m, pl, st.bound, have_cam ? &cam : NULL, have_pose ? inv : NULL, &wire, &nwire,
+	               &st.straightened, &st.straight_refused, err))
+		goto out;
+	if ((st.torn || st.straightened) && fct_wires_set(m, wire, nwire, err))
+		goto out;
 	size_t nmoved = st.moved[1] + st.moved[2] + st.moved[3];
 	st.mean_move = nmoved ? move_sum / (double)nmoved : 0;
 	st.rms_before = nres ? sqrt(r2_before / (double)nres) : 0;
@@ -1138,6 +1707,11 @@ out:
 	free(nbuf);
 	free(dbuf);
 	free(lab);
+	free(lstart);
+	free(wire);
+	free(tv), free(tstart), free(txyz);
+	free(wstart), free(wlist);
+	guard_free(&guard);
 	free(area);
 	free(cen);
 	free(pairs);

@@ -43,6 +43,11 @@
 #define FCT_PROJECT_SCALE_ANGLE 5.0     /* degrees from orthogonal for a depth-scale inlier */
 #define FCT_PROJECT_SCALE_PARALLEL 20.0 /* pairs closer to parallel propose no scale */
 #define FCT_PROJECT_SCALE_RANGE 10.0    /* scales proposed lie in [1/10, 10] */
+#define FCT_PROJECT_TEAR_COS 0.1       /* a torn copy's ray meets its plane at most
+                                           ~84 degrees from the normal */
+#define FCT_PROJECT_TEAR_EDGES 10.0    /* and moves at most this many bounds */
+#define FCT_PROJECT_TEAR_APART 0.1     /* a rank-deficient point this many bounds off one
+                                           of its planes is torn too */
 #define FCT_PROJECT_SCALE_MIN_AREA 0.01 /* fct_project_mesh: patches under this fraction
                                            of the labelled area pair with none */
 
@@ -59,6 +64,12 @@ struct fct_project_params {
 	int texcoords;          /* recompute s t when there is a camera (default 1) */
 	int along_rays;         /* with a camera, k = 1, 2 move along the vertex's ray
 	                           instead of perpendicularly (the paper's rule) */
+	int tear;               /* wireframes seen by a camera: a vertex of k >= 2 planes
+	                           whose move is refused is torn, one copy per plane,
+	                           each moved along the vertex's ray onto its plane
+	                           (default 1; see fct_project_mesh) */
+	int straighten;         /* wireframes: drop crease vertices projection put on
+	                           the line of their two planes (default 1) */
 };
 
 void fct_project_params_default(struct fct_project_params *p);
@@ -160,6 +171,13 @@ struct fct_project_stats {
 	size_t moved[4];         /* of those, moved */
 	size_t rejected;         /* moves over the bound: vertex kept */
 	size_t flip_refused;     /* moves that would turn a face against its plane: kept */
+	size_t torn;             /* vertices torn apart (counted here, not as rejected) */
+	size_t tear_copies;      /* vertices added by tearing */
+	size_t straightened;     /* crease vertices dropped (on their line) */
+	size_t straight_refused; /* crease vertices kept: dropping one would cross */
+	size_t cross_refused;    /* moves that would make a patch boundary cross itself
+	                            in the image (then torn or moved along the ray, or kept) */
+	size_t ray_fallback;     /* vertices of one plane moved along their ray instead */
 	size_t along_ray;        /* moves made along the camera's ray */
 	size_t fallback;         /* moved at a lower rank than the full solution */
 	size_t rank_deficient;   /* numerical rank below min(k, 3) */
@@ -175,13 +193,27 @@ struct fct_project_stats {
 	struct fct_scale_result scale_res;
 };
 
-/* The whole stage on m, in place: reads face property patch and the plane
- * element (planes.h; a mesh without either fails), optionally fixes the
- * depth scale (vertices, planes, camera comment), optionally snaps the
+/* The whole stage on m, in place: reads the face property patch, or for a
+ * mesh without faces the wireframe element edge (planes.h fct_wires_get:
+ * a vertex's planes are then the patches on either side of its edges), and
+ * the plane element (planes.h; a mesh without them fails); optionally fixes
+ * the depth scale (vertices, planes, camera comment), optionally snaps the
  * planes, projects every vertex, recomputes s t from the camera and pose
  * comments (adding float s t when missing) and writes the planes back when
- * they changed.  Topology and every other property are kept.  st may be
- * NULL.  0 or -1. */
+ * they changed.  Topology and every other property are kept, except that
+ * with tear a wireframe seen by a camera tears its occlusion boundaries: a
+ * vertex of two or more planes whose move to their common point is refused
+ * (parallel planes, or planes meeting far away: a box before a wall, which
+ * the depth map joined by a veil) gets one copy per plane (the first plane
+ * keeps the vertex, the others get new vertices appended with all its
+ * properties), each moved along the vertex's ray onto its plane -- where
+ * that surface is seen at the vertex's pixel -- provided every ray meets its
+ * plane within FCT_PROJECT_TEAR_COS of the normal and moves at most
+ * FCT_PROJECT_TEAR_EDGES bounds.  Each edge then joins the copies of its own
+ * side's plane: an edge whose two sides got different vertices becomes two
+ * edges, one per side, each with -1 on the other.  The copies share their
+ * pixel, so the model has no gap in the image and a true depth
+ * discontinuity in space.  st may be NULL.  0 or -1. */
 int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
                      struct fct_project_stats *st, struct fct_err *err);
 
