@@ -752,7 +752,8 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	    !(F.held = fct_alloc_array(m->nv, 1, err)))
 		goto out;
 	F.x0 = x0;
-	memcpy(x0, m->xyz, sizeof *x0 * 3 * m->nv);
+	if (m->nv)
+		memcpy(x0, m->xyz, sizeof *x0 * 3 * m->nv);
 	memset(F.s, 0, sizeof *F.s * (m->nv ? m->nv : 1));
 	F.cur = m->xyz;
 
