@@ -13,9 +13,9 @@ run_case 0 "planarize -v --camera $S/view00.camera --pose $S/view00.pose --keep 
 run_case 0 "test -s $TMP/room.obj && test -s $TMP/room.mtl && grep -q '^map_Kd ' $TMP/room.mtl"
 in=$(info faces $K/1-mesh.ply) out=$(info faces $K/5-model.ply)
 # Twenty-odd visible planes need a few hundred faces, not the 600,000 of
-# the dense mesh.  The issue asks for 500 times fewer; this reaches about
-# 485 (1257 faces), and the test holds it above 400 so that it cannot slip.
-check_num "reduction 400x ($in -> $out faces)" "$(awk -v a="$in" -v b="$out" 'BEGIN { print (b > 0 ? a / b : 0) }')" ">=" 400
+# the dense mesh: the issue asks for 500 times fewer (measured: 585x, 1041
+# faces).
+check_num "reduction 500x ($in -> $out faces)" "$(awk -v a="$in" -v b="$out" 'BEGIN { print (b > 0 ? a / b : 0) }')" ">=" 500
 # Completeness: the true visible surface (the noiseless depth meshed) lies
 # within 5 mm of the model on average.
 run_case 0 "dm2mesh --camera $S/view00.camera --pose $S/view00.pose -o $TMP/truth.ply $S/view00.truth.pfm"
@@ -34,10 +34,11 @@ run_case 0 "grep -q '^planarize: reduction=' $TMP/room.err && grep -q '^planariz
 # like its patch's plane normal (which agrees with the input's faces).
 check_num "no non-manifold edges" "$(info non_manifold_edges $K/5-model.ply)" == 0
 check_num "no degenerate faces" "$(info degenerate_faces $K/5-model.ply)" == 0
-# Faces wound against their plane: the issue asks for none.  Slivers along
-# the noisy chains still flip (about 3.5% of the area, a quarter of the
-# faces); the test holds the flipped area under 5% until that is fixed.
-check_num "flipped faces under 5% of the area" "$(meshconv -a $K/5-model.ply | awk '
+# No face wound against its plane.  A few faces of the model are slivers of
+# three vertices on one crease line (area about 1e-8 of a face's mean, the
+# float positions' rounding): their orientation is noise, and they are
+# counted apart; every other face must agree with its plane.
+meshconv -a $K/5-model.ply | awk '
 	/^element vertex/ { nv = $3 } /^element face/ { nf = $3 } /^element plane/ { np = $3 }
 	/^end_header/ { s = 1; v = 0; f = 0; p = 0; next } s == 0 { next }
 	v < nv { x[v] = $1; y[v] = $2; z[v] = $3; v++; next }
@@ -45,9 +46,18 @@ check_num "flipped faces under 5% of the area" "$(meshconv -a $K/5-model.ply | a
 		ux = x[b] - x[a]; uy = y[b] - y[a]; uz = z[b] - z[a]; wx = x[c] - x[a]; wy = y[c] - y[a]; wz = z[c] - z[a]
 		fx[f] = uy * wz - uz * wy; fy[f] = uz * wx - ux * wz; fz[f] = ux * wy - uy * wx; f++; next }
 	p < np { px[p] = $1; py[p] = $2; pz[p] = $3; p++ }
-	END { for (i = 0; i < nf; i++) { ar = sqrt(fx[i] ^ 2 + fy[i] ^ 2 + fz[i] ^ 2); all += ar
-		if (pat[i] >= 0 && fx[i] * px[pat[i]] + fy[i] * py[pat[i]] + fz[i] * pz[pat[i]] <= 0) bad += ar }
-		print (all > 0 ? bad / all : 1) }')" "<" 0.05
+	END { all = 0; for (i = 0; i < nf; i++) { ar[i] = sqrt(fx[i] ^ 2 + fy[i] ^ 2 + fz[i] ^ 2); all += ar[i] }
+		bad = 0; slivers = 0; badarea = 0
+		for (i = 0; i < nf; i++) {
+			if (pat[i] < 0 || fx[i] * px[pat[i]] + fy[i] * py[pat[i]] + fz[i] * pz[pat[i]] > 0) continue
+			if (ar[i] < 1e-6 * all / nf) slivers++; else bad++
+			badarea += ar[i] }
+		print bad, slivers, (all > 0 ? badarea / all : 1) }' > $TMP/flips
+check_num "faces against their plane (slivers apart)" "$(awk '{ print $1 }' $TMP/flips)" == 0
+check_num "area of the flipped slivers" "$(awk '{ print $3 }' $TMP/flips)" "<" 1e-6
+# The wireframe's vertices all reached their planes (torn at occlusions).
+check_num "projverts: vertices off their planes" "$(sed -n 's/^projverts: rejected=//p' $K/projverts.err)" == 0
+check_num "projverts: torn at occlusions" "$(sed -n 's/^projverts: torn=//p' $K/projverts.err)" ">" 0
 
 # Real Kinect frames: the pipeline runs with its defaults and simplifies.
 run_case 0 "planarize -v -K tum --keep $TMP/tum -o $TMP/tum.ply samples/tum/TUM_depth.png samples/tum/TUM_color.png 2> $TMP/tum.err"

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "chain.h"
 #include "check.h"
 #include "depthmesh.h"
 #include "geom.h"
@@ -890,6 +891,207 @@ static void test_dense_scale(void)
 	fct_scene_free(&s);
 }
 
+/* A wireframe (simpchain's edge element, no faces) seen by a camera at the
+ * origin looking along +z.  The planes are given as n.p + d = 0 facing the
+ * camera. */
+static void wire_mesh(struct fct_mesh *m, const double (*xs)[3], size_t nv, const struct fct_wire *w,
+                      size_t nw, const struct fct_plane *pl, size_t npl, int camera)
+{
+	fct_mesh_init(m);
+	for (size_t i = 0; i < nv; i++)
+		fct_mesh_add_vertex(m, xs[i][0], xs[i][1], xs[i][2], &err);
+	CHECK_INT(fct_wires_set(m, w, nw, &err), 0);
+	CHECK_INT(fct_planes_set(m, pl, npl, &err), 0);
+	if (camera) {
+		struct fct_camera cam = { FCT_CAMERA_PINHOLE, 100, 100, 100, 100, 49.5, 49.5, 0, 0 };
+		CHECK_INT(fct_header_set_camera(m, &cam, &err), 0);
+	}
+}
+
+static struct fct_wire *wires_of(const struct fct_mesh *m, size_t *n)
+{
+	struct fct_wire *w = NULL;
+	int present = 0;
+	CHECK_INT(fct_wires_get(m, -1, &w, n, &present, &err), 0);
+	CHECK_INT(present, 1);
+	return w;
+}
+
+/* A crease: planes y = 0 (patch 0, a floor) and z = 3 (patch 1, a wall)
+ * meet on the line y = 0, z = 3.  A noisy chain of five vertices along it
+ * goes onto the line; without a camera the three inner ones are then
+ * straight and dropped, leaving one edge between the exact ends; with
+ * straightening off they stay, on the line. */
+static void test_wire_crease(void)
+{
+	double xs[5][3] = { { -1, 0.02, 3.01 }, { -0.5, -0.01, 2.98 }, { 0, 0.03, 3.02 },
+	                    { 0.5, 0.0, 2.99 }, { 1, -0.02, 3.0 } };
+	struct fct_wire w[4];
+	for (uint32_t i = 0; i < 4; i++)
+		w[i] = (struct fct_wire){ i, i + 1, 0, 1 };
+	struct fct_plane pl[2] = { { { 0, -1, 0 }, 0, 10, 0 }, { { 0, 0, -1 }, 3, 10, 0 } };
+	for (int straight = 0; straight < 2; straight++) {
+		struct fct_mesh m;
+		wire_mesh(&m, xs, 5, w, 4, pl, 2, 0);
+		struct fct_project_params par;
+		fct_project_params_default(&par);
+		par.straighten = straight;
+		struct fct_project_stats st;
+		CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+		CHECK_INT(st.by_k[2], 5);
+		CHECK_INT(st.moved[2], 5);
+		/* k = 2: the foot on the line keeps x. */
+		for (size_t v = 0; v < m.nv; v++) {
+			CHECK_NEAR(m.xyz[3 * v + 1], 0, 1e-15);
+			CHECK_NEAR(m.xyz[3 * v + 2], 3, 1e-15);
+		}
+		size_t nw = 0;
+		struct fct_wire *got = wires_of(&m, &nw);
+		if (straight) {
+			CHECK_INT(st.straightened, 3);
+			CHECK_INT(m.nv, 2);
+			CHECK_INT(nw, 1);
+			CHECK_NEAR(m.xyz[0], -1, 0);
+			CHECK_NEAR(m.xyz[3], 1, 0);
+			CHECK(nw == 1 && got[0].v1 == 0 && got[0].v2 == 1 && got[0].p1 == 0 && got[0].p2 == 1);
+		} else {
+			CHECK_INT(st.straightened, 0);
+			CHECK_INT(m.nv, 5);
+			CHECK_INT(nw, 4);
+		}
+		free(got);
+		fct_mesh_free(&m);
+	}
+}
+
+/* An occlusion: a box face on the plane z = 2 (patch 0) before a wall z = 4
+ * (patch 1), both facing the camera (normal -z).  The depth map joined them,
+ * so the silhouette chain (vertices 0-2, at depth 2.5 between the two) has
+ * patch 0 on one side and 1 on the other.  The planes are parallel: the
+ * vertices are torn, the box keeps each vertex on z = 2 along its ray and
+ * the wall gets a copy on z = 4 along the same ray -- the same pixel.  The
+ * two border chains of the box (patch 0 / -1) keep their vertices 3, 4. */
+static void test_wire_tear(void)
+{
+	double xs[5][3] = { { 0.5, -0.5, 2.5 }, { 0.5, 0, 2.5 }, { 0.5, 0.5, 2.5 }, { -0.5, 0.5, 2 },
+	                    { -0.5, -0.5, 2 } };
+	struct fct_wire w[5] = { { 0, 1, 0, 1 }, { 1, 2, 0, 1 }, { 2, 3, 0, -1 }, { 3, 4, 0, -1 },
+	                         { 4, 0, 0, -1 } };
+	struct fct_plane pl[2] = { { { 0, 0, -1 }, 2, 10, 0 }, { { 0, 0, -1 }, 4, 10, 0 } };
+	struct fct_mesh m;
+	wire_mesh(&m, xs, 5, w, 5, pl, 2, 1);
+	struct fct_project_params par;
+	fct_project_params_default(&par);
+	par.max_move = 0.4;
+	struct fct_project_stats st;
+	CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+	CHECK_INT(st.torn, 3);
+	CHECK_INT(st.tear_copies, 3);
+	CHECK_INT(st.rejected, 0);
+	CHECK_INT(m.nv, 8);
+	/* Vertex i (i < 3) on the box: (0.5, y, 2.5) * 2 / 2.5; its copy 5 + i on
+	 * the wall: * 4 / 2.5. */
+	for (int i = 0; i < 3; i++) {
+		for (int q = 0; q < 3; q++) {
+			CHECK_NEAR(m.xyz[3 * i + q], xs[i][q] * 2 / 2.5, 1e-15);
+			CHECK_NEAR(m.xyz[3 * (5 + i) + q], xs[i][q] * 4 / 2.5, 1e-15);
+		}
+	}
+	/* The box's own corners, on one plane, go onto it. */
+	CHECK_NEAR(m.xyz[3 * 3 + 2], 2, 0);
+	/* The two silhouette edges split: 0-1, 1-2 on the box side (0 / -1) and
+	 * 5-6, 6-7 on the wall side (-1 / 1); the border edges are kept. */
+	size_t nw = 0;
+	struct fct_wire *got = wires_of(&m, &nw);
+	CHECK_INT(nw, 7);
+	int box = 0, wall = 0;
+	for (size_t e = 0; e < nw; e++) {
+		if (got[e].p1 == 0 && got[e].p2 == -1 && got[e].v1 < 3 && got[e].v2 < 3)
+			box++;
+		if (got[e].p1 == -1 && got[e].p2 == 1 && got[e].v1 >= 5 && got[e].v2 >= 5)
+			wall++;
+	}
+	CHECK_INT(box, 2);
+	CHECK_INT(wall, 2);
+	/* Copies share their pixel: s t equal. */
+	struct fct_prop *ps = fct_elem_find(&m.vertex, "s"), *pt = fct_elem_find(&m.vertex, "t");
+	CHECK(ps && pt);
+	if (ps && pt)
+		for (int i = 0; i < 3; i++) {
+			CHECK_NEAR(fct_prop_get(ps, 5 + (size_t)i), fct_prop_get(ps, (size_t)i), 1e-7);
+			CHECK_NEAR(fct_prop_get(pt, 5 + (size_t)i), fct_prop_get(pt, (size_t)i), 1e-7);
+		}
+	free(got);
+	fct_mesh_free(&m);
+
+	/* --no-tear: the vertices stay where they were. */
+	wire_mesh(&m, xs, 5, w, 5, pl, 2, 1);
+	par.tear = 0;
+	CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+	CHECK_INT(st.torn, 0);
+	CHECK_INT(m.nv, 5);
+	CHECK_NEAR(m.xyz[2], 2.5, 0);
+	fct_mesh_free(&m);
+}
+
+/* The image guard: patch 0 (plane z = 2) is a polygon 0-4-3-1-2 whose
+ * vertex 1 lies off the plane at (0.3, 0, 1), pixel (79.5, 49.5).  Its
+ * perpendicular foot (0.3, 0, 2) is at pixel (64.5, 49.5), from where the
+ * edge 1-2 to (37, 62) passes u = 62 at v = 50.6, across the edge 4-3
+ * (u = 62, v from 44.5 to 54.5): the boundary would cross itself.  From
+ * the vertex's own pixel it passes at v = 54.6, clear of it.  So the foot
+ * is refused and the vertex goes along its ray onto the plane instead:
+ * (0.6, 0, 2), the same pixel. */
+static double wire_crossings(const struct fct_mesh *m, const struct fct_wire *w, size_t nw)
+{
+	double (*px)[2] = calloc(m->nv, sizeof *px);
+	for (size_t i = 0; i < m->nv; i++)
+		px[i][0] = 100 * m->xyz[3 * i] / m->xyz[3 * i + 2] + 49.5,
+		px[i][1] = 100 * m->xyz[3 * i + 1] / m->xyz[3 * i + 2] + 49.5;
+	int n = 0;
+	for (size_t a = 0; a < nw; a++)
+		for (size_t b = a + 1; b < nw; b++)
+			n += fct_segments_conflict(px[w[a].v1], px[w[a].v2], px[w[b].v1], px[w[b].v2], w[a].v1,
+			                           w[a].v2, w[b].v1, w[b].v2);
+	free(px);
+	return n;
+}
+
+static void test_wire_guard(void)
+{
+	double xs[5][3] = { { -0.25, -0.25, 2 }, { 0.3, 0, 1 }, { -0.25, 0.25, 2 }, { 0.25, 0.1, 2 },
+	                    { 0.25, -0.1, 2 } };
+	struct fct_wire w[5] = { { 0, 4, 0, -1 }, { 4, 3, 0, -1 }, { 3, 1, 0, -1 }, { 1, 2, 0, -1 },
+	                         { 2, 0, 0, -1 } };
+	struct fct_plane pl[1] = { { { 0, 0, -1 }, 2, 10, 0 } };
+	struct fct_mesh m;
+	wire_mesh(&m, xs, 5, w, 5, pl, 1, 1);
+	CHECK_INT(wire_crossings(&m, w, 5), 0);
+	struct fct_project_params par;
+	fct_project_params_default(&par);
+	par.max_move = 2;
+	struct fct_project_stats st;
+	CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+	CHECK_INT(st.cross_refused, 1);
+	CHECK_INT(st.ray_fallback, 1);
+	CHECK_NEAR(m.xyz[3], 0.6, 1e-15);
+	CHECK_NEAR(m.xyz[4], 0, 1e-15);
+	CHECK_NEAR(m.xyz[5], 2, 1e-15);
+	CHECK_INT(wire_crossings(&m, w, 5), 0);
+	fct_mesh_free(&m);
+
+	/* Without tearing (which includes the ray fallback) the vertex keeps its
+	 * place; the boundary still does not cross. */
+	wire_mesh(&m, xs, 5, w, 5, pl, 1, 1);
+	par.tear = 0;
+	CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+	CHECK_INT(st.cross_refused, 1);
+	CHECK_NEAR(m.xyz[3], 0.3, 0);
+	CHECK_NEAR(m.xyz[5], 1, 0);
+	CHECK_INT(wire_crossings(&m, w, 5), 0);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_one_plane();
@@ -905,5 +1107,8 @@ int main(void)
 	test_room_depth_scale();
 	test_dense_view();
 	test_dense_scale();
+	test_wire_crease();
+	test_wire_tear();
+	test_wire_guard();
 	CHECK_DONE();
 }
