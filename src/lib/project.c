@@ -1012,9 +1012,10 @@ static uint32_t copy_of(const size_t *lstart, const uint32_t *lab, const long *f
 
 /* The copies of a torn vertex x0 seen from centre, one per plane
  * (normals n, offsets d), along its ray into out[3k]; 0 when one of the
- * rays meets its plane too obliquely, behind the camera or too far. */
+ * rays meets its plane too obliquely, behind the camera or farther than
+ * reach. */
 static int tear_copies(const double *n, const double *d, size_t k, const double centre[3],
-                       const double x0[3], double bound, double *out)
+                       const double x0[3], double reach, double *out)
 {
 	double r[3];
 	fct_v3_sub(r, x0, centre);
@@ -1027,7 +1028,7 @@ static int tear_copies(const double *n, const double *d, size_t k, const double 
 			return 0;
 		/* x0 + s r on the plane: n.(x0 + s r) + d = 0 */
 		double s = -(fct_v3_dot(n + 3 * q, x0) + d[q]) / nr;
-		if (!(1 + s > 0) || !(fabs(s) * len <= FCT_PROJECT_TEAR_EDGES * bound))
+		if (!(1 + s > 0) || !(fabs(s) * len <= reach))
 			return 0;
 		fct_v3_axpy(out + 3 * q, x0, s, r);
 	}
@@ -1618,10 +1619,14 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		 * of its planes, which keeps its pixel -- one plane: the vertex
 		 * moves; more: it is torn. */
 		int torn = 0, rayed = 0;
-		if (wired && p->tear && have_cam && k >= 1 && !flipped && (refused || apart || crossing)) {
+		if (wired && p->tear && have_cam && !flipped && k >= 1 && (refused || apart || crossing)) {
 			if (fct_grow((void **)&txyz, &txyz_cap, 3 * (tstart_n + k), sizeof *txyz, err))
 				goto out;
-			if (tear_copies(nbuf, dbuf, k, centre, x0, st.bound, txyz + 3 * tstart_n)) {
+			/* A vertex of one plane refused for its distance is far off
+			 * that plane: the ray may take it at most FCT_PROJECT_RAY_EDGES
+			 * bounds (a small patch's plane is not to be trusted far out). */
+			double reach = k == 1 && refused ? FCT_PROJECT_RAY_EDGES : FCT_PROJECT_TEAR_EDGES;
+			if (tear_copies(nbuf, dbuf, k, centre, x0, reach * st.bound, txyz + 3 * tstart_n)) {
 				if (k == 1) {
 					memcpy(x, txyz + 3 * tstart_n, sizeof x0);
 					rayed = 1;

@@ -46,6 +46,8 @@
 #define FCT_PROJECT_TEAR_COS 0.1       /* a torn copy's ray meets its plane at most
                                            ~84 degrees from the normal */
 #define FCT_PROJECT_TEAR_EDGES 10.0    /* and moves at most this many bounds */
+#define FCT_PROJECT_RAY_EDGES 3.0      /* a vertex of one plane refused for its distance
+                                           moves along its ray at most this many bounds */
 #define FCT_PROJECT_TEAR_APART 0.1     /* a rank-deficient point this many bounds off one
                                            of its planes is torn too */
 #define FCT_PROJECT_SCALE_MIN_AREA 0.01 /* fct_project_mesh: patches under this fraction
@@ -213,7 +215,13 @@ struct fct_project_stats {
  * side's plane: an edge whose two sides got different vertices becomes two
  * edges, one per side, each with -1 on the other.  The copies share their
  * pixel, so the model has no gap in the image and a true depth
- * discontinuity in space.  st may be NULL.  0 or -1. */
+ * discontinuity in space.  The same along-ray move rescues a vertex of one
+ * plane (no copy), and tears or moves a vertex whose move would make a
+ * patch boundary cross itself in the image (tripatch triangulates there),
+ * which is refused; a vertex of one plane refused for its distance moves at
+ * most FCT_PROJECT_RAY_EDGES bounds.  Crease vertices left on the line of
+ * their two planes are dropped with straighten (projverts(1) has the
+ * rules).  st may be NULL.  0 or -1. */
 int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
                      struct fct_project_stats *st, struct fct_err *err);
 
