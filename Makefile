@@ -6,6 +6,7 @@
 #   make fuzz           libFuzzer targets (clang), FUZZ_TIME seconds each
 #   make bench          throughput figures beside a reference run
 #   make demo           the pipelines on the bundled samples, into out/
+#   make gallery        the demo, and the README's pictures in docs/gallery
 #   make install        PREFIX=/usr/local DESTDIR=
 #   make lint-man       mandoc -Tlint on every page
 
@@ -108,8 +109,12 @@ fuzz: build/config.mk
 bench: $(PROGS) $(BENCHES)
 	@FCT_BIN=$(O)/bin FCT_BENCH=$(O)/bench sh bench/run
 
-demo: $(PROGS)
+demo: $(PROGS) $(SCRIPT_BIN)
 	@FCT_BIN=$(O)/bin sh tools/demo
+
+# The README's pictures: the demo, then small contact sheets in docs/gallery.
+gallery: $(PROGS) $(SCRIPT_BIN)
+	@FCT_BIN=$(O)/bin sh tools/demo --gallery docs/gallery
 
 lint-man:
 	@command -v mandoc >/dev/null || { echo "lint-man: mandoc is missing (tools/install-deps)" >&2; exit 1; }
@@ -127,7 +132,7 @@ uninstall:
 clean:
 	rm -rf build out
 
-.PHONY: all check sanitize fuzz bench demo lint-man install uninstall clean
+.PHONY: all check sanitize fuzz bench demo gallery lint-man install uninstall clean
 .SECONDARY:
 .DELETE_ON_ERROR:
 
