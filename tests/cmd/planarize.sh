@@ -70,6 +70,25 @@ if [ -d "$F" ]; then
 	check_num "7-Scenes frame: E_avg below 3 cm" "$(figure mean $TMP/k.dist)" "<" 0.03
 fi
 
+# Bad or odd input along the whole pipeline (issue: empty meshes, a single
+# face, all faces coplanar, no image coordinates, point clouds, unlabelled
+# faces): a clear message or a sensible result.
+printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n' > $TMP/empty.ply
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > $TMP/one.ply
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n' > $TMP/cloud.ply
+run_case 1 "segplanes -o $TMP/e1.ply $TMP/empty.ply" "" "segplanes: $TMP/empty.ply: no faces to segment (an empty mesh)"
+run_case 1 "segplanes -o $TMP/c1.ply $TMP/cloud.ply" "" "segplanes: $TMP/cloud.ply: no faces to segment (a point cloud: mesh it first, e.g. with dm2mesh --points)"
+run_case 1 "simpchain -o $TMP/u1.ply $TMP/one.ply" "" "simpchain: $TMP/one.ply: faces have no patch property (label them with segplanes)"
+run_case 1 "projverts -o $TMP/u2.ply $TMP/one.ply" "" "projverts: $TMP/one.ply: no plane element (the planes of segplanes)"
+run_case 1 "tripatch -o $TMP/u3.ply $TMP/one.ply" "" "tripatch: $TMP/one.ply: no edge element (tripatch reads simpchain's wireframe)"
+# One face without image coordinates: the whole chain gives it back.
+run_case 0 "segplanes $TMP/one.ply | simpchain | projverts | tripatch -o $TMP/one-out.ply"
+check_num "a single face through the pipeline" "$(info faces $TMP/one-out.ply)" == 1
+# A whole view of one plane: two triangles.
+run_case 0 "mkscene --scene plane -o $TMP/plane"
+run_case 0 "planarize --camera $TMP/plane/view00.camera -o $TMP/plane.ply $TMP/plane/view00.depth.pfm $TMP/plane/view00.color.png"
+check_num "a view of one plane: two triangles" "$(info faces $TMP/plane.ply)" == 2
+
 # Usage.
 run_case 2 "planarize -K tum samples/tum/TUM_depth.png" "" "planarize: a depth image and an image are needed"
 run_case 2 "planarize -K tum samples/tum/TUM_depth.png samples/tum/TUM_color.png" "" "planarize: -o model is needed"
