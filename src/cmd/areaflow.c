@@ -18,8 +18,8 @@
 static const char usage[] =
 	"usage: areaflow [-aqv] [-o file] [--method name] [--iterations n]\n"
 	"                [--lambda l] [--mu m] [--max-iterations n] [--tol t]\n"
-	"                [--window w] [--sigma s] [--delta d] [--no-crease]\n"
-	"                [--write-crease] [--threads n] [input]\n"
+	"                [--window w] [--sigma s] [--delta d] [--rings n]\n"
+	"                [--passes n] [--no-crease] [--write-crease] [--threads n] [input]\n"
 	"Smooth a triangle mesh by area decreasing flow: each vertex moves along its\n"
 	"normal to the least area of its umbrella held by its distance from the input\n"
 	"(eqs. 2 and 3), less where the tensor vote of the normals around it finds a\n"
@@ -43,6 +43,10 @@ static const char usage[] =
 	"                     (default 1.5)\n"
 	"      --delta d      eq. 4: crease when the mean voted normal is within d of\n"
 	"                     perpendicular to the main direction (default 0.3)\n"
+	"      --rings n      normals (of the vote and of the steps) averaged over n\n"
+	"                     rings of faces by area (default 0: none)\n"
+	"      --passes n     normals taken on a copy smoothed by n Laplacian passes\n"
+	"                     (default 0: none)\n"
 	"      --no-crease    no adaptive term: s = 0 everywhere\n"
 	"      --write-crease add the float vertex property crease (s of the output)\n"
 	"      --threads n    threads (default 0: one per processor)\n"
@@ -53,7 +57,7 @@ static const char usage[] =
 
 enum {
 	OPT_VERSION = 256, OPT_METHOD, OPT_ITER, OPT_LAMBDA, OPT_MU, OPT_MAXIT, OPT_TOL,
-	OPT_WINDOW, OPT_SIGMA, OPT_DELTA, OPT_NOCREASE, OPT_WRITE, OPT_THREADS
+	OPT_WINDOW, OPT_SIGMA, OPT_DELTA, OPT_NOCREASE, OPT_WRITE, OPT_THREADS, OPT_RINGS, OPT_PASSES
 };
 
 /* Keep nx ny nz true to the moved surface, on the side they pointed to. */
@@ -96,6 +100,8 @@ int main(int argc, char **argv)
 		{"window", required_argument, NULL, OPT_WINDOW},
 		{"sigma", required_argument, NULL, OPT_SIGMA},
 		{"delta", required_argument, NULL, OPT_DELTA},
+		{"rings", required_argument, NULL, OPT_RINGS},
+		{"passes", required_argument, NULL, OPT_PASSES},
 		{"no-crease", no_argument, NULL, OPT_NOCREASE},
 		{"write-crease", no_argument, NULL, OPT_WRITE},
 		{"threads", required_argument, NULL, OPT_THREADS},
@@ -140,6 +146,8 @@ int main(int argc, char **argv)
 		case OPT_WINDOW: p.window = fct_opt_double("--window", optarg, 0, 100); break;
 		case OPT_SIGMA: p.sigma = fct_opt_double("--sigma", optarg, 1e-6, 1e6); break;
 		case OPT_DELTA: p.delta = fct_opt_double("--delta", optarg, 0, 1); break;
+		case OPT_PASSES: p.passes = (int)fct_opt_long("--passes", optarg, 0, 1000); break;
+		case OPT_RINGS: p.rings = (int)fct_opt_long("--rings", optarg, 0, 1000); break;
 		case OPT_NOCREASE: p.crease = 0; break;
 		case OPT_WRITE: write_crease = 1; break;
 		case OPT_THREADS: p.threads = (int)fct_opt_long("--threads", optarg, 0, 64); break;

@@ -33,6 +33,8 @@ void fct_areaflow_params_default(struct fct_areaflow_params *p)
 	p->lap_lambda = 0.5;
 	p->taubin_mu = -0.53;
 	p->threads = 0;
+	p->rings = 0;
+	p->passes = 0;
 }
 
 /* Eq. (3) ---------------------------------------------------------------- */
@@ -281,6 +283,9 @@ struct flow {
 	const double *x0;         /* input positions */
 	double *fn, *fc;          /* unit face normals (0 for no area), centroids */
 	double *fa;               /* face area vectors (twice the area) */
+	double *g;                /* smoothed face area vectors (rings passes) */
+	double *vn;               /* smoothed unit vertex normals */
+	double *sm, *sm2;         /* Laplacian-smoothed copies (passes) */
 	double *s;                /* crease strength */
 	unsigned char *held;      /* 1: does not move */
 	uint32_t *order;          /* moving vertices by colour */
@@ -353,6 +358,61 @@ static void faces_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk
 	}
 }
 
+/* One pass of the normal smoothing, vertices: vn = the mean of g over the
+ * faces of the vertex (unnormalised: area vectors add up to the vector
+ * area of the region, whose direction is the region's normal however noisy
+ * its triangles are). */
+static void vsmooth_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	const struct fct_adj *A = F->adj;
+	for (size_t v = lo; v < hi; v++) {
+		double n[3] = { 0, 0, 0 };
+		uint32_t b = A->vert_fstart[v], e = A->vert_fstart[v + 1];
+		for (uint32_t i = b; i < e; i++)
+			fct_v3_add(n, n, F->g + 3 * (size_t)A->vert_f[i]);
+		double k = e > b ? 1.0 / (double)(e - b) : 0;
+		for (int j = 0; j < 3; j++)
+			F->vn[3 * v + j] = n[j] * k;
+	}
+}
+
+/* The face pass: g = the mean of vn over the corners of the face. */
+static void fsmooth_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	const struct fct_mesh *m = F->m;
+	for (size_t f = lo; f < hi; f++) {
+		uint32_t b = m->fstart[f], k = m->fstart[f + 1] - b;
+		double n[3] = { 0, 0, 0 };
+		for (uint32_t i = 0; i < k; i++)
+			fct_v3_add(n, n, F->vn + 3 * (size_t)m->fvert[b + i]);
+		for (int j = 0; j < 3; j++)
+			F->g[3 * f + j] = k ? n[j] / k : 0;
+	}
+}
+
+/* Unit smoothed normals: face normals (for the vote) from g, vertex normals
+ * (the direction of the step) from vn. */
+static void fnormal_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	for (size_t f = lo; f < hi; f++) {
+		double *g = F->g + 3 * f, *n = F->fn + 3 * f, len = sqrt(fct_v3_dot(g, g));
+		for (int j = 0; j < 3; j++)
+			n[j] = len > 0 && isfinite(len) ? g[j] / len : 0;
+	}
+}
+
+static void vnormal_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	for (size_t v = lo; v < hi; v++) {
+		double *n = F->vn + 3 * v, len = sqrt(fct_v3_dot(n, n));
+		for (int j = 0; j < 3; j++)
+			n[j] = len > 0 && isfinite(len) ? n[j] / len : 0;
+	}
+}
 
 /* Eq. (4) at every vertex: the faces of the geodesic window are gathered by
  * a breadth-first walk from the vertex through the vertices of faces whose
@@ -445,14 +505,18 @@ static void flow_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 		size_t v = F->order[F->color_lo + k];
 		double *p = x + 3 * v;
 		double n[3] = { 0, 0, 0 };
-		for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
-			uint32_t p1, p2;
-			double a[3], b[3], c[3];
-			corner_ring(F, i, &p1, &p2);
-			fct_v3_sub(a, x + 3 * (size_t)p1, p);
-			fct_v3_sub(b, x + 3 * (size_t)p2, p);
-			fct_v3_cross(c, a, b);
-			fct_v3_add(n, n, c);
+		if (F->p->rings > 0 || F->p->passes > 0) {
+			n[0] = F->vn[3 * v], n[1] = F->vn[3 * v + 1], n[2] = F->vn[3 * v + 2];
+		} else {
+			for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
+				uint32_t p1, p2;
+				double a[3], b[3], c[3];
+				corner_ring(F, i, &p1, &p2);
+				fct_v3_sub(a, x + 3 * (size_t)p1, p);
+				fct_v3_sub(b, x + 3 * (size_t)p2, p);
+				fct_v3_cross(c, a, b);
+				fct_v3_add(n, n, c);
+			}
 		}
 		double len = sqrt(fct_v3_dot(n, n));
 		if (!(len > 0) || !isfinite(len))
@@ -687,6 +751,10 @@ static void flow_free(struct flow *F)
 	free(F->fn);
 	free(F->fc);
 	free(F->fa);
+	free(F->g);
+	free(F->vn);
+	free(F->sm);
+	free(F->sm2);
 	free(F->s);
 	free(F->held);
 	free(F->nbr);
@@ -713,11 +781,35 @@ static int thread_count(int want)
  * current positions; returns the mean s over vertices with faces. */
 static double geometry(struct flow *F, int want_crease, size_t nwith)
 {
+	double *save = F->cur, *save_next = F->next;
+	if (F->p->passes > 0) {
+		/* normals (and vote positions) of a Laplacian-smoothed copy */
+		memcpy(F->sm, save, sizeof *F->sm * 3 * F->m->nv);
+		F->cur = F->sm;
+		F->next = F->sm2;
+		F->factor = 0.5;
+		for (int i = 0; i < F->p->passes; i++) {
+			run(F, laplace_chunk, F->m->nv);
+			double *t = F->cur; F->cur = F->next; F->next = t;
+		}
+	}
 	run(F, faces_chunk, F->m->nf);
-	if (!want_crease)
-		return 0;
-	run(F, crease_chunk, F->m->nv);
-	return nwith ? sum_parts(F->part) / (double)nwith : 0;
+	memcpy(F->g, F->fa, sizeof *F->g * 3 * F->m->nf);
+	for (int r = 0; r < F->p->rings; r++) {
+		run(F, vsmooth_chunk, F->m->nv);
+		run(F, fsmooth_chunk, F->m->nf);
+	}
+	run(F, vsmooth_chunk, F->m->nv);
+	run(F, vnormal_chunk, F->m->nv);
+	run(F, fnormal_chunk, F->m->nf);
+	double ms = 0;
+	if (want_crease) {
+		run(F, crease_chunk, F->m->nv);
+		ms = nwith ? sum_parts(F->part) / (double)nwith : 0;
+	}
+	F->cur = save;
+	F->next = save_next;
+	return ms;
 }
 
 int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double *crease,
@@ -747,7 +839,9 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	if (fct_adj_build(&adj, m, err) ||
 	    alloc_doubles(&x0, m->nv, 3, err) || alloc_doubles(&F.next, m->nv, 3, err) ||
 	    alloc_doubles(&F.fn, m->nf, 3, err) || alloc_doubles(&F.fc, m->nf, 3, err) ||
-	    alloc_doubles(&F.fa, m->nf, 3, err) ||
+	    alloc_doubles(&F.fa, m->nf, 3, err) || alloc_doubles(&F.g, m->nf, 3, err) ||
+	    alloc_doubles(&F.vn, m->nv, 3, err) ||
+	    alloc_doubles(&F.sm, m->nv, 3, err) || alloc_doubles(&F.sm2, m->nv, 3, err) ||
 	    alloc_doubles(&F.s, m->nv, 1, err) ||
 	    !(F.held = fct_alloc_array(m->nv, 1, err)))
 		goto out;
@@ -799,7 +893,7 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	int need_crease = (p->method == FCT_SMOOTH_AREAFLOW && p->crease) || crease;
 	if (need_crease && scratch_alloc(&F, err))
 		goto out;
-	if ((p->method == FCT_SMOOTH_LAPLACIAN || p->method == FCT_SMOOTH_TAUBIN) &&
+	if ((p->method == FCT_SMOOTH_LAPLACIAN || p->method == FCT_SMOOTH_TAUBIN || p->passes > 0) &&
 	    build_neighbours(&F, err))
 		goto out;
 

@@ -48,6 +48,15 @@ struct fct_areaflow_params {
 	double lap_lambda;   /* Laplacian and Taubin (default 0.5) */
 	double taubin_mu;    /* Taubin's negative step (default -0.53) */
 	int threads;         /* 0 (default): one per online processor, at most 64 */
+	/* Normal smoothing: the face normals that vote and the vertex normals
+	 * the steps follow are area vectors averaged over this many rings
+	 * (default 0: the faces' own normals and the umbrella's). */
+	int rings;
+	/* The normals are taken on a copy of the mesh smoothed by this many
+	 * Laplacian passes (factor 0.5; default 0: on the mesh itself); the
+	 * flow moves the mesh itself.  With passes or rings the step follows
+	 * the smoothed vertex normal, computed once per iteration. */
+	int passes;
 };
 
 void fct_areaflow_params_default(struct fct_areaflow_params *p);

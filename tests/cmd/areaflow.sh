@@ -68,4 +68,14 @@ for m in "" "--no-crease"; do
 done
 areaflow --no-crease --iterations 5 "$TMP/r.ply" | meshdist - "$TMP/room/scene.ply" >"$TMP/d1"
 check_num "room: areaflow --no-crease drops the distance by 40%" "$(value mean "$TMP/d1")" "<" "$(awk -v r="$raw" 'BEGIN { print 0.6 * r }')"
+# Normals from a copy smoothed by 5 Laplacian passes (--passes): the
+# distance drops by more than 40 percent and is below Laplacian's and
+# Taubin's at the same iteration count (measured: 3.8 mm, 4.1, 6.7; raw 13.5).
+areaflow --passes 5 --lambda 0.1 --iterations 5 "$TMP/r.ply" | meshdist - "$TMP/room/scene.ply" >"$TMP/dp"
+areaflow --method laplacian --iterations 5 "$TMP/r.ply" | meshdist - "$TMP/room/scene.ply" >"$TMP/dl"
+areaflow --method taubin --iterations 5 "$TMP/r.ply" | meshdist - "$TMP/room/scene.ply" >"$TMP/dt"
+echo "room, step 4, x5: areaflow --passes 5 --lambda 0.1 $(value mean "$TMP/dp"), laplacian $(value mean "$TMP/dl"), taubin $(value mean "$TMP/dt")" >&2
+check_num "room: --passes 5 drops the distance by 40%" "$(value mean "$TMP/dp")" "<" "$(awk -v r="$raw" 'BEGIN { print 0.6 * r }')"
+check_num "room: --passes 5 below laplacian" "$(value mean "$TMP/dp")" "<" "$(value mean "$TMP/dl")"
+check_num "room: --passes 5 below taubin" "$(value mean "$TMP/dp")" "<" "$(value mean "$TMP/dt")"
 finish
