@@ -25,6 +25,47 @@ char *fct_path_dir(const char *path, struct fct_err *err)
 	return d;
 }
 
+/* Collapse "." and "seg/.." in place, lexically: a relative path keeps its
+ * leading "..", an absolute one stops at the root. */
+static void normalise(char *p)
+{
+	int abs_path = p[0] == '/';
+	size_t o = 0, depth = 0;   /* depth: segments written that ".." may remove */
+	for (char *s = p; *s;) {
+		while (*s == '/')
+			s++;
+		char *e = s;
+		while (*e && *e != '/')
+			e++;
+		size_t len = (size_t)(e - s);
+		if (len == 0 || (len == 1 && s[0] == '.')) {
+		} else if (len == 2 && s[0] == '.' && s[1] == '.' && (depth > 0 || abs_path)) {
+			if (depth > 0) {
+				while (o > 0 && p[o - 1] != '/')
+					o--;
+				if (o > 0)
+					o--;
+				depth--;
+			}
+		} else {
+			if (o > 0 || abs_path)
+				p[o++] = '/';
+			memmove(p + o, s, len);
+			o += len;
+			if (!(len == 2 && s[0] == '.' && s[1] == '.'))
+				depth++;
+		}
+		s = e;
+	}
+	if (o == 0) {
+		if (abs_path)
+			p[o++] = '/';
+		else
+			p[o++] = '.';
+	}
+	p[o] = 0;
+}
+
 char *fct_path_join(const char *dir, const char *rel, struct fct_err *err)
 {
 	if (rel[0] == '/' || !dir || !strcmp(dir, "."))
@@ -37,6 +78,10 @@ char *fct_path_join(const char *dir, const char *rel, struct fct_err *err)
 	}
 	size_t dl = strlen(dir);
 	snprintf(p, n, "%s%s%s", dir, dl && dir[dl - 1] == '/' ? "" : "/", rel);
+	/* A folder joined with "../x" names x beside it, also when the folder
+	 * is later removed (a temporary stage folder): the path must not pass
+	 * through it. */
+	normalise(p);
 	return p;
 }
 

@@ -6,7 +6,9 @@
 
 /* The folder part of path ("." when it has none); malloc'd. */
 char *fct_path_dir(const char *path, struct fct_err *err);
-/* dir/rel, or rel itself when rel is absolute or dir is "." or NULL; malloc'd. */
+/* dir/rel, or rel itself when rel is absolute or dir is "." or NULL, with
+ * "." and "seg/.." collapsed lexically (a relative result keeps its leading
+ * ".."); malloc'd. */
 char *fct_path_join(const char *dir, const char *rel, struct fct_err *err);
 /* The path of target relative to folder from (both relative to the current
  * folder or absolute); an absolute target stays absolute.  malloc'd. */
