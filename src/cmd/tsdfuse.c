@@ -25,7 +25,7 @@ static const char usage[] =
 	"               [--carve] [--weight constant | incidence | depth2]\n"
 	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
 	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--poses file ...]\n"
-	"               [--conf file] [view ...]\n"
+	"               [--conf file] [--threads n] [view ...]\n"
 	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
 	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
 	"the true signed distance to each view's surface, and extract the surface.\n"
@@ -47,6 +47,7 @@ static const char usage[] =
 	"      --poses file   camera-to-world poses of the depth images: a TUM\n"
 	"                     trajectory, or one 4x4 or 3x4 file per image (repeated)\n"
 	"      --projective   Curless-Levoy depth difference instead of true distance\n"
+	"      --threads n    threads (default 0: one per processor)\n"
 	"      --trunc n      band half-width in voxels (default 3)\n"
 	"      --voxel size   voxel size in metres (default 0.01)\n"
 	"      --weight w     confidence of a view: constant (default), incidence\n"
@@ -55,7 +56,7 @@ static const char usage[] =
 	"      --version      print the version\n";
 
 enum { OPT_VOXEL = 256, OPT_TRUNC, OPT_BBOX, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW,
-       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_VERSION };
+       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION };
 
 struct options {
 	const char *out, *K, *conf;
@@ -84,6 +85,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"depth-scale", required_argument, NULL, OPT_SCALE},
 		{"poses", required_argument, NULL, OPT_POSES},
 		{"conf", required_argument, NULL, OPT_CONF},
+		{"threads", required_argument, NULL, OPT_THREADS},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ahK:o:qv";
@@ -133,6 +135,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 			break;
 		case OPT_POSES: o->poses[o->nposes++] = optarg; break;
 		case OPT_CONF: o->conf = optarg; break;
+		case OPT_THREADS: o->fp.threads = (int)fct_opt_long("--threads", optarg, 0, 64); break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}

@@ -3,35 +3,39 @@
  * fuse.h).
  *
  * Nearest points.  Hilton finds each band voxel's nearest point on the
- * view's mesh with a k-D tree.  Range-image meshes have triangles far
- * smaller than voxels, so here the search is a closest-point transform by
- * propagation: every triangle is splatted exactly into the voxels of its
- * bounding box grown by half a voxel, which gives a connected shell of
- * voxels around the surface with their nearest triangle; then the
- * band is grown layer by layer (26-neighbours), each new voxel taking the
- * best of its finished neighbours' triangles and walking downhill on the
- * mesh (across the edge or around the vertex where its closest point lies)
- * to the local minimum.  Cost: a few closest-point tests per band voxel,
- * independent of how finely the view is triangulated beyond the splat. */
+ * view's mesh with a k-D tree.  A range-image mesh is organised by its own
+ * sensor, so here the search starts in the view's image: the mesh is
+ * rasterised into its camera at two samples per pixel (the nearest and the
+ * farthest triangle of each sample), each candidate voxel (the blocks
+ * around the surface's cells, grown by the band) is projected, goes to the
+ * foot of the perpendicular on the plane of the triangle seen there, and
+ * again from the triangle seen at the foot until it stays, then walks
+ * downhill on the mesh (across the edge or around the vertex where its
+ * closest point lies) to the local minimum.  Voxels in front of the surface
+ * they see but out of its band also try the surfaces a band's width away in
+ * the image (around silhouettes).  Cost: a few closest-point tests per
+ * candidate voxel, nothing per triangle but the raster; blocks are shared
+ * out among threads and each writes only its own results, so the volume is
+ * the same for any thread count. */
 #include "fuse.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
-#include "adj.h"
 #include "geom.h"
 
-/* Per-view scratch: a hash of 8^3 blocks holding each voxel's best squared
- * distance, triangle and propagation layer. ------------------------------ */
-
-#define NOLAYER 255
+/* Per-view scratch: a hash of 8^3 blocks, the candidate voxels of a view
+ * (lo..hi, local coordinates) and their results. ------------------------- */
 
 struct sblock {
 	int32_t bx, by, bz;
-	float d2[FCT_VOXBLOCK_N];
-	int32_t tri[FCT_VOXBLOCK_N];
-	uint8_t layer[FCT_VOXBLOCK_N];
+	int8_t lo[3], hi[3];     /* box of voxels that may be in the band (lo > hi: none) */
+	size_t nvox, nborder;    /* voxels with a value, voxels skipped on a border */
+	float *d;                /* FCT_VOXBLOCK_N distances then as many weights (0: none) */
 };
 
 struct scratch {
@@ -57,8 +61,10 @@ static size_t key_hash(uint64_t k, size_t cap)
 
 static void scratch_free(struct scratch *s)
 {
-	for (size_t i = 0; i < s->n; i++)
+	for (size_t i = 0; i < s->n; i++) {
+		free(s->blk[i]->d);
 		free(s->blk[i]);
+	}
 	free(s->blk);
 	free(s->keys);
 	free(s->slot);
@@ -91,8 +97,8 @@ static int scratch_rehash(struct scratch *s, size_t cap, struct fct_err *err)
 	return 0;
 }
 
-/* The scratch block (bx, by, bz), created (d2 = inf, layer = NOLAYER) when
- * create is set; NULL when absent or out of memory (err set then). */
+/* The scratch block (bx, by, bz), created empty (lo > hi) when create is
+ * set; NULL when absent or out of memory (err set then). */
 static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, int32_t bz,
                                     int create, struct fct_err *err)
 {
@@ -113,16 +119,14 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 		return NULL;
 	if (fct_grow((void **)&s->blk, &s->blkcap, s->n + 1, sizeof *s->blk, err))
 		return NULL;
-	struct sblock *b = malloc(sizeof *b);
+	struct sblock *b = calloc(1, sizeof *b);
 	if (!b) {
 		fct_fail(err, "out of memory");
 		return NULL;
 	}
 	b->bx = bx, b->by = by, b->bz = bz;
-	for (int i = 0; i < FCT_VOXBLOCK_N; i++)
-		b->d2[i] = INFINITY;
-	memset(b->tri, 0xff, sizeof b->tri);
-	memset(b->layer, NOLAYER, sizeof b->layer);
+	for (int a = 0; a < 3; a++)
+		b->lo[a] = FCT_VOXBLOCK, b->hi[a] = -1;
 	size_t h = key_hash(k, s->cap);
 	while (s->keys[h] != UINT64_MAX)
 		h = (h + 1) & (s->cap - 1);
@@ -132,53 +136,119 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	return s->last = b;
 }
 
-static inline int local_index(int32_t i, int32_t j, int32_t k)
+/* Threads: fn(ctx, lo, hi) over [0, n) in chunks taken in turn; whatever
+ * runs where, every item writes only its own results. -------------------- */
+
+enum { MAX_THREADS = 64, NCHUNK = 256 };
+
+typedef void chunk_fn(void *ctx, size_t lo, size_t hi);
+
+struct job {
+	chunk_fn *fn;
+	void *ctx;
+	size_t n;
+	int nchunk;
+	atomic_int next;
+};
+
+static void *job_worker(void *arg)
 {
-	return fct_vox_local_of(i) + FCT_VOXBLOCK * (fct_vox_local_of(j) + FCT_VOXBLOCK * fct_vox_local_of(k));
+	struct job *j = arg;
+	for (;;) {
+		int c = atomic_fetch_add(&j->next, 1);
+		if (c >= j->nchunk)
+			break;
+		size_t lo = j->n * (size_t)c / (size_t)j->nchunk, hi = j->n * (size_t)(c + 1) / (size_t)j->nchunk;
+		if (lo < hi)
+			j->fn(j->ctx, lo, hi);
+	}
+	return NULL;
+}
+
+/* nchunk chunks (0: NCHUNK). */
+static void run(int nthreads, chunk_fn *fn, void *ctx, size_t n, int nchunk)
+{
+	struct job j = { fn, ctx, n, nchunk > 0 ? nchunk : NCHUNK, 0 };
+	pthread_t th[MAX_THREADS];
+	int started = 0;
+	for (int t = 1; t < nthreads && n > 1; t++) {
+		if (pthread_create(&th[t], NULL, job_worker, &j))
+			break;   /* fewer threads: the rest is done by those running */
+		started = t;
+	}
+	job_worker(&j);
+	for (int t = 1; t <= started; t++)
+		pthread_join(th[t], NULL);
+}
+
+static int thread_count(int want)
+{
+	if (want <= 0) {
+		long n = sysconf(_SC_NPROCESSORS_ONLN);
+		want = n > 0 ? (int)(n < MAX_THREADS ? n : MAX_THREADS) : 1;
+	}
+	return want < MAX_THREADS ? want : MAX_THREADS;
 }
 
 /* The view's triangles with what the search needs. ----------------------- */
 
 struct geo {
-	size_t nt;
+	size_t nt, nv;
 	const double *xyz;
-	uint32_t *tv;            /* 3 per triangle */
-	double *tn;              /* unit normal, 3 per triangle */
-	int32_t *nb;             /* triangle across edge k (corner k to k+1); -1 border, -2 other */
-	double *vn;              /* angle-weighted vertex pseudo-normals */
-	uint8_t *vborder;
-	struct fct_adj adj;
+	const uint32_t *tv;      /* 3 per triangle */
+	uint32_t *tvown;
+	double *tn;              /* unit normal, 3 per triangle; NaN: degenerate */
+	uint32_t *vfs, *vf;      /* faces of vertex v: vf[vfs[v] .. vfs[v + 1]), in face order */
 	struct fct_mesh tris;    /* the triangulated mesh when the input has polygons */
 	int own;
 };
 
 static void geo_free(struct geo *G)
 {
-	free(G->tv);
+	free(G->tvown);
 	free(G->tn);
-	free(G->nb);
-	free(G->vn);
-	free(G->vborder);
-	fct_adj_free(&G->adj);
+	free(G->vfs);
+	free(G->vf);
 	if (G->own)
 		fct_mesh_free(&G->tris);
 	memset(G, 0, sizeof *G);
 }
 
-static int geo_build(struct geo *G, const struct fct_mesh *m, struct fct_err *err)
+static void normals_chunk(void *ctx, size_t lo, size_t hi)
+{
+	struct geo *G = ctx;
+	for (size_t f = lo; f < hi; f++) {
+		const uint32_t *v = &G->tv[3 * f];
+		const double *a = &G->xyz[3 * v[0]], *b = &G->xyz[3 * v[1]], *c = &G->xyz[3 * v[2]];
+		double e1[3], e2[3], n[3];
+		fct_v3_sub(e1, b, a);
+		fct_v3_sub(e2, c, a);
+		fct_v3_cross(n, e1, e2);
+		double len = sqrt(fct_v3_dot(n, n));
+		int degenerate = !(len > 0) || !isfinite(len) || fct_triangle_degenerate(a, b, c);
+		for (int k = 0; k < 3; k++)
+			G->tn[3 * f + k] = degenerate ? NAN : n[k] / len;
+	}
+}
+
+/* Triangles of m (polygons fan-triangulated); with topo, their unit
+ * normals and the faces of each vertex too. */
+static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthreads,
+                     struct fct_err *err)
 {
 	memset(G, 0, sizeof *G);
 	const struct fct_mesh *t = m;
 	int alltri = 1;
 	for (size_t f = 0; f < m->nf && alltri; f++)
-		alltri = fct_face_size(m, f) == 3;
+		alltri = fct_face_size(m, f) == 3 && m->fstart[f] == 3 * f;
 	if (!alltri) {
 		/* Fan-triangulate polygons into a copy of the positions. */
 		G->own = 1;
 		fct_mesh_init(&G->tris);
 		if (fct_mesh_set_vertex_count(&G->tris, m->nv, err))
 			goto fail;
-		memcpy(G->tris.xyz, m->xyz, 3 * m->nv * sizeof *m->xyz);
+		if (m->nv)
+			memcpy(G->tris.xyz, m->xyz, 3 * m->nv * sizeof *m->xyz);
 		for (size_t f = 0; f < m->nf; f++) {
 			const uint32_t *v = &m->fvert[m->fstart[f]];
 			for (uint32_t k = 2; k < fct_face_size(m, f); k++) {
@@ -189,67 +259,30 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, struct fct_err *er
 		}
 		t = &G->tris;
 	}
-	size_t nt = t->nf, nv = t->nv;
-	G->nt = nt;
+	G->nt = t->nf, G->nv = t->nv;
 	G->xyz = t->xyz;
-	G->tv = fct_alloc_array(nt, 3 * sizeof *G->tv, err);
-	G->tn = fct_alloc_array(nt, 3 * sizeof *G->tn, err);
-	G->nb = fct_alloc_array(nt, 3 * sizeof *G->nb, err);
-	G->vn = calloc(nv ? 3 * nv : 1, sizeof *G->vn);
-	G->vborder = calloc(nv ? nv : 1, 1);
-	if (!G->tv || !G->tn || !G->nb || !G->vn || !G->vborder) {
+	G->tv = t->fvert;
+	if (!topo)
+		return 0;
+	size_t nt = G->nt, nv = G->nv;
+	G->tn = fct_alloc_array(nt ? nt : 1, 3 * sizeof *G->tn, err);
+	G->vfs = calloc(nv + 2, sizeof *G->vfs);
+	G->vf = fct_alloc_array(nt ? nt : 1, 3 * sizeof *G->vf, err);
+	if (!G->tn || !G->vfs || !G->vf) {
 		fct_fail(err, "out of memory");
 		goto fail;
 	}
-	if (fct_adj_build(&G->adj, t, err))
+	if (nt > (size_t)UINT32_MAX / 3) {
+		fct_fail(err, "%zu triangles: too many", nt);
 		goto fail;
-	for (size_t f = 0; f < nt; f++) {
-		const uint32_t *v = &t->fvert[t->fstart[f]];
-		memcpy(&G->tv[3 * f], v, 3 * sizeof *v);
-		const double *a = &t->xyz[3 * v[0]], *b = &t->xyz[3 * v[1]], *c = &t->xyz[3 * v[2]];
-		double e1[3], e2[3], n[3];
-		fct_v3_sub(e1, b, a);
-		fct_v3_sub(e2, c, a);
-		fct_v3_cross(n, e1, e2);
-		double len = sqrt(fct_v3_dot(n, n));
-		int degenerate = fct_triangle_degenerate(a, b, c) || !(len > 0) || !isfinite(len);
-		for (int k = 0; k < 3; k++)
-			G->tn[3 * f + k] = degenerate ? NAN : n[k] / len;
-		for (int k = 0; k < 3; k++) {
-			uint32_t e = G->adj.face_e[t->fstart[f] + k];
-			int32_t other = -2;
-			if (e == FCT_ADJ_NONE) {
-				other = -2;
-			} else if (fct_adj_edge_nfaces(&G->adj, e) == 1) {
-				other = -1;
-				G->vborder[v[k]] = G->vborder[v[(k + 1) % 3]] = 1;
-			} else if (fct_adj_edge_nfaces(&G->adj, e) == 2) {
-				const uint32_t *ef = &G->adj.edge_f[G->adj.edge_fstart[e]];
-				other = (int32_t)(ef[0] == f ? ef[1] : ef[0]);
-			}
-			G->nb[3 * f + k] = other;
-		}
-		if (degenerate)
-			continue;
-		/* Angle-weighted pseudo-normals (Baerentzen and Aanaes). */
-		for (int k = 0; k < 3; k++) {
-			const double *p = &t->xyz[3 * v[k]], *q = &t->xyz[3 * v[(k + 1) % 3]],
-			             *r = &t->xyz[3 * v[(k + 2) % 3]];
-			double u[3], w[3];
-			fct_v3_sub(u, q, p);
-			fct_v3_sub(w, r, p);
-			double c = fct_v3_dot(u, w) / sqrt(fct_v3_dot(u, u) * fct_v3_dot(w, w));
-			double ang = acos(c < -1 ? -1 : c > 1 ? 1 : c);
-			fct_v3_axpy(&G->vn[3 * v[k]], &G->vn[3 * v[k]], ang, &G->tn[3 * f]);
-		}
 	}
-	/* A triangle next to a degenerate one treats that edge as a border. */
-	for (size_t f = 0; f < nt; f++)
-		for (int k = 0; k < 3; k++) {
-			int32_t o = G->nb[3 * f + k];
-			if (o >= 0 && isnan(G->tn[3 * (size_t)o]))
-				G->nb[3 * f + k] = -1;
-		}
+	run(nthreads, normals_chunk, G, nt, 0);
+	for (size_t c = 0; c < 3 * nt; c++)
+		G->vfs[G->tv[c] + 2]++;
+	for (size_t v = 0; v < nv; v++)
+		G->vfs[v + 2] += G->vfs[v + 1];
+	for (size_t c = 0; c < 3 * nt; c++)
+		G->vf[G->vfs[G->tv[c] + 1]++] = (uint32_t)(c / 3);
 	return 0;
 fail:
 	geo_free(G);
@@ -263,20 +296,64 @@ static inline double tri_closest(const struct geo *G, size_t t, const double x[3
 	return fct_closest_on_triangle_nd(x, &G->xyz[3 * v[0]], &G->xyz[3 * v[1]], &G->xyz[3 * v[2]], q, r);
 }
 
-/* Walk from triangle t downhill to the triangle nearest x: across the edge
- * or around the vertex where the closest point lies.  Returns the triangle,
- * *d2 its squared distance. */
-static int32_t walk(const struct geo *G, int32_t t, const double x[3], float *d2out)
+/* The triangle across edge (a, b) of t: >= 0; -1 on a border (no other
+ * proper triangle has that edge); -2 when several have it. */
+static int32_t across(const struct geo *G, size_t t, uint32_t a, uint32_t b)
 {
-	double q[3];
-	enum fct_tri_region r;
-	double best = tri_closest(G, (size_t)t, x, q, &r);
+	int32_t o = -1;
+	for (uint32_t i = G->vfs[a]; i < G->vfs[a + 1]; i++) {
+		uint32_t f = G->vf[i];
+		if (f == t || isnan(G->tn[3 * (size_t)f]))
+			continue;
+		const uint32_t *w = &G->tv[3 * (size_t)f];
+		if (w[0] == b || w[1] == b || w[2] == b) {
+			if (o != -1)
+				return -2;
+			o = (int32_t)f;
+		}
+	}
+	return o;
+}
+
+/* 1 when vertex v is on a border; else 0 and its angle-weighted
+ * pseudo-normal (Baerentzen and Aanaes) in vn. */
+static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
+{
+	vn[0] = vn[1] = vn[2] = 0;
+	for (uint32_t i = G->vfs[v]; i < G->vfs[v + 1]; i++) {
+		uint32_t f = G->vf[i];
+		if (isnan(G->tn[3 * (size_t)f]))
+			continue;
+		const uint32_t *w = &G->tv[3 * (size_t)f];
+		int k = w[0] == v ? 0 : w[1] == v ? 1 : 2;
+		uint32_t qv = w[(k + 1) % 3], rv = w[(k + 2) % 3];
+		if (across(G, f, v, qv) == -1 || across(G, f, rv, v) == -1)
+			return 1;
+		const double *p = &G->xyz[3 * v], *q = &G->xyz[3 * qv], *r = &G->xyz[3 * rv];
+		double u[3], s[3];
+		fct_v3_sub(u, q, p);
+		fct_v3_sub(s, r, p);
+		double c = fct_v3_dot(u, s) / sqrt(fct_v3_dot(u, u) * fct_v3_dot(s, s));
+		double ang = acos(c < -1 ? -1 : c > 1 ? 1 : c);
+		fct_v3_axpy(vn, vn, ang, &G->tn[3 * (size_t)f]);
+	}
+	return 0;
+}
+
+/* Walk from triangle t downhill to the triangle nearest x: across the edge
+ * or around the vertex where the closest point lies.  Returns the triangle;
+ * *d2 its squared distance, q the point, *r its region. */
+static int32_t walk(const struct geo *G, int32_t t, const double x[3], double *d2out, double q[3],
+                    enum fct_tri_region *r)
+{
+	double best = tri_closest(G, (size_t)t, x, q, r);
 	for (int step = 0; step < 32; step++) {
 		int32_t next = -1;
 		double nd = best;
-		if (r == FCT_TRI_AB || r == FCT_TRI_BC || r == FCT_TRI_CA) {
-			int k = r == FCT_TRI_AB ? 0 : r == FCT_TRI_BC ? 1 : 2;
-			int32_t o = G->nb[3 * (size_t)t + k];
+		const uint32_t *tv = &G->tv[3 * (size_t)t];
+		if (*r == FCT_TRI_AB || *r == FCT_TRI_BC || *r == FCT_TRI_CA) {
+			int k = *r == FCT_TRI_AB ? 0 : *r == FCT_TRI_BC ? 1 : 2;
+			int32_t o = across(G, (size_t)t, tv[k], tv[(k + 1) % 3]);
 			if (o >= 0) {
 				double qq[3];
 				enum fct_tri_region rr;
@@ -284,10 +361,10 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], float *d2
 				if (d < nd)
 					nd = d, next = o;
 			}
-		} else if (r == FCT_TRI_A || r == FCT_TRI_B || r == FCT_TRI_C) {
-			uint32_t v = G->tv[3 * (size_t)t + (r == FCT_TRI_A ? 0 : r == FCT_TRI_B ? 1 : 2)];
-			for (uint32_t i = G->adj.vert_fstart[v]; i < G->adj.vert_fstart[v + 1]; i++) {
-				uint32_t o = G->adj.vert_f[i];
+		} else if (*r == FCT_TRI_A || *r == FCT_TRI_B || *r == FCT_TRI_C) {
+			uint32_t v = tv[*r == FCT_TRI_A ? 0 : *r == FCT_TRI_B ? 1 : 2];
+			for (uint32_t i = G->vfs[v]; i < G->vfs[v + 1]; i++) {
+				uint32_t o = G->vf[i];
 				if (isnan(G->tn[3 * (size_t)o]))
 					continue;
 				double qq[3];
@@ -300,9 +377,9 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], float *d2
 		if (next < 0)
 			break;
 		t = next;
-		best = tri_closest(G, (size_t)t, x, q, &r);
+		best = tri_closest(G, (size_t)t, x, q, r);
 	}
-	*d2out = (float)best;
+	*d2out = best;
 	return t;
 }
 
@@ -430,28 +507,6 @@ static inline int in_clip(const struct fct_fuse_params *p, int32_t i, int32_t j,
 /* Voxel coordinates of world points must keep blocks within the 21-bit keys. */
 #define MAX_INDEX (1 << 23)
 
-static int index_of(double x, double voxel, int32_t *i, int up)
-{
-	double s = up ? ceil(x / voxel) : floor(x / voxel);
-	if (!(fabs(s) < MAX_INDEX))
-		return -1;
-	*i = (int32_t)s;
-	return 0;
-}
-
-static int update_voxel(struct fct_voxgrid *g, int32_t i, int32_t j, int32_t k, double d, double w,
-                        struct fct_err *err)
-{
-	int l;
-	struct fct_voxblock *b = fct_voxgrid_voxel_at(g, i, j, k, 1, &l, err);
-	if (!b)
-		return -1;
-	double W = (double)b->weight[l] + w;
-	b->sdf[l] = (float)(b->sdf[l] + (d - b->sdf[l]) * w / W);
-	b->weight[l] = (float)W;
-	return 0;
-}
-
 static double view_weight(const struct fct_fuse_view *v, const struct fct_fuse_params *p,
                           const double q[3], const double n[3])
 {
@@ -479,92 +534,552 @@ static double view_weight(const struct fct_fuse_view *v, const struct fct_fuse_p
 	return depth > 1e-3 ? 1 / (depth * depth) : 1e6;
 }
 
-static int fuse_projective(struct fct_voxgrid *g, const struct fct_fuse_view *v,
-                           const struct fct_fuse_params *p, struct fct_fuse_stats *st,
-                           struct fct_err *err)
+/* A view's raster of triangle ids: the triangle seen at each sample of the
+ * sensor image, S samples per sensor pixel, nearest first (ties: the lower
+ * triangle).  Sample (x, y) is sensor pixel (u0 + x / S, v0 + y / S). ---- */
+
+struct raster {
+	const struct fct_fuse_view *v;
+	double inv[12];          /* world-to-sensor */
+	double S, u0, v0;
+	int w, h;
+	float *z;                /* depth; INFINITY: nothing */
+	int32_t *id;             /* -1: nothing */
+	float *zf;               /* true distance: the farthest triangle too */
+	int32_t *idf;
+	float *uvd;              /* per vertex: sample x, y, depth (NaN: not seen) */
+	const struct geo *G;
+	int proper;              /* only triangles with a normal */
+	int nthreads;
+};
+
+static void raster_free(struct raster *R)
 {
-	struct fct_range_image r;
-	if (fct_range_image_make(&r, v, (size_t)1 << 28, err))
-		return -1;
-	double vox = fct_voxgrid_voxel(g), band = p->band;
-	struct scratch s = { 0 };
-	int rc = -1;
-	const struct fct_mesh *m = v->mesh;
-	for (size_t i = 0; i < m->nv; i++) {
-		const double *x = &m->xyz[3 * i];
-		int32_t lo[3], hi[3];
-		int bad = 0;
-		for (int k = 0; k < 3; k++) {
-			bad |= index_of(x[k] - band, vox, &lo[k], 1) | index_of(x[k] + band, vox, &hi[k], 0);
-			lo[k] = fct_vox_block_of(lo[k]);
-			hi[k] = fct_vox_block_of(hi[k]);
-		}
-		if (bad) {
-			fct_fail(err, "vertex %zu is too far from the origin for the voxel size", i);
-			goto done;
-		}
-		for (int32_t bz = lo[2]; bz <= hi[2]; bz++)
-			for (int32_t by = lo[1]; by <= hi[1]; by++)
-				for (int32_t bx = lo[0]; bx <= hi[0]; bx++)
-					if (!scratch_block(&s, bx, by, bz, 1, err))
-						goto done;
-	}
-	for (size_t bi = 0; bi < s.n; bi++) {
-		const struct sblock *b = s.blk[bi];
-		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
-			int32_t i = b->bx * 8 + l % 8, j = b->by * 8 + l / 8 % 8, k = b->bz * 8 + l / 64;
-			if (!in_clip(p, i, j, k))
-				continue;
-			double x[3] = { i * vox, j * vox, k * vox }, u, w, depth;
-			if (!range_project(&r, x, &u, &w, &depth))
-				continue;
-			long ui = lround(u), vi = lround(w);
-			if (ui < 0 || vi < 0 || ui >= r.width || vi >= r.height)
-				continue;
-			double R = r.range[(size_t)vi * (size_t)r.width + (size_t)ui];
-			if (!(R > 0))
-				continue;
-			double d = R - depth;
-			if (d < -band)
-				continue;
-			double wt = p->weight == FCT_FUSE_DEPTH2 && v->cam.kind != FCT_CAMERA_NONE ? 1 / (R * R) : 1;
-			if (update_voxel(g, i, j, k, d < band ? d : band, wt, err))
-				goto done;
-			st->voxels++;
-		}
-	}
-	st->faces += m->nf;
-	rc = 0;
-done:
-	scratch_free(&s);
-	fct_range_image_free(&r);
-	return rc;
+	free(R->z);
+	free(R->id);
+	free(R->zf);
+	free(R->idf);
+	free(R->uvd);
+	memset(R, 0, sizeof *R);
 }
 
-/* Set voxel (i, j, k) of the scratch to triangle t at squared distance d2
- * in layer L when better; *isnew tells whether it was untouched. */
-static int offer(struct scratch *s, int32_t i, int32_t j, int32_t k, int32_t t, float d2, int L,
-                 int *isnew, struct sblock **bout, int *lout, struct fct_err *err)
+/* Sensor pixel (u, v) and depth of world point p; 0 when it has none. */
+static inline int sensor_project(const struct raster *R, const double p[3], double *u, double *v,
+                                 double *depth)
 {
-	struct sblock *b = scratch_block(s, fct_vox_block_of(i), fct_vox_block_of(j), fct_vox_block_of(k), 1, err);
-	if (!b)
-		return -1;
-	int l = local_index(i, j, k);
-	*isnew = b->layer[l] == NOLAYER;
-	if (*isnew || (b->layer[l] == L && (d2 < b->d2[l] || (d2 == b->d2[l] && t < b->tri[l])))) {
-		b->d2[l] = d2;
-		b->tri[l] = t;
-		if (*isnew)
-			b->layer[l] = (uint8_t)L;
+	const double *M = R->inv;
+	double c[3] = { M[0] * p[0] + M[1] * p[1] + M[2] * p[2] + M[3],
+	                M[4] * p[0] + M[5] * p[1] + M[6] * p[2] + M[7],
+	                M[8] * p[0] + M[9] * p[1] + M[10] * p[2] + M[11] };
+	const struct fct_camera *cam = &R->v->cam;
+	if (cam->kind == FCT_CAMERA_PINHOLE) {
+		if (!(c[2] > 0))
+			return 0;
+		*u = cam->fx * c[0] / c[2] + cam->cx;
+		*v = cam->fy * c[1] / c[2] + cam->cy;
+		*depth = c[2];
+		return 1;
 	}
-	*bout = b;
-	*lout = l;
+	if (cam->kind == FCT_CAMERA_NONE) {
+		*u = c[0] / R->v->ortho_step;
+		*v = c[1] / R->v->ortho_step;
+		*depth = -c[2];
+		return 1;
+	}
+	return fct_camera_project(cam, c, u, v, depth);
+}
+
+/* Sample coordinates of p (continuous) and its depth; 0 when none. */
+static inline int sample_of(const struct raster *R, const double p[3], double *x, double *y,
+                            double *depth)
+{
+	double u, v;
+	if (!sensor_project(R, p, &u, &v, depth))
+		return 0;
+	*x = (u - R->u0) * R->S;
+	*y = (v - R->v0) * R->S;
+	return 1;
+}
+
+/* The sample nearest (x, y), or -1 outside. */
+static inline long sample_index(const struct raster *R, double x, double y)
+{
+	if (!(x > -0.5 && y > -0.5 && x < R->w - 0.5 && y < R->h - 0.5))
+		return -1;
+	return (long)(y + 0.5) * R->w + (long)(x + 0.5);
+}
+
+static void project_chunk(void *ctx, size_t lo, size_t hi)
+{
+	struct raster *R = ctx;
+	for (size_t i = lo; i < hi; i++) {
+		double u, v, d;
+		float *o = &R->uvd[3 * i];
+		if (sensor_project(R, &R->G->xyz[3 * i], &u, &v, &d) && (d > 0 || R->v->cam.kind == FCT_CAMERA_NONE) &&
+		    isfinite(u) && isfinite(v) && isfinite(d))
+			o[0] = (float)u, o[1] = (float)v, o[2] = (float)d;
+		else
+			o[0] = o[1] = o[2] = NAN;
+	}
+}
+
+/* Rows lo..hi of the raster: every triangle, clipped to them. */
+static void raster_rows(void *ctx, size_t lo, size_t hi)
+{
+	struct raster *R = ctx;
+	const struct geo *G = R->G;
+	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE, cyl = R->v->cam.kind == FCT_CAMERA_CYLINDRICAL,
+	    ortho = R->v->cam.kind == FCT_CAMERA_NONE;
+	double ylo = (double)lo, yhi = (double)hi - 1;
+	for (size_t f = 0; f < G->nt; f++) {
+		if (R->proper && isnan(G->tn[3 * f]))
+			continue;
+		const uint32_t *tv = &G->tv[3 * f];
+		const float *pa = &R->uvd[3 * tv[0]], *pb = &R->uvd[3 * tv[1]], *pc = &R->uvd[3 * tv[2]];
+		double a[3] = { (pa[0] - R->u0) * R->S, (pa[1] - R->v0) * R->S, pa[2] },
+		       b[3] = { (pb[0] - R->u0) * R->S, (pb[1] - R->v0) * R->S, pb[2] },
+		       c[3] = { (pc[0] - R->u0) * R->S, (pc[1] - R->v0) * R->S, pc[2] };
+		double vmin = fmin(a[1], fmin(b[1], c[1])), vmax = fmax(a[1], fmax(b[1], c[1]));
+		if (!(vmax >= ylo - 1e-9 && vmin <= yhi + 1e-9))
+			continue;   /* also NaN: not seen */
+		double umin = fmin(a[0], fmin(b[0], c[0])), umax = fmax(a[0], fmax(b[0], c[0]));
+		if (cyl && umax - umin > R->S * R->v->cam.width / 2.0)
+			continue;   /* across the seam */
+		double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+		if (!(fabs(area) > 1e-12))
+			continue;
+		int u0 = (int)fmax(ceil(umin - 1e-9), 0), u1 = (int)fmin(floor(umax + 1e-9), R->w - 1);
+		int v0 = (int)fmax(ceil(vmin - 1e-9), ylo), v1 = (int)fmin(floor(vmax + 1e-9), yhi);
+		/* Depth is affine in the image for orthographic views; for
+		 * perspective ones 1/depth is. */
+		double za = pin ? 1 / a[2] : a[2], zb = pin ? 1 / b[2] : b[2], zc = pin ? 1 / c[2] : c[2];
+		for (int y = v0; y <= v1; y++)
+			for (int x = u0; x <= u1; x++) {
+				double wb = ((x - a[0]) * (c[1] - a[1]) - (y - a[1]) * (c[0] - a[0])) / area;
+				double wc = ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])) / area;
+				double wa = 1 - wb - wc;
+				if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9)
+					continue;
+				double z = wa * za + wb * zb + wc * zc;
+				if (pin)
+					z = 1 / z;
+				size_t s = (size_t)y * (size_t)R->w + (size_t)x;
+				float zf = (float)z;
+				if (!(zf > 0 || ortho))
+					continue;
+				if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
+					R->z[s] = zf;
+					R->id[s] = (int32_t)f;
+				}
+				if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
+					R->zf[s] = zf;
+					R->idf[s] = (int32_t)f;
+				}
+			}
+	}
+}
+
+/* The raster of G seen by v with S samples per sensor pixel (fewer when
+ * more than max_samples would be needed).  0 or -1. */
+static int raster_build(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
+                        double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
+{
+	memset(R, 0, sizeof *R);
+	R->v = v;
+	R->G = G;
+	R->proper = proper;
+	R->nthreads = nthreads;
+	fct_pose_invert(v->pose, R->inv);
+	if (v->cam.kind == FCT_CAMERA_NONE && !(v->ortho_step > 0))
+		return fct_fail(err, "orthographic view without a pixel size");
+	R->uvd = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->uvd, err);
+	if (!R->uvd)
+		return -1;
+	run(nthreads, project_chunk, R, G->nv, 0);
+	double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
+	for (size_t i = 0; i < G->nv; i++)
+		for (int k = 0; k < 2; k++) {
+			double s = R->uvd[3 * i + k];   /* NaN compares false */
+			lo[k] = s < lo[k] ? s : lo[k];
+			hi[k] = s > hi[k] ? s : hi[k];
+		}
+	if (!(lo[0] <= hi[0] && lo[1] <= hi[1])) {
+		R->w = R->h = 0;
+		return 0;   /* nothing seen */
+	}
+	if (v->cam.kind != FCT_CAMERA_NONE) {
+		/* Keep to the image, with one image of margin around it. */
+		double W = v->cam.width, H = v->cam.height;
+		lo[0] = fmax(lo[0], -W), hi[0] = fmin(hi[0], 2 * W);
+		lo[1] = fmax(lo[1], -H), hi[1] = fmin(hi[1], 2 * H);
+		if (v->cam.kind == FCT_CAMERA_CYLINDRICAL)
+			lo[0] = -0.5, hi[0] = W - 0.5;
+		if (!(lo[0] <= hi[0] && lo[1] <= hi[1])) {
+			R->w = R->h = 0;
+			return 0;
+		}
+	}
+	for (;;) {
+		/* Offsets keep the samples off a pixel grid's vertices and
+		 * diagonals, so that every triangle of it owns a sample. */
+		R->u0 = floor(lo[0]) - 1 + (S > 1 ? 0.25 : 0);
+		R->v0 = floor(lo[1]) - 1 + (S > 1 ? 0.125 : 0);
+		double w = ceil((hi[0] - R->u0) * S) + 2, h = ceil((hi[1] - R->v0) * S) + 2;
+		if (w * h <= (double)max_samples) {
+			R->w = (int)w, R->h = (int)h;
+			break;
+		}
+		if (S < 1e-3)
+			return fct_fail(err, "range image of %.0f x %.0f pixels is too large", w, h);
+		S /= 2;
+	}
+	R->S = S;
+	size_t n = (size_t)R->w * (size_t)R->h;
+	R->z = fct_alloc_array(n, sizeof *R->z, err);
+	R->id = fct_alloc_array(n, sizeof *R->id, err);
+	if (!R->z || !R->id)
+		return -1;
+	for (size_t i = 0; i < n; i++)
+		R->z[i] = INFINITY;
+	memset(R->id, 0xff, n * sizeof *R->id);
+	if (proper) {
+		R->zf = fct_alloc_array(n, sizeof *R->zf, err);
+		R->idf = fct_alloc_array(n, sizeof *R->idf, err);
+		if (!R->zf || !R->idf)
+			return -1;
+		for (size_t i = 0; i < n; i++)
+			R->zf[i] = -INFINITY;
+		memset(R->idf, 0xff, n * sizeof *R->idf);
+	}
+	/* Each thread its own rows: the same raster for any thread count. */
+	run(nthreads, raster_rows, R, (size_t)R->h, nthreads);
 	return 0;
 }
 
-struct vref {
-	int32_t i, j, k;
+/* Candidate voxels: the cells of the surface's points (vertices, and points
+ * at most a voxel apart on larger triangles), their box per block grown by
+ * the band. ------------------------------------------------------------- */
+
+struct cand {
+	struct scratch cells;    /* blocks with the box of their surface cells */
+	double vox;
+	struct fct_err *err;
 };
+
+static int add_point(struct cand *c, const double p[3])
+{
+	int32_t i[3];
+	for (int k = 0; k < 3; k++) {
+		double s = floor(p[k] / c->vox);
+		if (!(fabs(s) < MAX_INDEX))
+			return fct_fail(c->err, "the view reaches %g m: too far from the origin for the voxel size",
+			                p[k]);
+		i[k] = (int32_t)s;
+	}
+	struct sblock *b = scratch_block(&c->cells, fct_vox_block_of(i[0]), fct_vox_block_of(i[1]),
+	                                 fct_vox_block_of(i[2]), 1, c->err);
+	if (!b)
+		return -1;
+	for (int k = 0; k < 3; k++) {
+		int8_t l = (int8_t)fct_vox_local_of(i[k]);
+		b->lo[k] = l < b->lo[k] ? l : b->lo[k];
+		b->hi[k] = l > b->hi[k] ? l : b->hi[k];
+	}
+	return 0;
+}
+
+/* The candidate blocks of G for a band of r voxels into s, each with
+ * FCT_VOXBLOCK_N distances and weights (weights 0). */
+static int candidates(struct scratch *s, const struct geo *G, double vox, int r, struct fct_err *err)
+{
+	struct cand c = { { 0 }, vox, err };
+	int rc = -1;
+	for (size_t i = 0; i < G->nv; i++)
+		if (add_point(&c, &G->xyz[3 * i]))
+			goto done;
+	for (size_t t = 0; t < G->nt; t++) {
+		const uint32_t *tv = &G->tv[3 * t];
+		const double *a = &G->xyz[3 * tv[0]], *b = &G->xyz[3 * tv[1]], *cc = &G->xyz[3 * tv[2]];
+		double e = 0;
+		for (int k = 0; k < 3; k++) {
+			double lo = fmin(a[k], fmin(b[k], cc[k])), hi = fmax(a[k], fmax(b[k], cc[k]));
+			e = fmax(e, hi - lo);
+		}
+		if (!(e > vox))
+			continue;
+		double n = ceil(2 * e / vox);
+		if (!(n < 1e5)) {
+			fct_fail(err, "triangle %zu is %g m across: too large for the voxel size", t, e);
+			goto done;
+		}
+		for (double i = 0; i <= n; i++)
+			for (double j = 0; i + j <= n; j++) {
+				double p[3];
+				for (int k = 0; k < 3; k++)
+					p[k] = a[k] + (b[k] - a[k]) * (i / n) + (cc[k] - a[k]) * (j / n);
+				if (add_point(&c, p))
+					goto done;
+			}
+	}
+	for (size_t bi = 0; bi < c.cells.n; bi++) {
+		const struct sblock *cb = c.cells.blk[bi];
+		int32_t lo[3], hi[3], blo[3], bhi[3];
+		int32_t base[3] = { cb->bx * FCT_VOXBLOCK, cb->by * FCT_VOXBLOCK, cb->bz * FCT_VOXBLOCK };
+		for (int k = 0; k < 3; k++) {
+			lo[k] = base[k] + cb->lo[k] - r;
+			hi[k] = base[k] + cb->hi[k] + 1 + r;
+			blo[k] = fct_vox_block_of(lo[k]);
+			bhi[k] = fct_vox_block_of(hi[k]);
+		}
+		for (int32_t bz = blo[2]; bz <= bhi[2]; bz++)
+			for (int32_t by = blo[1]; by <= bhi[1]; by++)
+				for (int32_t bx = blo[0]; bx <= bhi[0]; bx++) {
+					struct sblock *b = scratch_block(s, bx, by, bz, 1, err);
+					if (!b)
+						goto done;
+					if (!b->d && !(b->d = calloc(2 * FCT_VOXBLOCK_N, sizeof *b->d))) {
+						fct_fail(err, "out of memory");
+						goto done;
+					}
+					int32_t o[3] = { bx * FCT_VOXBLOCK, by * FCT_VOXBLOCK, bz * FCT_VOXBLOCK };
+					for (int k = 0; k < 3; k++) {
+						int32_t l = lo[k] - o[k], h = hi[k] - o[k];
+						l = l < 0 ? 0 : l;
+						h = h > FCT_VOXBLOCK - 1 ? FCT_VOXBLOCK - 1 : h;
+						b->lo[k] = (int8_t)(l < b->lo[k] ? l : b->lo[k]);
+						b->hi[k] = (int8_t)(h > b->hi[k] ? h : b->hi[k]);
+					}
+				}
+	}
+	rc = 0;
+done:
+	scratch_free(&c.cells);
+	return rc;
+}
+
+/* Results into the volume, block by block in creation order. */
+static int commit(struct fct_voxgrid *g, const struct scratch *s, struct fct_fuse_stats *st,
+                  struct fct_err *err)
+{
+	for (size_t bi = 0; bi < s->n; bi++) {
+		const struct sblock *b = s->blk[bi];
+		st->border += b->nborder;
+		if (!b->nvox)
+			continue;
+		st->voxels += b->nvox;
+		struct fct_voxblock *vb = fct_voxgrid_block(g, b->bx, b->by, b->bz, 1, err);
+		if (!vb)
+			return -1;
+		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
+			float w = b->d[FCT_VOXBLOCK_N + l];
+			if (!(w > 0))
+				continue;
+			double W = (double)vb->weight[l] + w;
+			vb->sdf[l] = (float)(vb->sdf[l] + ((double)b->d[l] - vb->sdf[l]) * w / W);
+			vb->weight[l] = (float)W;
+		}
+	}
+	return 0;
+}
+
+/* Fusion of one view, block by block on the threads. */
+struct fctx {
+	const struct geo *G;
+	const struct raster *R;
+	const struct fct_fuse_view *v;
+	const struct fct_fuse_params *p;
+	const struct scratch *s;
+	double vox;
+};
+
+/* The triangle seen at sample (x, y), or at one of its 8 neighbours. */
+static int32_t seen_at(const struct raster *R, const int32_t *id, double x, double y)
+{
+	long i = sample_index(R, x, y);
+	if (i >= 0 && id[i] >= 0)
+		return id[i];
+	for (int dy = -1; dy <= 1; dy++)
+		for (int dx = -1; dx <= 1; dx++) {
+			i = sample_index(R, x + dx, y + dy);
+			if (i >= 0 && id[i] >= 0)
+				return id[i];
+		}
+	return -1;
+}
+
+static inline double plane_dist(const struct geo *G, int32_t t, const double x[3])
+{
+	const double *n = &G->tn[3 * (size_t)t], *a = &G->xyz[3 * G->tv[3 * (size_t)t]];
+	return (x[0] - a[0]) * n[0] + (x[1] - a[1]) * n[1] + (x[2] - a[2]) * n[2];
+}
+
+/* From triangle t seen at x's sample in layer id: to the foot of x on the
+ * plane of t, and again from the triangle seen at the foot, until it
+ * stays; then downhill on the mesh.  The triangle, or -1 when x is out of
+ * the band. */
+static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const double x[3],
+                      double *d2, double q[3], enum fct_tri_region *r)
+{
+	const struct geo *G = F->G;
+	const struct raster *R = F->R;
+	double sx, sy, depth, band = F->p->band;
+	double s = plane_dist(G, t, x);
+	/* In front of the surface seen, the distance to its plane bounds the
+	 * distance (for convex surfaces); behind it the nearest point may be
+	 * anywhere, around a silhouette. */
+	if (s > band + 2 * F->vox)
+		return -1;
+	for (int it = 0; it < 8; it++) {
+		const double *n = &G->tn[3 * (size_t)t];
+		double f[3] = { x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2] };
+		if (!sample_of(R, f, &sx, &sy, &depth))
+			break;
+		long si = sample_index(R, sx, sy);
+		if (si < 0 || id[si] < 0 || id[si] == t)
+			break;
+		/* Not onto another surface farther away (off a silhouette). */
+		double s2 = plane_dist(G, id[si], x);
+		if (fabs(s2) > fabs(s) + F->vox)
+			break;
+		t = id[si], s = s2;
+	}
+	if (s > band + F->vox)
+		return -1;
+	t = walk(G, t, x, d2, q, r);
+	return (float)*d2 <= band * band ? t : -1;   /* as float: the band's last layer stays in */
+}
+
+static void true_chunk(void *ctx, size_t lo, size_t hi)
+{
+	const struct fctx *F = ctx;
+	const struct geo *G = F->G;
+	const struct raster *R = F->R;
+	double vox = F->vox, band = F->p->band;
+	for (size_t bi = lo; bi < hi; bi++) {
+		struct sblock *b = F->s->blk[bi];
+		for (int z = b->lo[2]; z <= b->hi[2]; z++)
+			for (int y = b->lo[1]; y <= b->hi[1]; y++)
+				for (int xx = b->lo[0]; xx <= b->hi[0]; xx++) {
+					int32_t i = b->bx * 8 + xx, j = b->by * 8 + y, k = b->bz * 8 + z;
+					if (!in_clip(F->p, i, j, k))
+						continue;
+					double x[3] = { i * vox, j * vox, k * vox }, sx, sy, depth;
+					if (!sample_of(R, x, &sx, &sy, &depth))
+						continue;
+					int32_t t = seen_at(R, R->id, sx, sy);
+					if (t < 0)
+						continue;
+					double d2, q[3], xq[3];
+					enum fct_tri_region r;
+					int32_t t0 = t;
+					t = search(F, R->id, t, x, &d2, q, &r);
+					/* A second layer (the far side of a closed object,
+					 * a surface behind another) where there is one. */
+					int32_t tf = seen_at(R, R->idf, sx, sy);
+					if (tf >= 0 && tf != t0) {
+						double d2f, qf[3];
+						enum fct_tri_region rf;
+						tf = search(F, R->idf, tf, x, &d2f, qf, &rf);
+						if (tf >= 0 && (t < 0 || d2f < d2)) {
+							t = tf, d2 = d2f, r = rf;
+							memcpy(q, qf, sizeof qf);
+						}
+					}
+					if (t < 0 && plane_dist(G, t0, x) > 0) {
+						/* In front of the surface seen but out of
+						 * its band: a surface beside, around a
+						 * silhouette, may be near.  Try the ones a
+						 * band's width away in the image. */
+						const double *P = F->v->pose;
+						double e[3] = { x[0] + (band + vox) * P[0], x[1] + (band + vox) * P[4],
+						                x[2] + (band + vox) * P[8] }, ex, ey, ed;
+						if (!sample_of(R, e, &ex, &ey, &ed))
+							continue;
+						double rp = hypot(ex - sx, ey - sy);
+						static const double dir[8][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 },
+						                                   { .5, 0 }, { -.5, 0 }, { 0, .5 }, { 0, -.5 } };
+						for (int di = 0; di < 8; di++) {
+							long si = sample_index(R, sx + rp * dir[di][0], sy + rp * dir[di][1]);
+							if (si < 0 || R->id[si] < 0 || R->id[si] == t0 ||
+							    fabs(plane_dist(G, R->id[si], x)) > band + vox)
+								continue;
+							double d2f, qf[3];
+							enum fct_tri_region rf;
+							int32_t tf2 = search(F, R->id, R->id[si], x, &d2f, qf, &rf);
+							if (tf2 >= 0 && (t < 0 || d2f < d2)) {
+								t = tf2, d2 = d2f, r = rf;
+								memcpy(q, qf, sizeof qf);
+							}
+						}
+					}
+					if (t < 0)
+						continue;
+					const double *n = &G->tn[3 * (size_t)t];
+					fct_v3_sub(xq, x, q);
+					double d;
+					if (r == FCT_TRI_FACE) {
+						d = fct_v3_dot(xq, n);
+					} else if (r == FCT_TRI_A || r == FCT_TRI_B || r == FCT_TRI_C) {
+						uint32_t vv = G->tv[3 * (size_t)t + (r == FCT_TRI_A ? 0 : r == FCT_TRI_B ? 1 : 2)];
+						double vn[3];
+						if (vertex_normal(G, vv, vn)) {
+							b->nborder++;
+							continue;
+						}
+						d = copysign(sqrt(d2), fct_v3_dot(xq, vn));
+					} else {
+						int e = r == FCT_TRI_AB ? 0 : r == FCT_TRI_BC ? 1 : 2;
+						const uint32_t *tv = &G->tv[3 * (size_t)t];
+						int32_t o = across(G, (size_t)t, tv[e], tv[(e + 1) % 3]);
+						if (o == -1) {
+							b->nborder++;
+							continue;
+						}
+						double pn[3];
+						if (o >= 0)
+							fct_v3_add(pn, n, &G->tn[3 * (size_t)o]);
+						else
+							memcpy(pn, n, sizeof pn);
+						d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
+					}
+					int l = xx + 8 * (y + 8 * z);
+					b->d[l] = (float)d;
+					b->d[FCT_VOXBLOCK_N + l] = (float)view_weight(F->v, F->p, q, n);
+					b->nvox++;
+				}
+	}
+}
+
+static void projective_chunk(void *ctx, size_t lo, size_t hi)
+{
+	const struct fctx *F = ctx;
+	const struct raster *R = F->R;
+	double vox = F->vox, band = F->p->band;
+	int depth2 = F->p->weight == FCT_FUSE_DEPTH2 && F->v->cam.kind != FCT_CAMERA_NONE;
+	for (size_t bi = lo; bi < hi; bi++) {
+		struct sblock *b = F->s->blk[bi];
+		for (int z = b->lo[2]; z <= b->hi[2]; z++)
+			for (int y = b->lo[1]; y <= b->hi[1]; y++)
+				for (int xx = b->lo[0]; xx <= b->hi[0]; xx++) {
+					int32_t i = b->bx * 8 + xx, j = b->by * 8 + y, k = b->bz * 8 + z;
+					if (!in_clip(F->p, i, j, k))
+						continue;
+					double x[3] = { i * vox, j * vox, k * vox }, sx, sy, depth;
+					if (!sample_of(R, x, &sx, &sy, &depth))
+						continue;
+					long si = sample_index(R, sx, sy);
+					if (si < 0 || !(R->z[si] < INFINITY))
+						continue;
+					double Rd = R->z[si], d = Rd - depth;
+					if (d < -band)
+						continue;
+					int l = xx + 8 * (y + 8 * z);
+					b->d[l] = (float)(d < band ? d : band);
+					b->d[FCT_VOXBLOCK_N + l] = (float)(depth2 ? 1 / (Rd * Rd) : 1);
+					b->nvox++;
+				}
+	}
+}
 
 int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
                   const struct fct_fuse_params *p, struct fct_fuse_stats *stats,
@@ -572,160 +1087,42 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 {
 	struct fct_fuse_stats dummy = { 0 };
 	struct fct_fuse_stats *st = stats ? stats : &dummy;
-	if (p->projective)
-		return fuse_projective(g, v, p, st, err);
+	int nthreads = thread_count(p->threads);
 	double vox = fct_voxgrid_voxel(g), band = p->band;
+	int proj = p->projective;
 	struct geo G;
-	if (geo_build(&G, v->mesh, err))
+	if (geo_build(&G, v->mesh, !proj, nthreads, err))
 		return -1;
+	struct raster R;
 	struct scratch s = { 0 };
-	struct vref *cur = NULL, *next = NULL;
-	size_t ncur = 0, curcap = 0, nnext = 0, nextcap = 0;
 	int rc = -1;
-	int layers = (int)ceil(band / vox) + 1;
-	if (layers > 200)
-		layers = 200;
-	/* Splat: each triangle into the voxels of its box grown by half a
-	 * voxel, a connected shell around the surface; the walks of the
-	 * propagation correct what this misses. */
-	for (size_t t = 0; t < G.nt; t++) {
-		if (isnan(G.tn[3 * t]))
-			continue;
-		st->faces++;
-		const uint32_t *tv = &G.tv[3 * t];
-		int32_t lo[3], hi[3];
-		int bad = 0;
-		for (int k = 0; k < 3; k++) {
-			double a = G.xyz[3 * tv[0] + k], b = G.xyz[3 * tv[1] + k], c = G.xyz[3 * tv[2] + k];
-			bad |= index_of(fmin(a, fmin(b, c)) - vox / 2, vox, &lo[k], 1);
-			bad |= index_of(fmax(a, fmax(b, c)) + vox / 2, vox, &hi[k], 0);
-		}
-		if (bad) {
-			fct_fail(err, "triangle %zu is too far from the origin for the voxel size", t);
+	/* True distance: two samples per pixel along each axis, so that
+	 * every triangle of a range image's grid owns one; projective: the
+	 * pixels themselves. */
+	double S = proj ? 1 : 2;
+	if (v->cam.kind == FCT_CAMERA_NONE && !proj)
+		S = 1;
+	if (raster_build(&R, v, &G, S, !proj, (size_t)1 << 26, nthreads, err))
+		goto done;
+	if (R.w > 0) {
+		double r = ceil(band / vox);
+		if (candidates(&s, &G, vox, (int)(r < 100 ? r : 100), err))
 			goto done;
-		}
-		for (int32_t k = lo[2]; k <= hi[2]; k++)
-			for (int32_t j = lo[1]; j <= hi[1]; j++)
-				for (int32_t i = lo[0]; i <= hi[0]; i++) {
-					double x[3] = { i * vox, j * vox, k * vox }, q[3];
-					enum fct_tri_region r;
-					float d2 = (float)tri_closest(&G, t, x, q, &r);
-					int isnew, l;
-					struct sblock *b;
-					if (offer(&s, i, j, k, (int32_t)t, d2, 0, &isnew, &b, &l, err))
-						goto done;
-					if (isnew) {
-						if (fct_grow((void **)&cur, &curcap, ncur + 1, sizeof *cur, err))
-							goto done;
-						cur[ncur++] = (struct vref){ i, j, k };
-					}
-				}
+		struct fctx F = { &G, &R, v, p, &s, vox };
+		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);
+		if (commit(g, &s, st, err))
+			goto done;
 	}
-	for (size_t c = 0; c < ncur; c++) {
-		struct vref x0 = cur[c];
-		struct sblock *b = scratch_block(&s, fct_vox_block_of(x0.i), fct_vox_block_of(x0.j),
-		                                 fct_vox_block_of(x0.k), 0, err);
-		int l = local_index(x0.i, x0.j, x0.k);
-		double x[3] = { x0.i * vox, x0.j * vox, x0.k * vox };
-		b->tri[l] = walk(&G, b->tri[l], x, &b->d2[l]);
-	}
-	/* Grow the band layer by layer. */
-	double reach2 = (band + vox) * (band + vox);
-	for (int L = 1; L <= layers && ncur; L++) {
-		nnext = 0;
-		for (size_t c = 0; c < ncur; c++) {
-			struct vref x0 = cur[c];
-			struct sblock *b0 = scratch_block(&s, fct_vox_block_of(x0.i), fct_vox_block_of(x0.j),
-			                                  fct_vox_block_of(x0.k), 0, err);
-			int32_t t = b0->tri[local_index(x0.i, x0.j, x0.k)];
-			for (int dz = -1; dz <= 1; dz++)
-				for (int dy = -1; dy <= 1; dy++)
-					for (int dx = -1; dx <= 1; dx++) {
-						int32_t i = x0.i + dx, j = x0.j + dy, k = x0.k + dz;
-						struct sblock *b = scratch_block(&s, fct_vox_block_of(i), fct_vox_block_of(j),
-						                                 fct_vox_block_of(k), 0, err);
-						int l = local_index(i, j, k);
-						if (b && b->layer[l] != NOLAYER && (b->layer[l] < L || b->tri[l] == t))
-							continue;
-						double x[3] = { i * vox, j * vox, k * vox }, q[3];
-						enum fct_tri_region r;
-						float d2 = (float)tri_closest(&G, (size_t)t, x, q, &r);
-						if (d2 > reach2)
-							continue;
-						int isnew;
-						if (offer(&s, i, j, k, t, d2, L, &isnew, &b, &l, err))
-							goto done;
-						if (isnew) {
-							if (fct_grow((void **)&next, &nextcap, nnext + 1, sizeof *next, err))
-								goto done;
-							next[nnext++] = (struct vref){ i, j, k };
-						}
-					}
-		}
-		/* Walk each new voxel's triangle down to its nearest. */
-		for (size_t c = 0; c < nnext; c++) {
-			struct vref x0 = next[c];
-			struct sblock *b = scratch_block(&s, fct_vox_block_of(x0.i), fct_vox_block_of(x0.j),
-			                                 fct_vox_block_of(x0.k), 0, err);
-			int l = local_index(x0.i, x0.j, x0.k);
-			double x[3] = { x0.i * vox, x0.j * vox, x0.k * vox };
-			b->tri[l] = walk(&G, b->tri[l], x, &b->d2[l]);
-		}
-		struct vref *tmp = cur;
-		size_t tcap = curcap;
-		cur = next, curcap = nextcap, ncur = nnext;
-		next = tmp, nextcap = tcap;
-	}
-	/* Signed distances into the volume. */
-	double band2 = band * band;
-	for (size_t bi = 0; bi < s.n; bi++) {
-		const struct sblock *b = s.blk[bi];
-		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
-			if (b->layer[l] == NOLAYER || !(b->d2[l] <= band2))
-				continue;
-			int32_t i = b->bx * 8 + l % 8, j = b->by * 8 + l / 8 % 8, k = b->bz * 8 + l / 64;
-			if (!in_clip(p, i, j, k))
-				continue;
-			size_t t = (size_t)b->tri[l];
-			double x[3] = { i * vox, j * vox, k * vox }, q[3], xq[3];
-			enum fct_tri_region r;
-			double d2 = tri_closest(&G, t, x, q, &r);
-			const double *n = &G.tn[3 * t];
-			fct_v3_sub(xq, x, q);
-			double d;
-			if (r == FCT_TRI_FACE) {
-				d = fct_v3_dot(xq, n);
-			} else if (r == FCT_TRI_A || r == FCT_TRI_B || r == FCT_TRI_C) {
-				uint32_t vv = G.tv[3 * t + (r == FCT_TRI_A ? 0 : r == FCT_TRI_B ? 1 : 2)];
-				if (G.vborder[vv]) {
-					st->border++;
-					continue;
-				}
-				d = copysign(sqrt(d2), fct_v3_dot(xq, &G.vn[3 * vv]));
-			} else {
-				int e = r == FCT_TRI_AB ? 0 : r == FCT_TRI_BC ? 1 : 2;
-				int32_t o = G.nb[3 * t + (size_t)e];
-				if (o == -1) {
-					st->border++;
-					continue;
-				}
-				double pn[3];
-				if (o >= 0)
-					fct_v3_add(pn, n, &G.tn[3 * (size_t)o]);
-				else
-					memcpy(pn, n, sizeof pn);
-				d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
-			}
-			if (update_voxel(g, i, j, k, d, view_weight(v, p, q, n), err))
-				goto done;
-			st->voxels++;
-		}
+	if (proj) {
+		st->faces += v->mesh->nf;
+	} else {
+		for (size_t t = 0; t < G.nt; t++)
+			st->faces += !isnan(G.tn[3 * t]);
 	}
 	rc = 0;
 done:
-	free(cur);
-	free(next);
 	scratch_free(&s);
+	raster_free(&R);
 	geo_free(&G);
 	return rc;
 }

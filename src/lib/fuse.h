@@ -51,6 +51,7 @@ struct fct_fuse_params {
 	int projective;         /* Curless-Levoy depth difference along the ray instead */
 	int has_clip;           /* update only voxels in [lo, hi] (voxel indices) */
 	int32_t clip_lo[3], clip_hi[3];
+	int threads;            /* 0: one per processor; the result is the same for any count */
 };
 
 struct fct_fuse_stats {

@@ -49,6 +49,12 @@ run_case 0 "tsdfuse -a --voxel 0.04 -o $TMP/two.ply $TMP/v00.ply $TMP/v00.ply"
 grep -v '^comment' "$TMP/one.ply" >"$TMP/one"
 grep -v '^comment' "$TMP/two.ply" >"$TMP/two"
 check_true "same view twice = one view" cmp -s "$TMP/one" "$TMP/two"
+# Threads: the same bytes for any count.
+run_case 0 "tsdfuse -a --threads 1 --voxel 0.04 -o $TMP/th1.ply $V"
+run_case 0 "tsdfuse -a --threads 3 --voxel 0.04 -o $TMP/th3.ply $V"
+grep -v '^comment' "$TMP/th1.ply" >"$TMP/th1"
+grep -v '^comment' "$TMP/th3.ply" >"$TMP/th3"
+check_true "threads 1 and 3 give the same surface" cmp -s "$TMP/th1" "$TMP/th3"
 # Weights: any of them gives the same single-view surface.
 run_case 0 "tsdfuse -a --weight incidence --voxel 0.04 -o $TMP/inc.ply $TMP/v00.ply"
 grep -v '^comment' "$TMP/inc.ply" >"$TMP/inc"

@@ -45,7 +45,7 @@ static void test_plane(void)
 	struct fct_fuse_view v;
 	view_of(&v, &m);
 	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 } };
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
 	struct fct_fuse_stats st = { 0 };
 	CHECK(fct_fuse_view(g, &v, &p, &st, &err) == 0);
 	/* Voxel (0, 0, k) is at z = 0.01 k: sdf = 0.503 - z in front (free
@@ -90,7 +90,7 @@ static void test_carve(void)
 	struct fct_fuse_view v;
 	view_of(&v, &m);
 	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 } };
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
 	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
 	struct fct_range_image r;
 	CHECK(fct_range_image_make(&r, &v, 1 << 20, &err) == 0);
