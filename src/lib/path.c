@@ -94,39 +94,15 @@ static char *absolute(const char *p, struct fct_err *err)
 		return NULL;
 	}
 	size_t n = (cwd ? strlen(cwd) : 0) + strlen(p) + 3;
-	char *in = malloc(n), *out = malloc(n);
-	if (!in || !out) {
-		free(cwd), free(in), free(out);
+	char *out = malloc(n);
+	if (!out) {
+		free(cwd);
 		fct_fail(err, "out of memory");
 		return NULL;
 	}
-	snprintf(in, n, "%s/%s", cwd ? cwd : "", p);
+	snprintf(out, n, "%s/%s", cwd ? cwd : "", p);
 	free(cwd);
-	size_t o = 0;
-	for (char *s = in; *s;) {
-		while (*s == '/')
-			s++;
-		char *e = s;
-		while (*e && *e != '/')
-			e++;
-		size_t len = (size_t)(e - s);
-		if (len == 0 || (len == 1 && s[0] == '.')) {
-		} else if (len == 2 && s[0] == '.' && s[1] == '.') {
-			while (o > 0 && out[o - 1] != '/')
-				o--;
-			if (o > 0)
-				o--;
-		} else {
-			out[o++] = '/';
-			memcpy(out + o, s, len);
-			o += len;
-		}
-		s = e;
-	}
-	if (o == 0)
-		out[o++] = '/';
-	out[o] = 0;
-	free(in);
+	normalise(out);
 	return out;
 }
 

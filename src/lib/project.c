@@ -735,6 +735,21 @@ static int cmp_pair(const void *x, const void *y)
 	return (a->b > b->b) - (a->b < b->b);
 }
 
+/* Sort pairs and sum the weights of equal ones; the count left. */
+static size_t merge_pairs(struct fct_plane_pair *pp, size_t n)
+{
+	if (n)
+		qsort(pp, n, sizeof *pp, cmp_pair);
+	size_t k = 0;
+	for (size_t i = 0; i < n; i++) {
+		if (k && pp[k - 1].a == pp[i].a && pp[k - 1].b == pp[i].b)
+			pp[k - 1].w += pp[i].w;
+		else
+			pp[k++] = pp[i];
+	}
+	return k;
+}
+
 /* Pairs of patches that share mesh edges, weighted by the edges' length
  * (edges among more than four patches, non-manifold clutter, are skipped);
  * the caller weighs them again. */
@@ -777,16 +792,7 @@ static int adjacent_pairs(const struct fct_mesh *m, const struct fct_adj *adj,
 				n++;
 			}
 	}
-	if (n)
-		qsort(pp, n, sizeof *pp, cmp_pair);
-	size_t k = 0;
-	for (size_t i = 0; i < n; i++) {
-		if (k && pp[k - 1].a == pp[i].a && pp[k - 1].b == pp[i].b)
-			pp[k - 1].w += pp[i].w;
-		else
-			pp[k++] = pp[i];
-	}
-	*out = pp, *nout = k;
+	*out = pp, *nout = merge_pairs(pp, n);
 	return 0;
 }
 
@@ -807,16 +813,7 @@ static int wire_pairs(const struct fct_mesh *m, const struct fct_wire *w, size_t
 		pp[n].w = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)w[i].v1, m->xyz + 3 * (size_t)w[i].v2));
 		n++;
 	}
-	if (n)
-		qsort(pp, n, sizeof *pp, cmp_pair);
-	size_t k = 0;
-	for (size_t i = 0; i < n; i++) {
-		if (k && pp[k - 1].a == pp[i].a && pp[k - 1].b == pp[i].b)
-			pp[k - 1].w += pp[i].w;
-		else
-			pp[k++] = pp[i];
-	}
-	*out = pp, *nout = k;
+	*out = pp, *nout = merge_pairs(pp, n);
 	return 0;
 }
 
