@@ -734,15 +734,7 @@ int main(int argc, char **argv)
 	double lines_s = fct_now() - t0;
 
 	t0 = fct_now();
-	struct fct_out out;
-	if (fct_out_open(&out, o.out, &err))
-		fct_die_err(&err);
-	if (fct_png_write(&img, out.f, &err)) {
-		fct_out_abort(&out);
-		fct_die_err(&err);
-	}
-	if (fct_out_commit(&out, &err))
-		fct_die_err(&err);
+	fct_write_image_or_die(&img, o.out);
 	double write_s = fct_now() - t0;
 
 	static const char *const mode_name[] = { "auto", "shaded", "patch", "texture", "color", "scalar" };

@@ -125,18 +125,7 @@ static void write_text(const char *dir, const char *name, const char *text)
 static void write_image(const char *dir, const char *name, const struct fct_image *img)
 {
 	char *path = out_path(dir, name);
-	struct fct_out o;
-	struct fct_err err;
-	if (fct_out_open(&o, path, &err))
-		fct_die_err(&err);
-	int rc = img->type == FCT_PIX_F32 ? fct_pfm_write(img, o.f, &err) : fct_png_write(img, o.f, &err);
-	if (rc) {
-		fct_out_abort(&o);
-		fct_err_prefix(&err, "%s", path);
-		fct_die_err(&err);
-	}
-	if (fct_out_commit(&o, &err))
-		fct_die_err(&err);
+	fct_write_image_or_die(img, path);
 	free(path);
 }
 

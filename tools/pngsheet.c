@@ -195,15 +195,7 @@ int main(int argc, char **argv)
 		fct_draw_text(&sheet, x0 + (cw - w) / 2 > x0 ? x0 + (cw - w) / 2 : x0, y0 + ch + 3 * scale,
 		              scale, ink, cells[i].caption);
 	}
-	struct fct_out o;
-	if (fct_out_open(&o, out, &err))
-		fct_die_err(&err);
-	if (fct_png_write(&sheet, o.f, &err)) {
-		fct_out_abort(&o);
-		fct_die_err(&err);
-	}
-	if (fct_out_commit(&o, &err))
-		fct_die_err(&err);
+	fct_write_image_or_die(&sheet, out);
 	fct_report("pictures", "%d", n);
 	fct_report("size", "%dx%d", sheet.width, sheet.height);
 	fct_report("cell", "%dx%d", cw, ch);

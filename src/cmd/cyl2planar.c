@@ -64,27 +64,6 @@ struct options {
 	struct fct_cylview_params view;
 };
 
-/* "f,cy,theta0" with f and cy allowed empty (NAN). */
-static void parse_cylindrical(const char *arg, double v[3])
-{
-	const char *s = arg;
-	for (int k = 0; k < 3; k++) {
-		const char *e = strchr(s, ',');
-		size_t n = e ? (size_t)(e - s) : strlen(s);
-		if ((k < 2 && !e) || (k == 2 && e))
-			fct_usage_error("--cylindrical: expected f,cy,theta0");
-		char buf[64];
-		if (n >= sizeof buf)
-			fct_usage_error("--cylindrical: \"%s\" is not a number", s);
-		memcpy(buf, s, n);
-		buf[n] = 0;
-		v[k] = n == 0 && k < 2 ? NAN : fct_opt_double("--cylindrical", buf, -1e300, 1e300);
-		s = e ? e + 1 : s;
-	}
-	if (!isnan(v[0]) && !(v[0] > 0))
-		fct_usage_error("--cylindrical: f must be positive");
-}
-
 static void parse_size(const char *arg, int *w, int *h)
 {
 	char *x = strchr(arg, 'x');
@@ -188,21 +167,6 @@ static void write_text(const char *path, const char *text)
 		fct_die_err(&err);
 }
 
-static void write_image(const char *path, const struct fct_image *img)
-{
-	struct fct_out o;
-	struct fct_err err;
-	if (fct_out_open(&o, path, &err))
-		fct_die_err(&err);
-	int rc = img->type == FCT_PIX_F32 ? fct_pfm_write(img, o.f, &err) : fct_png_write(img, o.f, &err);
-	if (rc) {
-		fct_out_abort(&o);
-		fct_err_prefix(&err, "%s", path);
-		fct_die_err(&err);
-	}
-	if (fct_out_commit(&o, &err))
-		fct_die_err(&err);
-}
 
 static char *xprintf(const char *fmt, const char *a, int k, const char *ext)
 {
@@ -264,14 +228,8 @@ int main(int argc, char **argv)
 			fct_die_err(&err);
 		have_cam = 1;
 	} else if (o.cylindrical || !have_cam) {
-		double v[3] = {NAN, NAN, 0};
-		if (o.cylindrical)
-			parse_cylindrical(o.cylindrical, v);
-		cam.kind = FCT_CAMERA_CYLINDRICAL;
+		fct_opt_cylindrical(o.cylindrical ? o.cylindrical : ",,0", img.width, img.height, &cam);
 		cam.width = img.width, cam.height = img.height;
-		cam.f = isnan(v[0]) ? img.width / (2 * M_PI) : v[0];
-		cam.cy = isnan(v[1]) ? (img.height - 1) / 2.0 : v[1];
-		cam.theta0 = v[2];
 		have_cam = 1;
 	}
 	if (cam.kind != FCT_CAMERA_CYLINDRICAL)
@@ -374,7 +332,7 @@ int main(int argc, char **argv)
 		}
 		double t4 = fct_now();
 		split_s += t4 - t3;
-		write_image(names[k], &vi);
+		fct_write_image_or_die(&vi, names[k]);
 		pixels += (size_t)vi.width * vi.height;
 		fct_image_free(&vi);
 		if (!o.mesh) {

@@ -79,25 +79,6 @@ struct options {
 	struct fct_depth_params depth;
 };
 
-/* "f,cy,theta0" with f and cy allowed empty (defaults from the image). */
-static void parse_cylindrical(const char *arg, double v[3])
-{
-	const char *s = arg;
-	for (int k = 0; k < 3; k++) {
-		const char *e = strchr(s, ',');
-		size_t n = e ? (size_t)(e - s) : strlen(s);
-		if ((k < 2 && !e) || (k == 2 && e))
-			fct_usage_error("--cylindrical: expected f,cy,theta0");
-		char buf[64];
-		if (n >= sizeof buf)
-			fct_usage_error("--cylindrical: \"%s\" is not a number", s);
-		memcpy(buf, s, n);
-		buf[n] = 0;
-		v[k] = n == 0 && k < 2 ? NAN : fct_opt_double("--cylindrical", buf, -1e300, 1e300);
-		s = e ? e + 1 : s;
-	}
-}
-
 /* The camera the options name; width and height of a size-less camera come
  * from the image (w, h; 0 for sparse points without a size). */
 static void resolve_camera(struct options *o, struct fct_camera *cam, int w, int h)
@@ -126,14 +107,7 @@ static void resolve_camera(struct options *o, struct fct_camera *cam, int w, int
 		if (fct_camera_read_file(o->camera_file, cam, &err))
 			fct_die_err(&err);
 	} else if (o->cylindrical) {
-		double v[3];
-		parse_cylindrical(o->cylindrical, v);
-		cam->kind = FCT_CAMERA_CYLINDRICAL;
-		cam->f = isnan(v[0]) ? w / (2 * M_PI) : v[0];
-		cam->cy = isnan(v[1]) ? (h - 1) / 2.0 : v[1];
-		cam->theta0 = v[2];
-		if (!(cam->f > 0))
-			fct_usage_error("--cylindrical: f must be positive");
+		fct_opt_cylindrical(o->cylindrical, w, h, cam);
 	} else if (!o->points) {
 		fct_usage_error("no camera: give -K, --camera or --cylindrical");
 	}

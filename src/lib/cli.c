@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "numparse.h"
+#include "output.h"
 #include "reader.h"
 
 const char *fct_prog = "facet";
@@ -113,6 +114,47 @@ void fct_opt_doubles(const char *opt, const char *arg, double *v, int n)
 			fct_usage_error("%s: \"%s\" is not %d comma-separated numbers", opt, arg, n);
 		s = end + 1;
 	}
+}
+
+void fct_opt_cylindrical(const char *arg, int width, int height, struct fct_camera *cam)
+{
+	double v[3];
+	const char *s = arg;
+	for (int k = 0; k < 3; k++) {
+		const char *e = strchr(s, ',');
+		size_t n = e ? (size_t)(e - s) : strlen(s);
+		if ((k < 2 && !e) || (k == 2 && e))
+			fct_usage_error("--cylindrical: expected f,cy,theta0");
+		char buf[64];
+		if (n >= sizeof buf)
+			fct_usage_error("--cylindrical: \"%s\" is not a number", s);
+		memcpy(buf, s, n);
+		buf[n] = 0;
+		v[k] = n == 0 && k < 2 ? NAN : fct_opt_double("--cylindrical", buf, -1e300, 1e300);
+		s = e ? e + 1 : s;
+	}
+	if (!isnan(v[0]) && !(v[0] > 0))
+		fct_usage_error("--cylindrical: f must be positive");
+	cam->kind = FCT_CAMERA_CYLINDRICAL;
+	cam->f = isnan(v[0]) ? width / (2 * M_PI) : v[0];
+	cam->cy = isnan(v[1]) ? (height - 1) / 2.0 : v[1];
+	cam->theta0 = v[2];
+}
+
+void fct_write_image_or_die(const struct fct_image *img, const char *path)
+{
+	struct fct_out o;
+	struct fct_err err;
+	if (fct_out_open(&o, path, &err))
+		fct_die_err(&err);
+	int rc = img->type == FCT_PIX_F32 ? fct_pfm_write(img, o.f, &err) : fct_png_write(img, o.f, &err);
+	if (rc) {
+		fct_out_abort(&o);
+		fct_err_prefix(&err, "%s", path);
+		fct_die_err(&err);
+	}
+	if (fct_out_commit(&o, &err))
+		fct_die_err(&err);
 }
 
 double fct_now(void)

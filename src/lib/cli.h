@@ -7,6 +7,9 @@
 #ifndef FCT_CLI_H
 #define FCT_CLI_H
 
+#include "camera.h"
+#include "image.h"
+
 #include "err.h"
 
 #define FCT_VERSION "0.1.0"
@@ -37,6 +40,16 @@ double fct_opt_double(const char *opt, const char *arg, double lo, double hi);
 long fct_opt_long(const char *opt, const char *arg, long lo, long hi);
 /* A comma-separated list of exactly n numbers ("-K fx,fy,cx,cy"). */
 void fct_opt_doubles(const char *opt, const char *arg, double *v, int n);
+
+/* --cylindrical "f,cy,theta0" (f and cy may be empty) for an image of
+ * width x height: sets cam's kind, f (default width / 2 pi), cy (default
+ * (height - 1) / 2) and theta0; exit 2 when malformed or f is not
+ * positive. */
+void fct_opt_cylindrical(const char *arg, int width, int height, struct fct_camera *cam);
+
+/* Write img to path atomically (output.h): PFM when it holds floats, else
+ * PNG; exit 1 with the path in the message on failure. */
+void fct_write_image_or_die(const struct fct_image *img, const char *path);
 
 /* Seconds on a monotonic clock. */
 double fct_now(void);
