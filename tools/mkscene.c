@@ -112,13 +112,7 @@ static char *out_path(const char *dir, const char *name)
 static void write_text(const char *dir, const char *name, const char *text)
 {
 	char *path = out_path(dir, name);
-	struct fct_out o;
-	struct fct_err err;
-	if (fct_out_open(&o, path, &err))
-		fct_die_err(&err);
-	fputs(text, o.f);
-	if (fct_out_commit(&o, &err))
-		fct_die_err(&err);
+	fct_write_text_or_die(text, path);
 	free(path);
 }
 

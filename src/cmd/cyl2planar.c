@@ -156,18 +156,6 @@ static void parse_options(int argc, char **argv, struct options *o)
 	}
 }
 
-static void write_text(const char *path, const char *text)
-{
-	struct fct_out o;
-	struct fct_err err;
-	if (fct_out_open(&o, path, &err))
-		fct_die_err(&err);
-	fputs(text, o.f);
-	if (fct_out_commit(&o, &err))
-		fct_die_err(&err);
-}
-
-
 static char *xprintf(const char *fmt, const char *a, int k, const char *ext)
 {
 	size_t n = strlen(a) + strlen(ext) + 32;
@@ -340,7 +328,7 @@ int main(int argc, char **argv)
 			fct_camera_format(&views[k].cam, line, sizeof line);
 			snprintf(text, sizeof text, "camera %s\n", line);
 			char *p = xprintf("%s/view%02d%s", o.out, (int)k, ".camera");
-			write_text(p, text);
+			fct_write_text_or_die(text, p);
 			free(p);
 			double vp[12];
 			fct_cylview_pose(&views[k], have_pose ? pose : NULL, vp);
@@ -350,7 +338,7 @@ int main(int argc, char **argv)
 				                        vp[i] + 0.0, i % 4 == 3 ? '\n' : ' ');
 			snprintf(text + len, sizeof text - len, "0 0 0 1\n");
 			p = xprintf("%s/view%02d%s", o.out, (int)k, ".pose");
-			write_text(p, text);
+			fct_write_text_or_die(text, p);
 			free(p);
 		}
 		write_s += fct_now() - t4;

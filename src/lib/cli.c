@@ -157,6 +157,17 @@ void fct_write_image_or_die(const struct fct_image *img, const char *path)
 		fct_die_err(&err);
 }
 
+void fct_write_text_or_die(const char *text, const char *path)
+{
+	struct fct_out o;
+	struct fct_err err;
+	if (fct_out_open(&o, path, &err))
+		fct_die_err(&err);
+	fputs(text, o.f);
+	if (fct_out_commit(&o, &err))
+		fct_die_err(&err);
+}
+
 double fct_now(void)
 {
 	struct timespec ts;

@@ -51,6 +51,9 @@ void fct_opt_cylindrical(const char *arg, int width, int height, struct fct_came
  * PNG; exit 1 with the path in the message on failure. */
 void fct_write_image_or_die(const struct fct_image *img, const char *path);
 
+/* Write text to path atomically (output.h); exit 1 on failure. */
+void fct_write_text_or_die(const char *text, const char *path);
+
 /* Seconds on a monotonic clock. */
 double fct_now(void);
 /* CPU seconds used by this process. */
