@@ -1,15 +1,19 @@
 /* meshconv - convert a mesh between PLY encodings and OBJ, keeping every
- * property and element the target format can hold. */
+ * property and element the target format can hold; optionally mesh a
+ * range-grid scan and place it in the world with its .conf pose. */
 #include <getopt.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "camera.h"
 #include "cli.h"
+#include "header.h"
 #include "meshio.h"
 #include "path.h"
+#include "rangegrid.h"
 
 static const char usage[] =
-	"usage: meshconv [-aqv] [-f format] [-o file] [input]\n"
+	"usage: meshconv [-aqv] [-f format] [-o file] [--conf file] [--grid] [input]\n"
 	"Convert a mesh (PLY or OBJ, detected from the content) to binary PLY,\n"
 	"keeping every property, element and comment.\n"
 	"  -a            write ascii PLY\n"
@@ -17,20 +21,101 @@ static const char usage[] =
 	"  -o file       output file (default stdout); a name ending in .obj writes OBJ\n"
 	"                and, for a textured mesh, a .mtl beside it\n"
 	"  -q            quiet\n"
+	"      --conf file  place the scan in the world with its pose from this\n"
+	"                Stanford .conf file (the bmesh line naming input); a\n"
+	"                range-grid scan is meshed as with --grid\n"
+	"      --grid    mesh a range-grid scan (range_grid element, no faces) as\n"
+	"                tsdfuse does; the range_grid element is dropped\n"
 	"  -v            report counts and time on stderr\n"
 	"  -h, --help    this help\n"
 	"      --version print the version\n";
 
+/* The pose of the .conf scan named like in (by file name; the full path
+ * decides between equal names). */
+static void conf_pose(const char *conf, const char *in, double pose[12])
+{
+	struct fct_err err;
+	struct fct_conf c;
+	if (fct_conf_read(&c, conf, &err))
+		fct_die_err(&err);
+	const char *base = strrchr(in, '/') ? strrchr(in, '/') + 1 : in;
+	size_t found = c.n, same = 0;
+	for (size_t i = 0; i < c.n; i++) {
+		const char *p = c.scans[i].path;
+		if (strcmp(strrchr(p, '/') ? strrchr(p, '/') + 1 : p, base))
+			continue;
+		if (same++ == 0 || !strcmp(p, in))
+			found = i;
+	}
+	if (found == c.n || (same > 1 && strcmp(c.scans[found].path, in))) {
+		fct_conf_free(&c);
+		fct_die(1, "%s: %s %s", conf, same ? "several bmesh lines name" : "no bmesh line names", base);
+	}
+	memcpy(pose, c.scans[found].pose, 12 * sizeof *pose);
+	fct_conf_free(&c);
+}
+
+/* --grid and --conf: mesh the range grid of m, then move it by the pose. */
+static void range_scan(struct fct_mesh *m, const char *in, int grid, const char *conf)
+{
+	struct fct_err err;
+	const char *name = fct_path_is_std(in) ? "<stdin>" : in;
+	if (grid || (fct_mesh_find_elem(m, "range_grid") && m->nf == 0)) {
+		struct fct_mesh meshed;
+		if (fct_range_grid_mesh(&meshed, m, NULL, NULL, &err)) {
+			fct_mesh_free(m);
+			fct_err_prefix(&err, "%s", name);
+			fct_die_err(&err);
+		}
+		fct_mesh_free(m);
+		*m = meshed;
+	}
+	if (!conf)
+		return;
+	double pose[12];
+	conf_pose(conf, in, pose);
+	double had[12];
+	int hp = fct_header_pose(m, had, &err);
+	fct_err_prefix(&err, "%s", name);
+	if (hp) {
+		fct_mesh_free(m);
+		if (hp < 0)
+			fct_die_err(&err);
+		fct_die(1, "%s: already has a pose comment: its vertices are in a world frame", name);
+	}
+	for (size_t v = 0; v < m->nv; v++)
+		fct_pose_apply(pose, &m->xyz[3 * v], &m->xyz[3 * v]);
+	struct fct_prop *n[3] = { fct_elem_find(&m->vertex, "nx"), fct_elem_find(&m->vertex, "ny"),
+	                          fct_elem_find(&m->vertex, "nz") };
+	if (n[0] && n[1] && n[2])
+		for (size_t v = 0; v < m->nv; v++) {
+			double a[3], b[3];
+			for (int k = 0; k < 3; k++)
+				a[k] = fct_prop_get(n[k], v);
+			for (int k = 0; k < 3; k++)
+				b[k] = pose[4 * k] * a[0] + pose[4 * k + 1] * a[1] + pose[4 * k + 2] * a[2];
+			for (int k = 0; k < 3; k++)
+				fct_prop_set(n[k], v, b[k]);
+		}
+	if (fct_header_set_pose(m, pose, &err)) {
+		fct_mesh_free(m);
+		fct_die_err(&err);
+	}
+}
+
 int main(int argc, char **argv)
 {
+	enum { OPT_CONF = 256, OPT_GRID };
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, 'V'},
+		{"conf", required_argument, NULL, OPT_CONF},
+		{"grid", no_argument, NULL, OPT_GRID},
 		{NULL, 0, NULL, 0},
 	};
 	fct_cli_init("meshconv");
-	const char *out = NULL;
-	int fmt = -1, c;
+	const char *out = NULL, *conf = NULL;
+	int fmt = -1, c, grid = 0;
 	static const char optstring[] = "af:ho:qv";
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
@@ -47,12 +132,16 @@ int main(int argc, char **argv)
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case 'V': puts("meshconv (facet) " FCT_VERSION); return 0;
+		case OPT_CONF: conf = optarg; break;
+		case OPT_GRID: grid = 1; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
 	if (argc - optind > 1)
 		fct_usage_error("too many operands");
 	const char *in = optind < argc ? argv[optind] : NULL;
+	if (conf && fct_path_is_std(in))
+		fct_usage_error("--conf: the scan is found by its file name: give it, not standard input");
 
 	struct fct_err err;
 	struct fct_mesh m;
@@ -60,6 +149,8 @@ int main(int argc, char **argv)
 	double t0 = fct_now();
 	if (fct_mesh_read_file(&m, in, &infmt, &err))
 		fct_die_err(&err);
+	if (grid || conf)
+		range_scan(&m, in, grid, conf);
 	double t1 = fct_now();
 	if (fmt == -1)
 		fmt = fct_format_for_path(out, 0);

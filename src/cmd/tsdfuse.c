@@ -277,9 +277,8 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		struct fct_mesh raw;
 		if (fct_mesh_read_file(&raw, s->path, NULL, &err))
 			fct_die_err(&err);
-		struct fct_grid_params gp = { 10, FCT_DEFAULT_MIN_FACES };
 		double step;
-		int rc = fct_range_grid_mesh(&L->mesh, &raw, &gp, &step, &err);
+		int rc = fct_range_grid_mesh(&L->mesh, &raw, NULL, &step, &err);
 		fct_mesh_free(&raw);
 		if (rc) {
 			fct_err_prefix(&err, "%s", s->path);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "depthmesh.h"
 #include "geom.h"
 #include "path.h"
 
@@ -145,11 +146,16 @@ static int cmp_double(const void *a, const void *b)
 int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
                         const struct fct_grid_params *p, double *step, struct fct_err *err)
 {
+	static const struct fct_grid_params defaults = { FCT_RANGE_GRID_MAX_JUMP, FCT_DEFAULT_MIN_FACES };
 	fct_mesh_init(out);
+	if (!p)
+		p = &defaults;
 	const struct fct_elem *e = fct_mesh_find_elem(m, "range_grid");
 	const struct fct_prop *ix = e ? fct_elem_find(e, "vertex_indices") : NULL;
 	if (!e || !ix || ix->count_type == FCT_NONE)
 		return fct_fail(err, "no range_grid element with a vertex_indices list");
+	if (m->nf)
+		return fct_fail(err, "a range_grid element beside %zu faces: already meshed", m->nf);
 	long w = obj_info_long(m, "num_cols"), h = obj_info_long(m, "num_rows");
 	if (w < 1 || h < 1)
 		return fct_fail(err, "range_grid without obj_info num_cols and num_rows");
@@ -159,12 +165,17 @@ int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
 	double *xyz = fct_alloc_array(nc, 3 * sizeof *xyz, err);
 	double *depth = fct_alloc_array(nc, sizeof *depth, err);
 	double *gaps = fct_alloc_array(nc, sizeof *gaps, err);
+	size_t *vert = fct_alloc_array(nc, sizeof *vert, err);
+	uint32_t *cell_of = NULL;
+	struct fct_mesh grid;
+	fct_mesh_init(&grid);
 	int rc = -1;
-	if (!xyz || !depth || !gaps)
+	if (!xyz || !depth || !gaps || !vert)
 		goto done;
 	for (size_t c = 0; c < nc; c++) {
 		size_t k = ix->off[c + 1] - ix->off[c];
 		depth[c] = 0;
+		vert[c] = 0;
 		xyz[3 * c] = xyz[3 * c + 1] = xyz[3 * c + 2] = 0;
 		if (k == 0)
 			continue;
@@ -174,6 +185,7 @@ int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
 			         k > 1 ? "more than one vertex" : "vertex index out of range");
 			goto done;
 		}
+		vert[c] = (size_t)v;
 		const double *q = &m->xyz[3 * (size_t)v];
 		if (!(isfinite(q[0]) && isfinite(q[1]) && isfinite(q[2])))
 			continue;
@@ -200,30 +212,43 @@ int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
 	if (step)
 		*step = st;
 	struct fct_range_grid g = { (int)w, (int)h, xyz, NULL, NULL, depth, st / DEPTH_OFFSET, 0 };
-	if (fct_grid_mesh(out, &g, p, NULL, NULL, err))
+	if (fct_grid_mesh(&grid, &g, p, &cell_of, NULL, err))
+		goto done;
+	/* The scan's own vertices, in the order of the grid's, with all their
+	 * properties; every other element and comment but range_grid. */
+	for (size_t v = 0; v < grid.nv; v++)
+		vert[v] = vert[cell_of[v]];     /* cell_of[v] >= v: read before written */
+	if (fct_mesh_copy(out, m, err))
+		goto done;
+	fct_mesh_remove_elem(out, "range_grid");
+	if (fct_mesh_gather_vertices(out, vert, grid.nv, err) ||
+	    fct_mesh_set_triangle_count(out, grid.nf, err))
 		goto done;
 	/* Orient towards the scanner at +z. */
 	double nz = 0;
-	for (size_t f = 0; f < out->nf; f++) {
-		const uint32_t *t = &out->fvert[out->fstart[f]];
+	for (size_t f = 0; f < grid.nf; f++) {
+		const uint32_t *t = &grid.fvert[grid.fstart[f]];
 		double a[3], b[3], n[3];
-		fct_v3_sub(a, &out->xyz[3 * t[1]], &out->xyz[3 * t[0]]);
-		fct_v3_sub(b, &out->xyz[3 * t[2]], &out->xyz[3 * t[0]]);
+		fct_v3_sub(a, &grid.xyz[3 * t[1]], &grid.xyz[3 * t[0]]);
+		fct_v3_sub(b, &grid.xyz[3 * t[2]], &grid.xyz[3 * t[0]]);
 		fct_v3_cross(n, a, b);
 		nz += n[2];
 	}
-	if (nz < 0)
-		for (size_t f = 0; f < out->nf; f++) {
-			uint32_t *t = &out->fvert[out->fstart[f]];
-			uint32_t x = t[1];
-			t[1] = t[2];
-			t[2] = x;
-		}
+	for (size_t f = 0; f < grid.nf; f++) {
+		const uint32_t *t = &grid.fvert[grid.fstart[f]];
+		uint32_t *o = &out->fvert[3 * f];
+		o[0] = t[0];
+		o[1] = nz < 0 ? t[2] : t[1];
+		o[2] = nz < 0 ? t[1] : t[2];
+	}
 	rc = 0;
 done:
 	free(xyz);
 	free(depth);
 	free(gaps);
+	free(vert);
+	free(cell_of);
+	fct_mesh_free(&grid);
 	if (rc)
 		fct_mesh_free(out);
 	return rc;

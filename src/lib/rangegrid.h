@@ -43,13 +43,20 @@ void fct_conf_free(struct fct_conf *c);
 /* The rotation of unit quaternion (x, y, z, w) as the R of pose (t = 0). */
 void fct_quat_pose(double x, double y, double z, double w, double pose[12]);
 
-/* Mesh the range-grid scan in m (as read, with its range_grid element) into
- * out (initialised here), in the scan frame, faces oriented towards the
- * scanner (+z).  Depth jumps are judged along z with the grid's own step;
- * p as for fct_grid_mesh (max_jump 10 cuts a face whose z changes by more
- * than ten grid steps per step).  *step gets the median grid step (metres,
- * may be NULL).  0 or -1 ("no range_grid element", "range_grid cell N:
- * vertex index out of range", ...). */
+/* The depth-jump bound of a range-grid scan's mesh (gridmesh.h max_jump):
+ * a face whose z changes by more than ten grid steps per step is cut. */
+#define FCT_RANGE_GRID_MAX_JUMP 10
+
+/* Mesh the range-grid scan in m (as read, with its range_grid element and
+ * no faces) into out (initialised here), in the scan frame, faces oriented
+ * towards the scanner (+z).  The vertices are the scan's vertices that some
+ * triangle uses, in grid order, with all their properties; every comment
+ * and every element but range_grid is kept.  Depth jumps are judged along z
+ * with the grid's own step; p as for fct_grid_mesh (NULL: max_jump
+ * FCT_RANGE_GRID_MAX_JUMP, min_faces FCT_DEFAULT_MIN_FACES).  *step gets the
+ * median grid step (metres, may be NULL).  0 or -1 ("no range_grid element",
+ * "range_grid cell N: vertex index out of range", ...).  tsdfuse --conf and
+ * meshconv --grid both mesh scans here. */
 int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
                         const struct fct_grid_params *p, double *step, struct fct_err *err);
 
