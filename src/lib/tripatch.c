@@ -367,8 +367,19 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 				st->in_plane++, st->fallbacks += (size_t)st_avail;
 		}
 	}
-	if (!w->have[0] && !w->have[1] && chain(w, w->xy[1], &open))
-		return -1;   /* nothing to triangulate: only count what does not close */
+	if (!w->have[0] && !w->have[1]) {
+		/* nothing to triangulate: only count what does not close */
+		if (chain(w, w->xy[1], &open))
+			return -1;
+		if (w->nloops > 0) {
+			/* Closed, but without area in the image or the plane
+			 * (projection put its corners on one line or point):
+			 * there is nothing to cover, so it is not a failure. */
+			st->degenerate += w->nloops;
+			st->open_edges += open;
+			return 0;
+		}
+	}
 	if (!done && w->nloops > 0 && w->have[1]) {
 		st->repairs++;
 		if (repair(w, p, st))

@@ -808,6 +808,19 @@ static void test_wire_touch(void)
 	CHECK_INT(s.first_failure, 0);
 	CHECK_INT(m.nf, 0);
 	fct_mesh_free(&m);
+
+	/* A closed triangle whose corners projection put on one point and a
+	 * line (two copies at one position, as on the TUM frame): no area in
+	 * either frame, so a degenerate loop, not a failure. */
+	static const double v4[] = { 0, 0, 0, 0, 0, 0, 1, 0, 0 };
+	static const int e4[] = { 0, 1, 0, -1, 1, 2, 0, -1, 2, 0, 0, -1 };
+	wire(&m, v4, 3, 0, e4, 3, pl, 1);
+	CHECK_INT(fct_tripatch(&m, &p, &s, &err), 0);
+	CHECK_INT(s.failures, 0);
+	CHECK_INT(s.degenerate, 1);
+	CHECK_INT(s.open_edges, 0);
+	CHECK_INT(m.nf, 0);
+	fct_mesh_free(&m);
 }
 
 /* Three boundary vertices on one image line at pixel centres (as dm2mesh
