@@ -19,13 +19,14 @@
 #include "meshio.h"
 #include "path.h"
 #include "rangegrid.h"
+#include "viewcolor.h"
 
 static const char usage[] =
 	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"
 	"               [--carve] [--weight constant | incidence | depth2]\n"
 	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
 	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--poses file ...]\n"
-	"               [--conf file] [--threads n] [view ...]\n"
+	"               [--color] [--image file ...] [--conf file] [--threads n] [view ...]\n"
 	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
 	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
 	"the true signed distance to each view's surface, and extract the surface.\n"
@@ -38,11 +39,15 @@ static const char usage[] =
 	"                     fuse and extract only inside this box (metres); tiles\n"
 	"                     sharing faces join without cracks\n"
 	"      --carve        space carving: close occlusion holes (watertight rooms)\n"
+	"      --color        vertex colour from the views' images (TextureFile\n"
+	"                     comments, --image); unseen vertices are grey 128\n"
 	"      --conf file    Stanford/VRIP .conf naming range-grid PLY scans\n"
 	"      --curvature-flow iter\n"
 	"                     level-set mean-curvature steps after fusion (default 0)\n"
 	"      --depth-scale s\n"
 	"                     PNG depth units per metre (default 1000, or the -K name's)\n"
+	"      --image file   colour image of the depth-image views, in their order\n"
+	"                     (repeated; implies --color)\n"
 	"      --min-weight w extract only voxels of at least this weight (default 0)\n"
 	"      --poses file   camera-to-world poses of the depth images: a TUM\n"
 	"                     trajectory, or one 4x4 or 3x4 file per image (repeated)\n"
@@ -56,12 +61,13 @@ static const char usage[] =
 	"      --version      print the version\n";
 
 enum { OPT_VOXEL = 256, OPT_TRUNC, OPT_BBOX, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW,
-       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION };
+       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION, OPT_COLOR, OPT_IMAGE };
 
 struct options {
 	const char *out, *K, *conf;
-	const char **poses;
-	size_t nposes;
+	const char **poses, **images;
+	size_t nposes, nimages;
+	int color;
 	int ascii, carve, flow, has_bbox, scale_given;
 	double voxel, trunc, min_weight, bbox[6], depth_scale;
 	struct fct_fuse_params fp;
@@ -86,6 +92,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"poses", required_argument, NULL, OPT_POSES},
 		{"conf", required_argument, NULL, OPT_CONF},
 		{"threads", required_argument, NULL, OPT_THREADS},
+		{"color", no_argument, NULL, OPT_COLOR},
+		{"image", required_argument, NULL, OPT_IMAGE},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ahK:o:qv";
@@ -95,7 +103,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 	o->trunc = 3;
 	o->depth_scale = 1000;
 	o->poses = calloc((size_t)argc + 1, sizeof *o->poses);
-	if (!o->poses)
+	o->images = calloc((size_t)argc + 1, sizeof *o->images);
+	if (!o->poses || !o->images)
 		fct_die(1, "out of memory");
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
@@ -136,6 +145,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		case OPT_POSES: o->poses[o->nposes++] = optarg; break;
 		case OPT_CONF: o->conf = optarg; break;
 		case OPT_THREADS: o->fp.threads = (int)fct_opt_long("--threads", optarg, 0, 64); break;
+		case OPT_COLOR: o->color = 1; break;
+		case OPT_IMAGE: o->images[o->nimages++] = optarg, o->color = 1; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
@@ -257,11 +268,14 @@ static double machine_bytes(void)
 	return pages > 0 && size > 0 ? (double)pages * (double)size : 4e9;
 }
 
-/* Everything one view needs: its mesh, camera and pose. */
+/* Everything one view needs: its mesh, camera and pose, and with --color
+ * its colour image (malloc'd path, NULL for none). */
 struct loaded {
 	struct fct_mesh mesh;
 	struct fct_fuse_view view;
 	char name[512];
+	int depth_image;
+	char *image;
 };
 
 /* Load view number idx (operands first, then the .conf scans). */
@@ -336,6 +350,7 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 			fct_pose_apply(pose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
 		memcpy(L->view.pose, pose, sizeof pose);
 		L->view.cam = cam;
+		L->depth_image = 1;
 	} else {
 		const char *path = o->views[idx];
 		snprintf(L->name, sizeof L->name, "%s", fct_path_display(path));
@@ -359,6 +374,13 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 			fct_err_prefix(&err, "%s: pose", L->name);
 			fct_die_err(&err);
 		}
+		if (o->color && fct_header_texture_count(&L->mesh)) {
+			/* On disk a TextureFile is relative to its mesh's folder. */
+			char *dir = fct_path_dir(path, &err);
+			if (!dir || !(L->image = fct_path_join(dir, fct_header_texture(&L->mesh, 0), &err)))
+				fct_die_err(&err);
+			free(dir);
+		}
 	}
 	if (L->mesh.nf == 0)
 		fct_die(1, "%s: empty view (no faces)", L->name);
@@ -367,6 +389,65 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		      isfinite(L->mesh.xyz[3 * v + 2])))
 			fct_die(1, "%s: vertex %zu is not finite", L->name, v);
 	L->view.mesh = &L->mesh;
+}
+
+/* --color, before the view meshes are freed: the range image of each view
+ * that has a colour image (carving's, when it made them).  Returns the
+ * number of such views. */
+static size_t color_ranges(struct loaded *L, struct fct_range_image *ri, size_t nv)
+{
+	struct fct_err err;
+	size_t n = 0;
+	for (size_t i = 0; i < nv; i++) {
+		if (!L[i].image || L[i].view.cam.kind == FCT_CAMERA_NONE)
+			continue;
+		n++;
+		if (!ri[i].range && fct_range_image_make(&ri[i], &L[i].view, (size_t)1 << 26, &err)) {
+			fct_err_prefix(&err, "%s", L[i].name);
+			fct_die_err(&err);
+		}
+	}
+	if (!n)
+		fct_warn("--color: no view has a colour image (TextureFile comment or --image): "
+		         "every vertex gets the fallback grey");
+	return n;
+}
+
+/* --color: each vertex of out gets the weighted average colour of the
+ * views that see it (viewcolor.h), grey 128 when none does.  One image in
+ * memory at a time. */
+static void color_vertices(const struct options *o, const struct loaded *L,
+                           const struct fct_range_image *ri, size_t nv, struct fct_mesh *out)
+{
+	struct fct_err err;
+	struct fct_viewcolor acc;
+	if (fct_viewcolor_init(&acc, out->nv, &err))
+		fct_die_err(&err);
+	struct fct_viewcolor_params cp = { o->fp.band, o->fp.weight, 4 };
+	for (size_t i = 0; i < nv; i++) {
+		if (!L[i].image || !ri[i].range)
+			continue;
+		struct fct_image img;
+		size_t seen;
+		if (fct_image_read_file(&img, L[i].image, NULL, &err))
+			fct_die_err(&err);
+		int rc = fct_viewcolor_add(&acc, out, &ri[i], &img, &cp, &seen, &err);
+		fct_image_free(&img);
+		if (rc) {
+			fct_err_prefix(&err, "%s", L[i].name);
+			fct_die_err(&err);
+		}
+		if (fct_verbose)
+			fprintf(stderr, "tsdfuse: colour from %s: %zu vertices seen\n", L[i].name, seen);
+	}
+	static const uint8_t grey[3] = { 128, 128, 128 };
+	struct fct_viewcolor_stats st;
+	if (fct_viewcolor_write(&acc, out, grey, &st, &err))
+		fct_die_err(&err);
+	fct_viewcolor_free(&acc);
+	fct_report("colored_vertices", "%zu", st.colored);
+	fct_report("uncolored_vertices", "%zu", st.unseen);
+	fct_report("views_per_vertex", "%.2f", st.views_per_vertex);
 }
 
 int main(int argc, char **argv)
@@ -409,8 +490,12 @@ int main(int argc, char **argv)
 	double t0 = fct_now();
 	/* Read every view first: the memory estimate needs their extents. */
 	double area = 0, lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+	size_t nimage = 0;
 	for (size_t i = 0; i < nv; i++) {
 		load_view(&o, i, &conf, &tr, &dcam, &dp, &L[i]);
+		if (L[i].depth_image && nimage < o.nimages && !(L[i].image = fct_strdup(o.images[nimage], &err)))
+			fct_die_err(&err);
+		nimage += (size_t)L[i].depth_image;
 		area += mesh_area(&L[i].mesh);
 		for (size_t v = 0; v < L[i].mesh.nv; v++)
 			for (int k = 0; k < 3; k++) {
@@ -419,6 +504,8 @@ int main(int argc, char **argv)
 				hi[k] = x > hi[k] ? x : hi[k];
 			}
 	}
+	if (o.nimages && o.nimages != nimage)
+		fct_usage_error("%zu depth views but %zu --image files", nimage, o.nimages);
 	double read_s = fct_now() - t0;
 	double vox = o.voxel, band = o.fp.band;
 	if (o.has_bbox)
@@ -490,8 +577,10 @@ int main(int argc, char **argv)
 			fct_die_err(&err);
 		carve_s = fct_now() - tc;
 	}
+	size_t ncolor = o.color ? color_ranges(L, ri, nv) : 0;
 	for (size_t i = 0; i < nv; i++) {
-		fct_range_image_free(&ri[i]);
+		if (!ncolor)
+			fct_range_image_free(&ri[i]);
 		fct_mesh_free(&L[i].mesh);
 	}
 	double flow_s = 0;
@@ -510,7 +599,16 @@ int main(int argc, char **argv)
 	}
 	if (fct_mcubes(g, (float)o.min_weight, o.has_bbox ? mlo : NULL, o.has_bbox ? mhi : NULL, &out, &err))
 		fct_die_err(&err);
-	double mc_s = fct_now() - tm;
+	double mc_s = fct_now() - tm, color_s = 0;
+	if (o.color) {
+		double tc = fct_now();
+		color_vertices(&o, L, ri, nv, &out);
+		color_s = fct_now() - tc;
+	}
+	for (size_t i = 0; i < nv; i++) {
+		fct_range_image_free(&ri[i]);
+		free(L[i].image);
+	}
 	fct_report("views", "%zu", nv);
 	fct_report("view_faces", "%zu", st.faces);
 	fct_report("voxels_updated", "%zu", st.voxels);
@@ -530,6 +628,10 @@ int main(int argc, char **argv)
 	fct_report("carve_s", "%.4f", carve_s);
 	fct_report("flow_s", "%.4f", flow_s);
 	fct_report("mcubes_s", "%.4f", mc_s);
+	if (o.color) {
+		fct_report("color_views", "%zu", ncolor);
+		fct_report("color_s", "%.4f", color_s);
+	}
 	fct_report("total_s", "%.4f", fct_now() - t0);
 	fct_mesh_free(&out);
 	free(L);
@@ -537,6 +639,7 @@ int main(int argc, char **argv)
 	free(tr.t);
 	free(tr.pose);
 	free(o.poses);
+	free(o.images);
 	fct_conf_free(&conf);
 	return 0;
 }
