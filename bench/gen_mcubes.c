@@ -1,7 +1,10 @@
 /* gen_mcubes - marching-cubes throughput on synthetic grids, beside a plain
  * pass over the same voxels, one core.
- *   gen_mcubes [-r RUNS] room|dense     extract RUNS times, print the medians:
- *                                       key=value lines (seconds, voxels, ...)
+ *   gen_mcubes [-r RUNS] [-t THREADS] room|dense
+ *                                       extract RUNS times, print the medians:
+ *                                       key=value lines (seconds, voxels, ...):
+ *                                       CPU seconds of the process (all its
+ *                                       threads) and wall seconds
  *   gen_mcubes estimate                 blocks and bytes of a 10 x 10 x 3 m room
  *                                       band at 1 cm, counted without allocating
  * room: a 4 x 4 x 2.5 m room at 1 cm voxels, a 0.5 m ball and a 1 x 0.6 x 0.75 m
@@ -94,6 +97,13 @@ static double cpu_now(void)
 	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static double wall_now(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static int cmp(const void *a, const void *b)
 {
 	double x = *(const double *)a, y = *(const double *)b;
@@ -110,13 +120,17 @@ int main(int argc, char **argv)
 {
 	fct_cli_init("gen_mcubes");
 	struct fct_err err;
-	int runs = 5, a = 1;
-	if (argc > 2 && !strcmp(argv[1], "-r")) {
-		runs = (int)fct_opt_long("-r", argv[2], 1, 1000);
-		a = 3;
+	int runs = 5, threads = 1, a = 1;
+	for (; a + 2 < argc; a += 2) {
+		if (!strcmp(argv[a], "-r"))
+			runs = (int)fct_opt_long("-r", argv[a + 1], 1, 1000);
+		else if (!strcmp(argv[a], "-t"))
+			threads = (int)fct_opt_long("-t", argv[a + 1], 1, 64);
+		else
+			break;
 	}
 	if (a + 1 != argc)
-		fct_usage_error("usage: gen_mcubes [-r RUNS] room|dense|estimate");
+		fct_usage_error("usage: gen_mcubes [-r RUNS] [-t THREADS] room|dense|estimate");
 	const char *what = argv[a];
 	if (!strcmp(what, "estimate")) {
 		struct scene s = { { 10, 10, 3 }, { 5, 5, -10, 0 }, { 0, 0, -9, 0, 0, -9 } };
@@ -154,7 +168,8 @@ int main(int argc, char **argv)
 	}
 	size_t nb = fct_voxgrid_count(g);
 	double *tm = malloc((size_t)runs * sizeof *tm), *tr = malloc((size_t)runs * sizeof *tr);
-	if (!tm || !tr)
+	double *tw = malloc((size_t)runs * sizeof *tw);
+	if (!tm || !tr || !tw)
 		fct_die(1, "out of memory");
 	struct fct_mesh m;
 	struct fct_mcubes_stats st;
@@ -173,14 +188,24 @@ int main(int argc, char **argv)
 			sum += acc[k];
 		tr[r] = cpu_now() - t0;
 		t0 = cpu_now();
-		if (fct_mcubes_stats(g, 0, NULL, NULL, &m, &st, &err))
+		double w0 = wall_now();
+		if (fct_mcubes_stats(g, 0, NULL, NULL, threads, &m, &st, &err))
 			fct_die_err(&err);
 		tm[r] = cpu_now() - t0;
+		tw[r] = wall_now() - w0;
 		if (r + 1 < runs)
 			fct_mesh_free(&m);
 	}
-	double vox = (double)nb * 512;
-	double t = median(tm, runs), t_ref = median(tr, runs);
+	double vox = (double)nb * 512, band = 0;
+	for (size_t b = 0; b < nb; b++) {
+		const struct fct_voxblock *B = fct_voxgrid_at(g, b);
+		for (int v = 0; v < 512; v++)
+			band += B->weight[v] > 0;
+	}
+	double t = median(tm, runs), t_ref = median(tr, runs), t_wall = median(tw, runs);
+	printf("threads=%zu\nband_voxels=%.0f\nmcubes_band_mvox_s=%.1f\n", st.threads, band,
+	       band / t / 1e6);
+	printf("mcubes_wall_s=%.5f\nmcubes_wall_mvox_s=%.1f\n", t_wall, vox / t_wall / 1e6);
 	printf("blocks=%zu\nvoxels=%.0f\nvertices=%zu\nfaces=%zu\ncubes=%zu\n", nb, vox, m.nv, m.nf,
 	       st.cubes);
 	printf("mcubes_s=%.5f\nmcubes_mvox_s=%.1f\nref_s=%.5f\nref_mvox_s=%.1f\nchecksum=%.3g\n", t,
@@ -190,5 +215,6 @@ int main(int argc, char **argv)
 	fct_voxgrid_free(g);
 	free(tm);
 	free(tr);
+	free(tw);
 	return 0;
 }

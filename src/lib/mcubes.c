@@ -18,24 +18,32 @@
  * joining its positive diagonal are tabulated; a cube whose decider says
  * otherwise on some face is built by the same routine on the spot.
  *
- * Two passes over the blocks.  Pass 1 reads each block and its upper
- * neighbours into 9x9 rows of sign and "observed" bits, marks the crossing
- * lattice edges each voxel owns (the edges from it towards +x, +y, +z) in
- * three 512-bit masks, and creates their vertices, numbered by block, axis
- * and voxel; a vertex's number is then the block's base plus a popcount in
- * its masks, so pass 2 finds the vertices of a cube's twelve edges, in its
- * own block or the upper neighbours, without any per-edge table.  Pass 2
- * emits the triangles of every active cube.  Vertices that no triangle
- * uses (crossings at the edge of the observed region) are dropped last. */
+ * Passes over the blocks.  Pass 0 turns each block into rows of sign and
+ * "observed" bits.  Pass 1 reads each block and its upper neighbours' bits
+ * into 9x9 rows, marks the crossing lattice edges each voxel owns (the edges
+ * from it towards +x, +y, +z) in three 512-bit masks and counts exactly the
+ * block's vertices, triangles and centroid vertices (running the decider on
+ * its ambiguous cubes); prefix sums in block order then fix every block's
+ * place in the output, so that the last two passes -- the vertices (values
+ * gathered once per block, gradients once per corner) and the triangles --
+ * write disjoint ranges and run on threads with the same bytes for any
+ * count.  A vertex's number is its block's base plus a popcount in its
+ * masks, so the triangles find the vertices of a cube's twelve edges, in its
+ * own block or the upper neighbours, without any per-edge table.  Vertices
+ * that no triangle uses (crossings at the edge of the observed region) are
+ * dropped last. */
 #include "mcubes.h"
 
 #include <float.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+
+#include "par.h"
 
 /* Cube geometry ----------------------------------------------------------- */
 
@@ -201,8 +209,10 @@ struct own {
 struct aux {
 	uint8_t bits[3][64];    /* crossing edges it owns, per axis: row z * 8 + y, bit x */
 	uint16_t pre[3][64];    /* the block's vertices before each row */
-	uint32_t base;          /* its first vertex */
-	uint32_t nverts;
+	uint32_t base, nverts;  /* its first edge vertex, their count */
+	uint32_t tbase, ntri;   /* its first triangle, their count */
+	uint32_t cbase, ncent;  /* its first centroid vertex (numbered after every
+	                         * edge vertex), their count */
 	uint32_t block;
 	int32_t up[8];          /* block + (k & 1, k >> 1 & 1, k >> 2): its index, -1 absent */
 	uint16_t neg[9][9];     /* [z][y]: bit x (0..8) set when negative */
@@ -215,80 +225,86 @@ struct aux {
 #define CW 11
 #define CIDX(x, y, z) ((x) + 1 + CW * ((y) + 1 + CW * ((z) + 1)))
 
-struct ctx {
+struct worker;
+
+/* The run, shared by the threads: tables, per-block records, output. */
+struct mc {
 	const struct fct_voxgrid *g;
 	float thr;
 	int colour;
 	double voxel;
+	const int32_t *lo, *hi;         /* clip box or NULL */
 	struct geom G;
 	struct mc_case table[256];
 	uint8_t ntri[256], ncentre[256];
 	uint8_t tedge[256][36];         /* the triangles' edges, when no loop has a centre */
 	uint8_t pop8[256];
 
-	/* the current block and its 26 neighbours, looked up on demand */
-	const struct fct_voxblock *nb[27];
-	unsigned nb_done;
-	int32_t bx, by, bz;
-	float val[CW * CW * CW];
-	/* gradients at the corners 0..8 of the current block, valid where
-	 * gstamp equals epoch */
-	double grad[729][3];
-	uint32_t gstamp[729], epoch;
+	struct own *own;                /* per block */
+	struct aux *aux;                /* per block with an observed voxel */
+	uint32_t *live;                 /* aux records with something, in block order */
+	size_t nlive;
+	size_t nverts;                  /* edge vertices */
 
 	/* output columns */
 	double *xyz;
 	float *nrm[3];
 	uint8_t *rgb[3];
 	uint32_t *tri;
-	uint8_t *used;
-	size_t nv, nt, vmax, tmax;
+	atomic_uchar *used;             /* vertex used by a triangle */
 
-	struct fct_mcubes_stats st;
+	struct worker *w;               /* one per thread */
 };
 
-static void ctx_block(struct ctx *c, const struct fct_voxblock *b)
+/* One thread's scratch: the current block, its neighbours, its values. */
+struct worker {
+	const struct mc *M;
+	const struct fct_voxblock *nb[27];      /* looked up on demand */
+	unsigned nb_done;
+	int32_t bx, by, bz;
+	float val[CW * CW * CW];        /* valid where the block's vertices need it */
+	double grad[729][3];            /* gradients at corners 0..8, where needed */
+	struct fct_mcubes_stats st;
+	char pad[64];                   /* no cache line shared with the next thread's */
+};
+
+/* Make b, with record A (or NULL), the worker's current block. */
+static void worker_block(struct worker *w, const struct fct_voxblock *b, const struct aux *A)
 {
-	c->bx = b->bx, c->by = b->by, c->bz = b->bz;
-	c->nb_done = 1u << 13;
-	c->nb[13] = b;
+	w->bx = b->bx, w->by = b->by, w->bz = b->bz;
+	w->nb_done = 1u << 13;
+	w->nb[13] = b;
+	for (int k = 1; A && k < 8; k++) {
+		int n = (k & 1) + 1 + 3 * ((k >> 1 & 1) + 1 + 3 * ((k >> 2) + 1));
+		w->nb[n] = A->up[k] >= 0 ? fct_voxgrid_at(w->M->g, (size_t)A->up[k]) : NULL;
+		w->nb_done |= 1u << n;
+	}
 }
 
 /* Neighbour block (dx, dy, dz) in -1..1 of the current block. */
-static inline const struct fct_voxblock *ctx_nb(struct ctx *c, int dx, int dy, int dz)
+static inline const struct fct_voxblock *ctx_nb(struct worker *w, int dx, int dy, int dz)
 {
 	int k = (dx + 1) + 3 * ((dy + 1) + 3 * (dz + 1));
-	if (!(c->nb_done >> k & 1)) {
-		c->nb_done |= 1u << k;
-		c->nb[k] = fct_voxgrid_block((struct fct_voxgrid *)c->g, c->bx + dx, c->by + dy,
-		                             c->bz + dz, 0, NULL);
+	if (!(w->nb_done >> k & 1)) {
+		w->nb_done |= 1u << k;
+		w->nb[k] = fct_voxgrid_block((struct fct_voxgrid *)w->M->g, w->bx + dx, w->by + dy,
+		                             w->bz + dz, 0, NULL);
 	}
-	return c->nb[k];
+	return w->nb[k];
 }
 
-static inline int observed(const struct ctx *c, float s, float w)
+static inline int observed(float thr, float s, float w)
 {
-	return w >= c->thr && fabsf(s) <= FLT_MAX;
+	return w >= thr && fabsf(s) <= FLT_MAX;
 }
 
 /* Voxel at local coordinates (x, y, z) in -8..15 of the current block: its
  * block (NULL when absent) and index. */
-static inline const struct fct_voxblock *ctx_voxel(struct ctx *c, int x, int y, int z, int *v)
+static inline const struct fct_voxblock *ctx_voxel(struct worker *w, int x, int y, int z, int *v)
 {
 	int dx = (x + 8) / 8 - 1, dy = (y + 8) / 8 - 1, dz = (z + 8) / 8 - 1;
 	*v = ((x + 8) & 7) + 8 * (((y + 8) & 7) + 8 * ((z + 8) & 7));
-	return ctx_nb(c, dx, dy, dz);
-}
-
-/* Value of local voxel (x, y, z) when observed (return 1), else 0. */
-static inline int ctx_sample(struct ctx *c, int x, int y, int z, float *s)
-{
-	int v;
-	const struct fct_voxblock *b = ctx_voxel(c, x, y, z, &v);
-	if (!b || !observed(c, b->sdf[v], b->weight[v]))
-		return 0;
-	*s = b->sdf[v];
-	return 1;
+	return ctx_nb(w, dx, dy, dz);
 }
 
 /* Bits of 8 consecutive voxels: negative, observed. */
@@ -331,37 +347,9 @@ static inline void vals8(const float *s, const float *w, float thr, float *dst)
 #endif
 }
 
-static inline float val1(const struct ctx *c, const struct fct_voxblock *b, int v)
+static inline float val1(float thr, const struct fct_voxblock *b, int v)
 {
-	return b && observed(c, b->sdf[v], b->weight[v]) ? b->sdf[v] : NAN;
-}
-
-/* Start the cache of the current block: its own voxels, and "not read yet"
- * (-inf) around them; the neighbours' voxels, which cost a cache miss
- * each, are read only when a vertex needs them (cval). */
-static void fill_cache(struct ctx *c)
-{
-	if (++c->epoch == 0) {
-		memset(c->gstamp, 0, sizeof c->gstamp);
-		c->epoch = 1;
-	}
-	for (int i = 0; i < CW * CW * CW; i++)
-		c->val[i] = -INFINITY;
-	const struct fct_voxblock *b = c->nb[13];
-	for (int r = 0; r < 64; r++)
-		vals8(b->sdf + 8 * r, b->weight + 8 * r, c->thr, c->val + CIDX(0, r & 7, r >> 3));
-}
-
-/* The cached value of local voxel (x, y, z), reading it on first use. */
-static inline float cval(struct ctx *c, int x, int y, int z)
-{
-	float *p = c->val + CIDX(x, y, z);
-	if (*p == -INFINITY) {
-		int v;
-		const struct fct_voxblock *b = ctx_voxel(c, x, y, z, &v);
-		*p = val1(c, b, v);
-	}
-	return *p;
+	return b && observed(thr, b->sdf[v], b->weight[v]) ? b->sdf[v] : NAN;
 }
 
 static uint8_t to_u8(double v)
@@ -370,74 +358,140 @@ static uint8_t to_u8(double v)
 	return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
-/* The sdf gradient at local voxel p (observed, value s0), per voxel. */
-static inline void gradient(struct ctx *c, int x, int y, int z, double s0, double g[3])
+/* Read what the vertices of block A need into w->val: the ends of its
+ * crossing edges (corners 0..8, marked in need[z][y], bit x) and their six
+ * neighbours.  All the reads are issued in one sweep, row by row, so that
+ * the cache misses on the neighbour blocks overlap instead of queueing
+ * behind one another; nothing else of w->val is touched. */
+static void gather(struct worker *w, const struct aux *A, uint16_t need[9][9])
 {
+	float thr = w->M->thr;
+	memset(need, 0, 81 * sizeof need[0][0]);
+	for (int r = 0; r < 64; r++) {
+		int y = r & 7, z = r >> 3;
+		unsigned b0 = A->bits[0][r], b1 = A->bits[1][r], b2 = A->bits[2][r];
+		need[z][y] |= (uint16_t)(b0 | b0 << 1 | b1 | b2);
+		need[z][y + 1] |= (uint16_t)b1;
+		need[z + 1][y] |= (uint16_t)b2;
+	}
+	uint16_t win[CW][CW];           /* [z + 1][y + 1], bit x + 1 */
+	memset(win, 0, sizeof win);
+	for (int z = 0; z < 9; z++)
+		for (int y = 0; y < 9; y++) {
+			unsigned n = need[z][y];
+			if (!n)
+				continue;
+			win[z + 1][y + 1] |= (uint16_t)(n | n << 1 | n << 2);
+			win[z + 1][y] |= (uint16_t)(n << 1);
+			win[z + 1][y + 2] |= (uint16_t)(n << 1);
+			win[z][y + 1] |= (uint16_t)(n << 1);
+			win[z + 2][y + 1] |= (uint16_t)(n << 1);
+		}
+	for (int wz = 0; wz < CW; wz++)
+		for (int wy = 0; wy < CW; wy++) {
+			unsigned m = win[wz][wy];
+			if (!m)
+				continue;
+			int z = wz - 1, y = wy - 1;
+			int dz = (z + 8) / 8 - 1, dy = (y + 8) / 8 - 1;
+			int row = 8 * ((y + 8) & 7) + 64 * ((z + 8) & 7);
+			float *dst = w->val + CIDX(0, y, z);
+			if (m & 0x1FE) {
+				const struct fct_voxblock *b = ctx_nb(w, 0, dy, dz);
+				if (b)
+					vals8(b->sdf + row, b->weight + row, thr, dst);
+				else
+					for (int x = 0; x < 8; x++)
+						dst[x] = NAN;
+			}
+			if (m & 0x001)
+				dst[-1] = val1(thr, ctx_nb(w, -1, dy, dz), row + 7);
+			if (m & 0x200)
+				dst[8] = val1(thr, ctx_nb(w, 1, dy, dz), row);
+			if (m & 0x400)
+				dst[9] = val1(thr, ctx_nb(w, 1, dy, dz), row + 1);
+		}
+}
+
+/* The sdf gradient at local voxel (x, y, z) (observed, value s0), per
+ * voxel: central differences, one-sided beside unobserved voxels. */
+static inline void gradient(const float *val, int x, int y, int z, double s0, double g[3])
+{
+	static const int step[3] = { 1, CW, CW * CW };
+	const float *p = val + CIDX(x, y, z);
 	for (int a = 0; a < 3; a++) {
-		float sp = cval(c, x + (a == 0), y + (a == 1), z + (a == 2));
-		float sm = cval(c, x - (a == 0), y - (a == 1), z - (a == 2));
+		float sp = p[step[a]], sm = p[-step[a]];
 		int hp = sp == sp, hm = sm == sm;
 		g[a] = hp ? (hm ? 0.5 * ((double)sp - (double)sm) : (double)sp - s0)
 		          : (hm ? s0 - (double)sm : 0);
 	}
 }
 
-/* The gradient at corner (x, y, z) in 0..8, computed once per block. */
-static inline const double *corner_gradient(struct ctx *c, int x, int y, int z, double s0)
-{
-	int i = x + 9 * (y + 9 * z);
-	if (c->gstamp[i] != c->epoch) {
-		c->gstamp[i] = c->epoch;
-		gradient(c, x, y, z, s0, c->grad[i]);
-	}
-	return c->grad[i];
-}
-
 /* Vertex id on the edge from local voxel (x, y, z) along axis a (both ends
- * observed, signs differ); c->val started. */
-static void make_vertex(struct ctx *c, int x, int y, int z, int a, size_t id)
+ * observed, signs differ); w->val and w->grad filled for the block. */
+static void make_vertex(struct worker *w, int x, int y, int z, int a, size_t id)
 {
+	const struct mc *M = w->M;
 	int q[3] = { x, y, z };
 	q[a]++;
-	float s0 = c->val[CIDX(x, y, z)], s1 = cval(c, q[0], q[1], q[2]);
+	float s0 = w->val[CIDX(x, y, z)], s1 = w->val[CIDX(q[0], q[1], q[2])];
 	double t = (double)s0 / ((double)s0 - (double)s1);
 	if (!(t >= 1.0 / 256))
 		t = 1.0 / 256;
 	if (t > 255.0 / 256)
 		t = 255.0 / 256;
-	int32_t gi[3] = { 8 * c->bx + x, 8 * c->by + y, 8 * c->bz + z };
-	double *p = c->xyz + 3 * id;
+	int32_t gi[3] = { 8 * w->bx + x, 8 * w->by + y, 8 * w->bz + z };
+	double *p = M->xyz + 3 * id;
 	for (int k = 0; k < 3; k++)
-		p[k] = (double)gi[k] * c->voxel;
-	p[a] = ((double)gi[a] + t) * c->voxel;
+		p[k] = (double)gi[k] * M->voxel;
+	p[a] = ((double)gi[a] + t) * M->voxel;
 	double n[3];
-	const double *g0 = corner_gradient(c, x, y, z, s0);
-	const double *g1 = corner_gradient(c, q[0], q[1], q[2], s1);
+	const double *g0 = w->grad[x + 9 * (y + 9 * z)];
+	const double *g1 = w->grad[q[0] + 9 * (q[1] + 9 * q[2])];
 	for (int k = 0; k < 3; k++)
 		n[k] = (1 - t) * g0[k] + t * g1[k];
 	double len = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
 	if (len > 0) {
 		len = 1 / sqrt(len);
 		for (int k = 0; k < 3; k++)
-			c->nrm[k][id] = (float)(n[k] * len);
+			M->nrm[k][id] = (float)(n[k] * len);
 	} else {
 		for (int k = 0; k < 3; k++)
-			c->nrm[k][id] = 0;
-		c->nrm[a][id] = s1 >= 0 ? 1.0f : -1.0f;
+			M->nrm[k][id] = 0;
+		M->nrm[a][id] = s1 >= 0 ? 1.0f : -1.0f;
 	}
-	if (c->colour) {
+	if (M->colour) {
 		int v0, v1;
-		const struct fct_voxblock *b0 = ctx_voxel(c, x, y, z, &v0);
-		const struct fct_voxblock *b1 = ctx_voxel(c, q[0], q[1], q[2], &v1);
+		const struct fct_voxblock *b0 = ctx_voxel(w, x, y, z, &v0);
+		const struct fct_voxblock *b1 = ctx_voxel(w, q[0], q[1], q[2], &v1);
 		for (int k = 0; k < 3; k++)
-			c->rgb[k][id] = to_u8((1 - t) * b0->rgb[3 * v0 + k] + t * b1->rgb[3 * v1 + k]);
+			M->rgb[k][id] = to_u8((1 - t) * b0->rgb[3 * v0 + k] + t * b1->rgb[3 * v1 + k]);
 	}
 }
 
-/* Pass 0 on block B: its own bits, clipped. */
-static void pass0(const struct ctx *c, const struct fct_voxblock *B, const int32_t *lo,
-                  const int32_t *hi, struct own *o)
+/* The vertices of block record A, at A->base onwards. */
+static void block_vertices(struct worker *w, const struct aux *A)
 {
+	uint16_t need[9][9];
+	worker_block(w, fct_voxgrid_at(w->M->g, A->block), A);
+	gather(w, A, need);
+	for (int z = 0; z < 9; z++)
+		for (int y = 0; y < 9; y++)
+			for (unsigned m = need[z][y]; m; m &= m - 1) {
+				int x = __builtin_ctz(m);
+				gradient(w->val, x, y, z, w->val[CIDX(x, y, z)], w->grad[x + 9 * (y + 9 * z)]);
+			}
+	size_t id = A->base;
+	for (int a = 0; a < 3; a++)
+		for (int r = 0; r < 64; r++)
+			for (unsigned m = A->bits[a][r]; m; m &= m - 1)
+				make_vertex(w, __builtin_ctz(m), r & 7, r >> 3, a, id++);
+}
+
+/* Pass 0 on block B: its own bits, clipped. */
+static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *o)
+{
+	const int32_t *lo = M->lo, *hi = M->hi;
 	unsigned any = 0, xm = 0xFF;
 	if (lo)
 		for (int x = 0; x < 8; x++) {
@@ -447,7 +501,7 @@ static void pass0(const struct ctx *c, const struct fct_voxblock *B, const int32
 		}
 	for (int r = 0; r < 64; r++) {
 		unsigned n, ob;
-		bits8(B->sdf + 8 * r, B->weight + 8 * r, c->thr, &n, &ob);
+		bits8(B->sdf + 8 * r, B->weight + 8 * r, M->thr, &n, &ob);
 		if (lo) {
 			int64_t gy = (int64_t)8 * B->by + (r & 7), gz = (int64_t)8 * B->bz + (r >> 3);
 			if (gy < lo[1] || gy > hi[1] || gz < lo[2] || gz > hi[2])
@@ -462,16 +516,57 @@ static void pass0(const struct ctx *c, const struct fct_voxblock *B, const int32
 	o->aux = NONE;
 }
 
-/* Pass 1 on block b: its edge and cube bits, counts.  Returns 1 when the
- * block has anything (A filled), else 0. */
-static int pass1(struct ctx *c, const struct own *own, size_t b, struct aux *A, size_t *ntri,
-                 size_t *ncentre)
+/* The faces of cube (x, y, z) of block B (sign pattern cfg, with an
+ * ambiguous face) on which the asymptotic decider joins the negative
+ * diagonal, as a face mask; computed from exact products of the corner
+ * values, so both cubes sharing a face decide it alike. */
+static int decide(const struct mc *M, const struct fct_voxblock *B, int x, int y, int z, int cfg)
 {
-	const struct fct_voxblock *B = fct_voxgrid_at(c->g, b);
+	const struct mc_case *mc = &M->table[cfg];
+	float val[8];
+	for (int k = 0; k < 8; k++) {
+		float s, wt;
+		if (!fct_voxgrid_get(M->g, 8 * B->bx + x + (k & 1), 8 * B->by + y + (k >> 1 & 1),
+		                     8 * B->bz + z + (k >> 2 & 1), &s, &wt) ||
+		    !observed(M->thr, s, wt))
+			abort();
+		val[k] = s;
+	}
+	int joinneg = 0;
+	for (int f = 0; f < 6; f++) {
+		if (!(mc->amb >> f & 1))
+			continue;
+		const uint8_t *fc = M->G.face_corners[f];
+		double d0 = (double)val[fc[0]] * (double)val[fc[2]];
+		double d1 = (double)val[fc[1]] * (double)val[fc[3]];
+		int c0neg = cfg >> fc[0] & 1;
+		double pos = c0neg ? d1 : d0, neg = c0neg ? d0 : d1;
+		if (!(pos >= neg))
+			joinneg |= 1 << f;
+	}
+	return joinneg;
+}
+
+/* Triangles and centroid vertices of a contour. */
+static void case_counts(const struct mc_case *mc, uint32_t *nt, uint32_t *nc)
+{
+	for (int l = 0; l < mc->nloops; l++) {
+		*nt += mc->centre[l] ? mc->len[l] : mc->len[l] - 2u;
+		*nc += mc->centre[l];
+	}
+}
+
+/* Pass 1 on block b: its edge and cube bits, exact counts of vertices,
+ * triangles and centroids.  Returns 1 when the block has anything (A
+ * filled), else 0. */
+static int pass1(const struct mc *M, size_t b, struct aux *A)
+{
+	const struct own *own = M->own;
+	const struct fct_voxblock *B = fct_voxgrid_at(M->g, b);
 	A->block = (uint32_t)b;
 	A->up[0] = (int32_t)b;
 	for (int k = 1; k < 8; k++)
-		A->up[k] = (int32_t)fct_voxgrid_index(c->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
+		A->up[k] = (int32_t)fct_voxgrid_index(M->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
 		                                      B->bz + (k >> 2));
 	uint16_t obs[9][9];
 	for (int z = 0; z < 9; z++)
@@ -512,310 +607,358 @@ static int pass1(struct ctx *c, const struct own *own, size_t b, struct aux *A, 
 	for (int a = 0; a < 3; a++)
 		for (int r = 0; r < 64; r++) {
 			A->pre[a][r] = (uint16_t)count;
-			count += c->pop8[A->bits[a][r]];
+			count += M->pop8[A->bits[a][r]];
 		}
 	A->nverts = count;
+	uint32_t nt = 0, nc = 0;
 	for (int z = 0; z < 8 && A->any_active; z++)
 		for (int y = 0; y < 8; y++)
 			for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
 				int x = __builtin_ctz(m);
 				int cfg = (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
 				          (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
-				if (c->table[cfg].amb) {
-					*ntri += 12;
-					*ncentre += 4;
+				int joinneg = M->table[cfg].amb ? decide(M, B, x, y, z, cfg) : 0;
+				if (joinneg) {
+					struct mc_case local;
+					build_case(&M->G, cfg, joinneg, &local);
+					case_counts(&local, &nt, &nc);
 				} else {
-					*ntri += c->ntri[cfg];
-					*ncentre += c->ncentre[cfg];
+					nt += M->ntri[cfg];
+					nc += M->ncentre[cfg];
 				}
 			}
+	A->ntri = nt;
+	A->ncent = nc;
 	return 1;
 }
 
 /* Vertex of crossing edge e of cube (x, y, z); up holds the records of the
  * block and its upper neighbours. */
-static inline uint32_t edge_vertex(const struct ctx *c, const struct aux *const up[8], int x, int y,
+static inline uint32_t edge_vertex(const struct mc *M, const struct aux *const up[8], int x, int y,
                                    int z, int e)
 {
-	int lo = c->G.edge_lo[e], a = e >> 2;
+	int lo = M->G.edge_lo[e], a = e >> 2;
 	int px = x + (lo & 1), py = y + (lo >> 1 & 1), pz = z + (lo >> 2 & 1);
 	const struct aux *A = up[(px >> 3) | (py >> 3) << 1 | (pz >> 3) << 2];
 	int r = 8 * (pz & 7) + (py & 7), bit = px & 7;
 	unsigned row = A ? A->bits[a][r] : 0;
 	if (!(row >> bit & 1))
 		abort();
-	return A->base + A->pre[a][r] + c->pop8[row & ((1u << bit) - 1)];
+	return A->base + A->pre[a][r] + M->pop8[row & ((1u << bit) - 1)];
 }
 
-/* The triangles of cube (x, y, z) of the current block, sign pattern cfg. */
-static void emit_cube(struct ctx *c, const struct aux *const up[8], int x, int y, int z, int cfg)
+static inline void mark_used(const struct mc *M, uint32_t v)
 {
-	const struct mc_case *mc = &c->table[cfg];
+	atomic_store_explicit(&M->used[v], 1, memory_order_relaxed);
+}
+
+/* The triangles of cube (x, y, z) of the current block, sign pattern cfg,
+ * at *t (advanced); centroid vertices numbered from *cid (advanced). */
+static void emit_cube(struct worker *w, const struct aux *const up[8], int x, int y, int z,
+                      int cfg, uint32_t **tp, uint32_t *cid)
+{
+	const struct mc *M = w->M;
+	const struct mc_case *mc = &M->table[cfg];
 	struct mc_case local;
-	uint32_t vid[12];
-	if (!mc->amb && !c->ncentre[cfg]) {
+	uint32_t vid[12], *t = *tp;
+	if (!mc->amb && !M->ncentre[cfg]) {
 		/* the common case: the tabulated fans */
 		for (unsigned m = mc->emask; m; m &= m - 1) {
 			int e = __builtin_ctz(m);
-			vid[e] = edge_vertex(c, up, x, y, z, e);
-			c->used[vid[e]] = 1;
+			vid[e] = edge_vertex(M, up, x, y, z, e);
+			mark_used(M, vid[e]);
 		}
-		uint32_t *t = c->tri + 3 * c->nt;
-		const uint8_t *te = c->tedge[cfg];
-		int n = 3 * c->ntri[cfg];
+		const uint8_t *te = M->tedge[cfg];
+		int n = 3 * M->ntri[cfg];
 		for (int j = 0; j < n; j++)
 			t[j] = vid[te[j]];
-		c->nt += c->ntri[cfg];
-		c->st.cubes++;
+		*tp = t + n;
+		w->st.cubes++;
 		return;
 	}
 	if (mc->amb) {
-		/* asymptotic decider on each ambiguous face, from exact products */
-		float val[8];
-		for (int k = 0; k < 8; k++)
-			if (!ctx_sample(c, x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1), &val[k]))
-				abort();
-		int joinneg = 0;
-		for (int f = 0; f < 6; f++) {
-			if (!(mc->amb >> f & 1))
-				continue;
-			const uint8_t *fc = c->G.face_corners[f];
-			double d0 = (double)val[fc[0]] * (double)val[fc[2]];
-			double d1 = (double)val[fc[1]] * (double)val[fc[3]];
-			int c0neg = cfg >> fc[0] & 1;
-			double pos = c0neg ? d1 : d0, neg = c0neg ? d0 : d1;
-			if (!(pos >= neg))
-				joinneg |= 1 << f;
-		}
-		c->st.ambiguous++;
+		int joinneg = decide(M, w->nb[13], x, y, z, cfg);
+		w->st.ambiguous++;
 		if (joinneg) {
-			build_case(&c->G, cfg, joinneg, &local);
+			build_case(&M->G, cfg, joinneg, &local);
 			mc = &local;
 		}
 	}
 	for (unsigned m = mc->emask; m; m &= m - 1) {
 		int e = __builtin_ctz(m);
-		vid[e] = edge_vertex(c, up, x, y, z, e);
-		c->used[vid[e]] = 1;
+		vid[e] = edge_vertex(M, up, x, y, z, e);
+		mark_used(M, vid[e]);
 	}
 	const uint8_t *ed = mc->edge;
-	uint32_t *t = c->tri + 3 * c->nt;
 	for (int l = 0; l < mc->nloops; l++) {
 		int len = mc->len[l];
 		if (mc->centre[l]) {
-			size_t id = c->nv++;
+			uint32_t id = (*cid)++;
 			double p[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 }, col[3] = { 0, 0, 0 };
 			for (int i = 0; i < len; i++)
 				for (int k = 0; k < 3; k++) {
-					p[k] += c->xyz[3 * vid[ed[i]] + k];
-					n[k] += c->nrm[k][vid[ed[i]]];
-					if (c->colour)
-						col[k] += c->rgb[k][vid[ed[i]]];
+					p[k] += M->xyz[3 * (size_t)vid[ed[i]] + k];
+					n[k] += M->nrm[k][vid[ed[i]]];
+					if (M->colour)
+						col[k] += M->rgb[k][vid[ed[i]]];
 				}
 			double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 			for (int k = 0; k < 3; k++) {
-				c->xyz[3 * id + k] = p[k] / len;
-				c->nrm[k][id] = nl > 0 ? (float)(n[k] / nl) : 0.0f;
-				if (c->colour)
-					c->rgb[k][id] = to_u8(col[k] / len);
+				M->xyz[3 * (size_t)id + k] = p[k] / len;
+				M->nrm[k][id] = nl > 0 ? (float)(n[k] / nl) : 0.0f;
+				if (M->colour)
+					M->rgb[k][id] = to_u8(col[k] / len);
 			}
-			c->used[id] = 1;
-			c->st.centres++;
+			mark_used(M, id);
+			w->st.centres++;
 			for (int i = 0; i < len; i++, t += 3)
-				t[0] = (uint32_t)id, t[1] = vid[ed[i]], t[2] = vid[ed[(i + 1) % len]];
-			c->nt += (size_t)len;
+				t[0] = id, t[1] = vid[ed[i]], t[2] = vid[ed[(i + 1) % len]];
 		} else {
 			for (int i = 1; i + 1 < len; i++, t += 3)
 				t[0] = vid[ed[0]], t[1] = vid[ed[i]], t[2] = vid[ed[i + 1]];
-			c->nt += (size_t)len - 2;
 		}
 		ed += len;
 	}
-	c->st.cubes++;
+	*tp = t;
+	w->st.cubes++;
+}
+
+/* The triangles of block record A, at A->tbase onwards. */
+static void block_triangles(struct worker *w, const struct aux *A)
+{
+	const struct mc *M = w->M;
+	const struct aux *up[8];
+	for (int k = 0; k < 8; k++)
+		up[k] = A->up[k] >= 0 && M->own[A->up[k]].aux != NONE ? &M->aux[M->own[A->up[k]].aux] : NULL;
+	worker_block(w, fct_voxgrid_at(M->g, A->block), NULL);
+	uint32_t *t = M->tri + 3 * (size_t)A->tbase, cid = (uint32_t)M->nverts + A->cbase;
+	for (int z = 0; z < 8; z++)
+		for (int y = 0; y < 8; y++)
+			for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
+				int x = __builtin_ctz(m);
+				int cfg = (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
+				          (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
+				emit_cube(w, up, x, y, z, cfg, &t, &cid);
+			}
+	/* pass 1 counted the same cubes with the same decisions */
+	if (t != M->tri + 3 * ((size_t)A->tbase + A->ntri) || cid != M->nverts + A->cbase + A->ncent)
+		abort();
+}
+
+/* The passes as parallel loops over blocks (0, 1) and records (2, 3). */
+static void run_pass0(void *ctx, size_t lo, size_t hi, int worker)
+{
+	struct mc *M = ctx;
+	(void)worker;
+	for (size_t b = lo; b < hi; b++)
+		pass0(M, fct_voxgrid_at(M->g, b), &M->own[b]);
+}
+
+static void run_pass1(void *ctx, size_t lo, size_t hi, int worker)
+{
+	struct mc *M = ctx;
+	struct aux A;
+	(void)worker;
+	for (size_t b = lo; b < hi; b++) {
+		/* computed aside, so that the records of empty blocks stay
+		 * untouched (never paged in) */
+		if (M->own[b].aux == NONE)
+			continue;
+		if (pass1(M, b, &A))
+			M->aux[M->own[b].aux] = A;
+		else
+			M->own[b].aux = NONE;
+	}
+}
+
+static void run_vertices(void *ctx, size_t lo, size_t hi, int worker)
+{
+	struct mc *M = ctx;
+	for (size_t i = lo; i < hi; i++)
+		if (M->aux[M->live[i]].nverts)
+			block_vertices(&M->w[worker], &M->aux[M->live[i]]);
+}
+
+static void run_triangles(void *ctx, size_t lo, size_t hi, int worker)
+{
+	struct mc *M = ctx;
+	for (size_t i = lo; i < hi; i++)
+		if (M->aux[M->live[i]].any_active)
+			block_triangles(&M->w[worker], &M->aux[M->live[i]]);
 }
 
 /* Drop the vertices no triangle uses (crossings at the rim of the observed
- * region), keeping the order of the others. */
-static void compact(struct ctx *c, struct fct_mesh *out, uint32_t *remap)
+ * region), keeping the order of the others; returns the count kept. */
+static size_t compact(struct mc *M, size_t nv, size_t nt, uint32_t *remap)
 {
 	size_t n = 0;
-	for (size_t v = 0; v < c->nv; v++) {
+	for (size_t v = 0; v < nv; v++) {
 		remap[v] = (uint32_t)n;
-		if (!c->used[v])
+		if (!atomic_load_explicit(&M->used[v], memory_order_relaxed))
 			continue;
 		if (n != v) {
 			for (int k = 0; k < 3; k++) {
-				c->xyz[3 * n + k] = c->xyz[3 * v + k];
-				c->nrm[k][n] = c->nrm[k][v];
-				if (c->colour)
-					c->rgb[k][n] = c->rgb[k][v];
+				M->xyz[3 * n + k] = M->xyz[3 * v + k];
+				M->nrm[k][n] = M->nrm[k][v];
+				if (M->colour)
+					M->rgb[k][n] = M->rgb[k][v];
 			}
 		}
 		n++;
 	}
-	for (size_t i = 0; i < 3 * c->nt; i++)
-		c->tri[i] = remap[c->tri[i]];
-	c->nv = n;
-	(void)out;
+	for (size_t i = 0; i < 3 * nt; i++)
+		M->tri[i] = remap[M->tri[i]];
+	return n;
 }
 
+/* Chunks of the parallel loops: fixed, so the work is cut alike for any
+ * thread count (the results do not depend on it anyway). */
+#define MC_CHUNKS 64
+
 int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
-                     const int32_t *clip_hi, struct fct_mesh *out, struct fct_mcubes_stats *stats,
-                     struct fct_err *err)
+                     const int32_t *clip_hi, int threads, struct fct_mesh *out,
+                     struct fct_mcubes_stats *stats, struct fct_err *err)
 {
 	fct_mesh_init(out);
 	if ((clip_lo == NULL) != (clip_hi == NULL))
 		return fct_fail(err, "marching cubes: clip box needs both corners");
-	struct ctx *c = calloc(1, sizeof *c);
-	if (!c)
+	struct mc *M = calloc(1, sizeof *M);
+	if (!M)
 		return fct_fail(err, "out of memory");
-	c->g = g;
-	c->thr = min_weight > 0 ? min_weight : FLT_TRUE_MIN;
+	M->g = g;
+	M->lo = clip_lo, M->hi = clip_hi;
+	M->thr = min_weight > 0 ? min_weight : FLT_TRUE_MIN;
 	if (isnan(min_weight))
-		c->thr = INFINITY;
-	c->colour = fct_voxgrid_has_colour(g);
-	c->voxel = fct_voxgrid_voxel(g);
-	geom_init(&c->G);
+		M->thr = INFINITY;
+	M->colour = fct_voxgrid_has_colour(g);
+	M->voxel = fct_voxgrid_voxel(g);
+	geom_init(&M->G);
 	for (int cfg = 0; cfg < 256; cfg++) {
-		struct mc_case *mc = &c->table[cfg];
-		build_case(&c->G, cfg, 0, mc);
-		int nt = 0, nc = 0;
-		for (int l = 0; l < mc->nloops; l++) {
-			nt += mc->centre[l] ? mc->len[l] : mc->len[l] - 2;
-			nc += mc->centre[l];
-		}
-		c->ntri[cfg] = (uint8_t)nt;
+		struct mc_case *mc = &M->table[cfg];
+		build_case(&M->G, cfg, 0, mc);
+		uint32_t nt = 0, nc = 0;
+		case_counts(mc, &nt, &nc);
+		M->ntri[cfg] = (uint8_t)nt;
 		const uint8_t *ed = mc->edge;
 		for (int l = 0, j = 0; l < mc->nloops; ed += mc->len[l], l++)
 			for (int i = 1; i + 1 < mc->len[l] && !mc->centre[l]; i++, j += 3) {
-				c->tedge[cfg][j] = ed[0];
-				c->tedge[cfg][j + 1] = ed[i];
-				c->tedge[cfg][j + 2] = ed[i + 1];
+				M->tedge[cfg][j] = ed[0];
+				M->tedge[cfg][j + 1] = ed[i];
+				M->tedge[cfg][j + 2] = ed[i + 1];
 			}
-		c->ncentre[cfg] = (uint8_t)nc;
-		c->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
+		M->ncentre[cfg] = (uint8_t)nc;
+		M->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
 	}
 
-	int rc = -1;
-	size_t nb = fct_voxgrid_count(g), naux = 0, auxcap = 0, ntri = 0, ncentre = 0, nverts = 0;
-	struct aux *aux = NULL;
+	int rc = -1, nthreads = fct_par_threads(threads);
+	size_t nb = fct_voxgrid_count(g), naux = 0, ntri = 0, ncent = 0, nverts = 0;
 	uint32_t *remap = NULL;
-	struct own *own = fct_alloc_array(nb, sizeof *own, err);
-	if (!own)
+	M->w = calloc((size_t)nthreads, sizeof *M->w);
+	M->own = fct_alloc_array(nb, sizeof *M->own, err);
+	if (!M->w || !M->own) {
+		if (!M->w)
+			fct_fail(err, "out of memory");
 		goto done;
+	}
+	for (int t = 0; t < nthreads; t++)
+		M->w[t].M = M;
 	if (clip_lo && (clip_lo[0] >= clip_hi[0] || clip_lo[1] >= clip_hi[1] || clip_lo[2] >= clip_hi[2]))
 		nb = 0;         /* an empty box: no cubes */
+	fct_par_run(nthreads, nb, MC_CHUNKS, run_pass0, M);
 	for (size_t b = 0; b < nb; b++)
-		pass0(c, fct_voxgrid_at(g, b), clip_lo, clip_hi, &own[b]);
+		if (M->own[b].anyobs)
+			M->own[b].aux = (uint32_t)naux++;
+	if (!(M->aux = fct_alloc_array(naux, sizeof *M->aux, err)) ||
+	    !(M->live = fct_alloc_array(naux, sizeof *M->live, err)))
+		goto done;
+	fct_par_run(nthreads, nb, MC_CHUNKS, run_pass1, M);
+	/* every record's place in the output, in block order */
 	for (size_t b = 0; b < nb; b++) {
-		if (!own[b].anyobs)
+		if (M->own[b].aux == NONE)
 			continue;
-		if (fct_grow((void **)&aux, &auxcap, naux + 1, sizeof *aux, err))
-			goto done;
-		if (!pass1(c, own, b, &aux[naux], &ntri, &ncentre))
-			continue;
-		aux[naux].base = (uint32_t)nverts;
-		nverts += aux[naux].nverts;
-		if (nverts + ncentre > UINT32_MAX - 1) {
+		struct aux *A = &M->aux[M->own[b].aux];
+		M->live[M->nlive++] = M->own[b].aux;
+		A->base = (uint32_t)nverts;
+		A->tbase = (uint32_t)ntri;
+		A->cbase = (uint32_t)ncent;
+		nverts += A->nverts;
+		ntri += A->ntri;
+		ncent += A->ncent;
+		if (nverts + ncent > UINT32_MAX - 1) {
 			fct_fail(err, "marching cubes: more than 2^32 - 1 vertices");
 			goto done;
 		}
-		own[b].aux = (uint32_t)naux++;
+		if (ntri > UINT32_MAX / 3) {
+			fct_fail(err, "marching cubes: more than 2^32 / 3 triangles");
+			goto done;
+		}
 	}
-	if (ntri > UINT32_MAX / 3) {
-		fct_fail(err, "marching cubes: more than 2^32 / 3 triangles");
-		goto done;
-	}
-	if (fct_mesh_set_vertex_count(out, nverts + ncentre, err) ||
+	M->nverts = nverts;
+	if (fct_mesh_set_vertex_count(out, nverts + ncent, err) ||
 	    fct_mesh_set_triangle_count(out, ntri, err))
 		goto done;
 	static const char *nn[3] = { "nx", "ny", "nz" }, *cn[3] = { "red", "green", "blue" };
 	for (int k = 0; k < 3; k++)
 		if (!fct_elem_add_scalar(&out->vertex, nn[k], FCT_FLOAT32, err))
 			goto done;
-	if (c->colour)
+	if (M->colour)
 		for (int k = 0; k < 3; k++)
 			if (!fct_elem_add_scalar(&out->vertex, cn[k], FCT_UINT8, err))
 				goto done;
 	for (int k = 0; k < 3; k++) {
-		c->nrm[k] = fct_elem_find(&out->vertex, nn[k])->data;
-		if (c->colour)
-			c->rgb[k] = fct_elem_find(&out->vertex, cn[k])->data;
+		M->nrm[k] = fct_elem_find(&out->vertex, nn[k])->data;
+		if (M->colour)
+			M->rgb[k] = fct_elem_find(&out->vertex, cn[k])->data;
 	}
-	c->xyz = out->xyz;
-	c->tri = out->fvert;
-	if (!(c->used = fct_alloc_array(nverts + ncentre, 1, err)))
+	M->xyz = out->xyz;
+	M->tri = out->fvert;
+	if (!(M->used = fct_alloc_array(nverts + ncent, sizeof *M->used, err)))
 		goto done;
-	memset(c->used, 0, nverts + ncentre);
+	for (size_t v = 0; v < nverts + ncent; v++)
+		atomic_init(&M->used[v], 0);
 
-	/* vertices */
-	for (size_t i = 0; i < naux; i++) {
-		const struct aux *A = &aux[i];
-		if (!A->nverts)
-			continue;
-		ctx_block(c, fct_voxgrid_at(g, A->block));
-		for (int k = 1; k < 8; k++) {
-			int n = (k & 1) + 1 + 3 * ((k >> 1 & 1) + 1 + 3 * ((k >> 2) + 1));
-			c->nb[n] = A->up[k] >= 0 ? fct_voxgrid_at(g, (size_t)A->up[k]) : NULL;
-			c->nb_done |= 1u << n;
-		}
-		fill_cache(c);
-		size_t id = A->base;
-		for (int a = 0; a < 3; a++)
-			for (int r = 0; r < 64; r++)
-				for (unsigned m = A->bits[a][r]; m; m &= m - 1)
-					make_vertex(c, __builtin_ctz(m), r & 7, r >> 3, a, id++);
-	}
-	c->nv = nverts;
-	/* triangles */
-	for (size_t i = 0; i < naux; i++) {
-		const struct aux *A = &aux[i];
-		if (!A->any_active)
-			continue;
-		const struct aux *up[8];
-		for (int k = 0; k < 8; k++)
-			up[k] = A->up[k] >= 0 && own[A->up[k]].aux != NONE ? &aux[own[A->up[k]].aux] : NULL;
-		ctx_block(c, fct_voxgrid_at(g, A->block));
-		for (int z = 0; z < 8; z++)
-			for (int y = 0; y < 8; y++)
-				for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
-					int x = __builtin_ctz(m);
-					int cfg = (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
-					          (A->neg[z + 1][y] >> x & 3) << 4 |
-					          (A->neg[z + 1][y + 1] >> x & 3) << 6;
-					emit_cube(c, up, x, y, z, cfg);
-				}
-	}
-	size_t unused = 0;
-	for (size_t v = 0; v < c->nv; v++)
-		unused += !c->used[v];
+	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_vertices, M);
+	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_triangles, M);
+
+	size_t nv = nverts + ncent, unused = 0;
+	for (size_t v = 0; v < nv; v++)
+		unused += !atomic_load_explicit(&M->used[v], memory_order_relaxed);
 	if (unused) {
-		if (!(remap = fct_alloc_array(c->nv, sizeof *remap, err)))
+		if (!(remap = fct_alloc_array(nv, sizeof *remap, err)))
 			goto done;
-		compact(c, out, remap);
+		nv = compact(M, nv, ntri, remap);
 	}
-	if (fct_mesh_set_vertex_count(out, c->nv, err) || fct_mesh_set_triangle_count(out, c->nt, err))
+	if (fct_mesh_set_vertex_count(out, nv, err) || fct_mesh_set_triangle_count(out, ntri, err))
 		goto done;
-	c->st.blocks = nb;
-	c->st.voxels = nb * FCT_VOXBLOCK_N;
-	if (stats)
-		*stats = c->st;
+	if (stats) {
+		memset(stats, 0, sizeof *stats);
+		for (int t = 0; t < nthreads; t++) {
+			stats->cubes += M->w[t].st.cubes;
+			stats->ambiguous += M->w[t].st.ambiguous;
+			stats->centres += M->w[t].st.centres;
+		}
+		stats->blocks = nb;
+		stats->voxels = nb * FCT_VOXBLOCK_N;
+		stats->threads = (size_t)nthreads;
+	}
 	rc = 0;
 done:
 	if (rc)
 		fct_mesh_free(out);
-	free(own);
-	free(aux);
+	free(M->own);
+	free(M->aux);
+	free(M->live);
+	free(M->used);
+	free(M->w);
 	free(remap);
-	free(c->used);
-	free(c);
+	free(M);
 	return rc;
 }
 
 int fct_mcubes(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
                const int32_t *clip_hi, struct fct_mesh *out, struct fct_err *err)
 {
-	return fct_mcubes_stats(g, min_weight, clip_lo, clip_hi, out, NULL, err);
+	return fct_mcubes_stats(g, min_weight, clip_lo, clip_hi, 0, out, NULL, err);
 }
 
 /* Weld ---------------------------------------------------------------------- */

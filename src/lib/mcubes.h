@@ -59,6 +59,7 @@ struct fct_mcubes_stats {
 	size_t cubes;           /* cubes that produced triangles */
 	size_t ambiguous;       /* cubes with an ambiguous face */
 	size_t centres;         /* extra centroid vertices */
+	size_t threads;         /* threads used */
 };
 
 /* Extract the zero level set of g into out (overwritten with fct_mesh_init
@@ -68,10 +69,12 @@ struct fct_mcubes_stats {
  * vertices (out is then empty). */
 int fct_mcubes(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
                const int32_t *clip_hi, struct fct_mesh *out, struct fct_err *err);
-/* The same, filling *stats (may be NULL) with the figures of the run. */
+/* The same on `threads` threads (0: one per processor; the output is the
+ * same bytes for any count), filling *stats (may be NULL) with the figures
+ * of the run.  fct_mcubes is this with threads = 0. */
 int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
-                     const int32_t *clip_hi, struct fct_mesh *out, struct fct_mcubes_stats *stats,
-                     struct fct_err *err);
+                     const int32_t *clip_hi, int threads, struct fct_mesh *out,
+                     struct fct_mcubes_stats *stats, struct fct_err *err);
 
 /* Merge vertices with bit-identical positions (x, y, z as doubles): the
  * first vertex of each position in index order is kept with its properties,
