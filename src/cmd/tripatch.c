@@ -105,6 +105,7 @@ int main(int argc, char **argv)
 	fct_report("duplicates", "%zu", st.duplicates);
 	fct_report("degenerate_loops", "%zu", st.degenerate);
 	fct_report("reversed", "%zu", st.reversed);
+	fct_report("slivers_flipped", "%zu", st.slivers_flipped);
 	fct_report("candidates", "%zu", st.tri.candidates);
 	fct_report("walk_steps", "%zu", st.tri.walk_steps);
 	fct_report("budget_hits", "%zu", st.tri.budget_hits);

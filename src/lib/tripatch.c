@@ -295,6 +295,86 @@ static int make_frame(struct work *w, const struct fct_mesh *m, int f, const str
 	return 0;
 }
 
+/* Twice the area of local triangle (a, b, c) along n (signed), and the
+ * square of its longest edge. */
+static double tri_orient(const struct work *w, const struct fct_mesh *m, const uint32_t t[3],
+                         const double n[3], double *longest2)
+{
+	const double *p[3];
+	for (int q = 0; q < 3; q++)
+		p[q] = &m->xyz[3 * (size_t)w->gl[t[q]]];
+	double b[3], c[3], x[3];
+	fct_v3_sub(b, p[1], p[0]);
+	fct_v3_sub(c, p[2], p[0]);
+	fct_v3_cross(x, b, c);
+	*longest2 = 0;
+	for (int q = 0; q < 3; q++) {
+		double e[3];
+		fct_v3_sub(e, p[(q + 1) % 3], p[q]);
+		*longest2 = fmax(*longest2, fct_v3_dot(e, e));
+	}
+	return fct_v3_dot(x, n);
+}
+
+/* A triangle thinner than this (twice its area over its longest edge
+ * squared) is a sliver. */
+#define SLIVER 1e-6
+
+/* Triangulating in the image can cut an ear from three corners that the
+ * projection put on one crease line in space: a triangle of no area whose
+ * normal means nothing.  Flip its longest edge (a diagonal, since two
+ * collinear boundary edges cannot be its longest) with the triangle across
+ * it when both new triangles keep the patch's winding and are not thin.
+ * sgn is the sign of the patch's winding along n. */
+static size_t flip_slivers(struct work *w, const struct fct_mesh *m, const double n[3], double sgn)
+{
+	size_t flips = 0;
+	for (size_t k = 0; k < w->nptri; k++) {
+		uint32_t *t = &w->ptri[3 * k];
+		double l2, o = tri_orient(w, m, t, n, &l2);
+		if (!(l2 > 0) || fabs(o) >= SLIVER * l2)
+			continue;
+		/* rotate t to (p, q, r) with p-q its longest edge */
+		int e = 0;
+		double best = -1;
+		for (int q = 0; q < 3; q++) {
+			double d[3];
+			fct_v3_sub(d, &m->xyz[3 * (size_t)w->gl[t[(q + 1) % 3]]], &m->xyz[3 * (size_t)w->gl[t[q]]]);
+			if (fct_v3_dot(d, d) > best)
+				best = fct_v3_dot(d, d), e = q;
+		}
+		uint32_t P = t[e], Q = t[(e + 1) % 3], R = t[(e + 2) % 3];
+		for (size_t j = 0; j < w->nptri; j++) {
+			uint32_t *u = &w->ptri[3 * j];
+			int at = -1;
+			for (int q = 0; q < 3; q++)
+				if (u[q] == Q && u[(q + 1) % 3] == P)
+					at = q;
+			if (j == k || at < 0)
+				continue;
+			uint32_t O = u[(at + 2) % 3];
+			uint32_t t1[3] = { R, P, O }, t2[3] = { O, Q, R };
+			double m1, m2, o1 = tri_orient(w, m, t1, n, &m1), o2 = tri_orient(w, m, t2, n, &m2);
+			if (!(o1 * sgn >= SLIVER * m1 && o2 * sgn >= SLIVER * m2))
+				break;
+			/* the new diagonal R-O must not be an edge already */
+			int exists = 0;
+			for (size_t i = 0; i < w->nptri && !exists; i++)
+				for (int q = 0; q < 3; q++) {
+					uint32_t a = w->ptri[3 * i + q], b = w->ptri[3 * i + (q + 1) % 3];
+					exists |= (a == R && b == O) || (a == O && b == R);
+				}
+			if (exists)
+				break;
+			memcpy(t, t1, sizeof t1);
+			memcpy(u, t2, sizeof t2);
+			flips++;
+			break;
+		}
+	}
+	return flips;
+}
+
 static int tri_cmp(const void *pa, const void *pb)
 {
 	const uint32_t *x = pa, *y = pb;
@@ -401,6 +481,14 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 		fct_v3_sub(c, &m->xyz[3 * (size_t)w->gl[w->ptri[3 * k + 2]]], a);
 		fct_v3_cross(x, b, c);
 		s += fct_v3_dot(x, n);
+	}
+	/* a run of collinear corners leaves slivers side by side: each pass
+	 * frees the next one */
+	for (int pass = 0; pass < 16; pass++) {
+		size_t f = flip_slivers(w, m, n, s < 0 ? -1 : 1);
+		st->slivers_flipped += f;
+		if (f == 0)
+			break;
 	}
 	int reverse = s < 0;
 	st->reversed += (size_t)reverse;

@@ -68,6 +68,8 @@ struct fct_tripatch_stats {
 	size_t duplicates;     /* repeated edges ignored */
 	size_t degenerate;     /* loops of fewer than 3 vertices or no area, dropped */
 	size_t reversed;       /* patches reversed to agree with their plane normal */
+	size_t slivers_flipped; /* triangles of no area in space (three corners on
+	                          one line) whose longest edge was flipped */
 	struct fct_polytri_stats tri;
 };
 

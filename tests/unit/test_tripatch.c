@@ -823,6 +823,37 @@ static void test_wire_touch(void)
 	fct_mesh_free(&m);
 }
 
+/* A B C on one line in space but not in the image (B a little below A-C
+ * there), D far above: the greedy method cuts the short diagonal A-C, so
+ * A-B-C is a triangle of no area in space; its longest edge A-C is flipped
+ * with A-C-D into A-B-D and B-C-D, of area 2.5 each. */
+static void test_wire_sliver(void)
+{
+	static const double v[] = { 0, 0, 0, 0, 0, 1, 0, 0, 1, -0.01, 2, 0, 0, 2, 0, 1, 5, 0, 1, 5 };
+	static const int e[] = { 0, 1, 0, -1, 1, 2, 0, -1, 2, 3, 0, -1, 3, 0, 0, -1 };
+	static const double pl[] = { 0, 0, 1, 0 };
+	struct fct_mesh m;
+	struct fct_err err;
+	struct fct_tripatch_params p;
+	struct fct_tripatch_stats s;
+	wire(&m, v, 4, 1, e, 4, pl, 1);
+	fct_tripatch_params_default(&p);
+	CHECK_INT(fct_tripatch(&m, &p, &s, &err), 0);
+	CHECK_INT(s.in_st, 1);
+	CHECK_INT(s.slivers_flipped, 1);
+	CHECK_INT(m.nf, 2);
+	double area, n[3] = { 0, 0, 1 };
+	CHECK(patch_dot(&m, 0, n, &area) > 0);
+	CHECK_NEAR(area, 5, 1e-12);
+	for (size_t f = 0; f < m.nf; f++) {
+		int has_b = 0;
+		for (int q = 0; q < 3; q++)
+			has_b |= m.fvert[3 * f + q] == 1;
+		CHECK(has_b);   /* both faces use B: the diagonal is B-D */
+	}
+	fct_mesh_free(&m);
+}
+
 /* Three boundary vertices on one image line at pixel centres (as dm2mesh
  * makes them), stored as float s t of a 640 x 480 camera: snapped to the
  * centres they are exactly collinear, so the greedy method cannot cut the
@@ -985,5 +1016,6 @@ int main(void)
 	test_wire_bad();
 	test_wire_random();
 	test_wire_snap();
+	test_wire_sliver();
 	CHECK_DONE();
 }
