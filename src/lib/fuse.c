@@ -28,6 +28,18 @@
 
 #include "geom.h"
 
+static inline double dmin3(double a, double b, double c)
+{
+	double m = a < b ? a : b;
+	return m < c ? m : c;
+}
+
+static inline double dmax3(double a, double b, double c)
+{
+	double m = a > b ? a : b;
+	return m > c ? m : c;
+}
+
 /* Per-view scratch: a hash of 8^3 blocks, the candidate voxels of a view
  * (lo..hi, local coordinates) and their results. ------------------------- */
 
@@ -61,10 +73,8 @@ static size_t key_hash(uint64_t k, size_t cap)
 
 static void scratch_free(struct scratch *s)
 {
-	for (size_t i = 0; i < s->n; i++) {
-		free(s->blk[i]->d);
+	for (size_t i = 0; i < s->n; i++)
 		free(s->blk[i]);
-	}
 	free(s->blk);
 	free(s->keys);
 	free(s->slot);
@@ -342,22 +352,25 @@ static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
 
 /* Walk from triangle t downhill to the triangle nearest x: across the edge
  * or around the vertex where the closest point lies.  Returns the triangle;
- * *d2 its squared distance, q the point, *r its region. */
+ * *d2 its squared distance, q the point, *r its region; -1 when it is
+ * still going after WALK_STEPS steps (along a border towards points the
+ * view did not see, mostly: such voxels are skipped as border voxels are). */
+enum { WALK_STEPS = 12 };
+
 static int32_t walk(const struct geo *G, int32_t t, const double x[3], double *d2out, double q[3],
                     enum fct_tri_region *r)
 {
 	double best = tri_closest(G, (size_t)t, x, q, r);
-	for (int step = 0; step < 32; step++) {
+	for (int step = 0;; step++) {
 		int32_t next = -1;
-		double nd = best;
+		double nd = best, nq[3];
+		enum fct_tri_region nr = *r;
 		const uint32_t *tv = &G->tv[3 * (size_t)t];
 		if (*r == FCT_TRI_AB || *r == FCT_TRI_BC || *r == FCT_TRI_CA) {
 			int k = *r == FCT_TRI_AB ? 0 : *r == FCT_TRI_BC ? 1 : 2;
 			int32_t o = across(G, (size_t)t, tv[k], tv[(k + 1) % 3]);
 			if (o >= 0) {
-				double qq[3];
-				enum fct_tri_region rr;
-				double d = tri_closest(G, (size_t)o, x, qq, &rr);
+				double d = tri_closest(G, (size_t)o, x, nq, &nr);
 				if (d < nd)
 					nd = d, next = o;
 			}
@@ -365,19 +378,23 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], double *d
 			uint32_t v = tv[*r == FCT_TRI_A ? 0 : *r == FCT_TRI_B ? 1 : 2];
 			for (uint32_t i = G->vfs[v]; i < G->vfs[v + 1]; i++) {
 				uint32_t o = G->vf[i];
-				if (isnan(G->tn[3 * (size_t)o]))
+				if ((int32_t)o == t || isnan(G->tn[3 * (size_t)o]))
 					continue;
 				double qq[3];
 				enum fct_tri_region rr;
 				double d = tri_closest(G, o, x, qq, &rr);
-				if (d < nd)
-					nd = d, next = (int32_t)o;
+				if (d < nd) {
+					nd = d, next = (int32_t)o, nr = rr;
+					memcpy(nq, qq, sizeof qq);
+				}
 			}
 		}
 		if (next < 0)
 			break;
-		t = next;
-		best = tri_closest(G, (size_t)t, x, q, r);
+		if (step == WALK_STEPS)
+			return -1;
+		t = next, best = nd, *r = nr;
+		memcpy(q, nq, sizeof nq);
 	}
 	*d2out = best;
 	return t;
@@ -547,7 +564,8 @@ struct raster {
 	int32_t *id;             /* -1: nothing */
 	float *zf;               /* true distance: the farthest triangle too */
 	int32_t *idf;
-	float *uvd;              /* per vertex: sample x, y, depth (NaN: not seen) */
+	float *uvd;              /* per vertex: sensor u, v, depth (NaN: not seen) */
+	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes) */
 	const struct geo *G;
 	int proper;              /* only triangles with a normal */
 	int nthreads;
@@ -560,6 +578,7 @@ static void raster_free(struct raster *R)
 	free(R->zf);
 	free(R->idf);
 	free(R->uvd);
+	free(R->sp);
 	memset(R, 0, sizeof *R);
 }
 
@@ -623,6 +642,21 @@ static void project_chunk(void *ctx, size_t lo, size_t hi)
 	}
 }
 
+/* Vertices in sample coordinates (x, y, depth or 1/depth for pinholes;
+ * NaN: not seen). */
+static void samples_chunk(void *ctx, size_t lo, size_t hi)
+{
+	struct raster *R = ctx;
+	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE;
+	for (size_t i = lo; i < hi; i++) {
+		const float *o = &R->uvd[3 * i];
+		double *sp = &R->sp[3 * i];
+		sp[0] = (o[0] - R->u0) * R->S;
+		sp[1] = (o[1] - R->v0) * R->S;
+		sp[2] = pin ? 1 / (double)o[2] : o[2];
+	}
+}
+
 /* Rows lo..hi of the raster: every triangle, clipped to them. */
 static void raster_rows(void *ctx, size_t lo, size_t hi)
 {
@@ -630,33 +664,37 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 	const struct geo *G = R->G;
 	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE, cyl = R->v->cam.kind == FCT_CAMERA_CYLINDRICAL,
 	    ortho = R->v->cam.kind == FCT_CAMERA_NONE;
-	double ylo = (double)lo, yhi = (double)hi - 1;
+	double ylo = (double)lo, yhi = (double)hi - 1, seam = R->S * R->v->cam.width / 2.0;
+	const double *sp = R->sp;
 	for (size_t f = 0; f < G->nt; f++) {
-		if (R->proper && isnan(G->tn[3 * f]))
-			continue;
 		const uint32_t *tv = &G->tv[3 * f];
-		const float *pa = &R->uvd[3 * tv[0]], *pb = &R->uvd[3 * tv[1]], *pc = &R->uvd[3 * tv[2]];
-		double a[3] = { (pa[0] - R->u0) * R->S, (pa[1] - R->v0) * R->S, pa[2] },
-		       b[3] = { (pb[0] - R->u0) * R->S, (pb[1] - R->v0) * R->S, pb[2] },
-		       c[3] = { (pc[0] - R->u0) * R->S, (pc[1] - R->v0) * R->S, pc[2] };
-		double vmin = fmin(a[1], fmin(b[1], c[1])), vmax = fmax(a[1], fmax(b[1], c[1]));
+		const double *a = &sp[3 * tv[0]], *b = &sp[3 * tv[1]], *c = &sp[3 * tv[2]];
+		double vmin = dmin3(a[1], b[1], c[1]), vmax = dmax3(a[1], b[1], c[1]);
 		if (!(vmax >= ylo - 1e-9 && vmin <= yhi + 1e-9))
 			continue;   /* also NaN: not seen */
-		double umin = fmin(a[0], fmin(b[0], c[0])), umax = fmax(a[0], fmax(b[0], c[0]));
-		if (cyl && umax - umin > R->S * R->v->cam.width / 2.0)
+		if (R->proper && isnan(G->tn[3 * f]))
+			continue;
+		double umin = dmin3(a[0], b[0], c[0]), umax = dmax3(a[0], b[0], c[0]);
+		if (cyl && umax - umin > seam)
 			continue;   /* across the seam */
 		double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-		if (!(fabs(area) > 1e-12))
-			continue;
-		int u0 = (int)fmax(ceil(umin - 1e-9), 0), u1 = (int)fmin(floor(umax + 1e-9), R->w - 1);
-		int v0 = (int)fmax(ceil(vmin - 1e-9), ylo), v1 = (int)fmin(floor(vmax + 1e-9), yhi);
+		if (!(fabs(area) > 1e-12) || !(umax >= -1 && umin <= R->w))
+			continue;   /* also NaN */
+		double fu0 = ceil(umin - 1e-9), fu1 = floor(umax + 1e-9);
+		double fv0 = ceil(vmin - 1e-9), fv1 = floor(vmax + 1e-9);
+		int u0 = fu0 > 0 ? (int)fu0 : 0, u1 = fu1 < R->w - 1 ? (int)fu1 : R->w - 1;
+		int v0 = fv0 > ylo ? (int)fv0 : (int)lo, v1 = fv1 < yhi ? (int)fv1 : (int)hi - 1;
+		double ia = 1 / area;
+		/* Barycentric weights of b and c, affine in the sample. */
+		double bx = (c[1] - a[1]) * ia, by = -(c[0] - a[0]) * ia;
+		double cx = -(b[1] - a[1]) * ia, cy = (b[0] - a[0]) * ia;
 		/* Depth is affine in the image for orthographic views; for
-		 * perspective ones 1/depth is. */
-		double za = pin ? 1 / a[2] : a[2], zb = pin ? 1 / b[2] : b[2], zc = pin ? 1 / c[2] : c[2];
+		 * perspective ones 1/depth is (sp holds it). */
+		double za = a[2], zb = b[2], zc = c[2];
 		for (int y = v0; y <= v1; y++)
 			for (int x = u0; x <= u1; x++) {
-				double wb = ((x - a[0]) * (c[1] - a[1]) - (y - a[1]) * (c[0] - a[0])) / area;
-				double wc = ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])) / area;
+				double wb = (x - a[0]) * bx + (y - a[1]) * by;
+				double wc = (x - a[0]) * cx + (y - a[1]) * cy;
 				double wa = 1 - wb - wc;
 				if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9)
 					continue;
@@ -751,6 +789,10 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 			R->zf[i] = -INFINITY;
 		memset(R->idf, 0xff, n * sizeof *R->idf);
 	}
+	R->sp = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->sp, err);
+	if (!R->sp)
+		return -1;
+	run(nthreads, samples_chunk, R, G->nv, 0);
 	/* Each thread its own rows: the same raster for any thread count. */
 	run(nthreads, raster_rows, R, (size_t)R->h, nthreads);
 	return 0;
@@ -762,7 +804,7 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 
 struct cand {
 	struct scratch cells;    /* blocks with the box of their surface cells */
-	double vox;
+	double vox, inv;
 	struct fct_err *err;
 };
 
@@ -770,18 +812,22 @@ static int add_point(struct cand *c, const double p[3])
 {
 	int32_t i[3];
 	for (int k = 0; k < 3; k++) {
-		double s = floor(p[k] / c->vox);
+		double s = p[k] * c->inv;
 		if (!(fabs(s) < MAX_INDEX))
 			return fct_fail(c->err, "the view reaches %g m: too far from the origin for the voxel size",
 			                p[k]);
-		i[k] = (int32_t)s;
+		int32_t t = (int32_t)s;   /* floor, without a call */
+		i[k] = t - (s < (double)t);
 	}
-	struct sblock *b = scratch_block(&c->cells, fct_vox_block_of(i[0]), fct_vox_block_of(i[1]),
-	                                 fct_vox_block_of(i[2]), 1, c->err);
-	if (!b)
-		return -1;
+	struct sblock *b = c->cells.last;
+	int32_t bx = fct_vox_block_of(i[0]), by = fct_vox_block_of(i[1]), bz = fct_vox_block_of(i[2]);
+	if (!b || b->bx != bx || b->by != by || b->bz != bz) {
+		b = scratch_block(&c->cells, bx, by, bz, 1, c->err);
+		if (!b)
+			return -1;
+	}
 	for (int k = 0; k < 3; k++) {
-		int8_t l = (int8_t)fct_vox_local_of(i[k]);
+		int8_t l = (int8_t)(i[k] & (FCT_VOXBLOCK - 1));
 		b->lo[k] = l < b->lo[k] ? l : b->lo[k];
 		b->hi[k] = l > b->hi[k] ? l : b->hi[k];
 	}
@@ -789,10 +835,11 @@ static int add_point(struct cand *c, const double p[3])
 }
 
 /* The candidate blocks of G for a band of r voxels into s, each with
- * FCT_VOXBLOCK_N distances and weights (weights 0). */
-static int candidates(struct scratch *s, const struct geo *G, double vox, int r, struct fct_err *err)
+ * FCT_VOXBLOCK_N distances and weights (weights 0) from one slab *slab. */
+static int candidates(struct scratch *s, float **slab, const struct geo *G, double vox, int r,
+                      struct fct_err *err)
 {
-	struct cand c = { { 0 }, vox, err };
+	struct cand c = { { 0 }, vox, 1 / vox, err };
 	int rc = -1;
 	for (size_t i = 0; i < G->nv; i++)
 		if (add_point(&c, &G->xyz[3 * i]))
@@ -802,8 +849,8 @@ static int candidates(struct scratch *s, const struct geo *G, double vox, int r,
 		const double *a = &G->xyz[3 * tv[0]], *b = &G->xyz[3 * tv[1]], *cc = &G->xyz[3 * tv[2]];
 		double e = 0;
 		for (int k = 0; k < 3; k++) {
-			double lo = fmin(a[k], fmin(b[k], cc[k])), hi = fmax(a[k], fmax(b[k], cc[k]));
-			e = fmax(e, hi - lo);
+			double ek = dmax3(a[k], b[k], cc[k]) - dmin3(a[k], b[k], cc[k]);
+			e = ek > e ? ek : e;
 		}
 		if (!(e > vox))
 			continue;
@@ -837,10 +884,6 @@ static int candidates(struct scratch *s, const struct geo *G, double vox, int r,
 					struct sblock *b = scratch_block(s, bx, by, bz, 1, err);
 					if (!b)
 						goto done;
-					if (!b->d && !(b->d = calloc(2 * FCT_VOXBLOCK_N, sizeof *b->d))) {
-						fct_fail(err, "out of memory");
-						goto done;
-					}
 					int32_t o[3] = { bx * FCT_VOXBLOCK, by * FCT_VOXBLOCK, bz * FCT_VOXBLOCK };
 					for (int k = 0; k < 3; k++) {
 						int32_t l = lo[k] - o[k], h = hi[k] - o[k];
@@ -850,6 +893,13 @@ static int candidates(struct scratch *s, const struct geo *G, double vox, int r,
 						b->hi[k] = (int8_t)(h > b->hi[k] ? h : b->hi[k]);
 					}
 				}
+	}
+	*slab = fct_alloc_array(s->n ? s->n : 1, 2 * FCT_VOXBLOCK_N * sizeof **slab, err);
+	if (!*slab)
+		goto done;
+	for (size_t bi = 0; bi < s->n; bi++) {
+		s->blk[bi]->d = *slab + bi * 2 * FCT_VOXBLOCK_N;
+		memset(s->blk[bi]->d + FCT_VOXBLOCK_N, 0, FCT_VOXBLOCK_N * sizeof **slab);
 	}
 	rc = 0;
 done:
@@ -913,6 +963,33 @@ static inline double plane_dist(const struct geo *G, int32_t t, const double x[3
 	return (x[0] - a[0]) * n[0] + (x[1] - a[1]) * n[1] + (x[2] - a[2]) * n[2];
 }
 
+/* The triangle under sample point (px, py), by walking across the edges
+ * of the image-space triangles from t (t itself when that fails). */
+static int32_t locate(const struct raster *R, int32_t t, double px, double py)
+{
+	const struct geo *G = R->G;
+	for (int step = 0; step < 8; step++) {
+		const uint32_t *tv = &G->tv[3 * (size_t)t];
+		const double *p[3] = { &R->sp[3 * tv[0]], &R->sp[3 * tv[1]], &R->sp[3 * tv[2]] };
+		double area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+		int out = -1;
+		double worst = 0;
+		for (int k = 0; k < 3; k++) {
+			const double *a = p[k], *b = p[(k + 1) % 3];
+			double e = ((b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0])) * area;
+			if (e < worst)
+				worst = e, out = k;
+		}
+		if (out < 0)
+			return t;
+		int32_t o = across(G, (size_t)t, tv[out], tv[(out + 1) % 3]);
+		if (o < 0)
+			return t;
+		t = o;
+	}
+	return t;
+}
+
 /* From triangle t seen at x's sample in layer id: to the foot of x on the
  * plane of t, and again from the triangle seen at the foot, until it
  * stays; then downhill on the mesh.  The triangle, or -1 when x is out of
@@ -929,13 +1006,14 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 	 * anywhere, around a silhouette. */
 	if (s > band + 2 * F->vox)
 		return -1;
+	int stays = 0;
 	for (int it = 0; it < 8; it++) {
 		const double *n = &G->tn[3 * (size_t)t];
 		double f[3] = { x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2] };
 		if (!sample_of(R, f, &sx, &sy, &depth))
 			break;
 		long si = sample_index(R, sx, sy);
-		if (si < 0 || id[si] < 0 || id[si] == t)
+		if (si < 0 || id[si] < 0 || (stays = id[si] == t))
 			break;
 		/* Not onto another surface farther away (off a silhouette). */
 		double s2 = plane_dist(G, id[si], x);
@@ -943,10 +1021,18 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 			break;
 		t = id[si], s = s2;
 	}
-	if (s > band + F->vox)
+	/* Far from the plane seen, on either side: a walk downhill from
+	 * there does not come into the band (surfaces behind another are the
+	 * far layer's). */
+	if (s > band + F->vox || s < -(band + 2 * F->vox))
 		return -1;
+	/* The sample is the nearest one, not the triangle under the foot:
+	 * find that one in the image first (cheaper than walking around
+	 * vertices in space). */
+	if (stays)
+		t = locate(R, t, sx, sy);
 	t = walk(G, t, x, d2, q, r);
-	return (float)*d2 <= band * band ? t : -1;   /* as float: the band's last layer stays in */
+	return t >= 0 && (float)*d2 <= band * band ? t : -1;   /* as float: the band's last layer stays in */
 }
 
 static void true_chunk(void *ctx, size_t lo, size_t hi)
@@ -1001,7 +1087,7 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 						for (int di = 0; di < 8; di++) {
 							long si = sample_index(R, sx + rp * dir[di][0], sy + rp * dir[di][1]);
 							if (si < 0 || R->id[si] < 0 || R->id[si] == t0 ||
-							    fabs(plane_dist(G, R->id[si], x)) > band + vox)
+							    fabs(plane_dist(G, R->id[si], x)) > band)
 								continue;
 							double d2f, qf[3];
 							enum fct_tri_region rf;
@@ -1095,6 +1181,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		return -1;
 	struct raster R;
 	struct scratch s = { 0 };
+	float *slab = NULL;
 	int rc = -1;
 	/* True distance: two samples per pixel along each axis, so that
 	 * every triangle of a range image's grid owns one; projective: the
@@ -1106,7 +1193,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		goto done;
 	if (R.w > 0) {
 		double r = ceil(band / vox);
-		if (candidates(&s, &G, vox, (int)(r < 100 ? r : 100), err))
+		if (candidates(&s, &slab, &G, vox, (int)(r < 100 ? r : 100), err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox };
 		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);
@@ -1122,6 +1209,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	rc = 0;
 done:
 	scratch_free(&s);
+	free(slab);
 	raster_free(&R);
 	geo_free(&G);
 	return rc;
