@@ -1,19 +1,24 @@
 /* meshconv - convert a mesh between PLY encodings and OBJ, keeping every
  * property and element the target format can hold; optionally mesh a
- * range-grid scan and place it in the world with its .conf pose. */
+ * range-grid scan and place it in the world with its .conf pose; join
+ * several meshes and weld them (tsdfuse --bbox tiles). */
 #include <getopt.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "camera.h"
+#include "adj.h"
 #include "cli.h"
 #include "header.h"
+#include "mcubes.h"
 #include "meshio.h"
 #include "path.h"
 #include "rangegrid.h"
 
 static const char usage[] =
-	"usage: meshconv [-aqv] [-f format] [-o file] [--conf file] [--grid] [input]\n"
+	"usage: meshconv [-aqv] [-f format] [-o file] [--conf file] [--grid] [--weld]\n"
+	"                [input ...]\n"
 	"Convert a mesh (PLY or OBJ, detected from the content) to binary PLY,\n"
 	"keeping every property, element and comment.\n"
 	"  -a            write ascii PLY\n"
@@ -27,6 +32,12 @@ static const char usage[] =
 	"      --grid    mesh a range-grid scan (range_grid element, no faces) as\n"
 	"                tsdfuse does; the range_grid element is dropped\n"
 	"  -v            report counts and time on stderr\n"
+	"      --weld    merge vertices at identical positions (the first of each\n"
+	"                position is kept) and drop the faces that then repeat a\n"
+	"                vertex; with several inputs, after joining them\n"
+	"  Several inputs are joined: vertices and faces concatenated in order\n"
+	"  (the same vertex and face properties in each), the first input's\n"
+	"  comments kept, other elements dropped with a warning.\n"
 	"  -h, --help    this help\n"
 	"      --version print the version\n";
 
@@ -103,19 +114,60 @@ static void range_scan(struct fct_mesh *m, const char *in, int grid, const char 
 	}
 }
 
+/* --weld: merge equal positions, drop faces that repeat a vertex. */
+static void weld(struct fct_mesh *m)
+{
+	struct fct_err err;
+	long merged = fct_mesh_weld_exact(m, &err);
+	unsigned char *bad = merged < 0 ? NULL : fct_alloc_array(m->nf, 1, &err);
+	size_t *keep = bad ? fct_alloc_array(m->nf, sizeof *keep, &err) : NULL;
+	/* min_area -1: only faces with a repeated vertex (or < 3 corners) */
+	long ndeg = keep ? fct_mesh_degenerate_faces(m, -1, bad, &err) : -1;
+	size_t n = 0;
+	for (size_t f = 0; ndeg > 0 && f < m->nf; f++)
+		if (!bad[f])
+			keep[n++] = f;
+	if (ndeg < 0 || (ndeg > 0 && fct_mesh_gather_faces(m, keep, n, &err))) {
+		free(bad);
+		free(keep);
+		fct_mesh_free(m);
+		fct_die_err(&err);
+	}
+	free(bad);
+	free(keep);
+	fct_report("welded_vertices", "%ld", merged);
+	fct_report("degenerate_faces", "%ld", ndeg);
+}
+
+/* Join next (freed) onto m; next's other elements are dropped. */
+static void join(struct fct_mesh *m, struct fct_mesh *next, const char *in)
+{
+	struct fct_err err;
+	for (size_t i = 0; i < next->nelems; i++)
+		fct_warn("%s: element %s dropped (several inputs are joined)", in, next->elems[i].name);
+	if (fct_mesh_append(m, next, &err)) {
+		fct_mesh_free(m);
+		fct_mesh_free(next);
+		fct_err_prefix(&err, "%s", in);
+		fct_die_err(&err);
+	}
+	fct_mesh_free(next);
+}
+
 int main(int argc, char **argv)
 {
-	enum { OPT_CONF = 256, OPT_GRID };
+	enum { OPT_CONF = 256, OPT_GRID, OPT_WELD };
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, 'V'},
 		{"conf", required_argument, NULL, OPT_CONF},
 		{"grid", no_argument, NULL, OPT_GRID},
+		{"weld", no_argument, NULL, OPT_WELD},
 		{NULL, 0, NULL, 0},
 	};
 	fct_cli_init("meshconv");
 	const char *out = NULL, *conf = NULL;
-	int fmt = -1, c, grid = 0;
+	int fmt = -1, c, grid = 0, welding = 0;
 	static const char optstring[] = "af:ho:qv";
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
@@ -134,13 +186,17 @@ int main(int argc, char **argv)
 		case 'V': puts("meshconv (facet) " FCT_VERSION); return 0;
 		case OPT_CONF: conf = optarg; break;
 		case OPT_GRID: grid = 1; break;
+		case OPT_WELD: welding = 1; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
+	int nin = argc > optind ? argc - optind : 1, nstd = 0;
+	for (int i = optind; i < argc; i++)
+		nstd += fct_path_is_std(argv[i]);
+	if (nstd > 1)
+		fct_usage_error("standard input given %d times", nstd);
 	const char *in = optind < argc ? argv[optind] : NULL;
-	if (conf && fct_path_is_std(in))
+	if (conf && (fct_path_is_std(in) || nstd))
 		fct_usage_error("--conf: the scan is found by its file name: give it, not standard input");
 
 	struct fct_err err;
@@ -151,6 +207,24 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	if (grid || conf)
 		range_scan(&m, in, grid, conf);
+	if (nin > 1)
+		for (size_t i = 0; i < m.nelems; i++)
+			fct_warn("%s: element %s dropped (several inputs are joined)", in, m.elems[i].name);
+	while (nin > 1 && m.nelems)
+		fct_mesh_remove_elem(&m, m.elems[0].name);
+	for (int i = optind + 1; i < argc; i++) {
+		struct fct_mesh next;
+		enum fct_format f;
+		if (fct_mesh_read_file(&next, argv[i], &f, &err)) {
+			fct_mesh_free(&m);
+			fct_die_err(&err);
+		}
+		if (grid || conf)
+			range_scan(&next, argv[i], grid, conf);
+		join(&m, &next, fct_path_is_std(argv[i]) ? "<stdin>" : argv[i]);
+	}
+	if (welding)
+		weld(&m);
 	double t1 = fct_now();
 	if (fmt == -1)
 		fmt = fct_format_for_path(out, 0);
@@ -164,6 +238,7 @@ int main(int argc, char **argv)
 		return 1;
 	}
 	fct_report("input", "%s", fct_format_name(infmt));
+	fct_report("inputs", "%d", nin);
 	fct_report("vertices", "%zu", m.nv);
 	fct_report("faces", "%zu", m.nf);
 	fct_report("read_s", "%.3f", t1 - t0);

@@ -468,6 +468,80 @@ static void *dup_array(const void *src, size_t n, size_t sz, int *fail)
 	return d;
 }
 
+/* The first property in which elements a and b differ, or NULL. */
+static const char *elem_differs(const struct fct_elem *a, const struct fct_elem *b)
+{
+	size_t n = a->nprops < b->nprops ? a->nprops : b->nprops;
+	for (size_t i = 0; i < n; i++) {
+		const struct fct_prop *p = &a->props[i], *q = &b->props[i];
+		if (strcmp(p->name, q->name) || p->type != q->type || p->count_type != q->count_type)
+			return p->name;
+	}
+	if (a->nprops != b->nprops)
+		return a->nprops > n ? a->props[n].name : b->props[n].name;
+	return NULL;
+}
+
+/* Append the rows of column q (count rows) after the old rows of p. */
+static int prop_append(struct fct_prop *p, size_t old, const struct fct_prop *q, size_t count,
+                       struct fct_err *err)
+{
+	size_t sz = fct_type_size(p->type);
+	if (p->count_type == FCT_NONE) {
+		if (fct_grow(&p->data, &p->cap, old + count, sz, err))
+			return -1;
+		if (count)
+			memcpy((char *)p->data + old * sz, q->data, count * sz);
+		return 0;
+	}
+	size_t pitems = old ? p->off[old] : 0, qitems = count ? q->off[count] : 0;
+	if (fct_grow((void **)&p->off, &p->off_cap, old + count + 1, sizeof *p->off, err) ||
+	    fct_grow(&p->data, &p->cap, pitems + qitems, sz, err))
+		return -1;
+	p->off[0] = 0;
+	for (size_t i = 0; i < count; i++)
+		p->off[old + i + 1] = pitems + q->off[i + 1];
+	if (qitems)
+		memcpy((char *)p->data + pitems * sz, q->data, qitems * sz);
+	return 0;
+}
+
+int fct_mesh_append(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err)
+{
+	const char *d;
+	if ((d = elem_differs(&dst->vertex, &src->vertex)))
+		return fct_fail(err, "vertex property %s: not in both meshes alike", d);
+	if ((d = elem_differs(&dst->face, &src->face)))
+		return fct_fail(err, "face property %s: not in both meshes alike", d);
+	size_t nv = dst->nv + src->nv, nf = dst->nf + src->nf;
+	size_t dfv = dst->nf ? dst->fstart[dst->nf] : 0, sfv = src->nf ? src->fstart[src->nf] : 0;
+	if (nv > UINT32_MAX || dfv + sfv > UINT32_MAX || nv < dst->nv)
+		return fct_fail(err, "more than 2^32 - 1 vertices or face corners");
+	if (fct_grow((void **)&dst->xyz, &dst->xyz_cap, 3 * nv, sizeof *dst->xyz, err) ||
+	    fct_grow((void **)&dst->fstart, &dst->fstart_cap, nf + 1, sizeof *dst->fstart, err) ||
+	    fct_grow((void **)&dst->fvert, &dst->fvert_cap, dfv + sfv, sizeof *dst->fvert, err))
+		return -1;
+	for (size_t i = 0; i < dst->vertex.nprops; i++)
+		if (prop_append(&dst->vertex.props[i], dst->nv, &src->vertex.props[i], src->nv, err))
+			return -1;
+	for (size_t i = 0; i < dst->face.nprops; i++)
+		if (prop_append(&dst->face.props[i], dst->nf, &src->face.props[i], src->nf, err))
+			return -1;
+	if (src->nv)
+		memcpy(dst->xyz + 3 * dst->nv, src->xyz, 3 * src->nv * sizeof *dst->xyz);
+	dst->fstart[0] = 0;
+	for (size_t f = 0; f < src->nf; f++)
+		dst->fstart[dst->nf + f + 1] = (uint32_t)(dfv + src->fstart[f + 1]);
+	for (size_t i = 0; i < sfv; i++)
+		dst->fvert[dfv + i] = (uint32_t)(src->fvert[i] + dst->nv);
+	if (src->xyz_type == FCT_FLOAT64)
+		dst->xyz_type = FCT_FLOAT64;
+	dst->has_faces |= src->has_faces;
+	dst->nv = dst->vertex.count = nv;
+	dst->nf = dst->face.count = nf;
+	return 0;
+}
+
 int fct_mesh_copy(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err)
 {
 	int fail = 0;

@@ -148,6 +148,15 @@ int fct_mesh_gather_vertices(struct fct_mesh *m, const size_t *src, size_t n, st
 /* Keep the faces src[0..n) in that order, with all their properties. */
 int fct_mesh_gather_faces(struct fct_mesh *m, const size_t *src, size_t n, struct fct_err *err);
 
+/* Append src's vertices and faces to dst, src's face indices shifted past
+ * dst's vertices.  The vertex elements must have the same properties (names,
+ * types, list or scalar, in order), and so must the face elements; the
+ * positions are stored as double on disk when either mesh had them so.
+ * src's other elements and comments are not taken.  Returns 0, or -1 with
+ * the first difference named (dst then unchanged) or when out of memory or
+ * past 2^32 - 1 vertices. */
+int fct_mesh_append(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err);
+
 /* Deep copy of src into dst (dst is overwritten without being freed). */
 int fct_mesh_copy(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err);
 

@@ -62,7 +62,7 @@ check_num "no message on a closed pipe" "$(wc -c <"$TMP/pipe_err")" == 0
 # Usage errors: exit 2.
 run_case 2 "meshconv -f banana $bunny" "" "meshconv: -f: unknown format"
 run_case 2 "meshconv -Z" "" ""
-run_case 2 "meshconv a b" "" "meshconv: too many operands"
+run_case 2 "meshconv - - <$bunny" "" "meshconv: standard input given 2 times"
 run_case 1 "meshconv /nonexistent.ply" "" "meshconv: /nonexistent.ply: No such file"
 run_case 0 "meshconv --version" "" ""
 run_case 0 "meshconv -h" "" ""
@@ -83,5 +83,25 @@ run_case 0 "meshconv -o $TMP/fifo $bunny"
 wait
 check_true "-o FIFO stays a FIFO" test -p "$TMP/fifo"
 check_num "-o FIFO carried the mesh" "$(cat "$TMP/fifo.count")" ">" 1000
+
+# Several inputs joined, --weld: two triangles sharing an edge, given as two
+# files, become 4 vertices (the second file's copies of the shared corners
+# merged) and 2 faces; a third file whose only face collapses onto a point
+# when welded loses it; a fourth with other vertex properties is refused.
+tri() { printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n%s\n%s\n%s\n3 0 1 2\n' "$@"; }
+tri "0 0 0" "1 0 0" "0 1 0" >"$TMP/j1.ply"
+tri "1 0 0" "1 1 0" "0 1 0" >"$TMP/j2.ply"
+tri "1 1 0" "1 1 0" "0 0 0" >"$TMP/j3.ply"
+run_case 0 "meshconv -v -a --weld -o $TMP/j.ply $TMP/j1.ply $TMP/j2.ply"
+check_num "joined: vertices" "$(awk '$1 == "element" && $2 == "vertex" { print $3 }' "$TMP/j.ply")" == 4
+check_num "joined: faces" "$(awk '$1 == "element" && $2 == "face" { print $3 }' "$TMP/j.ply")" == 2
+check_num "joined: vertices merged" "$(awk -F= '$1 == "meshconv: welded_vertices" { print $2 }' "$TMP/err")" == 2
+check_true "joined: second face renumbered" grep -qx "3 1 3 2" "$TMP/j.ply"
+run_case 0 "meshconv -v -a --weld -o $TMP/j.ply $TMP/j1.ply $TMP/j2.ply $TMP/j3.ply"
+check_num "welded: degenerate face dropped" "$(awk -F= '$1 == "meshconv: degenerate_faces" { print $2 }' "$TMP/err")" == 1
+check_num "welded: faces" "$(awk '$1 == "element" && $2 == "face" { print $3 }' "$TMP/j.ply")" == 2
+run_case 0 "meshconv -a $TMP/j1.ply $TMP/j2.ply >$TMP/j12.ply"
+check_num "joined without --weld: 6 vertices" "$(awk '$1 == "element" && $2 == "vertex" { print $3 }' "$TMP/j12.ply")" == 6
+run_case 1 "meshconv $TMP/j1.ply $bunny" "" "meshconv: $bunny: vertex property "
 
 finish

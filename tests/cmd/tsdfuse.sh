@@ -66,6 +66,41 @@ run_case 0 "tsdfuse --voxel 0.04 --bbox -4,-3,-1,4,3,3 -o $TMP/all.ply $V"
 run_case 0 "tsdfuse --voxel 0.04 --bbox -4,-3,-1,0,3,3 -o $TMP/t1.ply $V"
 run_case 0 "tsdfuse --voxel 0.04 --bbox 0,-3,-1,4,3,3 -o $TMP/t2.ply $V"
 check_num "tiles: faces add up" "$(( $(info "$TMP/t1.ply" faces) + $(info "$TMP/t2.ply" faces) ))" == "$(info "$TMP/all.ply" faces)"
+# Stitched by meshconv --weld: the same vertices (positions and normals) as
+# the whole, the faces of the whole.
+run_case 0 "meshconv -a --weld -o $TMP/st.ply $TMP/t1.ply $TMP/t2.ply"
+vlines() { meshconv -a "$1" | awk '/^element vertex/ { n = $3 } /^end_header/ { h = 1; next }
+	h && n > 0 { n--; print }' | sort; }
+vlines "$TMP/all.ply" >"$TMP/all.v"
+vlines "$TMP/st.ply" >"$TMP/st.v"
+check_true "stitched: the whole's vertices, normals included" cmp -s "$TMP/all.v" "$TMP/st.v"
+check_num "stitched: faces" "$(info "$TMP/st.ply" faces)" == "$(info "$TMP/all.ply" faces)"
+check_num "stitched: border edges" "$(info "$TMP/st.ply" border_edges)" == "$(info "$TMP/all.ply" border_edges)"
+# Four carved tiles (boxes sharing faces at x = 0 and y = 0.3) stitched: as
+# watertight as the carved whole, no vertex twice, the same faces and Euler
+# characteristic, the same vertex positions (carving near a tile's border
+# can turn a few normals there).
+B=-4,-3,-1,4,3,3
+run_case 0 "tsdfuse --carve --voxel 0.04 --bbox $B -o $TMP/call.ply $V"
+T=""
+for b in -4,-3,-1,0,0.3,3 0,-3,-1,4,0.3,3 -4,0.3,-1,0,3,3 0,0.3,-1,4,3,3; do
+	tsdfuse --carve --voxel 0.04 --bbox "$b" -o "$TMP/ct$b.ply" $V
+	T="$T $TMP/ct$b.ply"
+done
+run_case 0 "meshconv -v --weld -o $TMP/cst.ply $T"
+check_num "carved tiles: vertices merged at the borders" "$(awk -F= '$1 == "meshconv: welded_vertices" { print $2 }' "$TMP/err")" ">" 0
+check_num "carved tiles: border edges" "$(info "$TMP/cst.ply" border_edges)" == 0
+check_num "carved tiles: non-manifold edges" "$(info "$TMP/cst.ply" non_manifold_edges)" == 0
+check_num "carved tiles: faces" "$(info "$TMP/cst.ply" faces)" == "$(info "$TMP/call.ply" faces)"
+euler() { echo $(( $(info "$1" vertices) - $(info "$1" edges) + $(info "$1" faces) )); }
+check_num "carved tiles: Euler characteristic" "$(euler "$TMP/cst.ply")" == "$(euler "$TMP/call.ply")"
+run_case 0 "meshconv -v --weld -o $TMP/cst2.ply $TMP/cst.ply"
+check_num "carved tiles: no vertex twice" "$(awk -F= '$1 == "meshconv: welded_vertices" { print $2 }' "$TMP/err")" == 0
+vpos() { meshconv -a "$1" | awk '/^element vertex/ { n = $3 } /^end_header/ { h = 1; next }
+	h && n > 0 { n--; print $1, $2, $3 }' | sort; }
+vpos "$TMP/call.ply" >"$TMP/call.v"
+vpos "$TMP/cst.ply" >"$TMP/cst.v"
+check_true "carved tiles: the whole's vertex positions" cmp -s "$TMP/call.v" "$TMP/cst.v"
 
 # Curvature flow: a plane 2 m away plus a closed blob (an octahedron of
 # radius 5 cm) 1 m in front of the camera; 30 steps of flow remove the blob
