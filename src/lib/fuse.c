@@ -207,7 +207,7 @@ struct geo {
 	const double *xyz;
 	const uint32_t *tv;      /* 3 per triangle */
 	uint32_t *tvown;
-	double *tn;              /* unit normal, 3 per triangle; NaN: degenerate */
+	double *tn;              /* unit normal n and n . a, 4 per triangle; NaN: degenerate */
 	uint32_t *vfs, *vf;      /* faces of vertex v: vf[vfs[v] .. vfs[v + 1]), in face order */
 	struct fct_mesh tris;    /* the triangulated mesh when the input has polygons */
 	int own;
@@ -237,7 +237,9 @@ static void normals_chunk(void *ctx, size_t lo, size_t hi)
 		double len = sqrt(fct_v3_dot(n, n));
 		int degenerate = !(len > 0) || !isfinite(len) || fct_triangle_degenerate(a, b, c);
 		for (int k = 0; k < 3; k++)
-			G->tn[3 * f + k] = degenerate ? NAN : n[k] / len;
+			G->tn[4 * f + k] = degenerate ? NAN : n[k] / len;
+		const double *tn = &G->tn[4 * f];
+		G->tn[4 * f + 3] = tn[0] * a[0] + tn[1] * a[1] + tn[2] * a[2];   /* NaN with the normal */
 	}
 }
 
@@ -275,7 +277,7 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthr
 	if (!topo)
 		return 0;
 	size_t nt = G->nt, nv = G->nv;
-	G->tn = fct_alloc_array(nt ? nt : 1, 3 * sizeof *G->tn, err);
+	G->tn = fct_alloc_array(nt ? nt : 1, 4 * sizeof *G->tn, err);
 	G->vfs = calloc(nv + 2, sizeof *G->vfs);
 	G->vf = fct_alloc_array(nt ? nt : 1, 3 * sizeof *G->vf, err);
 	if (!G->tn || !G->vfs || !G->vf) {
@@ -313,7 +315,7 @@ static int32_t across(const struct geo *G, size_t t, uint32_t a, uint32_t b)
 	int32_t o = -1;
 	for (uint32_t i = G->vfs[a]; i < G->vfs[a + 1]; i++) {
 		uint32_t f = G->vf[i];
-		if (f == t || isnan(G->tn[3 * (size_t)f]))
+		if (f == t || isnan(G->tn[4 * (size_t)f]))
 			continue;
 		const uint32_t *w = &G->tv[3 * (size_t)f];
 		if (w[0] == b || w[1] == b || w[2] == b) {
@@ -332,7 +334,7 @@ static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
 	vn[0] = vn[1] = vn[2] = 0;
 	for (uint32_t i = G->vfs[v]; i < G->vfs[v + 1]; i++) {
 		uint32_t f = G->vf[i];
-		if (isnan(G->tn[3 * (size_t)f]))
+		if (isnan(G->tn[4 * (size_t)f]))
 			continue;
 		const uint32_t *w = &G->tv[3 * (size_t)f];
 		int k = w[0] == v ? 0 : w[1] == v ? 1 : 2;
@@ -345,7 +347,7 @@ static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
 		fct_v3_sub(s, r, p);
 		double c = fct_v3_dot(u, s) / sqrt(fct_v3_dot(u, u) * fct_v3_dot(s, s));
 		double ang = acos(c < -1 ? -1 : c > 1 ? 1 : c);
-		fct_v3_axpy(vn, vn, ang, &G->tn[3 * (size_t)f]);
+		fct_v3_axpy(vn, vn, ang, &G->tn[4 * (size_t)f]);
 	}
 	return 0;
 }
@@ -378,7 +380,7 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], double *d
 			uint32_t v = tv[*r == FCT_TRI_A ? 0 : *r == FCT_TRI_B ? 1 : 2];
 			for (uint32_t i = G->vfs[v]; i < G->vfs[v + 1]; i++) {
 				uint32_t o = G->vf[i];
-				if ((int32_t)o == t || isnan(G->tn[3 * (size_t)o]))
+				if ((int32_t)o == t || isnan(G->tn[4 * (size_t)o]))
 					continue;
 				double qq[3];
 				enum fct_tri_region rr;
@@ -672,7 +674,7 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 		double vmin = dmin3(a[1], b[1], c[1]), vmax = dmax3(a[1], b[1], c[1]);
 		if (!(vmax >= ylo - 1e-9 && vmin <= yhi + 1e-9))
 			continue;   /* also NaN: not seen */
-		if (R->proper && isnan(G->tn[3 * f]))
+		if (R->proper && isnan(G->tn[4 * f]))
 			continue;
 		double umin = dmin3(a[0], b[0], c[0]), umax = dmax3(a[0], b[0], c[0]);
 		if (cyl && umax - umin > seam)
@@ -959,8 +961,8 @@ static int32_t seen_at(const struct raster *R, const int32_t *id, double x, doub
 
 static inline double plane_dist(const struct geo *G, int32_t t, const double x[3])
 {
-	const double *n = &G->tn[3 * (size_t)t], *a = &G->xyz[3 * G->tv[3 * (size_t)t]];
-	return (x[0] - a[0]) * n[0] + (x[1] - a[1]) * n[1] + (x[2] - a[2]) * n[2];
+	const double *n = &G->tn[4 * (size_t)t];
+	return x[0] * n[0] + x[1] * n[1] + x[2] * n[2] - n[3];
 }
 
 /* The triangle under sample point (px, py), by walking across the edges
@@ -1008,7 +1010,7 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 		return -1;
 	int stays = 0;
 	for (int it = 0; it < 8; it++) {
-		const double *n = &G->tn[3 * (size_t)t];
+		const double *n = &G->tn[4 * (size_t)t];
 		double f[3] = { x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2] };
 		if (!sample_of(R, f, &sx, &sy, &depth))
 			break;
@@ -1100,7 +1102,7 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 					}
 					if (t < 0)
 						continue;
-					const double *n = &G->tn[3 * (size_t)t];
+					const double *n = &G->tn[4 * (size_t)t];
 					fct_v3_sub(xq, x, q);
 					double d;
 					if (r == FCT_TRI_FACE) {
@@ -1123,7 +1125,7 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 						}
 						double pn[3];
 						if (o >= 0)
-							fct_v3_add(pn, n, &G->tn[3 * (size_t)o]);
+							fct_v3_add(pn, n, &G->tn[4 * (size_t)o]);
 						else
 							memcpy(pn, n, sizeof pn);
 						d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
@@ -1204,7 +1206,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		st->faces += v->mesh->nf;
 	} else {
 		for (size_t t = 0; t < G.nt; t++)
-			st->faces += !isnan(G.tn[3 * t]);
+			st->faces += !isnan(G.tn[4 * t]);
 	}
 	rc = 0;
 done:
