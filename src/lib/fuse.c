@@ -1144,21 +1144,48 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 	const struct raster *R = F->R;
 	double vox = F->vox, band = F->p->band;
 	int depth2 = F->p->weight == FCT_FUSE_DEPTH2 && F->v->cam.kind != FCT_CAMERA_NONE;
+	const struct fct_camera *cam = &F->v->cam;
+	int pin = cam->kind == FCT_CAMERA_PINHOLE;
+	const double *M = R->inv;
+	/* Pinholes: sensor coordinates along a row of voxels by adding a step;
+	 * sample x = ax * c0 / c2 + bx (likewise y). */
+	double dx[3] = { M[0] * vox, M[4] * vox, M[8] * vox };
+	double ax = cam->fx * R->S, bx = (cam->cx - R->u0) * R->S;
+	double ay = cam->fy * R->S, by = (cam->cy - R->v0) * R->S;
 	for (size_t bi = lo; bi < hi; bi++) {
 		struct sblock *b = F->s->blk[bi];
 		for (int z = b->lo[2]; z <= b->hi[2]; z++)
-			for (int y = b->lo[1]; y <= b->hi[1]; y++)
+			for (int y = b->lo[1]; y <= b->hi[1]; y++) {
+				int32_t i0 = b->bx * 8 + b->lo[0], j = b->by * 8 + y, k = b->bz * 8 + z;
+				double X = i0 * vox, Y = j * vox, Z = k * vox, c0[3];
+				for (int a = 0; a < 3; a++)
+					c0[a] = M[4 * a] * X + M[4 * a + 1] * Y + M[4 * a + 2] * Z + M[4 * a + 3];
 				for (int xx = b->lo[0]; xx <= b->hi[0]; xx++) {
-					int32_t i = b->bx * 8 + xx, j = b->by * 8 + y, k = b->bz * 8 + z;
+					int32_t i = b->bx * 8 + xx;
 					if (!in_clip(F->p, i, j, k))
 						continue;
-					double x[3] = { i * vox, j * vox, k * vox }, sx, sy, depth;
-					if (!sample_of(R, x, &sx, &sy, &depth))
-						continue;
+					double sx, sy, depth;
+					if (pin) {
+						double n = xx - b->lo[0];
+						double c[3] = { c0[0] + n * dx[0], c0[1] + n * dx[1], c0[2] + n * dx[2] };
+						if (!(c[2] > 0))
+							continue;
+						double iz = 1 / c[2];
+						sx = ax * c[0] * iz + bx;
+						sy = ay * c[1] * iz + by;
+						depth = c[2];
+					} else {
+						double x[3] = { i * vox, Y, Z };
+						if (!sample_of(R, x, &sx, &sy, &depth))
+							continue;
+					}
 					long si = sample_index(R, sx, sy);
-					if (si < 0 || !(R->z[si] < INFINITY))
+					if (si < 0)
 						continue;
-					double Rd = R->z[si], d = Rd - depth;
+					float Rz = R->z[si];
+					if (!(Rz < INFINITY))
+						continue;
+					double Rd = Rz, d = Rd - depth;
 					if (d < -band)
 						continue;
 					int l = xx + 8 * (y + 8 * z);
@@ -1166,6 +1193,7 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 					b->d[FCT_VOXBLOCK_N + l] = (float)(depth2 ? 1 / (Rd * Rd) : 1);
 					b->nvox++;
 				}
+			}
 	}
 }
 
