@@ -529,6 +529,10 @@ int main(int argc, char **argv)
 	}
 	if (o.carve)
 		est += (double)fct_carve_bytes(clo, chi);
+	if (o.color)            /* --color keeps a range image per view with an image */
+		for (size_t i = 0; i < nv; i++)
+			if (L[i].image && L[i].view.cam.kind != FCT_CAMERA_NONE)
+				est += 4.0 * L[i].view.cam.width * L[i].view.cam.height;
 	double have = machine_bytes();
 	fct_report("memory_estimate_mb", "%.1f", est / 1048576);
 	if (est > 0.8 * have)
