@@ -1251,7 +1251,7 @@ size_t fct_carve_bytes(const int32_t lo[3], const int32_t hi[3])
 {
 	double words = ceil((hi[0] - (double)lo[0] + 1) / 64) * (hi[1] - (double)lo[1] + 1) *
 	               (hi[2] - (double)lo[2] + 1);
-	double bytes = 2 * 8 * words;
+	double bytes = 3 * 8 * words;   /* observed, carved, visited by the bubble search */
 	return bytes > (double)SIZE_MAX / 2 ? SIZE_MAX / 2 : (size_t)bytes;
 }
 
@@ -1267,6 +1267,103 @@ static inline uint64_t dil_word(const uint64_t *row, size_t w, size_t nw)
 	return r;
 }
 
+static inline int bit_get(const uint64_t *b, size_t v)
+{
+	return (int)(b[v / 64] >> (v % 64) & 1);
+}
+
+/* The reach of a bubble: unknown voxels within BUBBLE_REACH voxels (each
+ * axis) of where the search began.  Tiles carve boxes that reach 3 voxels
+ * plus the band beyond their own box, so a bubble this small that touches a
+ * tile is seen whole by it, and tiles and the whole agree. */
+enum { BUBBLE_REACH = 3 };
+
+/* Bubbles: unknown voxels (neither observed, K, nor carved, C) that form a
+ * small 6-connected component which touches neither an observed voxel
+ * behind a surface (sdf <= 0, 26-neighbourhood) nor the box's outermost
+ * layer.  No view saw into them, yet carved space and the free side of the
+ * band enclose them: they lie between the rays of the views (at grazing
+ * angles, between pixels).  Left unknown, each would come out of
+ * marching cubes as a closed speck floating in the room; they are carved.
+ * A component is given up (kept) as soon as it reaches further than
+ * BUBBLE_REACH voxels from its first voxel in scan order.  V (zeroed, the
+ * size of C) marks the voxels searched.  Returns the voxels carved. */
+static size_t carve_bubbles(const struct fct_voxgrid *g, const int32_t lo[3], uint64_t *C,
+                            const uint64_t *K, uint64_t *V, size_t nx, size_t ny, size_t nz, size_t nw)
+{
+	enum { R = BUBBLE_REACH, S = 2 * BUBBLE_REACH + 1, MAXN = S * S * (BUBBLE_REACH + 1) };
+	size_t list[MAXN];
+	uint32_t stamp[BUBBLE_REACH + 1][S][S], id = 0;   /* in this search: stamp == id */
+	memset(stamp, 0, sizeof stamp);
+	static const int step[6][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 },
+	                                { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
+	const size_t row = nw * 64, plane = row * ny;   /* strides of the bit index */
+	size_t filled = 0;
+	for (size_t k = 1; k + 1 < nz; k++)
+		for (size_t j = 1; j + 1 < ny; j++)
+			for (size_t i = 1; i + 1 < nx; i++) {
+				size_t v0 = k * plane + j * row + i;
+				if (bit_get(K, v0) || bit_get(C, v0) || bit_get(V, v0))
+					continue;
+				if (++id == 0) {   /* wrapped: every old stamp must go */
+					memset(stamp, 0, sizeof stamp);
+					id = 1;
+				}
+				size_t n = 0, head = 0;
+				int keep = 0;
+				list[n++] = v0;
+				V[v0 / 64] |= 1ull << (v0 % 64);
+				stamp[0][R][R] = id;
+				while (head < n && !keep) {
+					size_t v = list[head++];
+					size_t x = v % row, y = v / row % ny, z = v / plane;
+					for (int dz = -1; dz <= 1 && !keep; dz++)
+						for (int dy = -1; dy <= 1 && !keep; dy++)
+							for (int dx = -1; dx <= 1 && !keep; dx++) {
+								float sdf, w;
+								keep = bit_get(K, v + (size_t)dz * plane + (size_t)dy * row +
+								                      (size_t)dx) &&
+								       fct_voxgrid_get(g, lo[0] + (int32_t)x + dx,
+								                       lo[1] + (int32_t)y + dy,
+								                       lo[2] + (int32_t)z + dz, &sdf, &w) &&
+								       !(sdf > 0);
+							}
+					for (int d = 0; d < 6 && !keep; d++) {
+						size_t ux = x + (size_t)step[d][0], uy = y + (size_t)step[d][1],
+						       uz = z + (size_t)step[d][2];
+						size_t u = uz * plane + uy * row + ux;
+						if (bit_get(K, u) || bit_get(C, u))
+							continue;
+						/* the outermost layer, or beyond the reach (z < k
+						 * would be an earlier, searched start) */
+						long lx = (long)ux - (long)i + R, ly = (long)uy - (long)j + R,
+						     lz = (long)uz - (long)k;
+						if (ux == 0 || uy == 0 || uz == 0 || ux + 1 >= nx || uy + 1 >= ny ||
+						    uz + 1 >= nz || lx < 0 || ly < 0 || lz < 0 || lx >= S || ly >= S ||
+						    lz > R) {
+							keep = 1;
+							break;
+						}
+						if (stamp[lz][ly][lx] == id)
+							continue;   /* already in this search */
+						if (bit_get(V, u)) {
+							keep = 1;   /* searched before, and given up */
+							break;
+						}
+						stamp[lz][ly][lx] = id;
+						V[u / 64] |= 1ull << (u % 64);
+						list[n++] = u;
+					}
+				}
+				if (keep)
+					continue;
+				for (size_t q = 0; q < n; q++)
+					C[list[q] / 64] |= 1ull << (list[q] % 64);
+				filled += n;
+			}
+	return filled;
+}
+
 int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t nviews,
               const int32_t lo[3], const int32_t hi[3], double band, float mark_weight,
               size_t *carved, struct fct_err *err)
@@ -1279,11 +1376,11 @@ int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t
 	size_t nw = (nx + 63) / 64, rows, words;
 	if (fct_mul_size(ny, nz, &rows) || fct_mul_size(rows, nw, &words))
 		return fct_fail(err, "carving box too large");
-	uint64_t *K = calloc(words, 8), *C = calloc(words, 8), *A = calloc(3 * nw, 8),
-	         *B = calloc(3 * nw, 8);
+	uint64_t *K = calloc(words, 8), *C = calloc(words, 8), *V = calloc(words, 8),
+	         *A = calloc(3 * nw, 8), *B = calloc(3 * nw, 8);
 	int rc = -1;
-	if (!K || !C || !A || !B) {
-		fct_fail(err, "out of memory for the carving bitsets (%zu MB)", 2 * words * 8 >> 20);
+	if (!K || !C || !V || !A || !B) {
+		fct_fail(err, "out of memory for the carving bitsets (%zu MB)", 3 * words * 8 >> 20);
 		goto done;
 	}
 	/* K: observed voxels. */
@@ -1343,6 +1440,8 @@ int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t
 		C[w] &= ~K[w];
 		ncarved += (size_t)__builtin_popcountll(C[w]);
 	}
+	size_t bubbles = carve_bubbles(g, lo, C, K, V, nx, ny, nz, nw);
+	ncarved += bubbles;
 	if (carved)
 		*carved = ncarved;
 	/* Mark the empty and unknown voxels next to a change. */
@@ -1393,6 +1492,7 @@ int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t
 done:
 	free(K);
 	free(C);
+	free(V);
 	free(A);
 	free(B);
 	return rc;

@@ -90,7 +90,11 @@ size_t fct_carve_bytes(const int32_t lo[3], const int32_t hi[3]);
  * a change of state (26-neighbourhood) are written with sdf +band (empty)
  * or -band (unknown) and weight mark_weight, so that marching cubes closes
  * the surface between them.  The outermost layer of the box stays unknown.
- * *carved gets the number of empty voxels (may be NULL).  0 or -1. */
+ * Bubbles of unknown voxels are empty too: a 6-connected group of unknown
+ * voxels within 3 voxels of its first that touches no observed voxel
+ * behind the surface (sdf <= 0, 26-neighbourhood) lies between the views' rays in carved space, and
+ * would otherwise come out as a closed speck.  *carved gets the number of
+ * empty voxels (may be NULL).  0 or -1. */
 int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t nviews,
               const int32_t lo[3], const int32_t hi[3], double band, float mark_weight,
               size_t *carved, struct fct_err *err);

@@ -42,6 +42,10 @@ check_num "carve: non-manifold edges" "$(info "$TMP/c.ply" non_manifold_edges)" 
 check_num "carve: open result had borders" "$(info "$TMP/f.ply" border_edges)" ">" 0
 chi=$(( $(info "$TMP/c.ply" vertices) - $(info "$TMP/c.ply" edges) + $(info "$TMP/c.ply" faces) ))
 check_num "carve: Euler characteristic even" "$(( chi % 2 ))" == 0
+# Every object of the room stands on its floor: one closed surface in truth.
+# Unknown bubbles between the views' rays used to come out as closed specks
+# (116 components here); carved, few remain.
+check_num "carve: components (specks)" "$(info "$TMP/c.ply" components)" "<=" 20
 
 # The same view twice is one view (weights double, distances do not move).
 run_case 0 "tsdfuse -a --voxel 0.04 -o $TMP/one.ply $TMP/v00.ply"
