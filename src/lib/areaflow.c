@@ -52,6 +52,30 @@ static inline void step_terms(const double v[3], const double p1[3], const doubl
 	*B += fct_v3_dot(d, d) - dn * dn;
 }
 
+/* The same with the tangential shape of the triangle taken from another
+ * copy of it (v', p1', p2'): eq. (3) is linear in the heights along n,
+ * A = sum (b.n) (a_t.d_t) - (a.n) (b_t.d_t) and B = sum |d_t|^2 with _t the
+ * parts across n, i.e. a weighted umbrella Laplacian along n whose weights
+ * come from the tangential shape alone.  On a range mesh whose noise is
+ * comparable to its edges that shape is noise too (obtuse and folded
+ * triangles give negative weights); taking it from a smoothed copy keeps
+ * the minimiser of eq. (2) for the heights the mesh has. */
+static inline void step_terms_shape(const double v[3], const double p1[3], const double p2[3],
+                                    const double sv[3], const double s1[3], const double s2[3],
+                                    const double n[3], double *A, double *B)
+{
+	double a[3], b[3], at[3], bt[3], d[3];
+	fct_v3_sub(a, p1, v);
+	fct_v3_sub(b, p2, v);
+	fct_v3_sub(at, s1, sv);
+	fct_v3_sub(bt, s2, sv);
+	fct_v3_axpy(at, at, -fct_v3_dot(at, n), n);
+	fct_v3_axpy(bt, bt, -fct_v3_dot(bt, n), n);
+	fct_v3_sub(d, at, bt);
+	*A += fct_v3_dot(b, n) * fct_v3_dot(at, d) - fct_v3_dot(a, n) * fct_v3_dot(bt, d);
+	*B += fct_v3_dot(d, d);
+}
+
 static inline double step_solve(double A, double B, double lambda, double dvn)
 {
 	double den = B + lambda;
@@ -286,6 +310,7 @@ struct flow {
 	double *g;                /* smoothed face area vectors (rings passes) */
 	double *vn;               /* smoothed unit vertex normals */
 	double *sm, *sm2;         /* Laplacian-smoothed copies (passes) */
+	const double *shape;      /* the smoothed copy of this iteration (passes) */
 	double *s;                /* crease strength */
 	unsigned char *held;      /* 1: does not move */
 	uint32_t *order;          /* moving vertices by colour */
@@ -494,7 +519,9 @@ static inline void corner_ring(const struct flow *F, uint32_t i, uint32_t *p1, u
  * of the colour being swept, in place: no two vertices of one colour share
  * a face, so each sees its neighbours as the earlier colours left them
  * (Gauss-Seidel), whatever the thread count.  The normal is the
- * area-weighted normal of the umbrella as it is at that moment. */
+ * area-weighted normal of the umbrella as it is at that moment; with
+ * passes, the smoothed copy's normal, and eq. (3)'s weights come from the
+ * copy's umbrella shape (step_terms_shape). */
 static void flow_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 {
 	(void)tid;
@@ -526,7 +553,11 @@ static void flow_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 		for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
 			uint32_t p1, p2;
 			corner_ring(F, i, &p1, &p2);
-			step_terms(p, x + 3 * (size_t)p1, x + 3 * (size_t)p2, n, &a, &b);
+			if (F->p->passes > 0)
+				step_terms_shape(p, x + 3 * (size_t)p1, x + 3 * (size_t)p2, F->shape + 3 * v,
+				                 F->shape + 3 * (size_t)p1, F->shape + 3 * (size_t)p2, n, &a, &b);
+			else
+				step_terms(p, x + 3 * (size_t)p1, x + 3 * (size_t)p2, n, &a, &b);
 		}
 		fct_v3_sub(dv, p, F->x0 + 3 * v);
 		double l = step_solve(a, b, F->lambda_abs, fct_v3_dot(dv, n));
@@ -792,6 +823,7 @@ static double geometry(struct flow *F, int want_crease, size_t nwith)
 			run(F, laplace_chunk, F->m->nv);
 			double *t = F->cur; F->cur = F->next; F->next = t;
 		}
+		F->shape = F->cur;
 	}
 	run(F, faces_chunk, F->m->nf);
 	memcpy(F->g, F->fa, sizeof *F->g * 3 * F->m->nf);

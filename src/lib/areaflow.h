@@ -55,7 +55,12 @@ struct fct_areaflow_params {
 	/* The normals are taken on a copy of the mesh smoothed by this many
 	 * Laplacian passes (factor 0.5; default 0: on the mesh itself); the
 	 * flow moves the mesh itself.  With passes or rings the step follows
-	 * the smoothed vertex normal, computed once per iteration. */
+	 * the smoothed vertex normal, computed once per iteration.  With
+	 * passes, eq. (3) also takes the tangential shape of each umbrella
+	 * (which sets its weights; the heights along n stay the mesh's) from
+	 * the copy: eq. (3) is the umbrella's cotangent-like Laplacian along n,
+	 * and on a mesh whose noise is comparable to its edges the shape is
+	 * noise, with negative weights where triangles are obtuse or folded. */
 	int passes;
 };
 
