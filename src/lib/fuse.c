@@ -65,10 +65,14 @@ static uint64_t block_key(int32_t bx, int32_t by, int32_t bz)
 	       ((uint64_t)(uint32_t)bz & 0x1fffff);
 }
 
+/* The slot of key k in a table of cap (a power of two).  The product's
+ * high bits depend on every bit of the key; its low and middle ones only
+ * on the key's low bits (z and part of y), which chained whole columns of
+ * blocks along x into one probe sequence. */
 static size_t key_hash(uint64_t k, size_t cap)
 {
-	k *= 0x9e3779b97f4a7c15ull;
-	return (size_t)(k >> 17) & (cap - 1);
+	k = (k ^ k >> 31) * 0x9e3779b97f4a7c15ull;
+	return (size_t)(k ^ k >> 32) & (cap - 1);
 }
 
 static void scratch_free(struct scratch *s)
