@@ -814,9 +814,9 @@ struct cand {
 	struct fct_err *err;
 };
 
-static int add_point(struct cand *c, const double p[3])
+/* The cell of p in i; -1 (err set) when p is too far out. */
+static inline int cell_of(struct cand *c, const double p[3], int32_t i[3])
 {
-	int32_t i[3];
 	for (int k = 0; k < 3; k++) {
 		double s = p[k] * c->inv;
 		if (!(fabs(s) < MAX_INDEX))
@@ -825,20 +825,43 @@ static int add_point(struct cand *c, const double p[3])
 		int32_t t = (int32_t)s;   /* floor, without a call */
 		i[k] = t - (s < (double)t);
 	}
-	struct sblock *b = c->cells.last;
-	int32_t bx = fct_vox_block_of(i[0]), by = fct_vox_block_of(i[1]), bz = fct_vox_block_of(i[2]);
-	if (!b || b->bx != bx || b->by != by || b->bz != bz) {
-		b = scratch_block(&c->cells, bx, by, bz, 1, c->err);
-		if (!b)
-			return -1;
-	}
-	for (int k = 0; k < 3; k++) {
-		int8_t l = (int8_t)(i[k] & (FCT_VOXBLOCK - 1));
-		b->lo[k] = l < b->lo[k] ? l : b->lo[k];
-		b->hi[k] = l > b->hi[k] ? l : b->hi[k];
-	}
 	return 0;
 }
+
+/* Voxels lo..hi (each axis) into the boxes of their blocks in s. */
+static int add_box(struct scratch *s, const int32_t lo[3], const int32_t hi[3], struct fct_err *err)
+{
+	int32_t blo[3], bhi[3];
+	for (int k = 0; k < 3; k++)
+		blo[k] = fct_vox_block_of(lo[k]), bhi[k] = fct_vox_block_of(hi[k]);
+	for (int32_t bz = blo[2]; bz <= bhi[2]; bz++)
+		for (int32_t by = blo[1]; by <= bhi[1]; by++)
+			for (int32_t bx = blo[0]; bx <= bhi[0]; bx++) {
+				struct sblock *b = scratch_block(s, bx, by, bz, 1, err);
+				if (!b)
+					return -1;
+				int32_t o[3] = { bx * FCT_VOXBLOCK, by * FCT_VOXBLOCK, bz * FCT_VOXBLOCK };
+				for (int k = 0; k < 3; k++) {
+					int32_t l = lo[k] - o[k], h = hi[k] - o[k];
+					l = l < 0 ? 0 : l;
+					h = h > FCT_VOXBLOCK - 1 ? FCT_VOXBLOCK - 1 : h;
+					b->lo[k] = (int8_t)(l < b->lo[k] ? l : b->lo[k]);
+					b->hi[k] = (int8_t)(h > b->hi[k] ? h : b->hi[k]);
+				}
+			}
+	return 0;
+}
+
+static int add_point(struct cand *c, const double p[3])
+{
+	int32_t i[3];
+	return cell_of(c, p, i) || add_box(&c->cells, i, i, c->err);
+}
+
+/* Triangles at most this many voxels across add the box of their
+ * vertices' cells (a cell or so more than their own, within a band that
+ * is wider anyway); larger ones, points at most half a voxel apart. */
+enum { BOX_TRIANGLE = 4 };
 
 /* The candidate blocks of G for a band of r voxels into s, each with
  * FCT_VOXBLOCK_N distances and weights (weights 0) from one slab *slab. */
@@ -860,6 +883,20 @@ static int candidates(struct scratch *s, float **slab, const struct geo *G, doub
 		}
 		if (!(e > vox))
 			continue;
+		if (e <= BOX_TRIANGLE * vox) {
+			int32_t ia[3], ib[3], ic[3], lo[3], hi[3];
+			if (cell_of(&c, a, ia) || cell_of(&c, b, ib) || cell_of(&c, cc, ic))
+				goto done;
+			for (int k = 0; k < 3; k++) {
+				lo[k] = ia[k] < ib[k] ? ia[k] : ib[k];
+				lo[k] = ic[k] < lo[k] ? ic[k] : lo[k];
+				hi[k] = ia[k] > ib[k] ? ia[k] : ib[k];
+				hi[k] = ic[k] > hi[k] ? ic[k] : hi[k];
+			}
+			if (add_box(&c.cells, lo, hi, err))
+				goto done;
+			continue;
+		}
 		double n = ceil(2 * e / vox);
 		if (!(n < 1e5)) {
 			fct_fail(err, "triangle %zu is %g m across: too large for the voxel size", t, e);
@@ -876,29 +913,14 @@ static int candidates(struct scratch *s, float **slab, const struct geo *G, doub
 	}
 	for (size_t bi = 0; bi < c.cells.n; bi++) {
 		const struct sblock *cb = c.cells.blk[bi];
-		int32_t lo[3], hi[3], blo[3], bhi[3];
+		int32_t lo[3], hi[3];
 		int32_t base[3] = { cb->bx * FCT_VOXBLOCK, cb->by * FCT_VOXBLOCK, cb->bz * FCT_VOXBLOCK };
 		for (int k = 0; k < 3; k++) {
 			lo[k] = base[k] + cb->lo[k] - r;
 			hi[k] = base[k] + cb->hi[k] + 1 + r;
-			blo[k] = fct_vox_block_of(lo[k]);
-			bhi[k] = fct_vox_block_of(hi[k]);
 		}
-		for (int32_t bz = blo[2]; bz <= bhi[2]; bz++)
-			for (int32_t by = blo[1]; by <= bhi[1]; by++)
-				for (int32_t bx = blo[0]; bx <= bhi[0]; bx++) {
-					struct sblock *b = scratch_block(s, bx, by, bz, 1, err);
-					if (!b)
-						goto done;
-					int32_t o[3] = { bx * FCT_VOXBLOCK, by * FCT_VOXBLOCK, bz * FCT_VOXBLOCK };
-					for (int k = 0; k < 3; k++) {
-						int32_t l = lo[k] - o[k], h = hi[k] - o[k];
-						l = l < 0 ? 0 : l;
-						h = h > FCT_VOXBLOCK - 1 ? FCT_VOXBLOCK - 1 : h;
-						b->lo[k] = (int8_t)(l < b->lo[k] ? l : b->lo[k]);
-						b->hi[k] = (int8_t)(h > b->hi[k] ? h : b->hi[k]);
-					}
-				}
+		if (add_box(s, lo, hi, err))
+			goto done;
 	}
 	*slab = fct_alloc_array(s->n ? s->n : 1, 2 * FCT_VOXBLOCK_N * sizeof **slab, err);
 	if (!*slab)
