@@ -28,7 +28,9 @@ for scene in room dense; do
 	dense) what="dense 256^3 volume, ball r = 100 voxels" ;;
 	esac
 	echo "$what: $(fig blocks "$f") blocks ($(fig voxels "$f") voxels, $(fig band_voxels "$f") observed)," \
-		"$(fig vertices "$f") vertices, $(fig faces "$f") faces, grid $(fig grid_mb "$f") MB"
+		"$(fig vertices "$f") vertices, $(fig faces "$f") faces, grid $(fig grid_mb "$f") MB," \
+		"output FNV-1a $(fig mesh_fnv "$f")"
+	[ "$(fig mesh_fnv "$f")" = "$(fig mesh_fnv "$f.2")" ] || echo "  WARNING: 1 and 2 threads give different meshes"
 	row "  reference: one pass over sdf and weight (CPU)" "$(fig ref_mvox_s "$f")" "$(fig ref_s "$f")"
 	row "  fct_mcubes, 1 thread (CPU)" "$(fig mcubes_mvox_s "$f")" "$(fig mcubes_s "$f")"
 	row "  fct_mcubes, 1 thread (CPU), band voxels only" "$(fig mcubes_band_mvox_s "$f")" "$(fig mcubes_s "$f")"

@@ -25,7 +25,9 @@
  * block's vertices, triangles and centroid vertices (running the decider on
  * its ambiguous cubes); prefix sums in block order then fix every block's
  * place in the output, so that the last two passes -- the vertices (values
- * gathered once per block, gradients once per corner) and the triangles --
+ * gathered once per block, gradients once per corner; the rows a block reads
+ * are found, and their loads started, while the block before it is worked
+ * on, so that its cache misses overlap that work) and the triangles --
  * write disjoint ranges and run on threads with the same bytes for any
  * count.  A vertex's number is its block's base plus a popcount in its
  * masks, so the triangles find the vertices of a cube's twelve edges, in its
@@ -256,41 +258,55 @@ struct mc {
 	struct worker *w;               /* one per thread */
 };
 
-/* One thread's scratch: the current block, its neighbours, its values. */
-struct worker {
-	const struct mc *M;
+/* A block and its neighbours (dx, dy, dz in -1..1 at (dx + 1) + 3 * (dy +
+ * 1) + 9 * (dz + 1)); for the vertex pass also the voxels its vertices read:
+ * need[z][y], bit x: the corners (0..8) at the ends of its crossing edges,
+ * whose gradients are needed; win[z + 1][y + 1], bit x + 1: those and their
+ * six neighbours. */
+struct blockctx {
 	const struct fct_voxblock *nb[27];      /* looked up on demand */
 	unsigned nb_done;
 	int32_t bx, by, bz;
+	uint16_t need[9][9];
+	uint16_t win[CW][CW];
+};
+
+/* One thread's scratch: the current block, its neighbours, its values. */
+struct worker {
+	const struct mc *M;
+	struct blockctx c[2];           /* the vertex pass: the current block and the next */
+	struct blockctx *cur;
 	float val[CW * CW * CW];        /* valid where the block's vertices need it */
 	double grad[729][3];            /* gradients at corners 0..8, where needed */
 	struct fct_mcubes_stats st;
 	char pad[64];                   /* no cache line shared with the next thread's */
 };
 
-/* Make b, with record A (or NULL), the worker's current block. */
-static void worker_block(struct worker *w, const struct fct_voxblock *b, const struct aux *A)
+/* Make b, with record A (or NULL), the block of c. */
+static void ctx_block(const struct mc *M, struct blockctx *c, const struct fct_voxblock *b,
+                      const struct aux *A)
 {
-	w->bx = b->bx, w->by = b->by, w->bz = b->bz;
-	w->nb_done = 1u << 13;
-	w->nb[13] = b;
+	c->bx = b->bx, c->by = b->by, c->bz = b->bz;
+	c->nb_done = 1u << 13;
+	c->nb[13] = b;
 	for (int k = 1; A && k < 8; k++) {
 		int n = (k & 1) + 1 + 3 * ((k >> 1 & 1) + 1 + 3 * ((k >> 2) + 1));
-		w->nb[n] = A->up[k] >= 0 ? fct_voxgrid_at(w->M->g, (size_t)A->up[k]) : NULL;
-		w->nb_done |= 1u << n;
+		c->nb[n] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
+		c->nb_done |= 1u << n;
 	}
 }
 
-/* Neighbour block (dx, dy, dz) in -1..1 of the current block. */
-static inline const struct fct_voxblock *ctx_nb(struct worker *w, int dx, int dy, int dz)
+/* Neighbour block (dx, dy, dz) in -1..1 of c's block. */
+static inline const struct fct_voxblock *ctx_nb(const struct mc *M, struct blockctx *c, int dx,
+                                                int dy, int dz)
 {
 	int k = (dx + 1) + 3 * ((dy + 1) + 3 * (dz + 1));
-	if (!(w->nb_done >> k & 1)) {
-		w->nb_done |= 1u << k;
-		w->nb[k] = fct_voxgrid_block((struct fct_voxgrid *)w->M->g, w->bx + dx, w->by + dy,
-		                             w->bz + dz, 0, NULL);
+	if (!(c->nb_done >> k & 1)) {
+		c->nb_done |= 1u << k;
+		c->nb[k] = fct_voxgrid_block((struct fct_voxgrid *)M->g, c->bx + dx, c->by + dy,
+		                             c->bz + dz, 0, NULL);
 	}
-	return w->nb[k];
+	return c->nb[k];
 }
 
 static inline int observed(float thr, float s, float w)
@@ -298,13 +314,14 @@ static inline int observed(float thr, float s, float w)
 	return w >= thr && fabsf(s) <= FLT_MAX;
 }
 
-/* Voxel at local coordinates (x, y, z) in -8..15 of the current block: its
- * block (NULL when absent) and index. */
-static inline const struct fct_voxblock *ctx_voxel(struct worker *w, int x, int y, int z, int *v)
+/* Voxel at local coordinates (x, y, z) in -8..15 of c's block: its block
+ * (NULL when absent) and index. */
+static inline const struct fct_voxblock *ctx_voxel(const struct mc *M, struct blockctx *c, int x,
+                                                   int y, int z, int *v)
 {
 	int dx = (x + 8) / 8 - 1, dy = (y + 8) / 8 - 1, dz = (z + 8) / 8 - 1;
 	*v = ((x + 8) & 7) + 8 * (((y + 8) & 7) + 8 * ((z + 8) & 7));
-	return ctx_nb(w, dx, dy, dz);
+	return ctx_nb(M, c, dx, dy, dz);
 }
 
 /* Bits of 8 consecutive voxels: negative, observed. */
@@ -358,15 +375,15 @@ static uint8_t to_u8(double v)
 	return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
-/* Read what the vertices of block A need into w->val: the ends of its
- * crossing edges (corners 0..8, marked in need[z][y], bit x) and their six
- * neighbours.  All the reads are issued in one sweep, row by row, so that
- * the cache misses on the neighbour blocks overlap instead of queueing
- * behind one another; nothing else of w->val is touched. */
-static void gather(struct worker *w, const struct aux *A, uint16_t need[9][9])
+/* Plan block record A's vertex reads in c: its neighbours, need and win
+ * (struct blockctx), and start loading every row of the window, so that
+ * the misses on the block and its neighbours are on their way while the
+ * block before is worked on. */
+static void plan(const struct mc *M, struct blockctx *c, const struct aux *A)
 {
-	float thr = w->M->thr;
-	memset(need, 0, 81 * sizeof need[0][0]);
+	ctx_block(M, c, fct_voxgrid_at(M->g, A->block), A);
+	uint16_t(*need)[9] = c->need, (*win)[CW] = c->win;
+	memset(need, 0, sizeof c->need);
 	for (int r = 0; r < 64; r++) {
 		int y = r & 7, z = r >> 3;
 		unsigned b0 = A->bits[0][r], b1 = A->bits[1][r], b2 = A->bits[2][r];
@@ -374,8 +391,7 @@ static void gather(struct worker *w, const struct aux *A, uint16_t need[9][9])
 		need[z][y + 1] |= (uint16_t)b1;
 		need[z + 1][y] |= (uint16_t)b2;
 	}
-	uint16_t win[CW][CW];           /* [z + 1][y + 1], bit x + 1 */
-	memset(win, 0, sizeof win);
+	memset(win, 0, sizeof c->win);
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++) {
 			unsigned n = need[z][y];
@@ -395,9 +411,43 @@ static void gather(struct worker *w, const struct aux *A, uint16_t need[9][9])
 			int z = wz - 1, y = wy - 1;
 			int dz = (z + 8) / 8 - 1, dy = (y + 8) / 8 - 1;
 			int row = 8 * ((y + 8) & 7) + 64 * ((z + 8) & 7);
+			const struct fct_voxblock *b;
+			if ((m & 0x1FE) && (b = ctx_nb(M, c, 0, dy, dz))) {
+				__builtin_prefetch(b->sdf + row);
+				__builtin_prefetch(b->sdf + row + 7);
+				__builtin_prefetch(b->weight + row);
+				__builtin_prefetch(b->weight + row + 7);
+			}
+			if ((m & 0x001) && (b = ctx_nb(M, c, -1, dy, dz))) {
+				__builtin_prefetch(b->sdf + row + 7);
+				__builtin_prefetch(b->weight + row + 7);
+			}
+			if ((m & 0x600) && (b = ctx_nb(M, c, 1, dy, dz))) {
+				__builtin_prefetch(b->sdf + row);
+				__builtin_prefetch(b->weight + row);
+			}
+		}
+}
+
+/* Read what the vertices of the planned block c need into w->val: the ends
+ * of its crossing edges and their six neighbours; nothing else of w->val is
+ * touched. */
+static void gather(struct worker *w, const struct blockctx *c)
+{
+	float thr = w->M->thr;
+	for (int wz = 0; wz < CW; wz++)
+		for (int wy = 0; wy < CW; wy++) {
+			unsigned m = c->win[wz][wy];
+			if (!m)
+				continue;
+			int z = wz - 1, y = wy - 1;
+			int dz = (z + 8) / 8 - 1, dy = (y + 8) / 8 - 1;
+			int row = 8 * ((y + 8) & 7) + 64 * ((z + 8) & 7);
 			float *dst = w->val + CIDX(0, y, z);
+			/* plan() looked up every neighbour read here */
+			const struct fct_voxblock *const *nb = c->nb + 3 * (dy + 1) + 9 * (dz + 1);
 			if (m & 0x1FE) {
-				const struct fct_voxblock *b = ctx_nb(w, 0, dy, dz);
+				const struct fct_voxblock *b = nb[1];
 				if (b)
 					vals8(b->sdf + row, b->weight + row, thr, dst);
 				else
@@ -405,11 +455,11 @@ static void gather(struct worker *w, const struct aux *A, uint16_t need[9][9])
 						dst[x] = NAN;
 			}
 			if (m & 0x001)
-				dst[-1] = val1(thr, ctx_nb(w, -1, dy, dz), row + 7);
+				dst[-1] = val1(thr, nb[0], row + 7);
 			if (m & 0x200)
-				dst[8] = val1(thr, ctx_nb(w, 1, dy, dz), row);
+				dst[8] = val1(thr, nb[2], row);
 			if (m & 0x400)
-				dst[9] = val1(thr, ctx_nb(w, 1, dy, dz), row + 1);
+				dst[9] = val1(thr, nb[2], row + 1);
 		}
 }
 
@@ -429,7 +479,8 @@ static inline void gradient(const float *val, int x, int y, int z, double s0, do
 
 /* Vertex id on the edge from local voxel (x, y, z) along axis a (both ends
  * observed, signs differ); w->val and w->grad filled for the block. */
-static void make_vertex(struct worker *w, int x, int y, int z, int a, size_t id)
+static inline __attribute__((always_inline)) void make_vertex(struct worker *w, int x, int y,
+                                                              int z, int a, size_t id)
 {
 	const struct mc *M = w->M;
 	int q[3] = { x, y, z };
@@ -440,7 +491,8 @@ static void make_vertex(struct worker *w, int x, int y, int z, int a, size_t id)
 		t = 1.0 / 256;
 	if (t > 255.0 / 256)
 		t = 255.0 / 256;
-	int32_t gi[3] = { 8 * w->bx + x, 8 * w->by + y, 8 * w->bz + z };
+	struct blockctx *c = w->cur;
+	int32_t gi[3] = { 8 * c->bx + x, 8 * c->by + y, 8 * c->bz + z };
 	double *p = M->xyz + 3 * id;
 	for (int k = 0; k < 3; k++)
 		p[k] = (double)gi[k] * M->voxel;
@@ -462,19 +514,18 @@ static void make_vertex(struct worker *w, int x, int y, int z, int a, size_t id)
 	}
 	if (M->colour) {
 		int v0, v1;
-		const struct fct_voxblock *b0 = ctx_voxel(w, x, y, z, &v0);
-		const struct fct_voxblock *b1 = ctx_voxel(w, q[0], q[1], q[2], &v1);
+		const struct fct_voxblock *b0 = ctx_voxel(M, c, x, y, z, &v0);
+		const struct fct_voxblock *b1 = ctx_voxel(M, c, q[0], q[1], q[2], &v1);
 		for (int k = 0; k < 3; k++)
 			M->rgb[k][id] = to_u8((1 - t) * b0->rgb[3 * v0 + k] + t * b1->rgb[3 * v1 + k]);
 	}
 }
 
-/* The vertices of block record A, at A->base onwards. */
+/* The vertices of block record A, planned in w->cur, at A->base onwards. */
 static void block_vertices(struct worker *w, const struct aux *A)
 {
-	uint16_t need[9][9];
-	worker_block(w, fct_voxgrid_at(w->M->g, A->block), A);
-	gather(w, A, need);
+	const uint16_t(*need)[9] = w->cur->need;
+	gather(w, w->cur);
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++)
 			for (unsigned m = need[z][y]; m; m &= m - 1) {
@@ -482,10 +533,16 @@ static void block_vertices(struct worker *w, const struct aux *A)
 				gradient(w->val, x, y, z, w->val[CIDX(x, y, z)], w->grad[x + 9 * (y + 9 * z)]);
 			}
 	size_t id = A->base;
-	for (int a = 0; a < 3; a++)
-		for (int r = 0; r < 64; r++)
-			for (unsigned m = A->bits[a][r]; m; m &= m - 1)
-				make_vertex(w, __builtin_ctz(m), r & 7, r >> 3, a, id++);
+	/* one loop per axis, so that each has its own copy of make_vertex */
+	for (int r = 0; r < 64; r++)
+		for (unsigned m = A->bits[0][r]; m; m &= m - 1)
+			make_vertex(w, __builtin_ctz(m), r & 7, r >> 3, 0, id++);
+	for (int r = 0; r < 64; r++)
+		for (unsigned m = A->bits[1][r]; m; m &= m - 1)
+			make_vertex(w, __builtin_ctz(m), r & 7, r >> 3, 1, id++);
+	for (int r = 0; r < 64; r++)
+		for (unsigned m = A->bits[2][r]; m; m &= m - 1)
+			make_vertex(w, __builtin_ctz(m), r & 7, r >> 3, 2, id++);
 }
 
 /* Pass 0 on block B: its own bits, clipped. */
@@ -677,7 +734,7 @@ static void emit_cube(struct worker *w, const struct aux *const up[8], int x, in
 		return;
 	}
 	if (mc->amb) {
-		int joinneg = decide(M, w->nb[13], x, y, z, cfg);
+		int joinneg = decide(M, w->cur->nb[13], x, y, z, cfg);
 		w->st.ambiguous++;
 		if (joinneg) {
 			build_case(&M->G, cfg, joinneg, &local);
@@ -730,7 +787,8 @@ static void block_triangles(struct worker *w, const struct aux *A)
 	const struct aux *up[8];
 	for (int k = 0; k < 8; k++)
 		up[k] = A->up[k] >= 0 && M->own[A->up[k]].aux != NONE ? &M->aux[M->own[A->up[k]].aux] : NULL;
-	worker_block(w, fct_voxgrid_at(M->g, A->block), NULL);
+	w->cur = &w->c[0];
+	ctx_block(M, w->cur, fct_voxgrid_at(M->g, A->block), NULL);
 	uint32_t *t = M->tri + 3 * (size_t)A->tbase, cid = (uint32_t)M->nverts + A->cbase;
 	for (int z = 0; z < 8; z++)
 		for (int y = 0; y < 8; y++)
@@ -774,9 +832,22 @@ static void run_pass1(void *ctx, size_t lo, size_t hi, int worker)
 static void run_vertices(void *ctx, size_t lo, size_t hi, int worker)
 {
 	struct mc *M = ctx;
-	for (size_t i = lo; i < hi; i++)
-		if (M->aux[M->live[i]].nverts)
-			block_vertices(&M->w[worker], &M->aux[M->live[i]]);
+	struct worker *w = &M->w[worker];
+	/* each block is planned while the one before is worked on */
+	size_t i = lo, next;
+	while (i < hi && !M->aux[M->live[i]].nverts)
+		i++;
+	if (i < hi)
+		plan(M, &w->c[0], &M->aux[M->live[i]]);
+	for (int k = 0; i < hi; i = next, k ^= 1) {
+		next = i + 1;
+		while (next < hi && !M->aux[M->live[next]].nverts)
+			next++;
+		if (next < hi)
+			plan(M, &w->c[k ^ 1], &M->aux[M->live[next]]);
+		w->cur = &w->c[k];
+		block_vertices(w, &M->aux[M->live[i]]);
+	}
 }
 
 static void run_triangles(void *ctx, size_t lo, size_t hi, int worker)
