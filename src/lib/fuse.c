@@ -408,115 +408,12 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], double *d
 
 /* Sensor geometry. ------------------------------------------------------- */
 
-/* Pixel (u, v) and depth of world point p in r; 0 when it has none. */
-static int range_project(const struct fct_range_image *r, const double p[3], double *u, double *v,
-                         double *depth)
-{
-	double c[3];
-	fct_pose_apply(r->inv, p, c);
-	if (r->view.cam.kind == FCT_CAMERA_NONE) {
-		*u = c[0] / r->view.ortho_step - r->u0;
-		*v = c[1] / r->view.ortho_step - r->v0;
-		*depth = -c[2];
-		return 1;
-	}
-	return fct_camera_project(&r->view.cam, c, u, v, depth);
-}
-
 void fct_range_image_free(struct fct_range_image *r)
 {
 	if (r) {
 		free(r->range);
 		r->range = NULL;
 	}
-}
-
-int fct_range_image_make(struct fct_range_image *r, const struct fct_fuse_view *v,
-                         size_t max_pixels, struct fct_err *err)
-{
-	memset(r, 0, sizeof *r);
-	r->view = *v;
-	fct_pose_invert(v->pose, r->inv);
-	const struct fct_mesh *m = v->mesh;
-	int ortho = v->cam.kind == FCT_CAMERA_NONE, pin = v->cam.kind == FCT_CAMERA_PINHOLE;
-	if (ortho) {
-		if (!(v->ortho_step > 0))
-			return fct_fail(err, "orthographic view without a pixel size");
-		double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
-		for (size_t i = 0; i < m->nv; i++) {
-			double c[3];
-			fct_pose_apply(r->inv, &m->xyz[3 * i], c);
-			for (int k = 0; k < 2; k++) {
-				double s = c[k] / v->ortho_step;
-				lo[k] = s < lo[k] ? s : lo[k];
-				hi[k] = s > hi[k] ? s : hi[k];
-			}
-		}
-		if (!(lo[0] <= hi[0] && lo[1] <= hi[1]))
-			return fct_fail(err, "empty view");
-		if (hi[0] - lo[0] > 1e6 || hi[1] - lo[1] > 1e6 ||
-		    (hi[0] - lo[0] + 3) * (hi[1] - lo[1] + 3) > (double)max_pixels)
-			return fct_fail(err, "range image of %.0f x %.0f pixels is too large",
-			                hi[0] - lo[0] + 3, hi[1] - lo[1] + 3);
-		r->u0 = floor(lo[0]) - 1;
-		r->v0 = floor(lo[1]) - 1;
-		r->width = (int)(ceil(hi[0]) - r->u0) + 2;
-		r->height = (int)(ceil(hi[1]) - r->v0) + 2;
-	} else {
-		r->width = v->cam.width;
-		r->height = v->cam.height;
-		if (r->width < 1 || r->height < 1 ||
-		    (double)r->width * (double)r->height > (double)max_pixels)
-			return fct_fail(err, "camera of %d x %d pixels: no range image", r->width, r->height);
-	}
-	size_t np = (size_t)r->width * (size_t)r->height;
-	r->range = calloc(np, sizeof *r->range);
-	double *uvd = fct_alloc_array(m->nv, 3 * sizeof *uvd, err);
-	if (!r->range || !uvd) {
-		free(uvd);
-		fct_range_image_free(r);
-		return fct_fail(err, "out of memory");
-	}
-	for (size_t i = 0; i < m->nv; i++)
-		if (!range_project(r, &m->xyz[3 * i], &uvd[3 * i], &uvd[3 * i + 1], &uvd[3 * i + 2]) ||
-		    !(uvd[3 * i + 2] > 0))
-			uvd[3 * i + 2] = NAN;
-	for (size_t f = 0; f < m->nf; f++) {
-		const uint32_t *fv = &m->fvert[m->fstart[f]];
-		for (uint32_t k = 2; k < fct_face_size(m, f); k++) {
-			const double *a = &uvd[3 * fv[0]], *b = &uvd[3 * fv[k - 1]], *c = &uvd[3 * fv[k]];
-			if (!(isfinite(a[2]) && isfinite(b[2]) && isfinite(c[2])))
-				continue;
-			double umin = fmin(a[0], fmin(b[0], c[0])), umax = fmax(a[0], fmax(b[0], c[0]));
-			double vmin = fmin(a[1], fmin(b[1], c[1])), vmax = fmax(a[1], fmax(b[1], c[1]));
-			if (v->cam.kind == FCT_CAMERA_CYLINDRICAL && umax - umin > r->width / 2.0)
-				continue;       /* across the seam */
-			double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-			if (!(fabs(area) > 1e-12))
-				continue;
-			int u0 = (int)fmax(ceil(umin - 1e-9), 0), u1 = (int)fmin(floor(umax + 1e-9), r->width - 1);
-			int v0 = (int)fmax(ceil(vmin - 1e-9), 0), v1 = (int)fmin(floor(vmax + 1e-9), r->height - 1);
-			/* Depth is affine in the image for orthographic views; for
-			 * perspective ones 1/depth is. */
-			double za = pin ? 1 / a[2] : a[2], zb = pin ? 1 / b[2] : b[2], zc = pin ? 1 / c[2] : c[2];
-			for (int y = v0; y <= v1; y++)
-				for (int x = u0; x <= u1; x++) {
-					double wb = ((x - a[0]) * (c[1] - a[1]) - (y - a[1]) * (c[0] - a[0])) / area;
-					double wc = ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])) / area;
-					double wa = 1 - wb - wc;
-					if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9)
-						continue;
-					double z = wa * za + wb * zb + wc * zc;
-					if (pin)
-						z = 1 / z;
-					float *d = &r->range[(size_t)y * (size_t)r->width + (size_t)x];
-					if (z > 0 && (*d == 0 || z < *d))
-						*d = (float)z;
-				}
-		}
-	}
-	free(uvd);
-	return 0;
 }
 
 /* Fusion. ---------------------------------------------------------------- */
@@ -570,8 +467,8 @@ struct raster {
 	int32_t *id;             /* -1: nothing */
 	float *zf;               /* true distance: the farthest triangle too */
 	int32_t *idf;
-	float *uvd;              /* per vertex: sensor u, v, depth (NaN: not seen) */
-	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes) */
+	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes);
+	                          * sensor u, v, depth until the raster's extent is known */
 	const struct geo *G;
 	int proper;              /* only triangles with a normal */
 	int nthreads;
@@ -583,7 +480,6 @@ static void raster_free(struct raster *R)
 	free(R->id);
 	free(R->zf);
 	free(R->idf);
-	free(R->uvd);
 	free(R->sp);
 	memset(R, 0, sizeof *R);
 }
@@ -639,27 +535,28 @@ static void project_chunk(void *ctx, size_t lo, size_t hi)
 	struct raster *R = ctx;
 	for (size_t i = lo; i < hi; i++) {
 		double u, v, d;
-		float *o = &R->uvd[3 * i];
+		double *o = &R->sp[3 * i];
+		/* In double: a range image's vertices lie on pixel centres, and
+		 * a border vertex rounded off its centre would lose its pixel. */
 		if (sensor_project(R, &R->G->xyz[3 * i], &u, &v, &d) && (d > 0 || R->v->cam.kind == FCT_CAMERA_NONE) &&
 		    isfinite(u) && isfinite(v) && isfinite(d))
-			o[0] = (float)u, o[1] = (float)v, o[2] = (float)d;
+			o[0] = u, o[1] = v, o[2] = d;
 		else
 			o[0] = o[1] = o[2] = NAN;
 	}
 }
 
-/* Vertices in sample coordinates (x, y, depth or 1/depth for pinholes;
- * NaN: not seen). */
+/* Vertices from sensor to sample coordinates (x, y, depth or 1/depth for
+ * pinholes; NaN: not seen), in place. */
 static void samples_chunk(void *ctx, size_t lo, size_t hi)
 {
 	struct raster *R = ctx;
 	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE;
 	for (size_t i = lo; i < hi; i++) {
-		const float *o = &R->uvd[3 * i];
 		double *sp = &R->sp[3 * i];
-		sp[0] = (o[0] - R->u0) * R->S;
-		sp[1] = (o[1] - R->v0) * R->S;
-		sp[2] = pin ? 1 / (double)o[2] : o[2];
+		sp[0] = (sp[0] - R->u0) * R->S;
+		sp[1] = (sp[1] - R->v0) * R->S;
+		sp[2] = pin ? 1 / sp[2] : sp[2];
 	}
 }
 
@@ -736,14 +633,14 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 	fct_pose_invert(v->pose, R->inv);
 	if (v->cam.kind == FCT_CAMERA_NONE && !(v->ortho_step > 0))
 		return fct_fail(err, "orthographic view without a pixel size");
-	R->uvd = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->uvd, err);
-	if (!R->uvd)
+	R->sp = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->sp, err);
+	if (!R->sp)
 		return -1;
 	run(nthreads, project_chunk, R, G->nv, 0);
 	double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
 	for (size_t i = 0; i < G->nv; i++)
 		for (int k = 0; k < 2; k++) {
-			double s = R->uvd[3 * i + k];   /* NaN compares false */
+			double s = R->sp[3 * i + k];   /* NaN compares false */
 			lo[k] = s < lo[k] ? s : lo[k];
 			hi[k] = s > hi[k] ? s : hi[k];
 		}
@@ -795,13 +692,77 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 			R->zf[i] = -INFINITY;
 		memset(R->idf, 0xff, n * sizeof *R->idf);
 	}
-	R->sp = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->sp, err);
-	if (!R->sp)
-		return -1;
 	run(nthreads, samples_chunk, R, G->nv, 0);
 	/* Each thread its own rows: the same raster for any thread count. */
 	run(nthreads, raster_rows, R, (size_t)R->h, nthreads);
 	return 0;
+}
+
+/* The range image is the raster of one sample per pixel, kept to the
+ * camera's image (orthographic views: to the mesh, as the raster is). */
+int fct_range_image_make(struct fct_range_image *r, const struct fct_fuse_view *v,
+                         size_t max_pixels, struct fct_err *err)
+{
+	memset(r, 0, sizeof *r);
+	r->view = *v;
+	fct_pose_invert(v->pose, r->inv);
+	int ortho = v->cam.kind == FCT_CAMERA_NONE;
+	if (!ortho) {
+		r->width = v->cam.width;
+		r->height = v->cam.height;
+		if (r->width < 1 || r->height < 1 ||
+		    (double)r->width * (double)r->height > (double)max_pixels)
+			return fct_fail(err, "camera of %d x %d pixels: no range image", r->width, r->height);
+	}
+	struct geo G;
+	struct raster R;
+	memset(&R, 0, sizeof R);
+	if (geo_build(&G, v->mesh, 0, 1, err))
+		return -1;
+	int rc = -1;
+	if (raster_build(&R, v, &G, 1, 0, max_pixels, 1, err))
+		goto done;
+	if (R.w > 0 && R.S != 1) {
+		fct_fail(err, "range image of more than %zu pixels: too large", max_pixels);
+		goto done;
+	}
+	if (ortho) {
+		if (R.w == 0) {
+			fct_fail(err, "empty view");
+			goto done;
+		}
+		r->u0 = R.u0, r->v0 = R.v0;
+		r->width = R.w, r->height = R.h;
+	}
+	size_t np = (size_t)r->width * (size_t)r->height;
+	r->range = calloc(np, sizeof *r->range);
+	if (!r->range) {
+		fct_fail(err, "out of memory");
+		goto done;
+	}
+	/* Pixel (x, y) is raster sample (x - u0, y - v0), u0 and v0 whole
+	 * numbers at one sample per pixel (orthographic: the same pixel). */
+	int ox = ortho ? 0 : (int)R.u0, oy = ortho ? 0 : (int)R.v0;
+	for (int y = 0; y < r->height; y++) {
+		int ry = y - oy;
+		if (ry < 0 || ry >= R.h)
+			continue;
+		for (int x = 0; x < r->width; x++) {
+			int rx = x - ox;
+			if (rx < 0 || rx >= R.w)
+				continue;
+			float z = R.z[(size_t)ry * (size_t)R.w + (size_t)rx];
+			if (z > 0 && z < INFINITY)
+				r->range[(size_t)y * (size_t)r->width + (size_t)x] = z;
+		}
+	}
+	rc = 0;
+done:
+	raster_free(&R);
+	geo_free(&G);
+	if (rc)
+		fct_range_image_free(r);
+	return rc;
 }
 
 /* Candidate voxels: the cells of the surface's points (vertices, and points
