@@ -31,10 +31,32 @@ figure() {
 	done | median
 }
 row() { printf '%-52s %12s\n' "$1" "$2"; }
-echo "tsdfuse: mkscene room, four 640x480 views (610k faces each)"
-for vox in 0.02 0.01; do
-	row "true distance, ms per view at $vox m" "$(figure ms_per_view --voxel $vox $V)"
-	row "projective, ms per view at $vox m" "$(figure ms_per_view --projective --voxel $vox $V)"
+# cell KEY ARGS...: the median run's KEY and read_s, as "ms ratio": KEY in
+# ms per view and its ratio to the time that run took to read a view (a
+# reference measured in the same process, so that a ratio can be quoted
+# on a loaded machine).
+cell() {
+	key=$1
+	shift
+	i=0
+	while [ $i -lt "$RUNS" ]; do
+		tsdfuse -v "$@" 2>&1 >/dev/null |
+			awk -F= '/^tsdfuse: ms_per_view=/ { m = $2 } /^tsdfuse: read_s=/ { r = $2 }
+			         END { printf "%.2f %.2f\n", m, m / (r * 1000 / 4) }'
+		i=$((i + 1))
+	done | sort -n | awk '{ v[NR] = $0 } END { print v[int((NR + 1) / 2)] }'
+}
+echo "tsdfuse: mkscene room, four 640x480 views (610k faces each); ms per view, and"
+echo "its ratio to reading one view in the same run (median of $RUNS runs)"
+printf '%-30s %16s %16s\n' "" "1 thread" "all threads"
+for mode in true projective; do
+	for vox in 0.02 0.01; do
+		m=""
+		[ $mode = projective ] && m=--projective
+		a=$(cell ms_per_view --threads 1 $m --voxel $vox $V)
+		b=$(cell ms_per_view $m --voxel $vox $V)
+		printf '%-30s %8s (x%5s) %8s (x%5s)\n' "$mode $vox m" ${a% *} ${a#* } ${b% *} ${b#* }
+	done
 done
 row "fusion s at 0.02 m (4 views)" "$(figure fuse_s --voxel 0.02 $V)"
 row "carving s at 0.02 m (4 views)" "$(figure carve_s --carve --voxel 0.02 $V)"
