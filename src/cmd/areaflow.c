@@ -212,6 +212,8 @@ int main(int argc, char **argv)
 	fct_report("max_offset", "%.9g", st.max_offset);
 	fct_report("mean_crease", "%.9g", st.mean_crease);
 	fct_report("threads", "%zu", st.threads);
+	fct_report("window_ids", "%zu", st.window_ids);
+	fct_report("window_walks", "%zu", st.window_walks);
 	fct_report("read_s", "%.4f", read_s);
 	fct_report("smooth_s", "%.4f", smooth_s);
 	fct_report("total_s", "%.4f", total_s);

@@ -8,16 +8,14 @@
  * by threads; every vertex writes only its own slots and per-chunk sums are
  * added in chunk order, so the result is the same for any thread count. */
 #include <math.h>
-#include <pthread.h>
-#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "adj.h"
 #include "areaflow.h"
 #include "geom.h"
+#include "par.h"
 
 void fct_areaflow_params_default(struct fct_areaflow_params *p)
 {
@@ -260,38 +258,11 @@ double fct_crease_strength(const double q[3], const double *p, const double *n,
 
 /* Threads ---------------------------------------------------------------- */
 
-enum { NCHUNK = 256, MAX_THREADS = 64, MAX_EXPAND = 64, NCOLOR = 64,
+enum { NCHUNK = 256, MAX_EXPAND = 64, NCOLOR = 64, WIN_NONE = 255, WIN_MAX = 254,
        MAX_VOTES = 64 /* bound of M: the first faces of the walk, nearest rings first */ };
 
 struct flow;
 typedef void chunk_fn(struct flow *F, int tid, size_t lo, size_t hi, int chunk);
-
-struct job {
-	struct flow *F;
-	chunk_fn *fn;
-	size_t n;
-	atomic_int next;
-};
-
-struct job_arg {
-	struct job *job;
-	int tid;
-};
-
-static void *job_worker(void *arg)
-{
-	struct job_arg *a = arg;
-	struct job *j = a->job;
-	for (;;) {
-		int c = atomic_fetch_add(&j->next, 1);
-		if (c >= NCHUNK)
-			break;
-		size_t lo = j->n * (size_t)c / NCHUNK, hi = j->n * (size_t)(c + 1) / NCHUNK;
-		if (lo < hi)
-			j->fn(j->F, a->tid, lo, hi, c);
-	}
-	return NULL;
-}
 
 /* Per-thread scratch of the window gathering. */
 struct scratch {
@@ -318,32 +289,46 @@ struct flow {
 	uint32_t *corner;         /* parallel to adj->vert_f: v's corner in that face */
 	uint32_t *nbr, *nbr_start;  /* vertex neighbours (Laplacian) */
 	double lambda_abs, radius2, sigma2, factor;
-	double part[NCHUNK], part2[NCHUNK];
+	double part[NCHUNK];
 	double partmax[NCHUNK];
+	/* The window cache (crease_chunk): per vertex, the faces its walk
+	 * accepted beyond the umbrella (wacc of them, in walk order) and those
+	 * it examined and turned away (wrej), at woff in its chunk's buffer
+	 * wbuf; wacc == WIN_NONE: not cached (the walk is done every time). */
+	int win_want;             /* the crease is computed more than once: cache */
+	int wacc_built;           /* the cache holds the first pass's walks */
+	struct fct_areaflow_stats *st;
+	int win_build;            /* this pass records the walks */
+	uint32_t *wbuf[NCHUNK];
+	size_t wlen[NCHUNK], wcap[NCHUNK];
+	int wfail[NCHUNK];        /* out of memory: that chunk is not cached */
+	uint32_t *woff;
+	unsigned char *wacc, *wrej;
+	size_t wwalk[NCHUNK];     /* cached vertices walked again in the last pass */
 	int nthreads;
-	struct scratch sc[MAX_THREADS];
+	struct scratch sc[FCT_PAR_MAX];
 };
 
-/* Run fn over [0, n) in NCHUNK chunks on F->nthreads threads. */
+struct job {
+	struct flow *F;
+	chunk_fn *fn;
+	size_t n;
+};
+
+static void job_chunk(void *ctx, size_t lo, size_t hi, int worker)
+{
+	struct job *j = ctx;
+	j->fn(j->F, worker, lo, hi, (int)fct_par_chunk_of(j->n, NCHUNK, lo));
+}
+
+/* Run fn over [0, n) in NCHUNK chunks (par.h) on F->nthreads threads; fn
+ * gets its chunk's index for per-chunk sums, added in chunk order. */
 static void run(struct flow *F, chunk_fn *fn, size_t n)
 {
-	struct job j = { F, fn, n, 0 };
+	struct job j = { F, fn, n };
 	memset(F->part, 0, sizeof F->part);
-	memset(F->part2, 0, sizeof F->part2);
 	memset(F->partmax, 0, sizeof F->partmax);
-	struct job_arg args[MAX_THREADS];
-	pthread_t th[MAX_THREADS];
-	int started = 0;
-	for (int t = 1; t < F->nthreads; t++) {
-		args[t] = (struct job_arg){ &j, t };
-		if (pthread_create(&th[t], NULL, job_worker, &args[t]))
-			break;   /* fewer threads: the rest is done by those running */
-		started = t;
-	}
-	args[0] = (struct job_arg){ &j, 0 };
-	job_worker(&args[0]);
-	for (int t = 1; t <= started; t++)
-		pthread_join(th[t], NULL);
+	fct_par_run(F->nthreads, n, NCHUNK, job_chunk, &j);
 }
 
 static double sum_parts(const double *part)
@@ -446,62 +431,164 @@ static void vnormal_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chu
  * while the walk keeps to the surface connected to the vertex.  The walk
  * stops after MAX_VOTES votes (M is bounded; the walk visits the rings
  * nearest the vertex first), which bounds the cost on noisy meshes whose
- * edge lengths are mostly noise. */
-static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+ * edge lengths are mostly noise.
+ *
+ * The topology never changes and the vertices move little, so the first
+ * pass records each walk (the faces it accepted and those it examined and
+ * turned away) and later passes replay it: a replay that finds every
+ * accepted face still within the radius with a normal and every turned-away
+ * face still outside is the walk the positions of this pass would take,
+ * face for face, so its votes are the same in the same order; otherwise
+ * the vertex is walked again.  The result is exactly the walk's, only
+ * cheaper.  A walk with a face of no normal in it, or more than WIN_MAX
+ * faces of either kind, is not recorded. */
+
+/* The walk from v at q, voting into vt.  When acc and rej are not NULL
+ * the accepted faces beyond the umbrella and the turned-away ones are
+ * recorded there (WIN_MAX at most); returns 0 when the walk was recorded
+ * (or not asked to be), -1 when it cannot be. */
+static int walk(struct flow *F, struct scratch *sc, size_t v, const double q[3],
+                struct vote *vt, uint32_t *acc, size_t *nacc, uint32_t *rej, size_t *nrej)
 {
 	const struct fct_mesh *m = F->m;
 	const struct fct_adj *A = F->adj;
+	int rec = acc != NULL, ok = 1;
+	size_t na = 0, nr = 0;
+	if (++sc->stamp == 0) {
+		memset(sc->vstamp, 0, sizeof *sc->vstamp * m->nv);
+		memset(sc->fstamp, 0, sizeof *sc->fstamp * (m->nf ? m->nf : 1));
+		sc->stamp = 1;
+	}
+	uint32_t st = sc->stamp;
+	size_t head = 0, tail = 0, votes = 0;
+	sc->queue[tail++] = (uint32_t)v;
+	sc->vstamp[v] = st;
+	while (head < tail && votes < MAX_VOTES) {
+		uint32_t u = sc->queue[head++];
+		for (uint32_t i = A->vert_fstart[u]; i < A->vert_fstart[u + 1]; i++) {
+			uint32_t f = A->vert_f[i];
+			if (sc->fstamp[f] == st)
+				continue;
+			sc->fstamp[f] = st;
+			const double *c = F->fc + 3 * (size_t)f;
+			double d2 = fct_v3_dist2(c, q);
+			if (!(d2 <= F->radius2) && u != v) {
+				if (rec && ok) {
+					if (nr < WIN_MAX)
+						rej[nr++] = f;
+					else
+						ok = 0;
+				}
+				continue;   /* the umbrella always votes (M > I) */
+			}
+			const double *n = F->fn + 3 * (size_t)f;
+			if (n[0] != 0 || n[1] != 0 || n[2] != 0) {
+				vote_add(vt, q, c, n, exp(-d2 / F->sigma2));
+				votes++;
+			} else {
+				ok = 0;
+			}
+			if (rec && ok && u != v) {
+				if (na < WIN_MAX)
+					acc[na++] = f;
+				else
+					ok = 0;
+			}
+			if (m->fstart[f + 1] - m->fstart[f] > MAX_EXPAND)
+				continue;   /* no walk through huge polygons (quadratic) */
+			for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
+				uint32_t x = m->fvert[k];
+				if (sc->vstamp[x] != st) {
+					sc->vstamp[x] = st;
+					sc->queue[tail++] = x;
+				}
+			}
+		}
+	}
+	if (rec) {
+		*nacc = na;
+		*nrej = nr;
+	}
+	return ok ? 0 : -1;
+}
+
+/* The recorded walk of v replayed at q: 0 with its votes in vt, or -1 when
+ * this pass's walk would differ (vt is then to be discarded). */
+static int replay(const struct flow *F, size_t v, const double q[3], struct vote *vt,
+                  const uint32_t *acc, size_t nacc, const uint32_t *rej, size_t nrej)
+{
+	const struct fct_adj *A = F->adj;
+	for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
+		uint32_t f = A->vert_f[i];
+		const double *c = F->fc + 3 * (size_t)f, *n = F->fn + 3 * (size_t)f;
+		if (n[0] == 0 && n[1] == 0 && n[2] == 0)
+			return -1;
+		vote_add(vt, q, c, n, exp(-fct_v3_dist2(c, q) / F->sigma2));
+	}
+	for (size_t i = 0; i < nrej; i++)
+		if (fct_v3_dist2(F->fc + 3 * (size_t)rej[i], q) <= F->radius2)
+			return -1;
+	for (size_t i = 0; i < nacc; i++) {
+		uint32_t f = acc[i];
+		const double *c = F->fc + 3 * (size_t)f, *n = F->fn + 3 * (size_t)f;
+		double d2 = fct_v3_dist2(c, q);
+		if (!(d2 <= F->radius2) || (n[0] == 0 && n[1] == 0 && n[2] == 0))
+			return -1;
+		vote_add(vt, q, c, n, exp(-d2 / F->sigma2));
+	}
+	return 0;
+}
+
+static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	const struct fct_adj *A = F->adj;
 	struct scratch *sc = &F->sc[tid];
 	double sum = 0;
+	size_t walked = 0;
+	uint32_t acc[WIN_MAX], rej[WIN_MAX];
 	for (size_t v = lo; v < hi; v++) {
 		if (A->vert_fstart[v] == A->vert_fstart[v + 1]) {
 			F->s[v] = 0;
 			continue;
 		}
-		if (++sc->stamp == 0) {
-			memset(sc->vstamp, 0, sizeof *sc->vstamp * m->nv);
-			memset(sc->fstamp, 0, sizeof *sc->fstamp * (m->nf ? m->nf : 1));
-			sc->stamp = 1;
-		}
-		uint32_t st = sc->stamp;
 		const double *q = F->cur + 3 * v;
 		struct vote vt;
 		memset(&vt, 0, sizeof vt);
-		size_t head = 0, tail = 0, votes = 0;
-		sc->queue[tail++] = (uint32_t)v;
-		sc->vstamp[v] = st;
-		while (head < tail && votes < MAX_VOTES) {
-			uint32_t u = sc->queue[head++];
-			for (uint32_t i = A->vert_fstart[u]; i < A->vert_fstart[u + 1]; i++) {
-				uint32_t f = A->vert_f[i];
-				if (sc->fstamp[f] == st)
-					continue;
-				sc->fstamp[f] = st;
-				const double *c = F->fc + 3 * (size_t)f;
-				double d2 = fct_v3_dist2(c, q);
-				if (!(d2 <= F->radius2) && u != v)
-					continue;   /* the umbrella always votes (M > I) */
-				const double *n = F->fn + 3 * (size_t)f;
-				if (n[0] != 0 || n[1] != 0 || n[2] != 0) {
-					vote_add(&vt, q, c, n, exp(-d2 / F->sigma2));
-					votes++;
-				}
-				if (m->fstart[f + 1] - m->fstart[f] > MAX_EXPAND)
-					continue;   /* no walk through huge polygons (quadratic) */
-				for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
-					uint32_t x = m->fvert[k];
-					if (sc->vstamp[x] != st) {
-						sc->vstamp[x] = st;
-						sc->queue[tail++] = x;
-					}
+		if (F->win_build) {
+			size_t na = 0, nr = 0;
+			F->wacc[v] = WIN_NONE;
+			struct fct_err e;
+			if (walk(F, sc, v, q, &vt, acc, &na, rej, &nr) == 0 && !F->wfail[chunk]) {
+				if (F->wlen[chunk] + na + nr > UINT32_MAX ||   /* offsets are 32 bits */
+				    fct_grow((void **)&F->wbuf[chunk], &F->wcap[chunk], F->wlen[chunk] + na + nr,
+				             sizeof *acc, &e)) {
+					F->wfail[chunk] = 1;   /* the rest of the chunk walks every time */
+				} else {
+					uint32_t *w = F->wbuf[chunk] + F->wlen[chunk];
+					memcpy(w, acc, sizeof *acc * na);
+					memcpy(w + na, rej, sizeof *rej * nr);
+					F->woff[v] = (uint32_t)F->wlen[chunk];
+					F->wacc[v] = (unsigned char)na;
+					F->wrej[v] = (unsigned char)nr;
+					F->wlen[chunk] += na + nr;
 				}
 			}
+		} else if (F->wacc && F->wacc[v] != WIN_NONE) {
+			const uint32_t *w = F->wbuf[chunk] + F->woff[v];
+			if (replay(F, v, q, &vt, w, F->wacc[v], w + F->wacc[v], F->wrej[v])) {
+				memset(&vt, 0, sizeof vt);
+				walk(F, sc, v, q, &vt, NULL, NULL, NULL, NULL);
+				walked++;
+			}
+		} else {
+			walk(F, sc, v, q, &vt, NULL, NULL, NULL, NULL);
 		}
 		double s = vote_strength(&vt, F->p->delta);
 		F->s[v] = s;
 		sum += s;
 	}
 	F->part[chunk] = sum;
+	F->wwalk[chunk] = walked;
 }
 
 /* The other two corners of the i-th face of vertex v (vert_f[i]; a polygon:
@@ -792,20 +879,16 @@ static void flow_free(struct flow *F)
 	free(F->nbr_start);
 	free(F->corner);
 	free(F->order);
-	for (int t = 0; t < MAX_THREADS; t++) {
+	for (int c = 0; c < NCHUNK; c++)
+		free(F->wbuf[c]);
+	free(F->woff);
+	free(F->wacc);
+	free(F->wrej);
+	for (int t = 0; t < FCT_PAR_MAX; t++) {
 		free(F->sc[t].vstamp);
 		free(F->sc[t].fstamp);
 		free(F->sc[t].queue);
 	}
-}
-
-static int thread_count(int want)
-{
-	if (want <= 0) {
-		long n = sysconf(_SC_NPROCESSORS_ONLN);
-		want = n > 0 ? (int)(n < MAX_THREADS ? n : MAX_THREADS) : 1;
-	}
-	return want < MAX_THREADS ? want : MAX_THREADS;
 }
 
 /* Face geometry, vertex normals and (when needed) crease strength of the
@@ -836,8 +919,23 @@ static double geometry(struct flow *F, int want_crease, size_t nwith)
 	run(F, fnormal_chunk, F->m->nf);
 	double ms = 0;
 	if (want_crease) {
+		F->win_build = F->win_want && !F->wacc_built;
 		run(F, crease_chunk, F->m->nv);
 		ms = nwith ? sum_parts(F->part) / (double)nwith : 0;
+		if (F->win_build) {
+			F->wacc_built = 1;
+			F->win_build = 0;
+			for (int c = 0; c < NCHUNK; c++) {
+				/* to size: the cache stays for the whole run */
+				uint32_t *t = F->wlen[c] ? realloc(F->wbuf[c], sizeof *t * F->wlen[c]) : NULL;
+				if (t)
+					F->wbuf[c] = t, F->wcap[c] = F->wlen[c];
+				F->st->window_ids += F->wlen[c];
+			}
+		} else {
+			for (int c = 0; c < NCHUNK; c++)
+				F->st->window_walks += F->wwalk[c];
+		}
 	}
 	F->cur = save;
 	F->next = save_next;
@@ -863,8 +961,9 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	memset(&adj, 0, sizeof adj);
 	F.m = m;
 	F.p = p;
+	F.st = st;
 	F.adj = &adj;
-	F.nthreads = thread_count(p->threads);
+	F.nthreads = fct_par_threads(p->threads);
 	st->threads = (size_t)F.nthreads;
 	int rc = -1;
 	double *x0 = NULL;
@@ -925,13 +1024,19 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	int need_crease = (p->method == FCT_SMOOTH_AREAFLOW && p->crease) || crease;
 	if (need_crease && scratch_alloc(&F, err))
 		goto out;
+	int maxit = p->iterations >= 0 ? p->iterations : p->max_iterations;
+	if (!(edge > 0))
+		maxit = 0;   /* no edge of any length: nothing can move */
+	/* the window cache pays when the crease is computed twice or more */
+	F.win_want = p->method == FCT_SMOOTH_AREAFLOW && p->crease && maxit + (crease != NULL) >= 2;
+	if (F.win_want &&
+	    (!(F.woff = fct_alloc_array(m->nv, sizeof *F.woff, err)) ||
+	     !(F.wacc = fct_alloc_array(m->nv, 1, err)) || !(F.wrej = fct_alloc_array(m->nv, 1, err))))
+		goto out;
 	if ((p->method == FCT_SMOOTH_LAPLACIAN || p->method == FCT_SMOOTH_TAUBIN || p->passes > 0) &&
 	    build_neighbours(&F, err))
 		goto out;
 
-	int maxit = p->iterations >= 0 ? p->iterations : p->max_iterations;
-	if (!(edge > 0))
-		maxit = 0;   /* no edge of any length: nothing can move */
 	for (int it = 0; it < maxit; it++) {
 		double moved;
 		if (p->method == FCT_SMOOTH_AREAFLOW) {

@@ -78,6 +78,12 @@ struct fct_areaflow_stats {
 	size_t held;           /* on a non-manifold edge: held (areaflow only) */
 	size_t isolated;       /* in no face */
 	size_t threads;        /* used */
+	/* The crease vote's window cache (areaflow with the crease, computed
+	 * twice or more): face ids held (4 bytes each, beside 6 bytes per
+	 * vertex), and windows walked again because a face had crossed the
+	 * radius since the cache was made (over all passes). */
+	size_t window_ids;
+	size_t window_walks;
 };
 
 /* Smooth m's positions in place by p->method.  Vertices in no face stay.

@@ -17,6 +17,22 @@ struct arg {
 	int worker;
 };
 
+/* The first item of chunk c of n items cut into nchunk chunks: n c / nchunk
+ * without overflow for any n. */
+static size_t chunk_lo(size_t n, size_t nchunk, size_t c)
+{
+	size_t q = n / nchunk, r = n % nchunk;
+	return q * c + r * c / nchunk;
+}
+
+/* nchunk as fct_par_run uses it. */
+static size_t chunk_count(size_t n, size_t nchunk)
+{
+	if (nchunk == 0)
+		nchunk = 256;
+	return nchunk > n ? n : nchunk;
+}
+
 static void *work(void *p)
 {
 	struct arg *a = p;
@@ -25,9 +41,7 @@ static void *work(void *p)
 		size_t c = atomic_fetch_add(&j->next, 1);
 		if (c >= j->nchunk)
 			break;
-		/* n * c / nchunk without overflow for any n */
-		size_t q = j->n / j->nchunk, r = j->n % j->nchunk;
-		size_t lo = q * c + r * c / j->nchunk, hi = q * (c + 1) + r * (c + 1) / j->nchunk;
+		size_t lo = chunk_lo(j->n, j->nchunk, c), hi = chunk_lo(j->n, j->nchunk, c + 1);
 		if (lo < hi)
 			j->fn(j->ctx, lo, hi, a->worker);
 	}
@@ -47,10 +61,7 @@ void fct_par_run(int nthreads, size_t n, size_t nchunk, fct_par_fn *fn, void *ct
 {
 	if (n == 0)
 		return;
-	if (nchunk == 0)
-		nchunk = 256;
-	if (nchunk > n)
-		nchunk = n;
+	nchunk = chunk_count(n, nchunk);
 	if (nthreads < 1)
 		nthreads = 1;
 	if (nthreads > FCT_PAR_MAX)
@@ -71,4 +82,18 @@ void fct_par_run(int nthreads, size_t n, size_t nchunk, fct_par_fn *fn, void *ct
 	work(&args[0]);
 	for (int t = 1; t <= started; t++)
 		pthread_join(th[t], NULL);
+}
+
+size_t fct_par_chunk_of(size_t n, size_t nchunk, size_t i)
+{
+	nchunk = chunk_count(n, nchunk);
+	size_t lo = 0, hi = nchunk;   /* the last c < nchunk with chunk_lo(c) <= i */
+	while (hi - lo > 1) {
+		size_t mid = lo + (hi - lo) / 2;
+		if (chunk_lo(n, nchunk, mid) <= i)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
 }

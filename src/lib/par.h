@@ -22,4 +22,9 @@ int fct_par_threads(int want);
  * others do its share.  Returns after every chunk is done. */
 void fct_par_run(int nthreads, size_t n, size_t nchunk, fct_par_fn *fn, void *ctx);
 
+/* The index of the chunk that holds item i < n in fct_par_run(..., n,
+ * nchunk, ...): per-chunk results (partial sums added in chunk order, a
+ * chunk's own buffer) can be kept by it whatever the thread count. */
+size_t fct_par_chunk_of(size_t n, size_t nchunk, size_t i);
+
 #endif
