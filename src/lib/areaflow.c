@@ -113,34 +113,11 @@ static void normalize_or(double v[3], const double *fallback)
 	v[0] = 0, v[1] = 0, v[2] = 1;
 }
 
-void fct_sym3_eigen(const double t[6], double nu[3], double e1[3], const double *hint)
+/* A unit eigenvector of t's eigenvalue l1 (see fct_sym3_eigen); scale is
+ * the sum of the eigenvalues' magnitudes. */
+static void eigvec1(const double t[6], double l1, double scale, const double *hint, double e1[3])
 {
 	double a00 = t[0], a01 = t[1], a02 = t[2], a11 = t[3], a12 = t[4], a22 = t[5];
-	double p1 = a01 * a01 + a02 * a02 + a12 * a12;
-	double q = (a00 + a11 + a22) / 3;
-	double b00 = a00 - q, b11 = a11 - q, b22 = a22 - q;
-	double p2 = b00 * b00 + b11 * b11 + b22 * b22 + 2 * p1;
-	double l1, l2, l3;
-	if (!(p2 > 0) || !isfinite(p2)) {
-		l1 = l2 = l3 = isfinite(q) ? q : 0;
-	} else {
-		double p = sqrt(p2 / 6);
-		double c00 = b00 / p, c11 = b11 / p, c22 = b22 / p;
-		double c01 = a01 / p, c02 = a02 / p, c12 = a12 / p;
-		double det = c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) +
-		             c02 * (c01 * c12 - c11 * c02);
-		double r = det / 2;
-		r = r < -1 ? -1 : r > 1 ? 1 : r;
-		double phi = acos(r) / 3;
-		l1 = q + 2 * p * cos(phi);
-		l3 = q + 2 * p * cos(phi + 2.0943951023931954923);
-		l2 = 3 * q - l1 - l3;
-		if (l2 > l1) { double s = l1; l1 = l2; l2 = s; }
-		if (l3 > l2) { double s = l2; l2 = l3; l3 = s; }
-		if (l2 > l1) { double s = l1; l1 = l2; l2 = s; }
-	}
-	nu[0] = l1, nu[1] = l2, nu[2] = l3;
-
 	/* e1 spans the null space of M = t - l1 I: the largest cross product of
 	 * two of M's rows when its rank is 2. */
 	double r0[3] = { a00 - l1, a01, a02 }, r1[3] = { a01, a11 - l1, a12 };
@@ -155,7 +132,6 @@ void fct_sym3_eigen(const double t[6], double nu[3], double e1[3], const double 
 		double d = fct_v3_dot(c[i], c[i]);
 		if (d > best) best = d, bi = i;
 	}
-	double scale = fabs(l1) + fabs(l2) + fabs(l3);
 	if (bi >= 0 && best > 1e-18 * scale * scale * scale * scale && isfinite(best)) {
 		double len = sqrt(best);
 		for (int k = 0; k < 3; k++)
@@ -189,6 +165,64 @@ void fct_sym3_eigen(const double t[6], double nu[3], double e1[3], const double 
 	e1[0] = h[0], e1[1] = h[1], e1[2] = h[2];
 }
 
+void fct_sym3_eigen(const double t[6], double nu[3], double e1[3], const double *hint)
+{
+	double a00 = t[0], a01 = t[1], a02 = t[2], a11 = t[3], a12 = t[4], a22 = t[5];
+	double p1 = a01 * a01 + a02 * a02 + a12 * a12;
+	double q = (a00 + a11 + a22) / 3;
+	double b00 = a00 - q, b11 = a11 - q, b22 = a22 - q;
+	double p2 = b00 * b00 + b11 * b11 + b22 * b22 + 2 * p1;
+	double l1, l2, l3;
+	int closed = p2 > 0 && isfinite(p2);
+	if (!closed) {
+		l1 = l2 = l3 = isfinite(q) ? q : 0;
+	} else {
+		double p = sqrt(p2 / 6);
+		double c00 = b00 / p, c11 = b11 / p, c22 = b22 / p;
+		double c01 = a01 / p, c02 = a02 / p, c12 = a12 / p;
+		double det = c00 * (c11 * c22 - c12 * c12) - c01 * (c01 * c22 - c12 * c02) +
+		             c02 * (c01 * c12 - c11 * c02);
+		double r = det / 2;
+		r = r < -1 ? -1 : r > 1 ? 1 : r;
+		double phi = acos(r) / 3;
+		l1 = q + 2 * p * cos(phi);
+		l3 = q + 2 * p * cos(phi + 2.0943951023931954923);
+		l2 = 3 * q - l1 - l3;
+		if (l2 > l1) { double s = l1; l1 = l2; l2 = s; }
+		if (l3 > l2) { double s = l2; l2 = l3; l3 = s; }
+		if (l2 > l1) { double s = l1; l1 = l2; l2 = s; }
+	}
+	eigvec1(t, l1, fabs(l1) + fabs(l2) + fabs(l3), hint, e1);
+	/* The closed form keeps only half the digits of an eigenvalue that is
+	 * (nearly) repeated, which the two smaller ones are on a plane (T of
+	 * rank one): take them from t restricted to the plane across e1, a 2x2
+	 * problem that keeps them to rounding. */
+	if (closed) {
+		double ax[3] = { 0, 0, 0 }, u[3], w[3], tu[3], tw[3];
+		int k = fabs(e1[0]) <= fabs(e1[1]) ? (fabs(e1[0]) <= fabs(e1[2]) ? 0 : 2)
+		                                   : (fabs(e1[1]) <= fabs(e1[2]) ? 1 : 2);
+		ax[k] = 1;
+		fct_v3_cross(u, e1, ax);
+		double ul = sqrt(fct_v3_dot(u, u));
+		if (ul > 0) {
+			u[0] /= ul, u[1] /= ul, u[2] /= ul;
+			fct_v3_cross(w, e1, u);
+			tu[0] = t[0] * u[0] + t[1] * u[1] + t[2] * u[2];
+			tu[1] = t[1] * u[0] + t[3] * u[1] + t[4] * u[2];
+			tu[2] = t[2] * u[0] + t[4] * u[1] + t[5] * u[2];
+			tw[0] = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
+			tw[1] = t[1] * w[0] + t[3] * w[1] + t[4] * w[2];
+			tw[2] = t[2] * w[0] + t[4] * w[1] + t[5] * w[2];
+			double a = fct_v3_dot(u, tu), b = fct_v3_dot(u, tw), c = fct_v3_dot(w, tw);
+			double m = (a + c) / 2, h = (a - c) / 2, r = sqrt(h * h + b * b);
+			l2 = m + r, l3 = m - r;
+			if (l2 > l1)
+				l1 = l2;
+		}
+	}
+	nu[0] = l1, nu[1] = l2, nu[2] = l3;
+}
+
 /* Accumulates the votes of eq. (4) at one vertex. */
 struct vote {
 	double t[6];    /* xx xy xz yy yz zz */
@@ -198,21 +232,20 @@ struct vote {
 
 /* The vote of the face with centroid p and unit normal n, weight mu, at q:
  * n transported along the arc from p to q, in the plane of n and pq, whose
- * tangent at p is perpendicular to n (n' = 2 (n.w) w - n, the reflection of
- * n about the chord's perpendicular w in that plane). */
+ * tangent at p is perpendicular to n: n' = 2 (n.w) w / |w|^2 - n, the
+ * reflection of n about the chord's perpendicular w in that plane.  With
+ * w = (pq x n) x pq = |pq|^2 n - (pq.n) pq that is n' = n - 2 (pq.n) pq /
+ * |pq|^2 for any length of n (the reflection in the plane across the
+ * chord), without a square root. */
 static inline void vote_add(struct vote *vt, const double q[3], const double p[3],
                             const double n[3], double mu)
 {
-	double pq[3], c[3], w[3], nn[3];
+	double pq[3], c[3], nn[3];
 	fct_v3_sub(pq, q, p);
 	fct_v3_cross(c, pq, n);
-	fct_v3_cross(w, c, pq);
-	double wl = fct_v3_dot(w, w);
-	if (wl > 0 && isfinite(wl)) {
-		wl = 1 / sqrt(wl);
-		w[0] *= wl, w[1] *= wl, w[2] *= wl;
-		double nw = 2 * fct_v3_dot(n, w);
-		nn[0] = nw * w[0] - n[0], nn[1] = nw * w[1] - n[1], nn[2] = nw * w[2] - n[2];
+	if (fct_v3_dot(c, c) > 0) {
+		double a = 2 * fct_v3_dot(pq, n) / fct_v3_dot(pq, pq);
+		nn[0] = n[0] - a * pq[0], nn[1] = n[1] - a * pq[1], nn[2] = n[2] - a * pq[2];
 	} else {
 		/* p at q, or pq along n: no arc to follow */
 		nn[0] = n[0], nn[1] = n[1], nn[2] = n[2];
