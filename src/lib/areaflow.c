@@ -545,10 +545,11 @@ static int walk(struct flow *F, struct scratch *sc, size_t v, const double q[3],
 	return ok ? 0 : -1;
 }
 
-/* The recorded walk of v replayed at q: 0 with its votes in vt, or -1 when
- * this pass's walk would differ (vt is then to be discarded). */
+/* The recorded walk of v replayed at q (rec: nacc faces accepted, then
+ * nrej turned away): 0 with its votes in vt, or -1 when this pass's walk
+ * would differ (vt is then to be discarded). */
 static int replay(const struct flow *F, size_t v, const double q[3], struct vote *vt,
-                  const uint32_t *acc, size_t nacc, const uint32_t *rej, size_t nrej)
+                  const uint32_t *rec, size_t nacc, size_t nrej)
 {
 	const struct fct_adj *A = F->adj;
 	for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
@@ -559,10 +560,10 @@ static int replay(const struct flow *F, size_t v, const double q[3], struct vote
 		vote_add(vt, q, c, n, exp(-fct_v3_dist2(c, q) / F->sigma2));
 	}
 	for (size_t i = 0; i < nrej; i++)
-		if (fct_v3_dist2(F->fc + 3 * (size_t)rej[i], q) <= F->radius2)
+		if (fct_v3_dist2(F->fc + 3 * (size_t)rec[nacc + i], q) <= F->radius2)
 			return -1;
 	for (size_t i = 0; i < nacc; i++) {
-		uint32_t f = acc[i];
+		uint32_t f = rec[i];
 		const double *c = F->fc + 3 * (size_t)f, *n = F->fn + 3 * (size_t)f;
 		double d2 = fct_v3_dist2(c, q);
 		if (!(d2 <= F->radius2) || (n[0] == 0 && n[1] == 0 && n[2] == 0))
@@ -591,7 +592,11 @@ static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chun
 			size_t na = 0, nr = 0;
 			F->wacc[v] = WIN_NONE;
 			struct fct_err e;
-			if (walk(F, sc, v, q, &vt, acc, &na, rej, &nr) == 0 && !F->wfail[chunk]) {
+			int ok = walk(F, sc, v, q, &vt, acc, &na, rej, &nr) == 0;
+			if (ok && na + nr == 0) {
+				F->woff[v] = 0;   /* the umbrella alone */
+				F->wacc[v] = F->wrej[v] = 0;
+			} else if (ok && !F->wfail[chunk]) {
 				if (F->wlen[chunk] + na + nr > UINT32_MAX ||   /* offsets are 32 bits */
 				    fct_grow((void **)&F->wbuf[chunk], &F->wcap[chunk], F->wlen[chunk] + na + nr,
 				             sizeof *acc, &e)) {
@@ -607,8 +612,8 @@ static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chun
 				}
 			}
 		} else if (F->wacc && F->wacc[v] != WIN_NONE) {
-			const uint32_t *w = F->wbuf[chunk] + F->woff[v];
-			if (replay(F, v, q, &vt, w, F->wacc[v], w + F->wacc[v], F->wrej[v])) {
+			const uint32_t *w = F->wbuf[chunk] ? F->wbuf[chunk] + F->woff[v] : NULL;
+			if (replay(F, v, q, &vt, w, F->wacc[v], F->wrej[v])) {
 				memset(&vt, 0, sizeof vt);
 				walk(F, sc, v, q, &vt, NULL, NULL, NULL, NULL);
 				walked++;
