@@ -331,7 +331,8 @@ struct flow {
 	int win_want;             /* the crease is computed more than once: cache */
 	int wacc_built;           /* the cache holds the first pass's walks */
 	struct fct_areaflow_stats *st;
-	int win_build;            /* this pass records the walks */
+	int win_build;            /* this pass records the walks (later ones
+	                           * record a changed walk where it fits) */
 	uint32_t *wbuf[NCHUNK];
 	size_t wlen[NCHUNK], wcap[NCHUNK];
 	int wfail[NCHUNK];        /* out of memory: that chunk is not cached */
@@ -612,10 +613,21 @@ static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chun
 				}
 			}
 		} else if (F->wacc && F->wacc[v] != WIN_NONE) {
-			const uint32_t *w = F->wbuf[chunk] ? F->wbuf[chunk] + F->woff[v] : NULL;
+			uint32_t *w = F->wbuf[chunk] ? F->wbuf[chunk] + F->woff[v] : NULL;
+			size_t room = (size_t)F->wacc[v] + F->wrej[v], na = 0, nr = 0;
 			if (replay(F, v, q, &vt, w, F->wacc[v], F->wrej[v])) {
+				/* walked again, and recorded in place when the new walk
+				 * fits the old one's room: a record is good for any
+				 * positions its faces agree with */
 				memset(&vt, 0, sizeof vt);
-				walk(F, sc, v, q, &vt, NULL, NULL, NULL, NULL);
+				if (walk(F, sc, v, q, &vt, acc, &na, rej, &nr) == 0 && na + nr <= room) {
+					if (na + nr > 0) {
+						memcpy(w, acc, sizeof *acc * na);
+						memcpy(w + na, rej, sizeof *rej * nr);
+					}
+					F->wacc[v] = (unsigned char)na;
+					F->wrej[v] = (unsigned char)nr;
+				}
 				walked++;
 			}
 		} else {
