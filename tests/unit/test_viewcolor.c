@@ -14,28 +14,10 @@
 #include "fuse.h"
 #include "mcubes.h"
 #include "scene.h"
+#include "square.h"
 #include "viewcolor.h"
 
 static const double identity[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
-
-/* The square [-1,1]^2 at depth z facing the camera at the origin (normals
- * -z, towards it), n x n cells, plus one vertex at (0.1, 0.1, 2z) behind it
- * and one at (-0.1, -0.1, z) whose normal faces away. */
-static void square(struct fct_mesh *m, int n, double z)
-{
-	struct fct_err err;
-	fct_mesh_init(m);
-	for (int j = 0; j <= n; j++)
-		for (int i = 0; i <= n; i++)
-			fct_mesh_add_vertex(m, -1 + 2.0 * i / n, -1 + 2.0 * j / n, z, &err);
-	for (int j = 0; j < n; j++)
-		for (int i = 0; i < n; i++) {
-			uint32_t a = (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
-			uint32_t t1[3] = { a, c, b }, t2[3] = { b, c, d };
-			fct_mesh_add_face(m, t1, 3, &err);
-			fct_mesh_add_face(m, t2, 3, &err);
-		}
-}
 
 static void add_normals(struct fct_mesh *m)
 {
