@@ -47,8 +47,25 @@ struct sblock {
 	int32_t bx, by, bz;
 	int8_t lo[3], hi[3];     /* box of voxels that may be in the band (lo > hi: none) */
 	size_t nvox, nborder;    /* voxels with a value, voxels skipped on a border */
-	float *d;                /* FCT_VOXBLOCK_N distances then as many weights (0: none) */
+	struct fct_voxblock *vb; /* the volume's block, updated in place; NULL: not in it yet, */
+	float *d;                /* and the results go here: FCT_VOXBLOCK_N distances, as many weights (0: none) */
 };
+
+/* Voxel l of b gets distance d with weight w: into the volume when the
+ * block is there (each block is one thread's), else into its results. */
+static inline void put(struct sblock *b, int l, float d, float w)
+{
+	b->nvox++;
+	struct fct_voxblock *vb = b->vb;
+	if (vb) {
+		double W = (double)vb->weight[l] + w;
+		vb->sdf[l] = (float)(vb->sdf[l] + ((double)d - vb->sdf[l]) * w / W);
+		vb->weight[l] = (float)W;
+	} else {
+		b->d[l] = d;
+		b->d[FCT_VOXBLOCK_N + l] = w;
+	}
+}
 
 struct scratch {
 	uint64_t *keys;          /* UINT64_MAX: empty slot */
@@ -469,6 +486,9 @@ struct raster {
 	int32_t *idf;
 	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes);
 	                          * sensor u, v, depth until the raster's extent is known */
+	int32_t *at;             /* one sample per pixel: per vertex, the sample it lies on
+	                          * (within 1e-3), or -1 */
+	float *zv;               /* and the depth a triangle gives there */
 	const struct geo *G;
 	int proper;              /* only triangles with a normal */
 	int nthreads;
@@ -481,6 +501,8 @@ static void raster_free(struct raster *R)
 	free(R->zf);
 	free(R->idf);
 	free(R->sp);
+	free(R->at);
+	free(R->zv);
 	memset(R, 0, sizeof *R);
 }
 
@@ -557,7 +579,33 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi)
 		sp[0] = (sp[0] - R->u0) * R->S;
 		sp[1] = (sp[1] - R->v0) * R->S;
 		sp[2] = pin ? 1 / sp[2] : sp[2];
+		if (R->at) {
+			double x = floor(sp[0] + 0.5), y = floor(sp[1] + 0.5);
+			int on = fabs(sp[0] - x) < 1e-3 && fabs(sp[1] - y) < 1e-3 && x >= 0 && y >= 0 &&
+			         x < R->w && y < R->h;
+			R->at[i] = on ? (int32_t)y * R->w + (int32_t)x : -1;
+			R->zv[i] = (float)(pin ? 1 / sp[2] : sp[2]);
+		}
 	}
+}
+
+/* A triangle of a range image's grid: its vertices on samples (one per
+ * pixel) a pixel apart at most, covering no sample but its vertices.  The
+ * raster's depth is the vertex's there (barycentric weights 1, 0, 0). */
+static inline int grid_triangle(const struct raster *R, const int32_t s[3])
+{
+	if ((s[0] | s[1] | s[2]) < 0)
+		return 0;
+	long w = R->w;
+	long x[3], y[3];
+	for (int k = 0; k < 3; k++)
+		x[k] = s[k] % w, y[k] = s[k] / w;
+	for (int k = 0; k < 3; k++) {
+		long dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
+		if (dx < -1 || dx > 1 || dy < -1 || dy > 1)
+			return 0;
+	}
+	return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) != 0;
 }
 
 /* Rows lo..hi of the raster: every triangle, clipped to them. */
@@ -571,6 +619,28 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 	const double *sp = R->sp;
 	for (size_t f = 0; f < G->nt; f++) {
 		const uint32_t *tv = &G->tv[3 * f];
+		if (R->at) {
+			int32_t at[3] = { R->at[tv[0]], R->at[tv[1]], R->at[tv[2]] };
+			if (grid_triangle(R, at)) {
+				if (R->proper && isnan(G->tn[4 * f]))
+					continue;
+				for (int k = 0; k < 3; k++) {
+					size_t s = (size_t)at[k], y = s / (size_t)R->w;
+					float zf = R->zv[tv[k]];
+					if (y < lo || y >= hi || !(zf > 0 || ortho))
+						continue;
+					if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
+						R->z[s] = zf;
+						R->id[s] = (int32_t)f;
+					}
+					if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
+						R->zf[s] = zf;
+						R->idf[s] = (int32_t)f;
+					}
+				}
+				continue;
+			}
+		}
 		const double *a = &sp[3 * tv[0]], *b = &sp[3 * tv[1]], *c = &sp[3 * tv[2]];
 		double vmin = dmin3(a[1], b[1], c[1]), vmax = dmax3(a[1], b[1], c[1]);
 		if (!(vmax >= ylo - 1e-9 && vmin <= yhi + 1e-9))
@@ -692,6 +762,12 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 			R->zf[i] = -INFINITY;
 		memset(R->idf, 0xff, n * sizeof *R->idf);
 	}
+	if (S == 1) {
+		R->at = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->at, err);
+		R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err);
+		if (!R->at || !R->zv)
+			return -1;
+	}
 	run(nthreads, samples_chunk, R, G->nv, 0);
 	/* Each thread its own rows: the same raster for any thread count. */
 	run(nthreads, raster_rows, R, (size_t)R->h, nthreads);
@@ -790,11 +866,23 @@ static inline int cell_of(struct cand *c, const double p[3], int32_t i[3])
 }
 
 /* Voxels lo..hi (each axis) into the boxes of their blocks in s. */
-static int add_box(struct scratch *s, const int32_t lo[3], const int32_t hi[3], struct fct_err *err)
+static inline int add_box(struct scratch *s, const int32_t lo[3], const int32_t hi[3], struct fct_err *err)
 {
 	int32_t blo[3], bhi[3];
 	for (int k = 0; k < 3; k++)
 		blo[k] = fct_vox_block_of(lo[k]), bhi[k] = fct_vox_block_of(hi[k]);
+	struct sblock *lb = s->last;
+	if (lb && blo[0] == lb->bx && bhi[0] == lb->bx && blo[1] == lb->by && bhi[1] == lb->by &&
+	    blo[2] == lb->bz && bhi[2] == lb->bz) {
+		/* Within the block of the box before (most boxes are). */
+		int32_t o[3] = { lb->bx * FCT_VOXBLOCK, lb->by * FCT_VOXBLOCK, lb->bz * FCT_VOXBLOCK };
+		for (int k = 0; k < 3; k++) {
+			int8_t l = (int8_t)(lo[k] - o[k]), h = (int8_t)(hi[k] - o[k]);
+			lb->lo[k] = l < lb->lo[k] ? l : lb->lo[k];
+			lb->hi[k] = h > lb->hi[k] ? h : lb->hi[k];
+		}
+		return 0;
+	}
 	for (int32_t bz = blo[2]; bz <= bhi[2]; bz++)
 		for (int32_t by = blo[1]; by <= bhi[1]; by++)
 			for (int32_t bx = blo[0]; bx <= bhi[0]; bx++) {
@@ -813,7 +901,7 @@ static int add_box(struct scratch *s, const int32_t lo[3], const int32_t hi[3], 
 	return 0;
 }
 
-static int add_point(struct cand *c, const double p[3])
+static inline int add_point(struct cand *c, const double p[3])
 {
 	int32_t i[3];
 	return cell_of(c, p, i) || add_box(&c->cells, i, i, c->err);
@@ -824,10 +912,11 @@ static int add_point(struct cand *c, const double p[3])
  * is wider anyway); larger ones, points at most half a voxel apart. */
 enum { BOX_TRIANGLE = 4 };
 
-/* The candidate blocks of G for a band of r voxels into s, each with
- * FCT_VOXBLOCK_N distances and weights (weights 0) from one slab *slab. */
-static int candidates(struct scratch *s, float **slab, const struct geo *G, double vox, int r,
-                      struct fct_err *err)
+/* The candidate blocks of G for a band of r voxels into s; those of them
+ * that g has are updated there, the others get FCT_VOXBLOCK_N distances and
+ * weights (weights 0) from one slab *slab. */
+static int candidates(struct scratch *s, float **slab, const struct fct_voxgrid *g, const struct geo *G,
+                      double vox, int r, struct fct_err *err)
 {
 	struct cand c = { { 0 }, vox, 1 / vox, err };
 	int rc = -1;
@@ -883,29 +972,40 @@ static int candidates(struct scratch *s, float **slab, const struct geo *G, doub
 		if (add_box(s, lo, hi, err))
 			goto done;
 	}
-	*slab = fct_alloc_array(s->n ? s->n : 1, 2 * FCT_VOXBLOCK_N * sizeof **slab, err);
+	size_t missing = 0;
+	for (size_t bi = 0; bi < s->n; bi++) {
+		struct sblock *b = s->blk[bi];
+		long gi = fct_voxgrid_index(g, b->bx, b->by, b->bz);
+		b->vb = gi >= 0 ? fct_voxgrid_at(g, (size_t)gi) : NULL;
+		missing += !b->vb;
+	}
+	*slab = fct_alloc_array(missing ? missing : 1, 2 * FCT_VOXBLOCK_N * sizeof **slab, err);
 	if (!*slab)
 		goto done;
-	for (size_t bi = 0; bi < s->n; bi++) {
-		s->blk[bi]->d = *slab + bi * 2 * FCT_VOXBLOCK_N;
-		memset(s->blk[bi]->d + FCT_VOXBLOCK_N, 0, FCT_VOXBLOCK_N * sizeof **slab);
-	}
+	missing = 0;
+	for (size_t bi = 0; bi < s->n; bi++)
+		if (!s->blk[bi]->vb) {
+			float *d = *slab + missing++ * 2 * FCT_VOXBLOCK_N;
+			s->blk[bi]->d = d;
+			memset(d + FCT_VOXBLOCK_N, 0, FCT_VOXBLOCK_N * sizeof *d);
+		}
 	rc = 0;
 done:
 	scratch_free(&c.cells);
 	return rc;
 }
 
-/* Results into the volume, block by block in creation order. */
+/* Results of the blocks the volume did not have into new blocks, in
+ * creation order (the others were updated in place). */
 static int commit(struct fct_voxgrid *g, const struct scratch *s, struct fct_fuse_stats *st,
                   struct fct_err *err)
 {
 	for (size_t bi = 0; bi < s->n; bi++) {
 		const struct sblock *b = s->blk[bi];
 		st->border += b->nborder;
-		if (!b->nvox)
-			continue;
 		st->voxels += b->nvox;
+		if (!b->nvox || b->vb)
+			continue;
 		struct fct_voxblock *vb = fct_voxgrid_block(g, b->bx, b->by, b->bz, 1, err);
 		if (!vb)
 			return -1;
@@ -1117,10 +1217,7 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 							memcpy(pn, n, sizeof pn);
 						d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
 					}
-					int l = xx + 8 * (y + 8 * z);
-					b->d[l] = (float)d;
-					b->d[FCT_VOXBLOCK_N + l] = (float)view_weight(F->v, F->p, q, n);
-					b->nvox++;
+					put(b, xx + 8 * (y + 8 * z), (float)d, (float)view_weight(F->v, F->p, q, n));
 				}
 	}
 }
@@ -1175,10 +1272,8 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 					double Rd = Rz, d = Rd - depth;
 					if (d < -band)
 						continue;
-					int l = xx + 8 * (y + 8 * z);
-					b->d[l] = (float)(d < band ? d : band);
-					b->d[FCT_VOXBLOCK_N + l] = (float)(depth2 ? 1 / (Rd * Rd) : 1);
-					b->nvox++;
+					put(b, xx + 8 * (y + 8 * z), (float)(d < band ? d : band),
+					    (float)(depth2 ? 1 / (Rd * Rd) : 1));
 				}
 			}
 	}
@@ -1210,7 +1305,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		goto done;
 	if (R.w > 0) {
 		double r = ceil(band / vox);
-		if (candidates(&s, &slab, &G, vox, (int)(r < 100 ? r : 100), err))
+		if (candidates(&s, &slab, g, &G, vox, (int)(r < 100 ? r : 100), err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox };
 		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);
