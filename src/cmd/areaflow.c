@@ -18,46 +18,62 @@
 static const char usage[] =
 	"usage: areaflow [-aqv] [-o file] [--method name] [--iterations n]\n"
 	"                [--lambda l] [--mu m] [--max-iterations n] [--tol t]\n"
-	"                [--window w] [--sigma s] [--delta d] [--rings n]\n"
-	"                [--passes n] [--no-crease] [--write-crease] [--threads n] [input]\n"
+	"                [--window w] [--sigma s] [--delta d] [--guide mode]\n"
+	"                [--passes n] [--rings n] [--vote-rings n] [--crease-lo a]\n"
+	"                [--crease-hi b] [--along dir] [--no-crease] [--write-crease]\n"
+	"                [--threads n] [input]\n"
 	"Smooth a triangle mesh by area decreasing flow: each vertex moves along its\n"
 	"normal to the least area of its umbrella held by its distance from the input\n"
 	"(eqs. 2 and 3), less where the tensor vote of the normals around it finds a\n"
-	"crease (eq. 4).  Every other property, element and comment is kept.\n"
+	"crease (eq. 4).  When the noise is comparable to the sample spacing a\n"
+	"smoothed guide gives the normals, the weights and the vote.  Every other\n"
+	"property, element and comment is kept.\n"
 	"  -a                 write ascii PLY\n"
 	"  -o file            output file (default standard output)\n"
 	"      --method name  areaflow (default), laplacian or taubin\n"
 	"      --iterations n exactly n iterations (0: none; default: until the mean\n"
 	"                     move is below --tol, at most --max-iterations)\n"
 	"      --lambda l     areaflow: weight of the squared distance from the input\n"
-	"                     in squared median edge lengths (default 1); laplacian and\n"
-	"                     taubin: the step factor (default 0.5)\n"
+	"                     in squared median edge lengths (default 1, 0 with the\n"
+	"                     guide); laplacian and taubin: the step factor (0.5)\n"
 	"      --mu m         taubin: the negative step factor (default -0.53)\n"
 	"      --max-iterations n\n"
 	"                     bound of the automatic stop (default 10)\n"
 	"      --tol t        stop when the mean move is below t median edge\n"
 	"                     (default 0.02)\n"
-	"      --window w     geodesic radius of the crease vote, in median edge\n"
-	"                     lengths (default 2.5)\n"
+	"      --window w     geodesic radius of the crease vote without the guide,\n"
+	"                     in median edge lengths (default 2.5)\n"
 	"      --sigma s      vote weight exp(-(d/s)^2), s in median edge lengths\n"
 	"                     (default 1.5)\n"
 	"      --delta d      eq. 4: crease when the mean voted normal is within d of\n"
 	"                     perpendicular to the main direction (default 0.3)\n"
-	"      --rings n      normals (of the vote and of the steps) averaged over n\n"
-	"                     rings of faces by area (default 0: none)\n"
-	"      --passes n     normals and umbrella shapes taken on a copy smoothed by\n"
-	"                     n Laplacian passes (default 0: none)\n"
+	"      --guide mode   auto (default: on when 5 Laplacian passes shorten the\n"
+	"                     median edge below 0.93 of the input's), on or off (the\n"
+	"                     paper as written); the next five options turn it on\n"
+	"      --passes n     guide: Laplacian passes of the copy that gives normals\n"
+	"                     and umbrella shapes (default 5)\n"
+	"      --rings n      guide: normals as area vectors averaged over n rings\n"
+	"                     (default 8)\n"
+	"      --vote-rings n guide: the vote as face tensors n n^T averaged over n\n"
+	"                     rings (default 8; 0: the window walk)\n"
+	"      --crease-lo a, --crease-hi b\n"
+	"                     guide: s = (s - a) / (b - a) held to [0, 1]\n"
+	"                     (defaults 0.05 and 0.15)\n"
+	"      --along dir    guide: ray (default when the header has a pose or a\n"
+	"                     pinhole camera: along the sensor's ray, as far as\n"
+	"                     makes the move along the normal eq. 3's) or normal\n"
 	"      --no-crease    no adaptive term: s = 0 everywhere\n"
 	"      --write-crease add the float vertex property crease (s of the output)\n"
 	"      --threads n    threads (default 0: one per processor)\n"
 	"  -q                 quiet\n"
-	"  -v                 report iterations, moves, crease and times on stderr\n"
+	"  -v                 report iterations, moves, crease, guide and times\n"
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
 enum {
 	OPT_VERSION = 256, OPT_METHOD, OPT_ITER, OPT_LAMBDA, OPT_MU, OPT_MAXIT, OPT_TOL,
-	OPT_WINDOW, OPT_SIGMA, OPT_DELTA, OPT_NOCREASE, OPT_WRITE, OPT_THREADS, OPT_RINGS, OPT_PASSES
+	OPT_WINDOW, OPT_SIGMA, OPT_DELTA, OPT_NOCREASE, OPT_WRITE, OPT_THREADS, OPT_RINGS, OPT_PASSES, OPT_VRINGS,
+	OPT_CLO, OPT_CHI, OPT_ALONG, OPT_GUIDE
 };
 
 /* Keep nx ny nz true to the moved surface, on the side they pointed to. */
@@ -102,6 +118,11 @@ int main(int argc, char **argv)
 		{"delta", required_argument, NULL, OPT_DELTA},
 		{"rings", required_argument, NULL, OPT_RINGS},
 		{"passes", required_argument, NULL, OPT_PASSES},
+		{"vote-rings", required_argument, NULL, OPT_VRINGS},
+		{"crease-lo", required_argument, NULL, OPT_CLO},
+		{"crease-hi", required_argument, NULL, OPT_CHI},
+		{"along", required_argument, NULL, OPT_ALONG},
+		{"guide", required_argument, NULL, OPT_GUIDE},
 		{"no-crease", no_argument, NULL, OPT_NOCREASE},
 		{"write-crease", no_argument, NULL, OPT_WRITE},
 		{"threads", required_argument, NULL, OPT_THREADS},
@@ -112,7 +133,8 @@ int main(int argc, char **argv)
 	struct fct_areaflow_params p;
 	fct_areaflow_params_default(&p);
 	const char *out = NULL;
-	int ascii = 0, c, write_crease = 0, lambda_given = 0, mu_given = 0;
+	int ascii = 0, c, write_crease = 0, lambda_given = 0, mu_given = 0, along = -1, guide_opt = 0,
+	    guide_given = 0;
 	double lambda = 0;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
@@ -146,8 +168,30 @@ int main(int argc, char **argv)
 		case OPT_WINDOW: p.window = fct_opt_double("--window", optarg, 0, 100); break;
 		case OPT_SIGMA: p.sigma = fct_opt_double("--sigma", optarg, 1e-6, 1e6); break;
 		case OPT_DELTA: p.delta = fct_opt_double("--delta", optarg, 0, 1); break;
-		case OPT_PASSES: p.passes = (int)fct_opt_long("--passes", optarg, 0, 1000); break;
-		case OPT_RINGS: p.rings = (int)fct_opt_long("--rings", optarg, 0, 1000); break;
+		case OPT_PASSES: p.passes = (int)fct_opt_long("--passes", optarg, 0, 1000); guide_opt = 1; break;
+		case OPT_CLO: p.crease_lo = fct_opt_double("--crease-lo", optarg, 0, 1); guide_opt = 1; break;
+		case OPT_CHI: p.crease_hi = fct_opt_double("--crease-hi", optarg, 0, 1); guide_opt = 1; break;
+		case OPT_ALONG:
+			if (!strcmp(optarg, "ray"))
+				along = 1;
+			else if (!strcmp(optarg, "normal"))
+				along = 0;
+			else
+				fct_usage_error("--along: \"%s\" is not ray or normal", optarg);
+			break;
+		case OPT_GUIDE:
+			guide_given = 1;
+			if (!strcmp(optarg, "auto"))
+				p.guide = -1;
+			else if (!strcmp(optarg, "on"))
+				p.guide = 1;
+			else if (!strcmp(optarg, "off"))
+				p.guide = 0;
+			else
+				fct_usage_error("--guide: \"%s\" is not auto, on or off", optarg);
+			break;
+		case OPT_VRINGS: p.vote_rings = (int)fct_opt_long("--vote-rings", optarg, 0, 1000); guide_opt = 1; break;
+		case OPT_RINGS: p.rings = (int)fct_opt_long("--rings", optarg, 0, 1000); guide_opt = 1; break;
 		case OPT_NOCREASE: p.crease = 0; break;
 		case OPT_WRITE: write_crease = 1; break;
 		case OPT_THREADS: p.threads = (int)fct_opt_long("--threads", optarg, 0, 64); break;
@@ -166,6 +210,8 @@ int main(int argc, char **argv)
 		else
 			p.lap_lambda = lambda;
 	}
+	if (guide_opt && !guide_given)
+		p.guide = 1;   /* an option of the guide turns it on */
 	const char *input = optind < argc ? argv[optind] : "-";
 	const char *name = fct_path_display(input);
 
@@ -175,6 +221,18 @@ int main(int argc, char **argv)
 	if (fct_mesh_read_file(&m, input, NULL, &err))
 		fct_die_err(&err);
 	double read_s = fct_now() - t0;
+	/* The viewpoint: the pose's origin, else the pinhole camera's. */
+	struct fct_camera cam;
+	double pose[12];
+	int has_cam = fct_header_camera(&m, &cam, &err) == 1 && cam.kind == FCT_CAMERA_PINHOLE;
+	int has_pose = fct_header_pose(&m, pose, &err) == 1;
+	if (along == 1 && !has_cam && !has_pose)
+		fct_die(1, "%s: --along ray: no pose and no pinhole camera in the header", name);
+	if (along != 0 && (has_cam || has_pose)) {
+		p.along_ray = 1;
+		if (has_pose)
+			p.origin[0] = pose[3], p.origin[1] = pose[7], p.origin[2] = pose[11];
+	}
 	if (m.nf == 0 && !fct_quiet)
 		fct_warn("%s: no faces: the vertices are written unchanged", name);
 	double *crease = NULL;
@@ -214,6 +272,9 @@ int main(int argc, char **argv)
 	fct_report("threads", "%zu", st.threads);
 	fct_report("window_ids", "%zu", st.window_ids);
 	fct_report("window_walks", "%zu", st.window_walks);
+	fct_report("guide", "%d", st.guide);
+	fct_report("edge_ratio", "%.6g", st.edge_ratio);
+	fct_report("along_ray", "%d", st.guide && p.along_ray);
 	fct_report("read_s", "%.4f", read_s);
 	fct_report("smooth_s", "%.4f", smooth_s);
 	fct_report("total_s", "%.4f", total_s);

@@ -20,7 +20,8 @@
 void fct_areaflow_params_default(struct fct_areaflow_params *p)
 {
 	p->method = FCT_SMOOTH_AREAFLOW;
-	p->lambda = 1;
+	p->lambda = -1;
+	p->guide = -1;
 	p->iterations = -1;
 	p->max_iterations = 10;
 	p->tol = 0.02;
@@ -31,8 +32,13 @@ void fct_areaflow_params_default(struct fct_areaflow_params *p)
 	p->lap_lambda = 0.5;
 	p->taubin_mu = -0.53;
 	p->threads = 0;
-	p->rings = 0;
-	p->passes = 0;
+	p->rings = 8;
+	p->passes = 5;
+	p->vote_rings = 8;
+	p->crease_lo = 0.05;
+	p->crease_hi = 0.15;
+	p->along_ray = 0;
+	p->origin[0] = p->origin[1] = p->origin[2] = 0;
 }
 
 /* Eq. (3) ---------------------------------------------------------------- */
@@ -278,6 +284,16 @@ static double vote_strength(const struct vote *vt, double delta)
 	return s > 0 ? (s < 1 ? s : 1) : 0;
 }
 
+/* The noise-aware ramp: (s - crease_lo) / (crease_hi - crease_lo) held to
+ * [0, 1]; s itself when crease_hi <= crease_lo. */
+static double ramp(const struct fct_areaflow_params *p, double s)
+{
+	if (!(p->crease_hi > p->crease_lo))
+		return s;
+	s = (s - p->crease_lo) / (p->crease_hi - p->crease_lo);
+	return s > 0 ? (s < 1 ? s : 1) : 0;
+}
+
 double fct_crease_strength(const double q[3], const double *p, const double *n,
                            const double *mu, size_t m, double delta)
 {
@@ -290,6 +306,9 @@ double fct_crease_strength(const double q[3], const double *p, const double *n,
 }
 
 /* Threads ---------------------------------------------------------------- */
+
+enum { GUIDE_PASSES = 5 };
+#define GUIDE_RATIO 0.93
 
 enum { NCHUNK = 256, MAX_EXPAND = 64, NCOLOR = 64, WIN_NONE = 255, WIN_MAX = 254,
        MAX_VOTES = 64 /* bound of M: the first faces of the walk, nearest rings first */ };
@@ -316,6 +335,7 @@ struct flow {
 	double *sm, *sm2;         /* Laplacian-smoothed copies (passes) */
 	const double *shape;      /* the smoothed copy of this iteration (passes) */
 	double *s;                /* crease strength */
+	double *ft, *vt9;         /* diffused tensors and normals (vote_rings) */
 	unsigned char *held;      /* 1: does not move */
 	uint32_t *order;          /* moving vertices by colour */
 	size_t color_start[NCOLOR + 1], color_lo;
@@ -633,7 +653,7 @@ static void crease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chun
 		} else {
 			walk(F, sc, v, q, &vt, NULL, NULL, NULL, NULL);
 		}
-		double s = vote_strength(&vt, F->p->delta);
+		double s = ramp(F->p, vote_strength(&vt, F->p->delta));
 		F->s[v] = s;
 		sum += s;
 	}
@@ -669,27 +689,35 @@ static void flow_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 		size_t v = F->order[F->color_lo + k];
 		double *p = x + 3 * v;
 		double n[3] = { 0, 0, 0 };
-		if (F->p->rings > 0 || F->p->passes > 0) {
-			n[0] = F->vn[3 * v], n[1] = F->vn[3 * v + 1], n[2] = F->vn[3 * v + 2];
-		} else {
-			for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
-				uint32_t p1, p2;
-				double a[3], b[3], c[3];
-				corner_ring(F, i, &p1, &p2);
-				fct_v3_sub(a, x + 3 * (size_t)p1, p);
-				fct_v3_sub(b, x + 3 * (size_t)p2, p);
-				fct_v3_cross(c, a, b);
-				fct_v3_add(n, n, c);
-			}
+		for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
+			uint32_t p1, p2;
+			double a[3], b[3], c[3];
+			corner_ring(F, i, &p1, &p2);
+			fct_v3_sub(a, x + 3 * (size_t)p1, p);
+			fct_v3_sub(b, x + 3 * (size_t)p2, p);
+			fct_v3_cross(c, a, b);
+			fct_v3_add(n, n, c);
 		}
+		/* an umbrella of no area stays, whatever normal the guide gives */
+		if (!(fct_v3_dot(n, n) > 0))
+			continue;
+		if (F->p->rings > 0 || F->p->passes > 0)
+			n[0] = F->vn[3 * v], n[1] = F->vn[3 * v + 1], n[2] = F->vn[3 * v + 2];
 		double len = sqrt(fct_v3_dot(n, n));
 		if (!(len > 0) || !isfinite(len))
 			continue;   /* no normal: the vertex stays */
 		n[0] /= len, n[1] /= len, n[2] /= len;
-		double a = 0, b = 0, dv[3];
+		double a = 0, b = 0, dv[3], hlo = 0, hhi = 0;
+		int first = 1;
 		for (uint32_t i = A->vert_fstart[v]; i < A->vert_fstart[v + 1]; i++) {
 			uint32_t p1, p2;
 			corner_ring(F, i, &p1, &p2);
+			double h1 = fct_v3_dot(x + 3 * (size_t)p1, n) - fct_v3_dot(p, n);
+			double h2 = fct_v3_dot(x + 3 * (size_t)p2, n) - fct_v3_dot(p, n);
+			if (first)
+				hlo = hhi = h1, first = 0;
+			hlo = fmin(hlo, fmin(h1, h2));
+			hhi = fmax(hhi, fmax(h1, h2));
 			if (F->p->passes > 0)
 				step_terms_shape(p, x + 3 * (size_t)p1, x + 3 * (size_t)p2, F->shape + 3 * v,
 				                 F->shape + 3 * (size_t)p1, F->shape + 3 * (size_t)p2, n, &a, &b);
@@ -698,10 +726,32 @@ static void flow_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 		}
 		fct_v3_sub(dv, p, F->x0 + 3 * v);
 		double l = step_solve(a, b, F->lambda_abs, fct_v3_dot(dv, n));
+		/* eq. (3) is a weighted mean of the neighbours' heights along n
+		 * (and of -dv.n, by lambda); with negative weights (obtuse or
+		 * folded triangles) it can leave their range and, swept again,
+		 * run away: held to the range, a no-op when no weight is negative */
+		double back = -fct_v3_dot(dv, n);
+		if (F->lambda_abs > 0)
+			hlo = fmin(hlo, back), hhi = fmax(hhi, back);
+		l = l < hlo ? hlo : l > hhi ? hhi : l;
 		if (F->p->crease)
 			l *= exp(-5 * F->s[v]);
 		double q[3];
-		fct_v3_axpy(q, p, l, n);
+		if (F->p->along_ray) {
+			/* along the sensor's ray through the vertex, as far as makes
+			 * the move along n equal to l (|n.r| at least 0.2) */
+			double r[3];
+			fct_v3_sub(r, p, F->p->origin);
+			double rl = sqrt(fct_v3_dot(r, r)), c = rl > 0 ? fct_v3_dot(r, n) / rl : 0;
+			if (!(rl > 0) || !isfinite(c)) {
+				fct_v3_axpy(q, p, l, n);
+			} else {
+				c = fabs(c) < 0.2 ? (c < 0 ? -0.2 : 0.2) : c;
+				fct_v3_axpy(q, p, l / (c * rl), r);
+			}
+		} else {
+			fct_v3_axpy(q, p, l, n);
+		}
 		if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
 			continue;
 		p[0] = q[0], p[1] = q[1], p[2] = q[2];
@@ -924,6 +974,8 @@ static void flow_free(struct flow *F)
 	free(F->sm);
 	free(F->sm2);
 	free(F->s);
+	free(F->ft);
+	free(F->vt9);
 	free(F->held);
 	free(F->nbr);
 	free(F->nbr_start);
@@ -939,6 +991,74 @@ static void flow_free(struct flow *F)
 		free(F->sc[t].fstamp);
 		free(F->sc[t].queue);
 	}
+}
+
+/* The crease vote by diffusion (vote_rings): every face's tensor n n^T and
+ * normal n (9 numbers), averaged to the vertices, back to the faces, ... */
+static void tinit_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	for (size_t f = lo; f < hi; f++) {
+		const double *n = F->fn + 3 * f;
+		double *t = F->ft + 9 * f;
+		t[0] = n[0] * n[0], t[1] = n[0] * n[1], t[2] = n[0] * n[2];
+		t[3] = n[1] * n[1], t[4] = n[1] * n[2], t[5] = n[2] * n[2];
+		t[6] = n[0], t[7] = n[1], t[8] = n[2];
+	}
+}
+
+static void tvert_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	const struct fct_adj *A = F->adj;
+	for (size_t v = lo; v < hi; v++) {
+		double a[9] = { 0 };
+		uint32_t b = A->vert_fstart[v], e = A->vert_fstart[v + 1];
+		for (uint32_t i = b; i < e; i++) {
+			const double *t = F->ft + 9 * (size_t)A->vert_f[i];
+			for (int j = 0; j < 9; j++)
+				a[j] += t[j];
+		}
+		double k = e > b ? 1.0 / (double)(e - b) : 0;
+		for (int j = 0; j < 9; j++)
+			F->vt9[9 * v + j] = a[j] * k;
+	}
+}
+
+static void tface_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	const struct fct_mesh *m = F->m;
+	for (size_t f = lo; f < hi; f++) {
+		uint32_t b = m->fstart[f], k = m->fstart[f + 1] - b;
+		double a[9] = { 0 };
+		for (uint32_t i = 0; i < k; i++) {
+			const double *t = F->vt9 + 9 * (size_t)m->fvert[b + i];
+			for (int j = 0; j < 9; j++)
+				a[j] += t[j];
+		}
+		for (int j = 0; j < 9; j++)
+			F->ft[9 * f + j] = k ? a[j] / k : 0;
+	}
+}
+
+static double vote_strength(const struct vote *vt, double delta);
+
+static void tcrease_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid;
+	double sum = 0;
+	for (size_t v = lo; v < hi; v++) {
+		const double *t = F->vt9 + 9 * v;
+		struct vote vt;
+		memcpy(vt.t, t, sizeof vt.t);
+		memcpy(vt.nbar, t + 6, sizeof vt.nbar);
+		vt.wsum = t[0] + t[3] + t[5];
+		double s = ramp(F->p, vote_strength(&vt, F->p->delta));
+		F->s[v] = s;
+		sum += s;
+	}
+	F->part[chunk] = sum;
 }
 
 /* Face geometry, vertex normals and (when needed) crease strength of the
@@ -969,6 +1089,18 @@ static double geometry(struct flow *F, int want_crease, size_t nwith)
 	run(F, fnormal_chunk, F->m->nf);
 	double ms = 0;
 	if (want_crease) {
+		if (F->p->vote_rings > 0) {
+			run(F, tinit_chunk, F->m->nf);
+			for (int r = 0; r < F->p->vote_rings; r++) {
+				run(F, tvert_chunk, F->m->nv);
+				run(F, tface_chunk, F->m->nf);
+			}
+			run(F, tvert_chunk, F->m->nv);
+			run(F, tcrease_chunk, F->m->nv);
+			F->cur = save;
+			F->next = save_next;
+			return nwith ? sum_parts(F->part) / (double)nwith : 0;
+		}
 		F->win_build = F->win_want && !F->wacc_built;
 		run(F, crease_chunk, F->m->nv);
 		ms = nwith ? sum_parts(F->part) / (double)nwith : 0;
@@ -992,9 +1124,29 @@ static double geometry(struct flow *F, int want_crease, size_t nwith)
 	return ms;
 }
 
-int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double *crease,
+/* The median length of the edges at positions x (0 with none). */
+static int median_edge(const struct fct_adj *adj, const double *x, double *out, struct fct_err *err)
+{
+	double *el = NULL;
+	if (alloc_doubles(&el, adj->ne, 1, err))
+		return -1;
+	size_t nel = 0;
+	for (size_t e = 0; e < adj->ne; e++) {
+		double d = sqrt(fct_v3_dist2(x + 3 * (size_t)adj->edge_v[2 * e],
+		                             x + 3 * (size_t)adj->edge_v[2 * e + 1]));
+		if (isfinite(d))
+			el[nel++] = d;
+	}
+	*out = nel ? select_kth(el, nel, nel / 2) : 0;
+	free(el);
+	return 0;
+}
+
+int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *pin, double *crease,
                  struct fct_areaflow_stats *st, struct fct_err *err)
 {
+	struct fct_areaflow_params pv = *pin;
+	const struct fct_areaflow_params *p = &pv;
 	struct fct_areaflow_stats dummy;
 	if (!st)
 		st = &dummy;
@@ -1035,18 +1187,44 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	/* Median edge length of the input: the unit of lambda, window and
 	 * sigma (the median, as the long edges across depth jumps and grazing
 	 * surfaces of range meshes would inflate a mean). */
-	double *el = NULL;
-	if (alloc_doubles(&el, adj.ne, 1, err))
+	double edge;
+	if (median_edge(&adj, m->xyz, &edge, err))
 		goto out;
-	size_t nel = 0;
-	for (size_t e = 0; e < adj.ne; e++) {
-		double d = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
-		                             m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
-		if (isfinite(d))
-			el[nel++] = d;
+	/* The guide (areaflow.h): on when GUIDE_PASSES Laplacian passes
+	 * shorten the median edge below GUIDE_RATIO of the input's, i.e. when
+	 * the noise is more than about half the sample spacing. */
+	if (p->method == FCT_SMOOTH_AREAFLOW && p->guide < 0 && edge > 0) {
+		if (build_neighbours(&F, err))
+			goto out;
+		memcpy(F.sm, m->xyz, sizeof *F.sm * 3 * m->nv);
+		double *save = F.cur, *save_next = F.next;
+		F.cur = F.sm, F.next = F.sm2, F.factor = 0.5;
+		for (int i = 0; i < GUIDE_PASSES; i++) {
+			run(&F, laplace_chunk, m->nv);
+			double *t = F.cur; F.cur = F.next; F.next = t;
+		}
+		double se;
+		int fail = median_edge(&adj, F.cur, &se, err);
+		F.cur = save, F.next = save_next;
+		if (fail)
+			goto out;
+		st->edge_ratio = se / edge;
+		pv.guide = st->edge_ratio < GUIDE_RATIO;
 	}
-	double edge = nel ? select_kth(el, nel, nel / 2) : 0;
-	free(el);
+	if (p->method == FCT_SMOOTH_AREAFLOW && p->guide == 0) {
+		/* the paper's own: no guide, eq. (4) over the window walk */
+		pv.passes = pv.rings = pv.vote_rings = 0;
+		pv.crease_lo = pv.crease_hi = 0;
+		pv.along_ray = 0;
+		if (pv.lambda < 0)
+			pv.lambda = 1;
+	}
+	if (pv.lambda < 0)
+		pv.lambda = 0;
+	st->guide = p->method == FCT_SMOOTH_AREAFLOW && p->guide != 0;
+	if (p->vote_rings > 0 && (alloc_doubles(&F.ft, m->nf, 9, err) ||
+	                          alloc_doubles(&F.vt9, m->nv, 9, err)))
+		goto out;
 	st->edge = edge;
 	F.lambda_abs = p->lambda * edge * edge;
 	F.radius2 = p->window * edge * p->window * edge;
@@ -1072,19 +1250,20 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *p, double
 	if (p->method == FCT_SMOOTH_AREAFLOW && (build_corners(&F, err) || build_colours(&F, err)))
 		goto out;
 	int need_crease = (p->method == FCT_SMOOTH_AREAFLOW && p->crease) || crease;
-	if (need_crease && scratch_alloc(&F, err))
+	if (need_crease && p->vote_rings <= 0 && scratch_alloc(&F, err))
 		goto out;
 	int maxit = p->iterations >= 0 ? p->iterations : p->max_iterations;
 	if (!(edge > 0))
 		maxit = 0;   /* no edge of any length: nothing can move */
 	/* the window cache pays when the crease is computed twice or more */
-	F.win_want = p->method == FCT_SMOOTH_AREAFLOW && p->crease && maxit + (crease != NULL) >= 2;
+	F.win_want = p->method == FCT_SMOOTH_AREAFLOW && p->crease && p->vote_rings <= 0 &&
+	             maxit + (crease != NULL) >= 2;
 	if (F.win_want &&
 	    (!(F.woff = fct_alloc_array(m->nv, sizeof *F.woff, err)) ||
 	     !(F.wacc = fct_alloc_array(m->nv, 1, err)) || !(F.wrej = fct_alloc_array(m->nv, 1, err))))
 		goto out;
 	if ((p->method == FCT_SMOOTH_LAPLACIAN || p->method == FCT_SMOOTH_TAUBIN || p->passes > 0) &&
-	    build_neighbours(&F, err))
+	    !F.nbr && build_neighbours(&F, err))
 		goto out;
 
 	for (int it = 0; it < maxit; it++) {

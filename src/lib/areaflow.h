@@ -11,8 +11,18 @@
  * (S_i the areas of the triangles of v's umbrella, v0 its input position),
  * scaled by exp(-5 s) where s in [0, 1] is the crease strength of eq. (4):
  * a tensor vote of the normals of the faces within a geodesic window of the
- * vertex.  All vertices move at once (Jacobi order), so the result does not
- * depend on the vertex order or on the number of threads. */
+ * vertex.  Vertices are swept by colours (Gauss-Seidel within a fixed
+ * colouring), so the result does not depend on the number of threads.
+ *
+ * Departures from the paper, for noise comparable to the sample spacing
+ * (Kinect-class range meshes; the paper's scanner had noise well under its
+ * spacing), all under the guide (guide below; off, the paper as written):
+ * normals from the area vectors of a Laplacian-smoothed copy averaged over
+ * rings; eq. (3)'s weights from that copy's umbrellas, lambda 0; eq. (4)
+ * on the copy's face tensors n n^T averaged over rings (the arc transport
+ * left out) with a noise ramp on s; moves along the sensor's rays.  With or
+ * without the guide, a step of eq. (3) is held to the range of its
+ * neighbours' heights (only binds when a weight is negative). */
 #ifndef FCT_AREAFLOW_H
 #define FCT_AREAFLOW_H
 
@@ -28,9 +38,14 @@ enum fct_smooth_method {
 
 struct fct_areaflow_params {
 	enum fct_smooth_method method;
+	/* The guide, for noise comparable to the sample spacing: 1 on, 0 off
+	 * (the paper as written: passes, rings, vote_rings, the ramp and
+	 * along_ray are not used), -1 (default) on when 5 Laplacian passes
+	 * shorten the median edge below 0.8 of the input's. */
+	int guide;
 	/* eq. (2): the weight of the squared distance moved from the input, in
 	 * squared median edge lengths of the input (so it does not depend on the
-	 * units); default 1. */
+	 * units); default -1: 0 with the guide, 1 without. */
 	double lambda;
 	/* > 0: exactly this many iterations; 0: none (only the crease strength
 	 * is computed); < 0: until the mean move of an iteration is below
@@ -48,12 +63,13 @@ struct fct_areaflow_params {
 	double lap_lambda;   /* Laplacian and Taubin (default 0.5) */
 	double taubin_mu;    /* Taubin's negative step (default -0.53) */
 	int threads;         /* 0 (default): one per online processor, at most 64 */
-	/* Normal smoothing: the face normals that vote and the vertex normals
-	 * the steps follow are area vectors averaged over this many rings
-	 * (default 0: the faces' own normals and the umbrella's). */
+	/* Guide: the face normals that vote and the vertex normals the steps
+	 * follow are area vectors averaged over this many rings (default 8;
+	 * without the guide 0: the faces' own normals and the umbrella's). */
 	int rings;
-	/* The normals are taken on a copy of the mesh smoothed by this many
-	 * Laplacian passes (factor 0.5; default 0: on the mesh itself); the
+	/* Guide: the normals are taken on a copy of the mesh smoothed by this
+	 * many Laplacian passes (factor 0.5; default 5; without the guide 0:
+	 * on the mesh itself); the
 	 * flow moves the mesh itself.  With passes or rings the step follows
 	 * the smoothed vertex normal, computed once per iteration.  With
 	 * passes, eq. (3) also takes the tangential shape of each umbrella
@@ -62,6 +78,19 @@ struct fct_areaflow_params {
 	 * and on a mesh whose noise is comparable to its edges the shape is
 	 * noise, with negative weights where triangles are obtuse or folded. */
 	int passes;
+	/* > 0: the crease vote is the faces' tensors n n^T (and normals)
+	 * averaged over this many rings of the guide instead of the geodesic
+	 * window walk (transport ignored); 0: the window walk. */
+	int vote_rings;
+	/* The noise-aware ramp on s: s' = (s - crease_lo) / (crease_hi -
+	 * crease_lo) held to [0, 1] (none when crease_hi <= crease_lo;
+	 * defaults 0.05 and 0.15). */
+	double crease_lo, crease_hi;
+	/* 1: each vertex moves along the sensor's ray from origin through it,
+	 * by as much as makes its move along n the step of eq. (3) (|n.r| held
+	 * at 0.2 or more); 0 (default): along n. */
+	int along_ray;
+	double origin[3];
 };
 
 void fct_areaflow_params_default(struct fct_areaflow_params *p);
@@ -84,6 +113,9 @@ struct fct_areaflow_stats {
 	 * radius since the cache was made (over all passes). */
 	size_t window_ids;
 	size_t window_walks;
+	int guide;             /* 1: the guide was used (areaflow) */
+	double edge_ratio;     /* guide auto: median edge after 5 Laplacian
+	                        * passes over the input's (0: not measured) */
 };
 
 /* Smooth m's positions in place by p->method.  Vertices in no face stay.
