@@ -422,38 +422,68 @@ static void faces_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk
 	}
 }
 
-/* One pass of the normal smoothing, vertices: vn = the mean of g over the
- * faces of the vertex (unnormalised: area vectors add up to the vector
- * area of the region, whose direction is the region's normal however noisy
- * its triangles are). */
-static void vsmooth_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+/* Ring averaging of w <= 9 numbers per face or vertex, by which the normal
+ * smoothing and the diffused vote widen their reach a ring per pair of
+ * passes.  To vertices: the mean over the vertex's faces; to faces: the
+ * mean over the face's corners. */
+/* Always inlined, and the sum unrolled: with w a constant the 3-wide pass
+ * is as fast as one written for 3 (rolled, it cost 8% of the flow on the
+ * 640x480 room). */
+static inline __attribute__((always_inline)) void
+mean_to_vertices(const struct flow *F, const double *face_val, double *vert_val, int w, size_t lo, size_t hi)
 {
-	(void)tid, (void)chunk;
 	const struct fct_adj *A = F->adj;
 	for (size_t v = lo; v < hi; v++) {
-		double n[3] = { 0, 0, 0 };
+		double a[9];
+		for (int j = 0; j < w; j++)
+			a[j] = 0;
 		uint32_t b = A->vert_fstart[v], e = A->vert_fstart[v + 1];
-		for (uint32_t i = b; i < e; i++)
-			fct_v3_add(n, n, F->g + 3 * (size_t)A->vert_f[i]);
+		for (uint32_t i = b; i < e; i++) {
+			const double *t = face_val + (size_t)w * A->vert_f[i];
+#pragma GCC unroll 9
+			for (int j = 0; j < w; j++)
+				a[j] += t[j];
+		}
 		double k = e > b ? 1.0 / (double)(e - b) : 0;
-		for (int j = 0; j < 3; j++)
-			F->vn[3 * v + j] = n[j] * k;
+		for (int j = 0; j < w; j++)
+			vert_val[(size_t)w * v + (size_t)j] = a[j] * k;
 	}
 }
 
-/* The face pass: g = the mean of vn over the corners of the face. */
-static void fsmooth_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+static inline __attribute__((always_inline)) void
+mean_to_faces(const struct flow *F, const double *vert_val, double *face_val, int w, size_t lo, size_t hi)
 {
-	(void)tid, (void)chunk;
 	const struct fct_mesh *m = F->m;
 	for (size_t f = lo; f < hi; f++) {
 		uint32_t b = m->fstart[f], k = m->fstart[f + 1] - b;
-		double n[3] = { 0, 0, 0 };
-		for (uint32_t i = 0; i < k; i++)
-			fct_v3_add(n, n, F->vn + 3 * (size_t)m->fvert[b + i]);
-		for (int j = 0; j < 3; j++)
-			F->g[3 * f + j] = k ? n[j] / k : 0;
+		double a[9];
+		for (int j = 0; j < w; j++)
+			a[j] = 0;
+		for (uint32_t i = 0; i < k; i++) {
+			const double *t = vert_val + (size_t)w * m->fvert[b + i];
+#pragma GCC unroll 9
+			for (int j = 0; j < w; j++)
+				a[j] += t[j];
+		}
+		for (int j = 0; j < w; j++)
+			face_val[(size_t)w * f + (size_t)j] = k ? a[j] / k : 0;
 	}
+}
+
+/* The normal smoothing: vn = the mean of g over the faces of the vertex
+ * (unnormalised: area vectors add up to the vector area of the region,
+ * whose direction is the region's normal however noisy its triangles
+ * are), then g = the mean of vn over the corners of the face. */
+static void vsmooth_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	mean_to_vertices(F, F->g, F->vn, 3, lo, hi);
+}
+
+static void fsmooth_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
+{
+	(void)tid, (void)chunk;
+	mean_to_faces(F, F->vn, F->g, 3, lo, hi);
 }
 
 /* Unit smoothed normals: face normals (for the vote) from g, vertex normals
@@ -1010,36 +1040,13 @@ static void tinit_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk
 static void tvert_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 {
 	(void)tid, (void)chunk;
-	const struct fct_adj *A = F->adj;
-	for (size_t v = lo; v < hi; v++) {
-		double a[9] = { 0 };
-		uint32_t b = A->vert_fstart[v], e = A->vert_fstart[v + 1];
-		for (uint32_t i = b; i < e; i++) {
-			const double *t = F->ft + 9 * (size_t)A->vert_f[i];
-			for (int j = 0; j < 9; j++)
-				a[j] += t[j];
-		}
-		double k = e > b ? 1.0 / (double)(e - b) : 0;
-		for (int j = 0; j < 9; j++)
-			F->vt9[9 * v + j] = a[j] * k;
-	}
+	mean_to_vertices(F, F->ft, F->vt9, 9, lo, hi);
 }
 
 static void tface_chunk(struct flow *F, int tid, size_t lo, size_t hi, int chunk)
 {
 	(void)tid, (void)chunk;
-	const struct fct_mesh *m = F->m;
-	for (size_t f = lo; f < hi; f++) {
-		uint32_t b = m->fstart[f], k = m->fstart[f + 1] - b;
-		double a[9] = { 0 };
-		for (uint32_t i = 0; i < k; i++) {
-			const double *t = F->vt9 + 9 * (size_t)m->fvert[b + i];
-			for (int j = 0; j < 9; j++)
-				a[j] += t[j];
-		}
-		for (int j = 0; j < 9; j++)
-			F->ft[9 * f + j] = k ? a[j] / k : 0;
-	}
+	mean_to_faces(F, F->vt9, F->ft, 9, lo, hi);
 }
 
 static double vote_strength(const struct vote *vt, double delta);
