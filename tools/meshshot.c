@@ -174,9 +174,7 @@ static void parse_opts(int argc, char **argv, struct opts *o)
 		fct_usage_error("--eye and --view cannot be used together");
 	if ((o->has_target || o->has_up) && o->view && !strcmp(o->view, "camera"))
 		fct_usage_error("--view camera takes its direction from the camera comment");
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
-	o->input = optind < argc ? argv[optind] : NULL;
+	o->input = fct_one_operand(argc, argv, optind, NULL);
 }
 
 /* The reference directions of the fitted views: forward (the sensor's line

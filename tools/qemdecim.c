@@ -67,9 +67,7 @@ int main(int argc, char **argv)
 	}
 	if (faces >= 0 && ratio >= 0)
 		fct_usage_error("-n and -r cannot both be given");
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
-	const char *in = optind < argc ? argv[optind] : NULL;
+	const char *in = fct_one_operand(argc, argv, optind, NULL);
 	const char *name = fct_path_display(in);
 
 	struct fct_err err;

@@ -198,8 +198,7 @@ int main(int argc, char **argv)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
+	const char *input = fct_one_operand(argc, argv, optind, "-");
 	if (mu_given && p.method != FCT_SMOOTH_TAUBIN)
 		fct_usage_error("--mu: only with --method taubin");
 	if (lambda_given) {
@@ -212,7 +211,6 @@ int main(int argc, char **argv)
 	}
 	if (guide_opt && !guide_given)
 		p.guide = 1;   /* an option of the guide turns it on */
-	const char *input = optind < argc ? argv[optind] : "-";
 	const char *name = fct_path_display(input);
 
 	struct fct_err err;

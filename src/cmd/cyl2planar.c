@@ -138,9 +138,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
-	o->pano = optind < argc ? argv[optind] : NULL;
+	o->pano = fct_one_operand(argc, argv, optind, NULL);
 	if (!o->out)
 		fct_usage_error("-o %s is needed", o->mesh ? "model" : "dir");
 	if (!o->mesh && !o->pano)

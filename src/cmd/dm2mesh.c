@@ -177,9 +177,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
-	o->input = optind < argc ? argv[optind] : "-";
+	o->input = fct_one_operand(argc, argv, optind, "-");
 	if (o->focal > 0 && !(o->depth.baseline > 0))
 		fct_usage_error("--focal is for disparities and needs --baseline");
 	if (o->points && (o->depth.baseline > 0 || o->depth.step != 1))

@@ -93,9 +93,7 @@ int main(int argc, char **argv)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
-	const char *input = optind < argc ? argv[optind] : "-";
+	const char *input = fct_one_operand(argc, argv, optind, "-");
 
 	struct fct_err err;
 	struct fct_mesh m;

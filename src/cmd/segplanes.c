@@ -77,11 +77,9 @@ int main(int argc, char **argv)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
+	const char *input = fct_one_operand(argc, argv, optind, "-");
 	if (factor_given && sp.target > 0)
 		fct_usage_error("-c and -n exclude each other");
-	const char *input = optind < argc ? argv[optind] : "-";
 	const char *name = fct_path_display(input);
 
 	struct fct_err err;

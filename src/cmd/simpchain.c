@@ -46,7 +46,7 @@ int main(int argc, char **argv)
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "aho:qt:v";
-	const char *out = NULL, *input = "-";
+	const char *out = NULL;
 	int ascii = 0, ch;
 	struct fct_chain_params params;
 	fct_chain_params_default(&params);
@@ -63,10 +63,7 @@ int main(int argc, char **argv)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (argc - optind > 1)
-		fct_usage_error("too many operands");
-	if (optind < argc)
-		input = argv[optind];
+	const char *input = fct_one_operand(argc, argv, optind, "-");
 	if (out && fct_format_for_path(out, ascii) == FCT_FORMAT_OBJ)
 		fct_usage_error("-o %s: OBJ cannot hold the edge element; write PLY", out);
 

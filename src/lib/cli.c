@@ -224,3 +224,10 @@ void fct_report(const char *key, const char *fmt, ...)
 	va_end(ap);
 	fprintf(stderr, "%s: %s=%s\n", fct_prog, key, buf);
 }
+
+const char *fct_one_operand(int argc, char **argv, int optind, const char *absent)
+{
+	if (argc - optind > 1)
+		fct_usage_error("too many operands");
+	return optind < argc ? argv[optind] : absent;
+}

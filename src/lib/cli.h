@@ -30,6 +30,9 @@ _Noreturn void fct_usage_error(const char *fmt, ...) __attribute__((format(print
 /* After getopt/getopt_long returned '?': "prog: -x: unknown option" or
  * "prog: -x: option requires an argument", exit 2. */
 _Noreturn void fct_bad_option(const char *optstring, char **argv);
+/* The one operand a filter takes after its options: argv[optind], or
+ * absent when there is none; more than one is "too many operands", exit 2. */
+const char *fct_one_operand(int argc, char **argv, int optind, const char *absent);
 
 extern int fct_quiet;    /* -q: no warnings, no progress */
 extern int fct_verbose;  /* -v: progress and figures */
