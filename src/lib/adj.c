@@ -125,15 +125,17 @@ out:
 
 /* The faces of each vertex, each face once: a face's stamp in last[v]
  * tells that it was already counted for v. */
-static int build_vertex_faces(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
+int fct_vertex_faces(const struct fct_mesh *m, uint32_t **vert_fstart, uint32_t **vert_f,
+                     struct fct_err *err)
 {
+	*vert_fstart = NULL, *vert_f = NULL;
 	uint32_t *last = fct_alloc_array(m->nv, sizeof *last, err);
-	a->vert_fstart = fct_alloc_array(m->nv + 1, sizeof *a->vert_fstart, err);
-	if (!last || !a->vert_fstart) {
+	uint32_t *start = fct_alloc_array(m->nv + 1, sizeof *start, err);
+	if (!last || !start) {
 		free(last);
+		free(start);
 		return -1;
 	}
-	uint32_t *start = a->vert_fstart;
 	memset(start, 0, (m->nv + 1) * sizeof *start);
 	memset(last, 0xff, m->nv * sizeof *last);
 	for (size_t f = 0; f < m->nf; f++)
@@ -146,9 +148,10 @@ static int build_vertex_faces(struct fct_adj *a, const struct fct_mesh *m, struc
 		}
 	for (size_t v = 0; v < m->nv; v++)
 		start[v + 1] += start[v];
-	a->vert_f = fct_alloc_array(start[m->nv], sizeof *a->vert_f, err);
-	if (!a->vert_f) {
+	uint32_t *list = fct_alloc_array(start[m->nv], sizeof *list, err);
+	if (!list) {
 		free(last);
+		free(start);
 		return -1;
 	}
 	/* Fill with start[v] as the cursor, then shift the starts back. */
@@ -158,13 +161,14 @@ static int build_vertex_faces(struct fct_adj *a, const struct fct_mesh *m, struc
 			uint32_t v = m->fvert[c];
 			if (last[v] != f) {
 				last[v] = (uint32_t)f;
-				a->vert_f[start[v]++] = (uint32_t)f;
+				list[start[v]++] = (uint32_t)f;
 			}
 		}
 	for (size_t v = m->nv; v > 0; v--)
 		start[v] = start[v - 1];
 	start[0] = 0;
 	free(last);
+	*vert_fstart = start, *vert_f = list;
 	return 0;
 }
 
@@ -175,7 +179,7 @@ int fct_adj_build(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *e
 		return -1;
 	a->nv = m->nv;
 	a->nf = m->nf;
-	if (build_edges(a, m, err) || build_vertex_faces(a, m, err)) {
+	if (build_edges(a, m, err) || fct_vertex_faces(m, &a->vert_fstart, &a->vert_f, err)) {
 		fct_adj_free(a);
 		return -1;
 	}

@@ -61,6 +61,13 @@ struct fct_adj {
  * guarantees.  Returns 0, or -1 when out of memory (a is then empty). */
 int fct_adj_build(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err);
 
+/* Only the faces of each vertex, as fct_adj_build gives them in vert_fstart
+ * and vert_f (each face once, in increasing index), for users that need no
+ * edges; both arrays are the caller's to free.  0, or -1 when out of
+ * memory (both NULL). */
+int fct_vertex_faces(const struct fct_mesh *m, uint32_t **vert_fstart, uint32_t **vert_f,
+                     struct fct_err *err);
+
 /* Free what a owns and make it empty; a may be NULL. */
 void fct_adj_free(struct fct_adj *a);
 

@@ -26,6 +26,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "adj.h"
 #include "geom.h"
 
 static inline double dmin3(double a, double b, double c)
@@ -297,25 +298,15 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthr
 	G->tv = t->fvert;
 	if (!topo)
 		return 0;
-	size_t nt = G->nt, nv = G->nv;
-	G->tn = fct_alloc_array(nt ? nt : 1, 4 * sizeof *G->tn, err);
-	G->vfs = calloc(nv + 2, sizeof *G->vfs);
-	G->vf = fct_alloc_array(nt ? nt : 1, 3 * sizeof *G->vf, err);
-	if (!G->tn || !G->vfs || !G->vf) {
-		fct_fail(err, "out of memory");
-		goto fail;
-	}
+	size_t nt = G->nt;
 	if (nt > (size_t)UINT32_MAX / 3) {
 		fct_fail(err, "%zu triangles: too many", nt);
 		goto fail;
 	}
+	G->tn = fct_alloc_array(nt, 4 * sizeof *G->tn, err);
+	if (!G->tn || fct_vertex_faces(t, &G->vfs, &G->vf, err))
+		goto fail;
 	run(nthreads, normals_chunk, G, nt, 0);
-	for (size_t c = 0; c < 3 * nt; c++)
-		G->vfs[G->tv[c] + 2]++;
-	for (size_t v = 0; v < nv; v++)
-		G->vfs[v + 2] += G->vfs[v + 1];
-	for (size_t c = 0; c < 3 * nt; c++)
-		G->vf[G->vfs[G->tv[c] + 1]++] = (uint32_t)(c / 3);
 	return 0;
 fail:
 	geo_free(G);
