@@ -319,6 +319,8 @@ static double tri_orient(const struct work *w, const struct fct_mesh *m, const u
 /* A triangle thinner than this (twice its area over its longest edge
  * squared) is a sliver. */
 #define SLIVER 1e-6
+/* Triangle visits the sliver flips of one patch may make. */
+#define SLIVER_BUDGET ((size_t)1 << 26)
 
 /* Triangulating in the image can cut an ear from three corners that the
  * projection put on one crease line in space: a triangle of no area whose
@@ -326,7 +328,8 @@ static double tri_orient(const struct work *w, const struct fct_mesh *m, const u
  * collinear boundary edges cannot be its longest) with the triangle across
  * it when both new triangles keep the patch's winding and are not thin.
  * sgn is the sign of the patch's winding along n. */
-static size_t flip_slivers(struct work *w, const struct fct_mesh *m, const double n[3], double sgn)
+static size_t flip_slivers(struct work *w, const struct fct_mesh *m, const double n[3], double sgn,
+                           size_t *budget)
 {
 	size_t flips = 0;
 	for (size_t k = 0; k < w->nptri; k++) {
@@ -334,6 +337,12 @@ static size_t flip_slivers(struct work *w, const struct fct_mesh *m, const doubl
 		double l2, o = tri_orient(w, m, t, n, &l2);
 		if (!(l2 > 0) || fabs(o) >= SLIVER * l2)
 			continue;
+		/* each sliver scans the patch's triangles twice: a budget keeps a
+		 * patch of thousands of collinear corners from taking quadratic
+		 * time (what it leaves stays a sliver) */
+		if (*budget < 2 * w->nptri)
+			break;
+		*budget -= 2 * w->nptri;
 		/* rotate t to (p, q, r) with p-q its longest edge */
 		int e = 0;
 		double best = -1;
@@ -484,8 +493,9 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 	}
 	/* a run of collinear corners leaves slivers side by side: each pass
 	 * frees the next one */
+	size_t budget = SLIVER_BUDGET;
 	for (int pass = 0; pass < 16; pass++) {
-		size_t f = flip_slivers(w, m, n, s < 0 ? -1 : 1);
+		size_t f = flip_slivers(w, m, n, s < 0 ? -1 : 1, &budget);
 		st->slivers_flipped += f;
 		if (f == 0)
 			break;
