@@ -367,15 +367,20 @@ static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
 /* Walk from triangle t downhill to the triangle nearest x: across the edge
  * or around the vertex where the closest point lies.  Returns the triangle;
  * *d2 its squared distance, q the point, *r its region; -1 when it is
- * still going after WALK_STEPS steps (along a border towards points the
- * view did not see, mostly: such voxels are skipped as border voxels are). */
-enum { WALK_STEPS = 12 };
+ * still going after WALK_STEPS steps, or still farther than the band
+ * (squared: band2) after BAND_STEPS.  Such walks creep along the band's
+ * edge by fractions of a millimetre a step: on a room view at 2 cm they
+ * were a third of all steps, and giving up after 4 loses 1% of the band's
+ * voxels, all within millimetres of its edge. */
+enum { WALK_STEPS = 12, BAND_STEPS = 4 };
 
-static int32_t walk(const struct geo *G, int32_t t, const double x[3], double *d2out, double q[3],
-                    enum fct_tri_region *r)
+static int32_t walk(const struct geo *G, int32_t t, const double x[3], double band2, double *d2out,
+                    double q[3], enum fct_tri_region *r)
 {
 	double best = tri_closest(G, (size_t)t, x, q, r);
 	for (int step = 0;; step++) {
+		if (step == BAND_STEPS && (float)best > band2)
+			return -1;
 		int32_t next = -1;
 		double nd = best, nq[3];
 		enum fct_tri_region nr = *r;
@@ -1102,16 +1107,18 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 		t = id[si], s = s2;
 	}
 	/* Far from the plane seen, on either side: a walk downhill from
-	 * there does not come into the band (surfaces behind another are the
-	 * far layer's). */
-	if (s > band + F->vox || s < -(band + 2 * F->vox))
+	 * there seldom comes into the band (surfaces behind another are the
+	 * far layer's).  From half a voxel out it did for 250 of the 385,000
+	 * band voxels of a room view at 2 cm, and the walks that ended out of
+	 * the band were 40% of all. */
+	if (fabs(s) > band + 0.5 * F->vox)
 		return -1;
 	/* The sample is the nearest one, not the triangle under the foot:
 	 * find that one in the image first (cheaper than walking around
 	 * vertices in space). */
 	if (stays)
 		t = locate(R, t, sx, sy);
-	t = walk(G, t, x, d2, q, r);
+	t = walk(G, t, x, band * band, d2, q, r);
 	return t >= 0 && (float)*d2 <= band * band ? t : -1;   /* as float: the band's last layer stays in */
 }
 
