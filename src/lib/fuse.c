@@ -229,7 +229,8 @@ struct geo {
 	const double *xyz;
 	const uint32_t *tv;      /* 3 per triangle */
 	uint32_t *tvown;
-	double *tn;              /* unit normal n and n . a, 4 per triangle; NaN: degenerate */
+	float *tn;               /* unit normal n and n . a, 4 per triangle; NaN: degenerate
+	                          * (float: half the memory the search has to bring in) */
 	uint32_t *vfs, *vf;      /* faces of vertex v: vf[vfs[v] .. vfs[v + 1]), in face order */
 	struct fct_mesh tris;    /* the triangulated mesh when the input has polygons */
 	int own;
@@ -259,9 +260,9 @@ static void normals_chunk(void *ctx, size_t lo, size_t hi)
 		double len = sqrt(fct_v3_dot(n, n));
 		int degenerate = !(len > 0) || !isfinite(len) || fct_triangle_degenerate(a, b, c);
 		for (int k = 0; k < 3; k++)
-			G->tn[4 * f + k] = degenerate ? NAN : n[k] / len;
-		const double *tn = &G->tn[4 * f];
-		G->tn[4 * f + 3] = tn[0] * a[0] + tn[1] * a[1] + tn[2] * a[2];   /* NaN with the normal */
+			G->tn[4 * f + k] = degenerate ? NAN : (float)(n[k] / len);
+		const float *tn = &G->tn[4 * f];
+		G->tn[4 * f + 3] = (float)(tn[0] * a[0] + tn[1] * a[1] + tn[2] * a[2]);   /* NaN with the normal */
 	}
 }
 
@@ -313,6 +314,12 @@ fail:
 	return -1;
 }
 
+static inline void tri_normal(const struct geo *G, size_t t, double n[3])
+{
+	const float *tn = &G->tn[4 * t];
+	n[0] = tn[0], n[1] = tn[1], n[2] = tn[2];
+}
+
 static inline double tri_closest(const struct geo *G, size_t t, const double x[3], double q[3],
                                  enum fct_tri_region *r)
 {
@@ -359,7 +366,9 @@ static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
 		fct_v3_sub(s, r, p);
 		double c = fct_v3_dot(u, s) / sqrt(fct_v3_dot(u, u) * fct_v3_dot(s, s));
 		double ang = acos(c < -1 ? -1 : c > 1 ? 1 : c);
-		fct_v3_axpy(vn, vn, ang, &G->tn[4 * (size_t)f]);
+		double n[3];
+		tri_normal(G, f, n);
+		fct_v3_axpy(vn, vn, ang, n);
 	}
 	return 0;
 }
@@ -1044,7 +1053,7 @@ static int32_t seen_at(const struct raster *R, const int32_t *id, double x, doub
 
 static inline double plane_dist(const struct geo *G, int32_t t, const double x[3])
 {
-	const double *n = &G->tn[4 * (size_t)t];
+	const float *n = &G->tn[4 * (size_t)t];
 	return x[0] * n[0] + x[1] * n[1] + x[2] * n[2] - n[3];
 }
 
@@ -1093,7 +1102,7 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 		return -1;
 	int stays = 0;
 	for (int it = 0; it < 8; it++) {
-		const double *n = &G->tn[4 * (size_t)t];
+		const float *n = &G->tn[4 * (size_t)t];
 		double f[3] = { x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2] };
 		if (!sample_of(R, f, &sx, &sy, &depth))
 			break;
@@ -1187,7 +1196,8 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 					}
 					if (t < 0)
 						continue;
-					const double *n = &G->tn[4 * (size_t)t];
+					double n[3];
+					tri_normal(G, t, n);
 					fct_v3_sub(xq, x, q);
 					double d;
 					if (r == FCT_TRI_FACE) {
@@ -1209,10 +1219,12 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 							continue;
 						}
 						double pn[3];
-						if (o >= 0)
-							fct_v3_add(pn, n, &G->tn[4 * (size_t)o]);
-						else
+						if (o >= 0) {
+							tri_normal(G, o, pn);
+							fct_v3_add(pn, n, pn);
+						} else {
 							memcpy(pn, n, sizeof pn);
+						}
 						d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
 					}
 					put(b, xx + 8 * (y + 8 * z), (float)d, (float)view_weight(F->v, F->p, q, n));
