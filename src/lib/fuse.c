@@ -14,9 +14,11 @@
  * closest point lies) to the local minimum.  Voxels in front of the surface
  * they see but out of its band also try the surfaces a band's width away in
  * the image (around silhouettes).  Cost: a few closest-point tests per
- * candidate voxel, nothing per triangle but the raster; blocks are shared
- * out among threads and each writes only its own results, so the volume is
- * the same for any thread count. */
+ * candidate voxel, nothing per triangle but the raster.  The tests wait on
+ * memory more than they compute, so a block's voxels are projected and
+ * their triangles looked up for all of them before any is searched.  Blocks
+ * are shared out among threads and each writes only its own results, so
+ * the volume is the same for any thread count. */
 #include "fuse.h"
 
 #include <math.h>
@@ -1131,104 +1133,141 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 	return t >= 0 && (float)*d2 <= band * band ? t : -1;   /* as float: the band's last layer stays in */
 }
 
-static void true_chunk(void *ctx, size_t lo, size_t hi)
+/* Voxel l of block b, at x, seen at sample (sx, sy) on triangle t. */
+static void true_voxel(const struct fctx *F, struct sblock *b, int l, const double x[3], double sx,
+                       double sy, int32_t t)
 {
-	const struct fctx *F = ctx;
 	const struct geo *G = F->G;
 	const struct raster *R = F->R;
 	double vox = F->vox, band = F->p->band;
+	double d2, q[3], xq[3];
+	enum fct_tri_region r;
+	int32_t t0 = t;
+	t = search(F, R->id, t, x, &d2, q, &r);
+	/* A second layer (the far side of a closed object, a surface behind
+	 * another) where there is one. */
+	int32_t tf = seen_at(R, R->idf, sx, sy);
+	if (tf >= 0 && tf != t0) {
+		double d2f, qf[3];
+		enum fct_tri_region rf;
+		tf = search(F, R->idf, tf, x, &d2f, qf, &rf);
+		if (tf >= 0 && (t < 0 || d2f < d2)) {
+			t = tf, d2 = d2f, r = rf;
+			memcpy(q, qf, sizeof qf);
+		}
+	}
+	if (t < 0 && plane_dist(G, t0, x) > 0) {
+		/* In front of the surface seen but out of its band: a surface
+		 * beside, around a silhouette or in a concave corner, may be
+		 * near.  Try the ones a band's width away in the image. */
+		const double *P = F->v->pose;
+		double e[3] = { x[0] + (band + vox) * P[0], x[1] + (band + vox) * P[4],
+		                x[2] + (band + vox) * P[8] }, ex, ey, ed;
+		if (!sample_of(R, e, &ex, &ey, &ed))
+			return;
+		double rp = hypot(ex - sx, ey - sy);
+		static const double dir[8][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 },
+		                                   { .5, 0 }, { -.5, 0 }, { 0, .5 }, { 0, -.5 } };
+		for (int di = 0; di < 8; di++) {
+			long si = sample_index(R, sx + rp * dir[di][0], sy + rp * dir[di][1]);
+			if (si < 0 || R->id[si] < 0 || R->id[si] == t0 ||
+			    fabs(plane_dist(G, R->id[si], x)) > band)
+				continue;
+			double d2f, qf[3];
+			enum fct_tri_region rf;
+			int32_t tf2 = search(F, R->id, R->id[si], x, &d2f, qf, &rf);
+			if (tf2 >= 0 && (t < 0 || d2f < d2)) {
+				t = tf2, d2 = d2f, r = rf;
+				memcpy(q, qf, sizeof qf);
+			}
+		}
+	}
+	if (t < 0)
+		return;
+	double n[3];
+	tri_normal(G, t, n);
+	fct_v3_sub(xq, x, q);
+	double d;
+	if (r == FCT_TRI_FACE) {
+		d = fct_v3_dot(xq, n);
+	} else if (r == FCT_TRI_A || r == FCT_TRI_B || r == FCT_TRI_C) {
+		uint32_t vv = G->tv[3 * (size_t)t + (r == FCT_TRI_A ? 0 : r == FCT_TRI_B ? 1 : 2)];
+		double vn[3];
+		if (vertex_normal(G, vv, vn)) {
+			b->nborder++;
+			return;
+		}
+		d = copysign(sqrt(d2), fct_v3_dot(xq, vn));
+	} else {
+		int e = r == FCT_TRI_AB ? 0 : r == FCT_TRI_BC ? 1 : 2;
+		const uint32_t *tv = &G->tv[3 * (size_t)t];
+		int32_t o = across(G, (size_t)t, tv[e], tv[(e + 1) % 3]);
+		if (o == -1) {
+			b->nborder++;
+			return;
+		}
+		double pn[3];
+		if (o >= 0) {
+			tri_normal(G, o, pn);
+			fct_v3_add(pn, n, pn);
+		} else {
+			memcpy(pn, n, sizeof pn);
+		}
+		d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
+	}
+	put(b, l, (float)d, (float)view_weight(F->v, F->p, q, n));
+}
+
+/* A block at a time, in stages: its voxels are projected and the samples
+ * they fall on asked for; then the triangles seen there are looked up and
+ * their planes and corners asked for; then the voxels are searched.  Each
+ * search's loads depend on each other, the block's voxels' do not, so the
+ * memory is read for many voxels at once. */
+struct seen {
+	double x[3], sx, sy;
+	int32_t t;               /* -1: nothing seen (or out of the clip box) */
+	int16_t l;               /* the voxel in its block */
+};
+
+static void true_chunk(void *ctx, size_t lo, size_t hi)
+{
+	const struct fctx *F = ctx;
+	const struct raster *R = F->R;
+	const struct geo *G = F->G;
+	double vox = F->vox;
+	struct seen V[FCT_VOXBLOCK_N];
 	for (size_t bi = lo; bi < hi; bi++) {
 		struct sblock *b = F->s->blk[bi];
+		int n = 0;
 		for (int z = b->lo[2]; z <= b->hi[2]; z++)
 			for (int y = b->lo[1]; y <= b->hi[1]; y++)
 				for (int xx = b->lo[0]; xx <= b->hi[0]; xx++) {
-					int32_t i = b->bx * 8 + xx, j = b->by * 8 + y, k = b->bz * 8 + z;
-					if (!in_clip(F->p, i, j, k))
+					int32_t i = b->bx * FCT_VOXBLOCK + xx, j = b->by * FCT_VOXBLOCK + y,
+					        k = b->bz * FCT_VOXBLOCK + z;
+					struct seen *e = &V[n];
+					double depth;
+					e->x[0] = i * vox, e->x[1] = j * vox, e->x[2] = k * vox;
+					if (!in_clip(F->p, i, j, k) || !sample_of(R, e->x, &e->sx, &e->sy, &depth))
 						continue;
-					double x[3] = { i * vox, j * vox, k * vox }, sx, sy, depth;
-					if (!sample_of(R, x, &sx, &sy, &depth))
-						continue;
-					int32_t t = seen_at(R, R->id, sx, sy);
-					if (t < 0)
-						continue;
-					double d2, q[3], xq[3];
-					enum fct_tri_region r;
-					int32_t t0 = t;
-					t = search(F, R->id, t, x, &d2, q, &r);
-					/* A second layer (the far side of a closed object,
-					 * a surface behind another) where there is one. */
-					int32_t tf = seen_at(R, R->idf, sx, sy);
-					if (tf >= 0 && tf != t0) {
-						double d2f, qf[3];
-						enum fct_tri_region rf;
-						tf = search(F, R->idf, tf, x, &d2f, qf, &rf);
-						if (tf >= 0 && (t < 0 || d2f < d2)) {
-							t = tf, d2 = d2f, r = rf;
-							memcpy(q, qf, sizeof qf);
-						}
+					long si = sample_index(R, e->sx, e->sy);
+					if (si >= 0) {
+						__builtin_prefetch(&R->id[si]);
+						__builtin_prefetch(&R->idf[si]);
 					}
-					if (t < 0 && plane_dist(G, t0, x) > 0) {
-						/* In front of the surface seen but out of
-						 * its band: a surface beside, around a
-						 * silhouette, may be near.  Try the ones a
-						 * band's width away in the image. */
-						const double *P = F->v->pose;
-						double e[3] = { x[0] + (band + vox) * P[0], x[1] + (band + vox) * P[4],
-						                x[2] + (band + vox) * P[8] }, ex, ey, ed;
-						if (!sample_of(R, e, &ex, &ey, &ed))
-							continue;
-						double rp = hypot(ex - sx, ey - sy);
-						static const double dir[8][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 },
-						                                   { .5, 0 }, { -.5, 0 }, { 0, .5 }, { 0, -.5 } };
-						for (int di = 0; di < 8; di++) {
-							long si = sample_index(R, sx + rp * dir[di][0], sy + rp * dir[di][1]);
-							if (si < 0 || R->id[si] < 0 || R->id[si] == t0 ||
-							    fabs(plane_dist(G, R->id[si], x)) > band)
-								continue;
-							double d2f, qf[3];
-							enum fct_tri_region rf;
-							int32_t tf2 = search(F, R->id, R->id[si], x, &d2f, qf, &rf);
-							if (tf2 >= 0 && (t < 0 || d2f < d2)) {
-								t = tf2, d2 = d2f, r = rf;
-								memcpy(q, qf, sizeof qf);
-							}
-						}
-					}
-					if (t < 0)
-						continue;
-					double n[3];
-					tri_normal(G, t, n);
-					fct_v3_sub(xq, x, q);
-					double d;
-					if (r == FCT_TRI_FACE) {
-						d = fct_v3_dot(xq, n);
-					} else if (r == FCT_TRI_A || r == FCT_TRI_B || r == FCT_TRI_C) {
-						uint32_t vv = G->tv[3 * (size_t)t + (r == FCT_TRI_A ? 0 : r == FCT_TRI_B ? 1 : 2)];
-						double vn[3];
-						if (vertex_normal(G, vv, vn)) {
-							b->nborder++;
-							continue;
-						}
-						d = copysign(sqrt(d2), fct_v3_dot(xq, vn));
-					} else {
-						int e = r == FCT_TRI_AB ? 0 : r == FCT_TRI_BC ? 1 : 2;
-						const uint32_t *tv = &G->tv[3 * (size_t)t];
-						int32_t o = across(G, (size_t)t, tv[e], tv[(e + 1) % 3]);
-						if (o == -1) {
-							b->nborder++;
-							continue;
-						}
-						double pn[3];
-						if (o >= 0) {
-							tri_normal(G, o, pn);
-							fct_v3_add(pn, n, pn);
-						} else {
-							memcpy(pn, n, sizeof pn);
-						}
-						d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
-					}
-					put(b, xx + 8 * (y + 8 * z), (float)d, (float)view_weight(F->v, F->p, q, n));
+					e->l = (int16_t)(xx + FCT_VOXBLOCK * (y + FCT_VOXBLOCK * z));
+					n++;
 				}
+		for (int v = 0; v < n; v++) {
+			struct seen *e = &V[v];
+			e->t = seen_at(R, R->id, e->sx, e->sy);
+			if (e->t >= 0) {
+				__builtin_prefetch(&G->tn[4 * (size_t)e->t]);
+				__builtin_prefetch(&G->tv[3 * (size_t)e->t]);
+			}
+		}
+		for (int v = 0; v < n; v++)
+			if (V[v].t >= 0)
+				true_voxel(F, b, V[v].l, V[v].x, V[v].sx, V[v].sy, V[v].t);
 	}
 }
 
