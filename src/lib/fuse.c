@@ -48,24 +48,26 @@ struct sblock {
 	int32_t bx, by, bz;
 	int8_t lo[3], hi[3];     /* box of voxels that may be in the band (lo > hi: none) */
 	size_t nvox, nborder;    /* voxels with a value, voxels skipped on a border */
-	struct fct_voxblock *vb; /* the volume's block, updated in place; NULL: not in it yet, */
-	float *d;                /* and the results go here: FCT_VOXBLOCK_N distances, as many weights (0: none) */
+	struct fct_voxblock *vb; /* the volume's block, updated in place (each block is one thread's) */
+	int fresh;               /* vb was created for this view: dropped again if nothing is put */
 };
 
-/* Voxel l of b gets distance d with weight w: into the volume when the
- * block is there (each block is one thread's), else into its results. */
+/* Voxel l of b gets distance d with weight w: the weighted average.  A
+ * fresh block holds 0 with weight 0 and each voxel is put once per view, so
+ * the average is 0 + d (d w / w is exact in double); a weight that is
+ * not positive leaves such a voxel unobserved. */
 static inline void put(struct sblock *b, int l, float d, float w)
 {
 	b->nvox++;
 	struct fct_voxblock *vb = b->vb;
-	if (vb) {
-		double W = (double)vb->weight[l] + w;
-		vb->sdf[l] = (float)(vb->sdf[l] + ((double)d - vb->sdf[l]) * w / W);
-		vb->weight[l] = (float)W;
-	} else {
-		b->d[l] = d;
-		b->d[FCT_VOXBLOCK_N + l] = w;
+	if (b->fresh && w < INFINITY) {
+		if (w > 0)
+			vb->sdf[l] = d + 0.0f, vb->weight[l] = w;   /* + 0: as 0 + d, -0 is 0 */
+		return;
 	}
+	double W = (double)vb->weight[l] + w;
+	vb->sdf[l] = (float)(vb->sdf[l] + ((double)d - vb->sdf[l]) * w / W);
+	vb->weight[l] = (float)W;
 }
 
 struct scratch {
@@ -903,10 +905,9 @@ static inline int add_point(struct cand *c, const double p[3])
  * is wider anyway); larger ones, points at most half a voxel apart. */
 enum { BOX_TRIANGLE = 4 };
 
-/* The candidate blocks of G for a band of r voxels into s; those of them
- * that g has are updated there, the others get FCT_VOXBLOCK_N distances and
- * weights (weights 0) from one slab *slab. */
-static int candidates(struct scratch *s, float **slab, const struct fct_voxgrid *g, const struct geo *G,
+/* The candidate blocks of G for a band of r voxels into s, each with its
+ * block of g: created (fresh) when g did not have it, in the order of s. */
+static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
                       double vox, int r, struct fct_err *err)
 {
 	struct cand c = { { 0 }, vox, 1 / vox, err };
@@ -963,52 +964,39 @@ static int candidates(struct scratch *s, float **slab, const struct fct_voxgrid 
 		if (add_box(s, lo, hi, err))
 			goto done;
 	}
-	size_t missing = 0;
 	for (size_t bi = 0; bi < s->n; bi++) {
 		struct sblock *b = s->blk[bi];
 		long gi = fct_voxgrid_index(g, b->bx, b->by, b->bz);
-		b->vb = gi >= 0 ? fct_voxgrid_at(g, (size_t)gi) : NULL;
-		missing += !b->vb;
+		b->fresh = gi < 0;
+		b->vb = gi >= 0 ? fct_voxgrid_at(g, (size_t)gi) : fct_voxgrid_block(g, b->bx, b->by, b->bz, 1, err);
+		if (!b->vb)
+			goto done;
 	}
-	*slab = fct_alloc_array(missing ? missing : 1, 2 * FCT_VOXBLOCK_N * sizeof **slab, err);
-	if (!*slab)
-		goto done;
-	missing = 0;
-	for (size_t bi = 0; bi < s->n; bi++)
-		if (!s->blk[bi]->vb) {
-			float *d = *slab + missing++ * 2 * FCT_VOXBLOCK_N;
-			s->blk[bi]->d = d;
-			memset(d + FCT_VOXBLOCK_N, 0, FCT_VOXBLOCK_N * sizeof *d);
-		}
 	rc = 0;
 done:
 	scratch_free(&c.cells);
 	return rc;
 }
 
-/* Results of the blocks the volume did not have into new blocks, in
- * creation order (the others were updated in place). */
-static int commit(struct fct_voxgrid *g, const struct scratch *s, struct fct_fuse_stats *st,
-                  struct fct_err *err)
+/* The statistics, and the fresh blocks that got nothing out of g again
+ * (from index `from` on, where the view's blocks begin): g keeps the blocks
+ * written, in the order of s. */
+static int commit(struct fct_voxgrid *g, size_t from, const struct scratch *s,
+                  struct fct_fuse_stats *st, struct fct_err *err)
 {
+	unsigned char *keep = fct_alloc_array(s->n ? s->n : 1, 1, err);
+	if (!keep)
+		return -1;
+	size_t n = 0;
 	for (size_t bi = 0; bi < s->n; bi++) {
 		const struct sblock *b = s->blk[bi];
 		st->border += b->nborder;
 		st->voxels += b->nvox;
-		if (!b->nvox || b->vb)
-			continue;
-		struct fct_voxblock *vb = fct_voxgrid_block(g, b->bx, b->by, b->bz, 1, err);
-		if (!vb)
-			return -1;
-		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
-			float w = b->d[FCT_VOXBLOCK_N + l];
-			if (!(w > 0))
-				continue;
-			double W = (double)vb->weight[l] + w;
-			vb->sdf[l] = (float)(vb->sdf[l] + ((double)b->d[l] - vb->sdf[l]) * w / W);
-			vb->weight[l] = (float)W;
-		}
+		if (b->fresh)
+			keep[n++] = b->nvox > 0;
 	}
+	fct_voxgrid_drop(g, from, keep);
+	free(keep);
 	return 0;
 }
 
@@ -1284,7 +1272,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		return -1;
 	struct raster R;
 	struct scratch s = { 0 };
-	float *slab = NULL;
+	size_t from = fct_voxgrid_count(g);
 	int rc = -1;
 	/* True distance: two samples per pixel along each axis, so that
 	 * every triangle of a range image's grid owns one; projective: the
@@ -1296,11 +1284,11 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		goto done;
 	if (R.w > 0) {
 		double r = ceil(band / vox);
-		if (candidates(&s, &slab, g, &G, vox, (int)(r < 100 ? r : 100), err))
+		if (candidates(&s, g, &G, vox, (int)(r < 100 ? r : 100), err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox };
 		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);
-		if (commit(g, &s, st, err))
+		if (commit(g, from, &s, st, err))
 			goto done;
 	}
 	if (proj) {
@@ -1311,8 +1299,9 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	}
 	rc = 0;
 done:
+	if (rc)   /* no half-made blocks left behind */
+		fct_voxgrid_drop(g, from, NULL);
 	scratch_free(&s);
-	free(slab);
 	raster_free(&R);
 	geo_free(&G);
 	return rc;
