@@ -479,9 +479,11 @@ struct raster {
 	int32_t *idf;
 	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes);
 	                          * sensor u, v, depth until the raster's extent is known */
-	int32_t *at;             /* one sample per pixel: per vertex, the sample it lies on
-	                          * (within 1e-3), or -1 */
+	int32_t *at;             /* one sample per pixel: per vertex, x and y of the sample
+	                          * it lies on (within 1e-3), or -1 and -1 */
 	float *zv;               /* and the depth a triangle gives there */
+	uint32_t *gen;           /* with at: the triangles that are not grid triangles */
+	size_t ngen, gencap;
 	const struct geo *G;
 	int proper;              /* only triangles with a normal */
 	int nthreads;
@@ -496,6 +498,7 @@ static void raster_free(struct raster *R)
 	free(R->sp);
 	free(R->at);
 	free(R->zv);
+	free(R->gen);
 	memset(R, 0, sizeof *R);
 }
 
@@ -576,7 +579,8 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi)
 			double x = floor(sp[0] + 0.5), y = floor(sp[1] + 0.5);
 			int on = fabs(sp[0] - x) < 1e-3 && fabs(sp[1] - y) < 1e-3 && x >= 0 && y >= 0 &&
 			         x < R->w && y < R->h;
-			R->at[i] = on ? (int32_t)y * R->w + (int32_t)x : -1;
+			R->at[2 * i] = on ? (int32_t)x : -1;
+			R->at[2 * i + 1] = on ? (int32_t)y : -1;
 			R->zv[i] = (float)(pin ? 1 / sp[2] : sp[2]);
 		}
 	}
@@ -585,14 +589,13 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi)
 /* A triangle of a range image's grid: its vertices on samples (one per
  * pixel) a pixel apart at most, covering no sample but its vertices.  The
  * raster's depth is the vertex's there (barycentric weights 1, 0, 0). */
-static inline int grid_triangle(const struct raster *R, const int32_t s[3])
+static inline int grid_triangle(const struct raster *R, const uint32_t tv[3])
 {
-	if ((s[0] | s[1] | s[2]) < 0)
-		return 0;
-	long w = R->w;
 	long x[3], y[3];
 	for (int k = 0; k < 3; k++)
-		x[k] = s[k] % w, y[k] = s[k] / w;
+		x[k] = R->at[2 * tv[k]], y[k] = R->at[2 * tv[k] + 1];
+	if ((x[0] | x[1] | x[2]) < 0)
+		return 0;
 	for (int k = 0; k < 3; k++) {
 		long dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
 		if (dx < -1 || dx > 1 || dy < -1 || dy > 1)
@@ -601,7 +604,47 @@ static inline int grid_triangle(const struct raster *R, const int32_t s[3])
 	return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) != 0;
 }
 
-/* Rows lo..hi of the raster: every triangle, clipped to them. */
+/* Every sample takes the nearest triangle's depth and id (at equal depth
+ * the lower id), and the farthest's with idf: a minimum, so the order in
+ * which triangles come does not matter. */
+
+/* With at: the grid triangles, each a splat of its corners' depths on
+ * their samples, in one pass; the others go to the list gen.  0 or -1. */
+static int raster_grid(struct raster *R, struct fct_err *err)
+{
+	const struct geo *G = R->G;
+	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
+	size_t w = (size_t)R->w;
+	for (size_t f = 0; f < G->nt; f++) {
+		const uint32_t *tv = &G->tv[3 * f];
+		if (!grid_triangle(R, tv)) {
+			if (fct_grow((void **)&R->gen, &R->gencap, R->ngen + 1, sizeof *R->gen, err))
+				return -1;
+			R->gen[R->ngen++] = (uint32_t)f;
+			continue;
+		}
+		if (R->proper && isnan(G->tn[4 * f]))
+			continue;
+		for (int k = 0; k < 3; k++) {
+			size_t s = (size_t)R->at[2 * tv[k] + 1] * w + (size_t)R->at[2 * tv[k]];
+			float zf = R->zv[tv[k]];
+			if (!(zf > 0 || ortho))
+				continue;
+			if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
+				R->z[s] = zf;
+				R->id[s] = (int32_t)f;
+			}
+			if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
+				R->zf[s] = zf;
+				R->idf[s] = (int32_t)f;
+			}
+		}
+	}
+	return 0;
+}
+
+/* Rows lo..hi of the raster: every triangle (with at: those of gen),
+ * clipped to them. */
 static void raster_rows(void *ctx, size_t lo, size_t hi)
 {
 	struct raster *R = ctx;
@@ -610,30 +653,10 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 	    ortho = R->v->cam.kind == FCT_CAMERA_NONE;
 	double ylo = (double)lo, yhi = (double)hi - 1, seam = R->S * R->v->cam.width / 2.0;
 	const double *sp = R->sp;
-	for (size_t f = 0; f < G->nt; f++) {
+	size_t nt = R->at ? R->ngen : G->nt;
+	for (size_t i = 0; i < nt; i++) {
+		size_t f = R->at ? R->gen[i] : i;
 		const uint32_t *tv = &G->tv[3 * f];
-		if (R->at) {
-			int32_t at[3] = { R->at[tv[0]], R->at[tv[1]], R->at[tv[2]] };
-			if (grid_triangle(R, at)) {
-				if (R->proper && isnan(G->tn[4 * f]))
-					continue;
-				for (int k = 0; k < 3; k++) {
-					size_t s = (size_t)at[k], y = s / (size_t)R->w;
-					float zf = R->zv[tv[k]];
-					if (y < lo || y >= hi || !(zf > 0 || ortho))
-						continue;
-					if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
-						R->z[s] = zf;
-						R->id[s] = (int32_t)f;
-					}
-					if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
-						R->zf[s] = zf;
-						R->idf[s] = (int32_t)f;
-					}
-				}
-				continue;
-			}
-		}
 		const double *a = &sp[3 * tv[0]], *b = &sp[3 * tv[1]], *c = &sp[3 * tv[2]];
 		double vmin = dmin3(a[1], b[1], c[1]), vmax = dmax3(a[1], b[1], c[1]);
 		if (!(vmax >= ylo - 1e-9 && vmin <= yhi + 1e-9))
@@ -756,12 +779,14 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 		memset(R->idf, 0xff, n * sizeof *R->idf);
 	}
 	if (S == 1) {
-		R->at = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->at, err);
+		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
 		R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err);
 		if (!R->at || !R->zv)
 			return -1;
 	}
 	run(nthreads, samples_chunk, R, G->nv, 0);
+	if (R->at && raster_grid(R, err))
+		return -1;
 	/* Each thread its own rows: the same raster for any thread count. */
 	run(nthreads, raster_rows, R, (size_t)R->h, nthreads);
 	return 0;
