@@ -77,7 +77,13 @@ struct scratch {
 	struct sblock **blk;
 	size_t blkcap;
 	struct sblock *last;     /* the block found last (most lookups repeat it) */
+	struct sblock *recent[16];   /* and blocks found lately, by recent_slot */
 };
+
+static inline unsigned recent_slot(int32_t bx, int32_t by, int32_t bz)
+{
+	return ((uint32_t)bx + 3 * (uint32_t)by + 5 * (uint32_t)bz) & 15;
+}
 
 static uint64_t block_key(int32_t bx, int32_t by, int32_t bz)
 {
@@ -138,12 +144,15 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 {
 	if (s->last && s->last->bx == bx && s->last->by == by && s->last->bz == bz)
 		return s->last;
+	struct sblock **rc = &s->recent[recent_slot(bx, by, bz)];
+	if (*rc && (*rc)->bx == bx && (*rc)->by == by && (*rc)->bz == bz)
+		return s->last = *rc;
 	uint64_t k = block_key(bx, by, bz);
 	if (s->cap) {
 		size_t h = key_hash(k, s->cap);
 		while (s->keys[h] != UINT64_MAX) {
 			if (s->keys[h] == k)
-				return s->last = s->blk[s->slot[h]];
+				return s->last = *rc = s->blk[s->slot[h]];
 			h = (h + 1) & (s->cap - 1);
 		}
 	}
@@ -167,7 +176,7 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	s->keys[h] = k;
 	s->slot[h] = (uint32_t)s->n;
 	s->blk[s->n++] = b;
-	return s->last = b;
+	return s->last = *rc = b;
 }
 
 /* Threads: fn(ctx, lo, hi) over [0, n) in chunks taken in turn; whatever
