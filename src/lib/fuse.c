@@ -50,24 +50,26 @@ struct sblock {
 	int32_t bx, by, bz;
 	int8_t lo[3], hi[3];     /* box of voxels that may be in the band (lo > hi: none) */
 	size_t nvox, nborder;    /* voxels with a value, voxels skipped on a border */
-	struct fct_voxblock *vb; /* the volume's block, updated in place; NULL: not in it yet, */
-	float *d;                /* and the results go here: FCT_VOXBLOCK_N distances, as many weights (0: none) */
+	struct fct_voxblock *vb; /* the volume's block, updated in place (each block is one thread's) */
+	int fresh;               /* vb was created for this view: dropped again if nothing is put */
 };
 
-/* Voxel l of b gets distance d with weight w: into the volume when the
- * block is there (each block is one thread's), else into its results. */
+/* Voxel l of b gets distance d with weight w: the weighted average.  A
+ * fresh block holds 0 with weight 0 and each voxel is put once per view, so
+ * the average is 0 + d (d w / w is exact in double); a weight that is
+ * not positive leaves such a voxel unobserved. */
 static inline void put(struct sblock *b, int l, float d, float w)
 {
 	b->nvox++;
 	struct fct_voxblock *vb = b->vb;
-	if (vb) {
-		double W = (double)vb->weight[l] + w;
-		vb->sdf[l] = (float)(vb->sdf[l] + ((double)d - vb->sdf[l]) * w / W);
-		vb->weight[l] = (float)W;
-	} else {
-		b->d[l] = d;
-		b->d[FCT_VOXBLOCK_N + l] = w;
+	if (b->fresh && w < INFINITY) {
+		if (w > 0)
+			vb->sdf[l] = d + 0.0f, vb->weight[l] = w;   /* + 0: as 0 + d, -0 is 0 */
+		return;
 	}
+	double W = (double)vb->weight[l] + w;
+	vb->sdf[l] = (float)(vb->sdf[l] + ((double)d - vb->sdf[l]) * w / W);
+	vb->weight[l] = (float)W;
 }
 
 struct scratch {
@@ -77,7 +79,13 @@ struct scratch {
 	struct sblock **blk;
 	size_t blkcap;
 	struct sblock *last;     /* the block found last (most lookups repeat it) */
+	struct sblock *recent[16];   /* and blocks found lately, by recent_slot */
 };
+
+static inline unsigned recent_slot(int32_t bx, int32_t by, int32_t bz)
+{
+	return ((uint32_t)bx + 3 * (uint32_t)by + 5 * (uint32_t)bz) & 15;
+}
 
 static uint64_t block_key(int32_t bx, int32_t by, int32_t bz)
 {
@@ -138,12 +146,15 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 {
 	if (s->last && s->last->bx == bx && s->last->by == by && s->last->bz == bz)
 		return s->last;
+	struct sblock **rc = &s->recent[recent_slot(bx, by, bz)];
+	if (*rc && (*rc)->bx == bx && (*rc)->by == by && (*rc)->bz == bz)
+		return s->last = *rc;
 	uint64_t k = block_key(bx, by, bz);
 	if (s->cap) {
 		size_t h = key_hash(k, s->cap);
 		while (s->keys[h] != UINT64_MAX) {
 			if (s->keys[h] == k)
-				return s->last = s->blk[s->slot[h]];
+				return s->last = *rc = s->blk[s->slot[h]];
 			h = (h + 1) & (s->cap - 1);
 		}
 	}
@@ -167,7 +178,7 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	s->keys[h] = k;
 	s->slot[h] = (uint32_t)s->n;
 	s->blk[s->n++] = b;
-	return s->last = b;
+	return s->last = *rc = b;
 }
 
 /* Threads: fn(ctx, lo, hi) over [0, n) in chunks taken in turn; whatever
@@ -493,9 +504,11 @@ struct raster {
 	int32_t *idf;
 	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes);
 	                          * sensor u, v, depth until the raster's extent is known */
-	int32_t *at;             /* one sample per pixel: per vertex, the sample it lies on
-	                          * (within 1e-3), or -1 */
+	int32_t *at;             /* one sample per pixel: per vertex, x and y of the sample
+	                          * it lies on (within 1e-3), or -1 and -1 */
 	float *zv;               /* and the depth a triangle gives there */
+	uint32_t *gen;           /* with at: the triangles that are not grid triangles */
+	size_t ngen, gencap;
 	const struct geo *G;
 	int proper;              /* only triangles with a normal */
 	int nthreads;
@@ -510,6 +523,7 @@ static void raster_free(struct raster *R)
 	free(R->sp);
 	free(R->at);
 	free(R->zv);
+	free(R->gen);
 	memset(R, 0, sizeof *R);
 }
 
@@ -590,7 +604,8 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi)
 			double x = floor(sp[0] + 0.5), y = floor(sp[1] + 0.5);
 			int on = fabs(sp[0] - x) < 1e-3 && fabs(sp[1] - y) < 1e-3 && x >= 0 && y >= 0 &&
 			         x < R->w && y < R->h;
-			R->at[i] = on ? (int32_t)y * R->w + (int32_t)x : -1;
+			R->at[2 * i] = on ? (int32_t)x : -1;
+			R->at[2 * i + 1] = on ? (int32_t)y : -1;
 			R->zv[i] = (float)(pin ? 1 / sp[2] : sp[2]);
 		}
 	}
@@ -599,14 +614,13 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi)
 /* A triangle of a range image's grid: its vertices on samples (one per
  * pixel) a pixel apart at most, covering no sample but its vertices.  The
  * raster's depth is the vertex's there (barycentric weights 1, 0, 0). */
-static inline int grid_triangle(const struct raster *R, const int32_t s[3])
+static inline int grid_triangle(const struct raster *R, const uint32_t tv[3])
 {
-	if ((s[0] | s[1] | s[2]) < 0)
-		return 0;
-	long w = R->w;
 	long x[3], y[3];
 	for (int k = 0; k < 3; k++)
-		x[k] = s[k] % w, y[k] = s[k] / w;
+		x[k] = R->at[2 * tv[k]], y[k] = R->at[2 * tv[k] + 1];
+	if ((x[0] | x[1] | x[2]) < 0)
+		return 0;
 	for (int k = 0; k < 3; k++) {
 		long dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
 		if (dx < -1 || dx > 1 || dy < -1 || dy > 1)
@@ -615,7 +629,47 @@ static inline int grid_triangle(const struct raster *R, const int32_t s[3])
 	return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) != 0;
 }
 
-/* Rows lo..hi of the raster: every triangle, clipped to them. */
+/* Every sample takes the nearest triangle's depth and id (at equal depth
+ * the lower id), and the farthest's with idf: a minimum, so the order in
+ * which triangles come does not matter. */
+
+/* With at: the grid triangles, each a splat of its corners' depths on
+ * their samples, in one pass; the others go to the list gen.  0 or -1. */
+static int raster_grid(struct raster *R, struct fct_err *err)
+{
+	const struct geo *G = R->G;
+	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
+	size_t w = (size_t)R->w;
+	for (size_t f = 0; f < G->nt; f++) {
+		const uint32_t *tv = &G->tv[3 * f];
+		if (!grid_triangle(R, tv)) {
+			if (fct_grow((void **)&R->gen, &R->gencap, R->ngen + 1, sizeof *R->gen, err))
+				return -1;
+			R->gen[R->ngen++] = (uint32_t)f;
+			continue;
+		}
+		if (R->proper && isnan(G->tn[4 * f]))
+			continue;
+		for (int k = 0; k < 3; k++) {
+			size_t s = (size_t)R->at[2 * tv[k] + 1] * w + (size_t)R->at[2 * tv[k]];
+			float zf = R->zv[tv[k]];
+			if (!(zf > 0 || ortho))
+				continue;
+			if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
+				R->z[s] = zf;
+				R->id[s] = (int32_t)f;
+			}
+			if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
+				R->zf[s] = zf;
+				R->idf[s] = (int32_t)f;
+			}
+		}
+	}
+	return 0;
+}
+
+/* Rows lo..hi of the raster: every triangle (with at: those of gen),
+ * clipped to them. */
 static void raster_rows(void *ctx, size_t lo, size_t hi)
 {
 	struct raster *R = ctx;
@@ -624,30 +678,10 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 	    ortho = R->v->cam.kind == FCT_CAMERA_NONE;
 	double ylo = (double)lo, yhi = (double)hi - 1, seam = R->S * R->v->cam.width / 2.0;
 	const double *sp = R->sp;
-	for (size_t f = 0; f < G->nt; f++) {
+	size_t nt = R->at ? R->ngen : G->nt;
+	for (size_t i = 0; i < nt; i++) {
+		size_t f = R->at ? R->gen[i] : i;
 		const uint32_t *tv = &G->tv[3 * f];
-		if (R->at) {
-			int32_t at[3] = { R->at[tv[0]], R->at[tv[1]], R->at[tv[2]] };
-			if (grid_triangle(R, at)) {
-				if (R->proper && isnan(G->tn[4 * f]))
-					continue;
-				for (int k = 0; k < 3; k++) {
-					size_t s = (size_t)at[k], y = s / (size_t)R->w;
-					float zf = R->zv[tv[k]];
-					if (y < lo || y >= hi || !(zf > 0 || ortho))
-						continue;
-					if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
-						R->z[s] = zf;
-						R->id[s] = (int32_t)f;
-					}
-					if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
-						R->zf[s] = zf;
-						R->idf[s] = (int32_t)f;
-					}
-				}
-				continue;
-			}
-		}
 		const double *a = &sp[3 * tv[0]], *b = &sp[3 * tv[1]], *c = &sp[3 * tv[2]];
 		double vmin = dmin3(a[1], b[1], c[1]), vmax = dmax3(a[1], b[1], c[1]);
 		if (!(vmax >= ylo - 1e-9 && vmin <= yhi + 1e-9))
@@ -770,12 +804,14 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 		memset(R->idf, 0xff, n * sizeof *R->idf);
 	}
 	if (S == 1) {
-		R->at = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->at, err);
+		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
 		R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err);
 		if (!R->at || !R->zv)
 			return -1;
 	}
 	run(nthreads, samples_chunk, R, G->nv, 0);
+	if (R->at && raster_grid(R, err))
+		return -1;
 	/* Each thread its own rows: the same raster for any thread count. */
 	run(nthreads, raster_rows, R, (size_t)R->h, nthreads);
 	return 0;
@@ -919,10 +955,9 @@ static inline int add_point(struct cand *c, const double p[3])
  * is wider anyway); larger ones, points at most half a voxel apart. */
 enum { BOX_TRIANGLE = 4 };
 
-/* The candidate blocks of G for a band of r voxels into s; those of them
- * that g has are updated there, the others get FCT_VOXBLOCK_N distances and
- * weights (weights 0) from one slab *slab. */
-static int candidates(struct scratch *s, float **slab, const struct fct_voxgrid *g, const struct geo *G,
+/* The candidate blocks of G for a band of r voxels into s, each with its
+ * block of g: created (fresh) when g did not have it, in the order of s. */
+static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
                       double vox, int r, struct fct_err *err)
 {
 	struct cand c = { { 0 }, vox, 1 / vox, err };
@@ -979,52 +1014,39 @@ static int candidates(struct scratch *s, float **slab, const struct fct_voxgrid 
 		if (add_box(s, lo, hi, err))
 			goto done;
 	}
-	size_t missing = 0;
 	for (size_t bi = 0; bi < s->n; bi++) {
 		struct sblock *b = s->blk[bi];
 		long gi = fct_voxgrid_index(g, b->bx, b->by, b->bz);
-		b->vb = gi >= 0 ? fct_voxgrid_at(g, (size_t)gi) : NULL;
-		missing += !b->vb;
+		b->fresh = gi < 0;
+		b->vb = gi >= 0 ? fct_voxgrid_at(g, (size_t)gi) : fct_voxgrid_block(g, b->bx, b->by, b->bz, 1, err);
+		if (!b->vb)
+			goto done;
 	}
-	*slab = fct_alloc_array(missing ? missing : 1, 2 * FCT_VOXBLOCK_N * sizeof **slab, err);
-	if (!*slab)
-		goto done;
-	missing = 0;
-	for (size_t bi = 0; bi < s->n; bi++)
-		if (!s->blk[bi]->vb) {
-			float *d = *slab + missing++ * 2 * FCT_VOXBLOCK_N;
-			s->blk[bi]->d = d;
-			memset(d + FCT_VOXBLOCK_N, 0, FCT_VOXBLOCK_N * sizeof *d);
-		}
 	rc = 0;
 done:
 	scratch_free(&c.cells);
 	return rc;
 }
 
-/* Results of the blocks the volume did not have into new blocks, in
- * creation order (the others were updated in place). */
-static int commit(struct fct_voxgrid *g, const struct scratch *s, struct fct_fuse_stats *st,
-                  struct fct_err *err)
+/* The statistics, and the fresh blocks that got nothing out of g again
+ * (from index `from` on, where the view's blocks begin): g keeps the blocks
+ * written, in the order of s. */
+static int commit(struct fct_voxgrid *g, size_t from, const struct scratch *s,
+                  struct fct_fuse_stats *st, struct fct_err *err)
 {
+	unsigned char *keep = fct_alloc_array(s->n ? s->n : 1, 1, err);
+	if (!keep)
+		return -1;
+	size_t n = 0;
 	for (size_t bi = 0; bi < s->n; bi++) {
 		const struct sblock *b = s->blk[bi];
 		st->border += b->nborder;
 		st->voxels += b->nvox;
-		if (!b->nvox || b->vb)
-			continue;
-		struct fct_voxblock *vb = fct_voxgrid_block(g, b->bx, b->by, b->bz, 1, err);
-		if (!vb)
-			return -1;
-		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
-			float w = b->d[FCT_VOXBLOCK_N + l];
-			if (!(w > 0))
-				continue;
-			double W = (double)vb->weight[l] + w;
-			vb->sdf[l] = (float)(vb->sdf[l] + ((double)b->d[l] - vb->sdf[l]) * w / W);
-			vb->weight[l] = (float)W;
-		}
+		if (b->fresh)
+			keep[n++] = b->nvox > 0;
 	}
+	fct_voxgrid_drop(g, from, keep);
+	free(keep);
 	return 0;
 }
 
@@ -1342,7 +1364,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		return -1;
 	struct raster R;
 	struct scratch s = { 0 };
-	float *slab = NULL;
+	size_t from = fct_voxgrid_count(g);
 	int rc = -1;
 	/* True distance: two samples per pixel along each axis, so that
 	 * every triangle of a range image's grid owns one; projective: the
@@ -1354,11 +1376,11 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		goto done;
 	if (R.w > 0) {
 		double r = ceil(band / vox);
-		if (candidates(&s, &slab, g, &G, vox, (int)(r < 100 ? r : 100), err))
+		if (candidates(&s, g, &G, vox, (int)(r < 100 ? r : 100), err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox };
 		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);
-		if (commit(g, &s, st, err))
+		if (commit(g, from, &s, st, err))
 			goto done;
 	}
 	if (proj) {
@@ -1369,8 +1391,9 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	}
 	rc = 0;
 done:
+	if (rc)   /* no half-made blocks left behind */
+		fct_voxgrid_drop(g, from, NULL);
 	scratch_free(&s);
-	free(slab);
 	raster_free(&R);
 	geo_free(&G);
 	return rc;

@@ -23,6 +23,9 @@ struct fct_voxgrid {
 	size_t n;               /* blocks */
 	struct fct_voxblock **blocks;   /* creation order */
 	size_t blocks_cap;
+	size_t used;            /* slab places handed out (blocks and spares) */
+	struct fct_voxblock *spare;     /* dropped blocks, zeroed, for reuse: a list
+	                                 * linked through the first bytes of sdf */
 
 	struct fct_voxblock **slabs;    /* SLAB_BLOCKS blocks each */
 	float **rgb_slabs;              /* 3 * 512 * SLAB_BLOCKS floats each, with colour */
@@ -179,7 +182,9 @@ static struct fct_voxblock *create(struct fct_voxgrid *g, int32_t bx, int32_t by
 	size_t hcap = g->hcap;
 	while (2 * (g->n + 1) > hcap)
 		hcap *= 2;
-	size_t nslabs = g->n / SLAB_BLOCKS + 1 > g->nslabs ? g->n / SLAB_BLOCKS + 1 : g->nslabs;
+	size_t place = g->spare ? 0 : g->used + 1;   /* slab places needed */
+	size_t nslabs = (place + SLAB_BLOCKS - 1) / SLAB_BLOCKS;
+	nslabs = nslabs > g->nslabs ? nslabs : g->nslabs;
 	size_t bcap = g->blocks_cap;
 	if (g->n + 1 > bcap)
 		bcap = bcap ? 2 * bcap : 64;
@@ -210,16 +215,66 @@ static struct fct_voxblock *create(struct fct_voxgrid *g, int32_t bx, int32_t by
 			g->rgb_slabs[g->nslabs] = rgb;
 		g->nslabs++;
 	}
-	size_t s = g->n / SLAB_BLOCKS, k = g->n % SLAB_BLOCKS;
-	struct fct_voxblock *b = &g->slabs[s][k];
+	struct fct_voxblock *b = g->spare;
+	if (b) {
+		memcpy(&g->spare, b->sdf, sizeof g->spare);
+		memset(b->sdf, 0, sizeof g->spare);
+	} else {
+		size_t s = g->used / SLAB_BLOCKS, k = g->used % SLAB_BLOCKS;
+		b = &g->slabs[s][k];
+		b->rgb = g->colour ? g->rgb_slabs[s] + k * 3 * FCT_VOXBLOCK_N : NULL;
+		g->used++;
+	}
 	b->bx = bx, b->by = by, b->bz = bz;
-	b->rgb = g->colour ? g->rgb_slabs[s] + k * 3 * FCT_VOXBLOCK_N : NULL;
 	g->blocks[g->n] = b;
 	struct slot *sl = probe(g, bx, by, bz);
 	sl->bx = bx, sl->by = by, sl->bz = bz;
 	sl->idx = (uint32_t)(g->n + 1);
 	g->n++;
 	return b;
+}
+
+/* Empty slot h, closing the gap by moving later entries of its probe run
+ * back (deletion under linear probing). */
+static void unslot(struct fct_voxgrid *g, size_t h)
+{
+	size_t mask = g->hcap - 1;
+	for (size_t j = h;;) {
+		j = (j + 1) & mask;
+		struct slot *s = &g->hash[j];
+		if (!s->idx)
+			break;
+		size_t home = hash_key(s->bx, s->by, s->bz) & mask;
+		/* The entry at j may fill the gap at h unless its home lies
+		 * cyclically in (h, j]. */
+		if (h <= j ? (home > h && home <= j) : (home > h || home <= j))
+			continue;
+		g->hash[h] = *s;
+		h = j;
+	}
+	g->hash[h].idx = 0;
+}
+
+void fct_voxgrid_drop(struct fct_voxgrid *g, size_t from, const unsigned char *keep)
+{
+	size_t j = from;
+	for (size_t i = from; i < g->n; i++) {
+		struct fct_voxblock *b = g->blocks[i];
+		struct slot *s = probe(g, b->bx, b->by, b->bz);
+		if (keep && keep[i - from]) {
+			s->idx = (uint32_t)(j + 1);
+			g->blocks[j++] = b;
+			continue;
+		}
+		unslot(g, (size_t)(s - g->hash));
+		memset(b->sdf, 0, sizeof b->sdf);
+		memset(b->weight, 0, sizeof b->weight);
+		if (b->rgb)
+			memset(b->rgb, 0, 3 * FCT_VOXBLOCK_N * sizeof *b->rgb);
+		memcpy(b->sdf, &g->spare, sizeof g->spare);
+		g->spare = b;
+	}
+	g->n = j;
 }
 
 struct fct_voxblock *fct_voxgrid_block(struct fct_voxgrid *g, int32_t bx, int32_t by, int32_t bz,

@@ -68,6 +68,15 @@ int fct_voxgrid_has_colour(const struct fct_voxgrid *g);
 struct fct_voxblock *fct_voxgrid_block(struct fct_voxgrid *g, int32_t bx, int32_t by, int32_t bz,
                                        int create, struct fct_err *err);
 
+/* Remove the blocks from .. count-1 whose keep[i - from] is 0 (all of them
+ * when keep is NULL), the others
+ * keeping their order (and moving down over the gaps: block indices from
+ * `from` on change).  The storage of a removed block is zeroed and goes to
+ * the next blocks created, so that a caller may create the blocks it might
+ * write, write them in place, and drop those it did not write at the cost
+ * of neither a copy nor fresh memory. */
+void fct_voxgrid_drop(struct fct_voxgrid *g, size_t from, const unsigned char *keep);
+
 /* Number of blocks, and the i-th block in creation order (i < count). */
 size_t fct_voxgrid_count(const struct fct_voxgrid *g);
 struct fct_voxblock *fct_voxgrid_at(const struct fct_voxgrid *g, size_t i);

@@ -1,6 +1,8 @@
 /* test_voxgrid.c - the sparse block volume: floor division of negative
- * indices, creation order, lookups after many rehashes, the memory limit. */
+ * indices, creation order, lookups after many rehashes, the memory limit,
+ * dropping blocks (order kept, lookups, storage reused zeroed). */
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "voxgrid.h"
@@ -121,10 +123,72 @@ static void test_colour_and_limit(void)
 	CHECK(fct_voxgrid_new(INFINITY, 0, &err) == NULL);
 }
 
+/* Blocks 100 + 3000 scrambled ones; drop every third of the 3000 and
+ * check the order, the lookups of kept and dropped blocks, that no slab
+ * grows while the dropped storage is reused, and that it comes back zero. */
+static void test_drop(void)
+{
+	struct fct_voxgrid *g = fct_voxgrid_new(0.1, 1, &err);
+	CHECK(g != NULL);
+	int ok = 1;
+	for (int32_t i = 0; i < 100; i++)
+		ok &= fct_voxgrid_block(g, i, 0, 0, 1, &err) != NULL;
+	enum { N = 3000 };
+	static unsigned char keep[N];
+	int32_t key[N];
+	for (int i = 0; i < N; i++) {
+		key[i] = (int32_t)((i * 7919) % N) - N / 2;   /* 7919 is prime to 3000 */
+		struct fct_voxblock *b = fct_voxgrid_block(g, key[i], key[i], 5, 1, &err);
+		ok &= b != NULL;
+		keep[i] = i % 3 != 1;
+		b->sdf[7] = 1, b->weight[300] = 2, b->rgb[1000] = 3;
+	}
+	CHECK(ok);
+	size_t bytes = fct_voxgrid_bytes(g);
+	fct_voxgrid_drop(g, 100, keep);
+	CHECK_INT(fct_voxgrid_count(g), 100 + 2000);
+	size_t j = 100;
+	for (int i = 0; i < N; i++) {
+		long idx = fct_voxgrid_index(g, key[i], key[i], 5);
+		if (keep[i]) {
+			ok &= idx == (long)j && fct_voxgrid_at(g, j)->bx == key[i];
+			j++;
+		} else {
+			ok &= idx == -1 && fct_voxgrid_block(g, key[i], key[i], 5, 0, &err) == NULL;
+		}
+	}
+	for (int32_t i = 0; i < 100; i++)
+		ok &= fct_voxgrid_index(g, i, 0, 0) == i;
+	CHECK(ok);
+	/* 1000 new blocks take the dropped ones' storage, zeroed */
+	for (int32_t i = 0; i < 1000; i++) {
+		struct fct_voxblock *b = fct_voxgrid_block(g, i, 0, 9, 1, &err);
+		ok &= b != NULL && b->bz == 9 && b->rgb != NULL;
+		for (int v = 0; v < 512 && b; v++)
+			ok &= b->sdf[v] == 0 && b->weight[v] == 0 && b->rgb[3 * v] == 0 &&
+			      b->rgb[3 * v + 1] == 0 && b->rgb[3 * v + 2] == 0;
+	}
+	CHECK(ok);
+	CHECK_INT(fct_voxgrid_count(g), 3100);
+	CHECK_INT(fct_voxgrid_bytes(g), bytes);
+	CHECK_INT(fct_voxgrid_index(g, 999, 0, 9), 3099);
+	/* drop all from 3000, then keep all (nothing changes) */
+	fct_voxgrid_drop(g, 3000, NULL);
+	CHECK_INT(fct_voxgrid_count(g), 3000);
+	CHECK_INT(fct_voxgrid_index(g, 999, 0, 9), -1);
+	CHECK_INT(fct_voxgrid_index(g, 899, 0, 9), 2999);
+	memset(keep, 1, sizeof keep);
+	fct_voxgrid_drop(g, 0, keep);
+	CHECK_INT(fct_voxgrid_count(g), 3000);
+	CHECK_INT(fct_voxgrid_index(g, 899, 0, 9), 2999);
+	fct_voxgrid_free(g);
+}
+
 int main(void)
 {
 	test_floor();
 	test_blocks();
 	test_colour_and_limit();
+	test_drop();
 	CHECK_DONE();
 }
