@@ -8,7 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SLAB_BLOCKS 64          /* blocks per allocation */
+#include <sys/mman.h>
+
+/* Blocks per allocation: a slab fills most of 2 MB, which the kernel may
+ * back with one huge page (one fault instead of one per block or two). */
+#define SLAB_BLOCKS ((size_t)(SLAB_BYTES / sizeof(struct fct_voxblock)))
+#define SLAB_BYTES ((size_t)2 << 20)
 
 struct slot {
 	int32_t bx, by, bz;
@@ -34,6 +39,22 @@ struct fct_voxgrid {
 	struct slot *hash;
 	size_t hcap;            /* power of two */
 };
+
+/* A zeroed slab of SLAB_BLOCKS blocks, 2 MB aligned where huge pages can
+ * be asked for; NULL when out of memory.  Freed with free(). */
+static struct fct_voxblock *slab_alloc(void)
+{
+#ifdef MADV_HUGEPAGE
+	void *p;
+	if (posix_memalign(&p, SLAB_BYTES, SLAB_BYTES))
+		return NULL;
+	madvise(p, SLAB_BYTES, MADV_HUGEPAGE);
+	memset(p, 0, SLAB_BLOCKS * sizeof(struct fct_voxblock));
+	return p;
+#else
+	return calloc(SLAB_BLOCKS, sizeof(struct fct_voxblock));
+#endif
+}
 
 static inline size_t hash_key(int32_t bx, int32_t by, int32_t bz)
 {
@@ -200,7 +221,7 @@ static struct fct_voxblock *create(struct fct_voxgrid *g, int32_t bx, int32_t by
 		    (g->colour && fct_grow((void **)&g->rgb_slabs, &rc, nslabs, sizeof *g->rgb_slabs, err)))
 			return NULL;
 		g->rgb_cap = rc;
-		struct fct_voxblock *slab = calloc(SLAB_BLOCKS, sizeof *slab);
+		struct fct_voxblock *slab = slab_alloc();
 		float *rgb = NULL;
 		if (slab && g->colour)
 			rgb = calloc((size_t)SLAB_BLOCKS * 3 * FCT_VOXBLOCK_N, sizeof *rgb);
