@@ -629,9 +629,21 @@ static inline int grid_triangle(const struct raster *R, const uint32_t tv[3])
 	return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) != 0;
 }
 
-/* Every sample takes the nearest triangle's depth and id (at equal depth
- * the lower id), and the farthest's with idf: a minimum, so the order in
- * which triangles come does not matter. */
+/* Triangle f at depth zf on sample s.  Every sample takes the nearest
+ * triangle's depth and id (at equal depth the lower id), and the farthest's
+ * with idf: a minimum, so the order in which triangles come does not
+ * matter. */
+static inline void raster_put(struct raster *R, size_t s, float zf, int32_t f)
+{
+	if (zf < R->z[s] || (zf == R->z[s] && f < R->id[s])) {
+		R->z[s] = zf;
+		R->id[s] = f;
+	}
+	if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && f < R->idf[s]))) {
+		R->zf[s] = zf;
+		R->idf[s] = f;
+	}
+}
 
 /* With at: the grid triangles, each a splat of its corners' depths on
  * their samples, in one pass; the others go to the list gen.  0 or -1. */
@@ -655,14 +667,7 @@ static int raster_grid(struct raster *R, struct fct_err *err)
 			float zf = R->zv[tv[k]];
 			if (!(zf > 0 || ortho))
 				continue;
-			if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
-				R->z[s] = zf;
-				R->id[s] = (int32_t)f;
-			}
-			if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
-				R->zf[s] = zf;
-				R->idf[s] = (int32_t)f;
-			}
+			raster_put(R, s, zf, (int32_t)f);
 		}
 	}
 	return 0;
@@ -719,14 +724,7 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 				float zf = (float)z;
 				if (!(zf > 0 || ortho))
 					continue;
-				if (zf < R->z[s] || (zf == R->z[s] && (int32_t)f < R->id[s])) {
-					R->z[s] = zf;
-					R->id[s] = (int32_t)f;
-				}
-				if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && (int32_t)f < R->idf[s]))) {
-					R->zf[s] = zf;
-					R->idf[s] = (int32_t)f;
-				}
+				raster_put(R, s, zf, (int32_t)f);
 			}
 	}
 }
