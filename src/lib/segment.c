@@ -242,19 +242,10 @@ static void region_add(struct region *r, const struct region *a, const struct re
  * (the smallest eigenvalue of its scatter); *trace gets the scatter's trace. */
 static double union_sse(const struct region *a, const struct region *b, double *trace)
 {
-	double w = a->w + b->w;
-	double d[3] = { b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2] };
-	double k = w > 0 ? a->w * b->w / w : 0;
-	double s[6] = {
-		a->s[0] + b->s[0] + k * d[0] * d[0],
-		a->s[1] + b->s[1] + k * d[1] * d[1],
-		a->s[2] + b->s[2] + k * d[2] * d[2],
-		a->s[3] + b->s[3] + k * d[0] * d[1],
-		a->s[4] + b->s[4] + k * d[1] * d[2],
-		a->s[5] + b->s[5] + k * d[0] * d[2],
-	};
-	*trace = s[0] + s[1] + s[2];
-	double l = fct_sym3_min_eigenvalue(s);
+	struct region u;
+	region_add(&u, a, b);
+	*trace = u.s[0] + u.s[1] + u.s[2];
+	double l = fct_sym3_min_eigenvalue(u.s);
 	return l > 0 ? l : 0;
 }
 
