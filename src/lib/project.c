@@ -1478,15 +1478,18 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		}
 	}
 	if (p->ortho_angle > 0) {
-		if (!area)
-			area = fct_alloc_array(npl, sizeof *area, err);
-		if (!cen)
-			cen = fct_alloc_array(3 * npl, sizeof *cen, err);
-		if (!area || !cen)
-			goto out;
-		if (wired ? wire_moments(m, wire, nwire, pl, npl, area, cen, err)
-		          : (patch_moments(m, patch, npl, area, cen), 0))
-			goto out;
+		/* The scale fix's moments serve unless it moved the points. */
+		if (!area || planes_changed) {
+			if (!area)
+				area = fct_alloc_array(npl, sizeof *area, err);
+			if (!cen)
+				cen = fct_alloc_array(3 * npl, sizeof *cen, err);
+			if (!area || !cen)
+				goto out;
+			if (wired ? wire_moments(m, wire, nwire, pl, npl, area, cen, err)
+			          : (patch_moments(m, patch, npl, area, cen), 0))
+				goto out;
+		}
 		double prior[3], down[3] = { 0, -1, 0 };
 		int use_prior = have_cam || have_pose;
 		if (have_pose) {
