@@ -4,18 +4,21 @@
  *
  * Nearest points.  Hilton finds each band voxel's nearest point on the
  * view's mesh with a k-D tree.  A range-image mesh is organised by its own
- * sensor, so here the search starts in the view's image: the mesh is
- * rasterised into its camera at two samples per pixel (the nearest and the
- * farthest triangle of each sample), each candidate voxel (the blocks
- * around the surface's cells, grown by the band) is projected, goes to the
- * foot of the perpendicular on the plane of the triangle seen there, and
- * again from the triangle seen at the foot until it stays, then walks
+ * sensor, so here the search starts in the view's image.  Each candidate
+ * voxel (the blocks around the surface's cells, grown by the band) is
+ * projected, goes to the foot of the perpendicular on the plane of the
+ * triangle seen there, and again from the triangle seen at the foot until
+ * it stays (on a grid the foot is then the nearest point), then walks
  * downhill on the mesh (across the edge or around the vertex where its
- * closest point lies) to the local minimum.  Voxels in front of the surface
- * they see but out of its band also try the surfaces a band's width away in
- * the image (around silhouettes).  Cost: a few closest-point tests per
- * candidate voxel, nothing per triangle but the raster.  The tests wait on
- * memory more than they compute, so a block's voxels are projected and
+ * closest point lies) to the local minimum.  Voxels in front of the surface they see but out of its band
+ * also try the surfaces a band's width away in the image (around
+ * silhouettes).  The triangle seen at a point of the image: for a range
+ * image's grid (every vertex on a pixel centre) that of its pixel cell,
+ * which also gives the triangles around a vertex; for other meshes a raster
+ * at two samples per pixel (the nearest and the farthest triangle of each
+ * sample).  Cost: a few lookups and closest-point tests per candidate
+ * voxel, nothing per triangle but the cells or the raster.  The lookups
+ * wait on memory more than they compute, so a block's voxels are projected and
  * their triangles looked up for all of them before any is searched.  Blocks
  * are shared out among threads and each writes only its own results, so
  * the volume is the same for any thread count. */
@@ -237,6 +240,20 @@ static int thread_count(int want)
 
 /* The view's triangles with what the search needs. ----------------------- */
 
+/* A range image's mesh in its own camera: every vertex on a pixel centre
+ * and every triangle half of a pixel cell (the square between four pixel
+ * centres), at most one on each half.  Such a mesh needs no raster: the
+ * triangle under an image point is read off its cell, and the triangles
+ * around a vertex are in the four cells around its pixel. */
+struct pixgrid {
+	int32_t *cell;           /* 2 per cell (x, y) at x + y w: the halves; -1: none */
+	uint8_t *diag;           /* per cell: DIAG_DOWN or DIAG_UP, the diagonal that splits it */
+	const int32_t *at;       /* per vertex: its pixel x, y (-1: none) */
+	size_t w, h;             /* pixels; cells (x, y) for x < w - 1, y < h - 1 */
+};
+
+enum { DIAG_NONE, DIAG_DOWN, DIAG_UP };   /* DOWN: corners (0, 0)-(1, 1); UP: (1, 0)-(0, 1) */
+
 struct geo {
 	size_t nt, nv;
 	const double *xyz;
@@ -245,6 +262,8 @@ struct geo {
 	float *tn;               /* unit normal n and n . a, 4 per triangle; NaN: degenerate
 	                          * (float: half the memory the search has to bring in) */
 	uint32_t *vfs, *vf;      /* faces of vertex v: vf[vfs[v] .. vfs[v + 1]), in face order */
+	const struct pixgrid *grid;   /* instead of vfs and vf when the mesh is a grid */
+	const struct fct_mesh *m;    /* the triangles as a mesh: the input or tris */
 	struct fct_mesh tris;    /* the triangulated mesh when the input has polygons */
 	int own;
 };
@@ -280,7 +299,7 @@ static void normals_chunk(void *ctx, size_t lo, size_t hi)
 }
 
 /* Triangles of m (polygons fan-triangulated); with topo, their unit
- * normals and the faces of each vertex too. */
+ * normals too (the faces around each vertex come from geo_rings). */
 static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthreads,
                      struct fct_err *err)
 {
@@ -307,6 +326,7 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthr
 		}
 		t = &G->tris;
 	}
+	G->m = t;
 	G->nt = t->nf, G->nv = t->nv;
 	G->xyz = t->xyz;
 	G->tv = t->fvert;
@@ -318,13 +338,79 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthr
 		goto fail;
 	}
 	G->tn = fct_alloc_array(nt, 4 * sizeof *G->tn, err);
-	if (!G->tn || fct_vertex_faces(t, &G->vfs, &G->vf, err))
+	if (!G->tn)
 		goto fail;
 	run(nthreads, normals_chunk, G, nt, 0);
 	return 0;
 fail:
 	geo_free(G);
 	return -1;
+}
+
+/* The faces around each vertex, unless the grid has them. */
+static int geo_rings(struct geo *G, const struct pixgrid *grid, struct fct_err *err)
+{
+	if (grid) {
+		G->grid = grid;
+		return 0;
+	}
+	return fct_vertex_faces(G->m, &G->vfs, &G->vf, err);
+}
+
+/* The faces around vertex v: *f[0 .. count), in face order unless the
+ * grid has them (then in the order of its cells). */
+static inline size_t ring(const struct geo *G, uint32_t v, uint32_t buf[8], const uint32_t **f)
+{
+	const struct pixgrid *P = G->grid;
+	if (!P) {
+		*f = &G->vf[G->vfs[v]];
+		return G->vfs[v + 1] - G->vfs[v];
+	}
+	*f = buf;
+	int32_t x = P->at[2 * (size_t)v], y = P->at[2 * (size_t)v + 1];
+	if (x < 0)
+		return 0;
+	size_t n = 0;
+	for (int32_t cy = y - 1; cy <= y; cy++)
+		for (int32_t cx = x - 1; cx <= x; cx++) {
+			if (cx < 0 || cy < 0 || (size_t)cx + 1 >= P->w || (size_t)cy + 1 >= P->h)
+				continue;
+			const int32_t *c = &P->cell[2 * ((size_t)cy * P->w + (size_t)cx)];
+			for (int k = 0; k < 2; k++) {
+				if (c[k] < 0)
+					continue;
+				const uint32_t *w = &G->tv[3 * (size_t)c[k]];
+				if (w[0] == v || w[1] == v || w[2] == v)
+					buf[n++] = (uint32_t)c[k];
+			}
+		}
+	return n;
+}
+
+/* The grid's faces that may have edge (a, b): those of the cells on
+ * either side of it (of the one it splits, for a diagonal).  Their count. */
+static inline size_t grid_edge(const struct geo *G, uint32_t a, uint32_t b, uint32_t buf[4])
+{
+	const struct pixgrid *P = G->grid;
+	int32_t ax = P->at[2 * (size_t)a], ay = P->at[2 * (size_t)a + 1];
+	int32_t bx = P->at[2 * (size_t)b], by = P->at[2 * (size_t)b + 1];
+	if (ax < 0 || bx < 0)
+		return 0;
+	int32_t x = ax < bx ? ax : bx, y = ay < by ? ay : by;
+	/* Cells (x, y) and the one before it across the edge: along x for a
+	 * vertical edge, along y for a horizontal one; none for a diagonal. */
+	int32_t cx[2] = { x, ax == bx ? x - 1 : x }, cy[2] = { y, ay == by ? y - 1 : y };
+	int ncell = ax != bx && ay != by ? 1 : 2;
+	size_t n = 0;
+	for (int i = 0; i < ncell; i++) {
+		if (cx[i] < 0 || cy[i] < 0 || (size_t)cx[i] + 1 >= P->w || (size_t)cy[i] + 1 >= P->h)
+			continue;
+		const int32_t *c = &P->cell[2 * ((size_t)cy[i] * P->w + (size_t)cx[i])];
+		for (int k = 0; k < 2; k++)
+			if (c[k] >= 0)
+				buf[n++] = (uint32_t)c[k];
+	}
+	return n;
 }
 
 static inline void tri_normal(const struct geo *G, size_t t, double n[3])
@@ -345,12 +431,17 @@ static inline double tri_closest(const struct geo *G, size_t t, const double x[3
 static int32_t across(const struct geo *G, size_t t, uint32_t a, uint32_t b)
 {
 	int32_t o = -1;
-	for (uint32_t i = G->vfs[a]; i < G->vfs[a + 1]; i++) {
-		uint32_t f = G->vf[i];
+	uint32_t buf[8];
+	const uint32_t *fa;
+	size_t n = G->grid ? grid_edge(G, a, b, buf) : ring(G, a, buf, &fa);
+	if (G->grid)
+		fa = buf;
+	for (size_t i = 0; i < n; i++) {
+		uint32_t f = fa[i];
 		if (f == t || isnan(G->tn[4 * (size_t)f]))
 			continue;
 		const uint32_t *w = &G->tv[3 * (size_t)f];
-		if (w[0] == b || w[1] == b || w[2] == b) {
+		if ((w[0] == b || w[1] == b || w[2] == b) && (w[0] == a || w[1] == a || w[2] == a)) {
 			if (o != -1)
 				return -2;
 			o = (int32_t)f;
@@ -364,8 +455,11 @@ static int32_t across(const struct geo *G, size_t t, uint32_t a, uint32_t b)
 static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
 {
 	vn[0] = vn[1] = vn[2] = 0;
-	for (uint32_t i = G->vfs[v]; i < G->vfs[v + 1]; i++) {
-		uint32_t f = G->vf[i];
+	uint32_t buf[8];
+	const uint32_t *fv;
+	size_t n = ring(G, v, buf, &fv);
+	for (size_t i = 0; i < n; i++) {
+		uint32_t f = fv[i];
 		if (isnan(G->tn[4 * (size_t)f]))
 			continue;
 		const uint32_t *w = &G->tv[3 * (size_t)f];
@@ -417,8 +511,11 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], double ba
 			}
 		} else if (*r == FCT_TRI_A || *r == FCT_TRI_B || *r == FCT_TRI_C) {
 			uint32_t v = tv[*r == FCT_TRI_A ? 0 : *r == FCT_TRI_B ? 1 : 2];
-			for (uint32_t i = G->vfs[v]; i < G->vfs[v + 1]; i++) {
-				uint32_t o = G->vf[i];
+			uint32_t buf[8];
+			const uint32_t *fv;
+			size_t n = ring(G, v, buf, &fv);
+			for (size_t i = 0; i < n; i++) {
+				uint32_t o = fv[i];
 				if ((int32_t)o == t || isnan(G->tn[4 * (size_t)o]))
 					continue;
 				double qq[3];
@@ -509,6 +606,7 @@ struct raster {
 	float *zv;               /* and the depth a triangle gives there */
 	uint32_t *gen;           /* with at: the triangles that are not grid triangles */
 	size_t ngen, gencap;
+	struct pixgrid grid;     /* instead of z, id, zf and idf when grid.cell is set */
 	const struct geo *G;
 	int proper;              /* only triangles with a normal */
 	int nthreads;
@@ -524,6 +622,8 @@ static void raster_free(struct raster *R)
 	free(R->at);
 	free(R->zv);
 	free(R->gen);
+	free(R->grid.cell);
+	free(R->grid.diag);
 	memset(R, 0, sizeof *R);
 }
 
@@ -729,9 +829,10 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 	}
 }
 
-/* The raster of G seen by v with S samples per sensor pixel (fewer when
- * more than max_samples would be needed).  0 or -1. */
-static int raster_build(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
+/* G's vertices in the sample coordinates of v with S samples per sensor
+ * pixel (fewer when more than max_samples would be needed): R's extent and
+ * sp, and at S = 1 at and zv.  0 or -1; R->w is 0 when nothing is seen. */
+static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
                         double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
 {
 	memset(R, 0, sizeof *R);
@@ -784,6 +885,20 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 		S /= 2;
 	}
 	R->S = S;
+	if (S == 1) {
+		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
+		R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err);
+		if (!R->at || !R->zv)
+			return -1;
+	}
+	run(nthreads, samples_chunk, R, G->nv, 0);
+	return 0;
+}
+
+/* The raster of R's frame: nearest triangles, and with R->proper the
+ * farthest too.  0 or -1. */
+static int raster_fill(struct raster *R, struct fct_err *err)
+{
 	size_t n = (size_t)R->w * (size_t)R->h;
 	R->z = fct_alloc_array(n, sizeof *R->z, err);
 	R->id = fct_alloc_array(n, sizeof *R->id, err);
@@ -792,7 +907,7 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 	for (size_t i = 0; i < n; i++)
 		R->z[i] = INFINITY;
 	memset(R->id, 0xff, n * sizeof *R->id);
-	if (proper) {
+	if (R->proper) {
 		R->zf = fct_alloc_array(n, sizeof *R->zf, err);
 		R->idf = fct_alloc_array(n, sizeof *R->idf, err);
 		if (!R->zf || !R->idf)
@@ -801,18 +916,116 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 			R->zf[i] = -INFINITY;
 		memset(R->idf, 0xff, n * sizeof *R->idf);
 	}
-	if (S == 1) {
-		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
-		R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err);
-		if (!R->at || !R->zv)
-			return -1;
-	}
-	run(nthreads, samples_chunk, R, G->nv, 0);
 	if (R->at && raster_grid(R, err))
 		return -1;
 	/* Each thread its own rows: the same raster for any thread count. */
-	run(nthreads, raster_rows, R, (size_t)R->h, nthreads);
+	run(R->nthreads, raster_rows, R, (size_t)R->h, R->nthreads);
 	return 0;
+}
+
+/* The raster of G seen by v with S samples per sensor pixel (fewer when
+ * more than max_samples would be needed).  0 or -1. */
+static int raster_build(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
+                        double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
+{
+	if (raster_frame(R, v, G, S, proper, max_samples, nthreads, err))
+		return -1;
+	return R->w > 0 ? raster_fill(R, err) : 0;
+}
+
+/* R's proper triangles as a pixel grid, when they are one (R's frame at
+ * one sample per pixel): 1; 0 when they are not; -1 out of memory. */
+static int grid_cells(struct raster *R, struct fct_err *err)
+{
+	const struct geo *G = R->G;
+	struct pixgrid *P = &R->grid;
+	P->w = (size_t)R->w, P->h = (size_t)R->h, P->at = R->at;
+	size_t n = P->w * P->h;
+	P->cell = fct_alloc_array(n, 2 * sizeof *P->cell, err);
+	P->diag = calloc(n, 1);
+	if (!P->cell || !P->diag) {
+		if (P->cell)
+			fct_fail(err, "out of memory");
+		return -1;
+	}
+	memset(P->cell, 0xff, 2 * n * sizeof *P->cell);
+	/* The half a triangle takes, by the corner of its cell it leaves out
+	 * (x + 2 y): its diagonal, and its slot (DOWN: x >= y first; UP:
+	 * x + y <= 1 first). */
+	static const uint8_t diag[4] = { DIAG_UP, DIAG_DOWN, DIAG_DOWN, DIAG_UP };
+	static const uint8_t slot[4] = { 1, 1, 0, 0 };
+	for (size_t f = 0; f < G->nt; f++) {
+		if (isnan(G->tn[4 * f]))
+			continue;
+		const uint32_t *tv = &G->tv[3 * f];
+		int32_t x[3], y[3];
+		for (int k = 0; k < 3; k++)
+			x[k] = R->at[2 * tv[k]], y[k] = R->at[2 * tv[k] + 1];
+		if ((x[0] | x[1] | x[2]) < 0)
+			goto not_grid;
+		int32_t cx = x[0] < x[1] ? x[0] : x[1], cy = y[0] < y[1] ? y[0] : y[1];
+		cx = x[2] < cx ? x[2] : cx, cy = y[2] < cy ? y[2] : cy;
+		unsigned corners = 0;
+		for (int k = 0; k < 3; k++) {
+			int32_t dx = x[k] - cx, dy = y[k] - cy;
+			if (dx > 1 || dy > 1)
+				goto not_grid;
+			corners |= 1u << (dx + 2 * dy);
+		}
+		if (!(corners == 7 || corners == 11 || corners == 13 || corners == 14) || (size_t)cx + 1 >= P->w || (size_t)cy + 1 >= P->h)
+			goto not_grid;
+		int out = __builtin_ctz(~corners & 15);
+		size_t c = (size_t)cy * P->w + (size_t)cx;
+		if ((P->diag[c] && P->diag[c] != diag[out]) || P->cell[2 * c + slot[out]] >= 0)
+			goto not_grid;
+		P->diag[c] = diag[out];
+		P->cell[2 * c + slot[out]] = (int32_t)f;
+	}
+	return 1;
+not_grid:
+	free(P->cell);
+	free(P->diag);
+	memset(P, 0, sizeof *P);
+	return 0;
+}
+
+/* The triangle of the grid under sample point (x, y), or -1. */
+static inline int32_t grid_seen(const struct pixgrid *P, double x, double y)
+{
+	if (!(x >= 0 && y >= 0 && x < (double)(P->w - 1) && y < (double)(P->h - 1)))
+		return -1;
+	size_t cx = (size_t)x, cy = (size_t)y, c = cy * P->w + cx;
+	double fx = x - (double)cx, fy = y - (double)cy;
+	return P->cell[2 * c + (P->diag[c] == DIAG_UP ? fx + fy > 1 : fy > fx)];
+}
+
+/* The triangle seen at sample point (x, y) in layer id (the grid's, when
+ * there is one), or -1. */
+static inline int32_t seen(const struct raster *R, const int32_t *id, double x, double y)
+{
+	if (R->grid.cell)
+		return grid_seen(&R->grid, x, y);
+	long i = sample_index(R, x, y);
+	return i >= 0 ? id[i] : -1;
+}
+
+/* For true distance: the grid of G seen by v when it is one, else the
+ * raster at two samples per pixel along each axis, so that every triangle
+ * of a range image's grid owns one.  0 or -1. */
+static int raster_true(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
+                       size_t max_samples, int nthreads, struct fct_err *err)
+{
+	if (raster_frame(R, v, G, 1, 1, max_samples, nthreads, err))
+		return -1;
+	if (R->w == 0)
+		return 0;
+	int grid = R->S == 1 ? grid_cells(R, err) : 0;
+	if (grid)
+		return grid > 0 ? 0 : -1;
+	if (v->cam.kind == FCT_CAMERA_NONE)
+		return raster_fill(R, err);
+	raster_free(R);
+	return raster_build(R, v, G, 2, 1, max_samples, nthreads, err);
 }
 
 /* The range image is the raster of one sample per pixel, kept to the
@@ -1061,16 +1274,11 @@ struct fctx {
 /* The triangle seen at sample (x, y), or at one of its 8 neighbours. */
 static int32_t seen_at(const struct raster *R, const int32_t *id, double x, double y)
 {
-	long i = sample_index(R, x, y);
-	if (i >= 0 && id[i] >= 0)
-		return id[i];
-	for (int dy = -1; dy <= 1; dy++)
-		for (int dx = -1; dx <= 1; dx++) {
-			i = sample_index(R, x + dx, y + dy);
-			if (i >= 0 && id[i] >= 0)
-				return id[i];
-		}
-	return -1;
+	int32_t t = seen(R, id, x, y);
+	for (int dy = -1; dy <= 1 && t < 0; dy++)
+		for (int dx = -1; dx <= 1 && t < 0; dx++)
+			t = seen(R, id, x + dx, y + dy);
+	return t;
 }
 
 static inline double plane_dist(const struct geo *G, int32_t t, const double x[3])
@@ -1123,19 +1331,20 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 	if (s > band + 2 * F->vox)
 		return -1;
 	int stays = 0;
+	double f[3];
 	for (int it = 0; it < 8; it++) {
 		const float *n = &G->tn[4 * (size_t)t];
-		double f[3] = { x[0] - s * n[0], x[1] - s * n[1], x[2] - s * n[2] };
+		f[0] = x[0] - s * n[0], f[1] = x[1] - s * n[1], f[2] = x[2] - s * n[2];
 		if (!sample_of(R, f, &sx, &sy, &depth))
 			break;
-		long si = sample_index(R, sx, sy);
-		if (si < 0 || id[si] < 0 || (stays = id[si] == t))
+		int32_t ts = seen(R, id, sx, sy);
+		if (ts < 0 || (stays = ts == t))
 			break;
 		/* Not onto another surface farther away (off a silhouette). */
-		double s2 = plane_dist(G, id[si], x);
+		double s2 = plane_dist(G, ts, x);
 		if (fabs(s2) > fabs(s) + F->vox)
 			break;
-		t = id[si], s = s2;
+		t = ts, s = s2;
 	}
 	/* Far from the plane seen, on either side: a walk downhill from
 	 * there seldom comes into the band (surfaces behind another are the
@@ -1146,7 +1355,14 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 		return -1;
 	/* The sample is the nearest one, not the triangle under the foot:
 	 * find that one in the image first (cheaper than walking around
-	 * vertices in space). */
+	 * vertices in space).  A grid's cell is exact. */
+	if (stays && R->grid.cell) {
+		/* The foot is on t (its cell half is), so it is the point of t
+		 * nearest x, inside it: a walk would stop there. */
+		*d2 = s * s, *r = FCT_TRI_FACE;
+		memcpy(q, f, sizeof f);
+		return (float)*d2 <= band * band ? t : -1;
+	}
 	if (stays)
 		t = locate(R, t, sx, sy);
 	t = walk(G, t, x, band * band, d2, q, r);
@@ -1166,7 +1382,7 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 	t = search(F, R->id, t, x, &d2, q, &r);
 	/* A second layer (the far side of a closed object, a surface behind
 	 * another) where there is one. */
-	int32_t tf = seen_at(R, R->idf, sx, sy);
+	int32_t tf = R->idf ? seen_at(R, R->idf, sx, sy) : -1;
 	if (tf >= 0 && tf != t0) {
 		double d2f, qf[3];
 		enum fct_tri_region rf;
@@ -1189,13 +1405,12 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 		static const double dir[8][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 },
 		                                   { .5, 0 }, { -.5, 0 }, { 0, .5 }, { 0, -.5 } };
 		for (int di = 0; di < 8; di++) {
-			long si = sample_index(R, sx + rp * dir[di][0], sy + rp * dir[di][1]);
-			if (si < 0 || R->id[si] < 0 || R->id[si] == t0 ||
-			    fabs(plane_dist(G, R->id[si], x)) > band)
+			int32_t ts = seen(R, R->id, sx + rp * dir[di][0], sy + rp * dir[di][1]);
+			if (ts < 0 || ts == t0 || fabs(plane_dist(G, ts, x)) > band)
 				continue;
 			double d2f, qf[3];
 			enum fct_tri_region rf;
-			int32_t tf2 = search(F, R->id, R->id[si], x, &d2f, qf, &rf);
+			int32_t tf2 = search(F, R->id, ts, x, &d2f, qf, &rf);
 			if (tf2 >= 0 && (t < 0 || d2f < d2)) {
 				t = tf2, d2 = d2f, r = rf;
 				memcpy(q, qf, sizeof qf);
@@ -1269,10 +1484,18 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 					e->x[0] = i * vox, e->x[1] = j * vox, e->x[2] = k * vox;
 					if (!in_clip(F->p, i, j, k) || !sample_of(R, e->x, &e->sx, &e->sy, &depth))
 						continue;
-					long si = sample_index(R, e->sx, e->sy);
-					if (si >= 0) {
-						__builtin_prefetch(&R->id[si]);
-						__builtin_prefetch(&R->idf[si]);
+					if (R->grid.cell) {
+						if (e->sx >= 0 && e->sy >= 0 && e->sx < R->w - 1 && e->sy < R->h - 1) {
+							size_t c = (size_t)e->sy * (size_t)R->w + (size_t)e->sx;
+							__builtin_prefetch(&R->grid.cell[2 * c]);
+							__builtin_prefetch(&R->grid.diag[c]);
+						}
+					} else {
+						long si = sample_index(R, e->sx, e->sy);
+						if (si >= 0) {
+							__builtin_prefetch(&R->id[si]);
+							__builtin_prefetch(&R->idf[si]);
+						}
 					}
 					e->l = (int16_t)(xx + FCT_VOXBLOCK * (y + FCT_VOXBLOCK * z));
 					n++;
@@ -1364,13 +1587,10 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	struct scratch s = { 0 };
 	size_t from = fct_voxgrid_count(g);
 	int rc = -1;
-	/* True distance: two samples per pixel along each axis, so that
-	 * every triangle of a range image's grid owns one; projective: the
-	 * pixels themselves. */
-	double S = proj ? 1 : 2;
-	if (v->cam.kind == FCT_CAMERA_NONE && !proj)
-		S = 1;
-	if (raster_build(&R, v, &G, S, !proj, (size_t)1 << 26, nthreads, err))
+	size_t max_samples = (size_t)1 << 26;
+	if (proj ? raster_build(&R, v, &G, 1, 0, max_samples, nthreads, err)
+	         : raster_true(&R, v, &G, max_samples, nthreads, err) ||
+	               geo_rings(&G, R.grid.cell ? &R.grid : NULL, err))
 		goto done;
 	if (R.w > 0) {
 		double r = ceil(band / vox);

@@ -1,10 +1,12 @@
 /* test_fuse.c - true signed distances of a hand-made view, the same view
- * twice, border voxels, the .conf quaternion, and carving marks. */
+ * twice, border voxels, a range image's grid against the general raster,
+ * the .conf quaternion, and carving marks. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "check.h"
+#include "depthmesh.h"
 #include "fuse.h"
 #include "mcubes.h"
 #include "rangegrid.h"
@@ -65,6 +67,93 @@ static void test_plane(void)
 	fct_mesh_free(&m);
 }
 
+/* Voxels with a value in g: their count, and the largest difference of
+ * distance from h's (which must have them too, else *missing counts). */
+static size_t compare_grids(const struct fct_voxgrid *g, const struct fct_voxgrid *h, double *worst,
+                            size_t *missing)
+{
+	size_t n = 0;
+	*worst = 0, *missing = 0;
+	for (size_t b = 0; b < fct_voxgrid_count(g); b++) {
+		const struct fct_voxblock *vb = fct_voxgrid_at(g, b);
+		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
+			if (!(vb->weight[l] > 0))
+				continue;
+			n++;
+			int32_t i = vb->bx * 8 + l % 8, j = vb->by * 8 + l / 8 % 8, k = vb->bz * 8 + l / 64;
+			float s, w;
+			if (!fct_voxgrid_get(h, i, j, k, &s, &w) || !(w > 0))
+				(*missing)++;
+			else
+				*worst = fmax(*worst, fabs((double)s - vb->sdf[l]));
+		}
+	}
+	return n;
+}
+
+/* A depth image meshed as dm2mesh does is a pixel grid, searched through
+ * its cells; the same mesh with one triangle that is not (behind the
+ * camera, never seen) goes through the general raster.  Both give the
+ * distances of the scene: a plane at depth 0.5 on the left half of the
+ * image, a step back to 0.8 on the right (a silhouette). */
+static void test_grid(void)
+{
+	struct fct_err err;
+	struct fct_image img;
+	CHECK(fct_image_alloc(&img, 64, 64, 1, FCT_PIX_F32, &err) == 0);
+	float *d = img.data;
+	for (int y = 0; y < 64; y++)
+		for (int x = 0; x < 64; x++)
+			d[y * 64 + x] = x < 32 ? 0.5f : 0.8f;
+	struct fct_fuse_view v;
+	struct fct_mesh m, m2;
+	struct fct_depth_params dp;
+	fct_depth_params_default(&dp);
+	dp.texcoords = 0;
+	view_of(&v, &m);
+	CHECK(fct_depth_mesh(&m, &img, &v.cam, &dp, NULL, &err) == 0);
+	CHECK(m.nf > 3000);
+	fct_mesh_init(&m2);
+	for (size_t i = 0; i < m.nv; i++)
+		fct_mesh_add_vertex(&m2, m.xyz[3 * i], m.xyz[3 * i + 1], m.xyz[3 * i + 2], &err);
+	for (size_t f = 0; f < m.nf; f++)
+		fct_mesh_add_face(&m2, &m.fvert[m.fstart[f]], 3, &err);
+	uint32_t behind[3] = { (uint32_t)m2.nv, (uint32_t)m2.nv + 1, (uint32_t)m2.nv + 2 };
+	fct_mesh_add_vertex(&m2, 0, 0, -1, &err);
+	fct_mesh_add_vertex(&m2, 0.1, 0, -1, &err);
+	fct_mesh_add_vertex(&m2, 0, 0.1, -1, &err);
+	fct_mesh_add_face(&m2, behind, 3, &err);
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err), *h = fct_voxgrid_new(0.01, 0, &err);
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	v.mesh = &m2;
+	CHECK(fct_fuse_view(h, &v, &p, NULL, &err) == 0);
+	/* On the axis of the near plane (x = -0.1): 0.5 - z within the band. */
+	float s, w;
+	for (int k = 48; k <= 52; k++) {
+		CHECK(fct_voxgrid_get(g, -10, 0, k, &s, &w));
+		CHECK_NEAR(s, 0.5 - 0.01 * k, 1e-6);
+	}
+	/* Beside the step, in front of the far plane and 2 cm right of the
+	 * near plane's edge (x = 0): nearer that edge than the plane behind. */
+	CHECK(fct_voxgrid_get(g, 2, 0, 78, &s, &w));
+	CHECK(w > 0 && fabs(s) < 0.03 && s > 0);
+	double worst;
+	size_t missing, n = compare_grids(g, h, &worst, &missing);
+	CHECK(n > 10000);
+	CHECK_NEAR(worst, 0, 1e-5);
+	/* Voxels on the band's edge may fall either way of it. */
+	CHECK_MSG(missing < n / 200, "%zu of %zu voxels not in the raster's", missing, n);
+	compare_grids(h, g, &worst, &missing);
+	CHECK_NEAR(worst, 0, 1e-5);
+	CHECK_MSG(missing < n / 200, "%zu of %zu voxels not in the grid's", missing, n);
+	fct_voxgrid_free(g);
+	fct_voxgrid_free(h);
+	fct_mesh_free(&m);
+	fct_mesh_free(&m2);
+	fct_image_free(&img);
+}
+
 static void test_carve(void)
 {
 	struct fct_err err;
@@ -110,6 +199,7 @@ static void test_quat(void)
 int main(void)
 {
 	test_plane();
+	test_grid();
 	test_carve();
 	test_quat();
 	CHECK_DONE();
