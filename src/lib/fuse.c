@@ -1002,33 +1002,34 @@ enum { BOX_TRIANGLE = 4 };
 
 /* The candidate blocks of G for a band of band metres into s, each with
  * its block of g: created (fresh) when g did not have it, in the order of
- * s.  Projective: the voxels of the box of the surface's cells per block,
- * grown by ceil(band / vox) (and one for the cells' far corners); every
- * voxel in front is written.  True distance: only the voxels within band
- * of the box of the surface's points in every axis (a voxel farther than
- * that from all the points in one axis is farther in space).  For that
- * every point of a triangle is in a box: a triangle whose vertices are in
- * one block is in that block's box; one across blocks adds its box,
- * clipped per block, even below a voxel; a sampled one adds its samples
- * grown by half a voxel (each of its points is that close to a sample in
- * every axis). */
+ * s.  Projective: the voxels of the box of the surface's cells per block
+ * (vertices, triangles over a voxel), grown by ceil(band / vox) and one
+ * for the cells' far corners; every voxel in front is written.  True
+ * distance: only the voxels within band of the box of the surface's
+ * points in every axis (a voxel farther than that from all the points in
+ * one axis is farther in space).  For that every point of a triangle is
+ * in a box: a triangle whose vertices are in one block is in that block's
+ * box; one across blocks adds its box, clipped per block, even below a
+ * voxel; a sampled one adds its samples grown by half a voxel (each of
+ * its points is that close to a sample in every axis). */
 static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
                       double vox, double band, int proj, struct fct_err *err)
 {
 	struct cand c = { { 0 }, 1 / vox, err };
 	int rc = -1;
 	double h = proj ? 0 : 0.5;
-	struct sblock **vb = fct_alloc_array(G->nv ? G->nv : 1, sizeof *vb, err);   /* a vertex's block */
-	if (!vb)
+	struct sblock **vb = NULL;   /* true distance: a vertex's block */
+	if (!proj && !(vb = fct_alloc_array(G->nv ? G->nv : 1, sizeof *vb, err)))
 		return -1;
 	for (size_t i = 0; i < G->nv; i++) {
 		if (add_point(&c, &G->xyz[3 * i], 0))
 			goto done;
-		vb[i] = c.cells.last;
+		if (vb)
+			vb[i] = c.cells.last;
 	}
 	for (size_t t = 0; t < G->nt; t++) {
 		const uint32_t *tv = &G->tv[3 * t];
-		if (vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]])
+		if (vb && vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]])
 			continue;
 		const double *a = &G->xyz[3 * tv[0]], *b = &G->xyz[3 * tv[1]], *cc = &G->xyz[3 * tv[2]];
 		double e = 0;
