@@ -55,6 +55,7 @@ struct sblock {
 	size_t nvox, nborder;    /* voxels with a value, voxels skipped on a border */
 	struct fct_voxblock *vb; /* the volume's block, updated in place (each block is one thread's) */
 	int fresh;               /* vb was created for this view: dropped again if nothing is put */
+	double plo[3], phi[3];   /* candidates' surface blocks: box of their points, voxel units */
 };
 
 /* Voxel l of b gets distance d with weight w: the weighted average.  A
@@ -174,7 +175,7 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	}
 	b->bx = bx, b->by = by, b->bz = bz;
 	for (int a = 0; a < 3; a++)
-		b->lo[a] = FCT_VOXBLOCK, b->hi[a] = -1;
+		b->lo[a] = FCT_VOXBLOCK, b->hi[a] = -1, b->plo[a] = INFINITY, b->phi[a] = -INFINITY;
 	size_t h = key_hash(k, s->cap);
 	while (s->keys[h] != UINT64_MAX)
 		h = (h + 1) & (s->cap - 1);
@@ -1095,26 +1096,26 @@ done:
 	return rc;
 }
 
-/* Candidate voxels: the cells of the surface's points (vertices, and points
- * at most a voxel apart on larger triangles), their box per block grown by
- * the band. ------------------------------------------------------------- */
+/* Candidate voxels: the box of the surface's points (vertices, and points
+ * at most half a voxel apart on larger triangles) per block of their cells,
+ * grown by the band. ------------------------------------------------------ */
 
 struct cand {
-	struct scratch cells;    /* blocks with the box of their surface cells */
-	double vox, inv;
+	struct scratch cells;    /* blocks with the box of their surface points (plo, phi) */
+	double inv;
 	struct fct_err *err;
 };
 
-/* The cell of p in i; -1 (err set) when p is too far out. */
-static inline int cell_of(struct cand *c, const double p[3], int32_t i[3])
+/* p in voxel units in s, its cell in i; -1 (err set) when p is too far out. */
+static inline int cell_of(struct cand *c, const double p[3], double s[3], int32_t i[3])
 {
 	for (int k = 0; k < 3; k++) {
-		double s = p[k] * c->inv;
-		if (!(fabs(s) < MAX_INDEX))
+		s[k] = p[k] * c->inv;
+		if (!(fabs(s[k]) < MAX_INDEX))
 			return fct_fail(c->err, "the view reaches %g m: too far from the origin for the voxel size",
 			                p[k]);
-		int32_t t = (int32_t)s;   /* floor, without a call */
-		i[k] = t - (s < (double)t);
+		int32_t t = (int32_t)s[k];   /* floor, without a call */
+		i[k] = t - (s[k] < (double)t);
 	}
 	return 0;
 }
@@ -1155,48 +1156,115 @@ static inline int add_box(struct scratch *s, const int32_t lo[3], const int32_t 
 	return 0;
 }
 
-static inline int add_point(struct cand *c, const double p[3])
+/* The box lo..hi (voxel units) of surface points in cells clo..chi into
+ * the boxes of the blocks of those cells, clipped to each block's extent
+ * [8 B, 8 B + 8] along an axis where it spans several (c->cells.last
+ * is the block of a point then). */
+static inline int add_span(struct cand *c, const double lo[3], const double hi[3], const int32_t clo[3],
+                           const int32_t chi[3])
 {
-	int32_t i[3];
-	return cell_of(c, p, i) || add_box(&c->cells, i, i, c->err);
+	int32_t blo[3], bhi[3];
+	for (int k = 0; k < 3; k++)
+		blo[k] = fct_vox_block_of(clo[k]), bhi[k] = fct_vox_block_of(chi[k]);
+	struct sblock *lb = c->cells.last;
+	if (lb && blo[0] == lb->bx && bhi[0] == lb->bx && blo[1] == lb->by && bhi[1] == lb->by &&
+	    blo[2] == lb->bz && bhi[2] == lb->bz) {
+		/* Within the block of the box before (most boxes are). */
+		for (int k = 0; k < 3; k++) {
+			lb->plo[k] = lo[k] < lb->plo[k] ? lo[k] : lb->plo[k];
+			lb->phi[k] = hi[k] > lb->phi[k] ? hi[k] : lb->phi[k];
+		}
+		return 0;
+	}
+	for (int32_t bz = blo[2]; bz <= bhi[2]; bz++)
+		for (int32_t by = blo[1]; by <= bhi[1]; by++)
+			for (int32_t bx = blo[0]; bx <= bhi[0]; bx++) {
+				struct sblock *b = scratch_block(&c->cells, bx, by, bz, 1, c->err);
+				if (!b)
+					return -1;
+				int32_t bb[3] = { bx, by, bz };
+				for (int k = 0; k < 3; k++) {
+					double l = lo[k], h = hi[k], o = (double)bb[k] * FCT_VOXBLOCK;
+					if (blo[k] < bhi[k]) {
+						l = l < o ? o : l;
+						h = h > o + FCT_VOXBLOCK ? o + FCT_VOXBLOCK : h;
+					}
+					b->plo[k] = l < b->plo[k] ? l : b->plo[k];
+					b->phi[k] = h > b->phi[k] ? h : b->phi[k];
+				}
+			}
+	return 0;
 }
 
-/* Triangles at most this many voxels across add the box of their
- * vertices' cells (a cell or so more than their own, within a band that
- * is wider anyway); larger ones, points at most half a voxel apart. */
+/* Point p, grown by h voxels each way, into the box of its cell's block. */
+static inline int add_point(struct cand *c, const double p[3], double h)
+{
+	double s[3], lo[3], hi[3];
+	int32_t i[3];
+	if (cell_of(c, p, s, i))
+		return -1;
+	for (int k = 0; k < 3; k++)
+		lo[k] = s[k] - h, hi[k] = s[k] + h;
+	return add_span(c, lo, hi, i, i);
+}
+
+/* Triangles at most this many voxels across add the box of their vertices
+ * (within a band that is wider anyway); larger ones, points at most half
+ * a voxel apart. */
 enum { BOX_TRIANGLE = 4 };
 
-/* The candidate blocks of G for a band of r voxels into s, each with its
- * block of g: created (fresh) when g did not have it, in the order of s. */
+/* The candidate blocks of G for a band of band metres into s, each with
+ * its block of g: created (fresh) when g did not have it, in the order of
+ * s.  Projective: the voxels of the box of the surface's cells per block
+ * (vertices, triangles over a voxel), grown by ceil(band / vox) and one
+ * for the cells' far corners; every voxel in front is written.  True
+ * distance: only the voxels within band of the box of the surface's
+ * points in every axis (a voxel farther than that from all the points in
+ * one axis is farther in space).  For that every point of a triangle is
+ * in a box: a triangle whose vertices are in one block is in that block's
+ * box; one across blocks adds its box, clipped per block, even below a
+ * voxel; a sampled one adds its samples grown by half a voxel (each of
+ * its points is that close to a sample in every axis). */
 static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
-                      double vox, int r, struct fct_err *err)
+                      double vox, double band, int proj, struct fct_err *err)
 {
-	struct cand c = { { 0 }, vox, 1 / vox, err };
+	struct cand c = { { 0 }, 1 / vox, err };
 	int rc = -1;
-	for (size_t i = 0; i < G->nv; i++)
-		if (add_point(&c, &G->xyz[3 * i]))
+	double h = proj ? 0 : 0.5;
+	struct sblock **vb = NULL;   /* true distance: a vertex's block */
+	if (!proj && !(vb = fct_alloc_array(G->nv ? G->nv : 1, sizeof *vb, err)))
+		return -1;
+	for (size_t i = 0; i < G->nv; i++) {
+		if (add_point(&c, &G->xyz[3 * i], 0))
 			goto done;
+		if (vb)
+			vb[i] = c.cells.last;
+	}
 	for (size_t t = 0; t < G->nt; t++) {
 		const uint32_t *tv = &G->tv[3 * t];
+		if (vb && vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]])
+			continue;
 		const double *a = &G->xyz[3 * tv[0]], *b = &G->xyz[3 * tv[1]], *cc = &G->xyz[3 * tv[2]];
 		double e = 0;
 		for (int k = 0; k < 3; k++) {
 			double ek = dmax3(a[k], b[k], cc[k]) - dmin3(a[k], b[k], cc[k]);
 			e = ek > e ? ek : e;
 		}
-		if (!(e > vox))
+		if (proj && !(e > vox))
 			continue;
 		if (e <= BOX_TRIANGLE * vox) {
-			int32_t ia[3], ib[3], ic[3], lo[3], hi[3];
-			if (cell_of(&c, a, ia) || cell_of(&c, b, ib) || cell_of(&c, cc, ic))
+			double sa[3], sb[3], sc[3], lo[3], hi[3];
+			int32_t ia[3], ib[3], ic[3], clo[3], chi[3];
+			if (cell_of(&c, a, sa, ia) || cell_of(&c, b, sb, ib) || cell_of(&c, cc, sc, ic))
 				goto done;
 			for (int k = 0; k < 3; k++) {
-				lo[k] = ia[k] < ib[k] ? ia[k] : ib[k];
-				lo[k] = ic[k] < lo[k] ? ic[k] : lo[k];
-				hi[k] = ia[k] > ib[k] ? ia[k] : ib[k];
-				hi[k] = ic[k] > hi[k] ? ic[k] : hi[k];
+				lo[k] = dmin3(sa[k], sb[k], sc[k]), hi[k] = dmax3(sa[k], sb[k], sc[k]);
+				clo[k] = ia[k] < ib[k] ? ia[k] : ib[k];
+				clo[k] = ic[k] < clo[k] ? ic[k] : clo[k];
+				chi[k] = ia[k] > ib[k] ? ia[k] : ib[k];
+				chi[k] = ic[k] > chi[k] ? ic[k] : chi[k];
 			}
-			if (add_box(&c.cells, lo, hi, err))
+			if (add_span(&c, lo, hi, clo, chi))
 				goto done;
 			continue;
 		}
@@ -1210,17 +1278,33 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 				double p[3];
 				for (int k = 0; k < 3; k++)
 					p[k] = a[k] + (b[k] - a[k]) * (i / n) + (cc[k] - a[k]) * (j / n);
-				if (add_point(&c, p))
+				if (add_point(&c, p, h))
 					goto done;
 			}
 	}
+	/* Projective: r voxels (at most 100); true distance: rb voxels, a
+	 * little more for rounding (search keeps a voxel whose squared
+	 * distance rounds to band squared as a float). */
+	double r = ceil(band / vox), rb = band / vox;
+	r = r < 100 ? r : 100;
+	rb = rb < 100 ? rb : 100;
+	rb += 1e-6 * (1 + rb);
 	for (size_t bi = 0; bi < c.cells.n; bi++) {
 		const struct sblock *cb = c.cells.blk[bi];
 		int32_t lo[3], hi[3];
 		int32_t base[3] = { cb->bx * FCT_VOXBLOCK, cb->by * FCT_VOXBLOCK, cb->bz * FCT_VOXBLOCK };
 		for (int k = 0; k < 3; k++) {
-			lo[k] = base[k] + cb->lo[k] - r;
-			hi[k] = base[k] + cb->hi[k] + 1 + r;
+			if (proj) {
+				/* The cells: a box clipped at the block's far edge
+				 * (8 B + 8) ends in cell 8 B + 7. */
+				int32_t cl = (int32_t)floor(cb->plo[k]), ch = (int32_t)floor(cb->phi[k]);
+				ch = ch < base[k] + FCT_VOXBLOCK - 1 ? ch : base[k] + FCT_VOXBLOCK - 1;
+				lo[k] = cl - (int32_t)r;
+				hi[k] = ch + 1 + (int32_t)r;
+			} else {
+				lo[k] = (int32_t)ceil(cb->plo[k] - rb);
+				hi[k] = (int32_t)floor(cb->phi[k] + rb);
+			}
 		}
 		if (add_box(s, lo, hi, err))
 			goto done;
@@ -1235,6 +1319,7 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 	}
 	rc = 0;
 done:
+	free(vb);
 	scratch_free(&c.cells);
 	return rc;
 }
@@ -1593,8 +1678,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	               geo_rings(&G, R.grid.cell ? &R.grid : NULL, err))
 		goto done;
 	if (R.w > 0) {
-		double r = ceil(band / vox);
-		if (candidates(&s, g, &G, vox, (int)(r < 100 ? r : 100), err))
+		if (candidates(&s, g, &G, vox, band, proj, err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox };
 		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);

@@ -1,6 +1,6 @@
 /* test_fuse.c - true signed distances of a hand-made view, the same view
  * twice, border voxels, a range image's grid against the general raster,
- * the .conf quaternion, and carving marks. */
+ * the band's last layer, the .conf quaternion, and carving marks. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -154,6 +154,32 @@ static void test_grid(void)
 	fct_image_free(&img);
 }
 
+/* A plane a hair in front of a voxel layer: the layers at band distance
+ * stay in (the search compares the squared distance as a float, so the
+ * one 0.0300000001 away is in the band; the candidate boxes keep a little
+ * more than the band for that), the next ones are not written. */
+static void test_band_edge(void)
+{
+	struct fct_err err;
+	struct fct_mesh m;
+	square(&m, 60, 0.5 - 1e-10);   /* 3.3 cm triangles: their boxes, no samples */
+	struct fct_fuse_view v;
+	view_of(&v, &m);
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	float s, w;
+	for (int j = -30; j <= 30; j += 10)
+		for (int k = 46; k <= 54; k++) {
+			int got = fct_voxgrid_get(g, 7, j, k, &s, &w) && w > 0;
+			CHECK_MSG(got == (k >= 47 && k <= 53), "voxel (7, %d, %d): %s", j, k, got ? "written" : "not written");
+			if (got)
+				CHECK_NEAR(s, 0.5 - 0.01 * k, 1e-6);
+		}
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
+}
+
 static void test_carve(void)
 {
 	struct fct_err err;
@@ -200,6 +226,7 @@ int main(void)
 {
 	test_plane();
 	test_grid();
+	test_band_edge();
 	test_carve();
 	test_quat();
 	CHECK_DONE();
