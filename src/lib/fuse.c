@@ -484,20 +484,22 @@ static int vertex_normal(const struct geo *G, uint32_t v, double vn[3])
 /* Walk from triangle t downhill to the triangle nearest x: across the edge
  * or around the vertex where the closest point lies.  Returns the triangle;
  * *d2 its squared distance, q the point, *r its region; -1 when it is
- * still going after WALK_STEPS steps, or still farther than the band
- * (squared: band2) after BAND_STEPS.  Such walks creep along the band's
- * edge by fractions of a millimetre a step: on a room view at 2 cm they
- * were a third of all steps, and giving up after 4 loses 1% of the band's
- * voxels, all within millimetres of its edge. */
-enum { WALK_STEPS = 12, BAND_STEPS = 4 };
+ * still going after WALK_STEPS steps, or when t is already farther than
+ * the band (squared: band2).  Walks from out of the band crawl along
+ * borders and silhouettes a small triangle a step, trying every triangle
+ * around each vertex they pass: on the room at 2 cm they cost 17% of the
+ * fusion for 0.55% of its voxels, all at the band's edge, and the bunny
+ * comes out nearer its reference without them (0.0628 / 0.0467 mm, not
+ * 0.0641 / 0.0482). */
+enum { WALK_STEPS = 12 };
 
 static int32_t walk(const struct geo *G, int32_t t, const double x[3], double band2, double *d2out,
                     double q[3], enum fct_tri_region *r)
 {
 	double best = tri_closest(G, (size_t)t, x, q, r);
+	if ((float)best > band2)
+		return -1;
 	for (int step = 0;; step++) {
-		if (step == BAND_STEPS && (float)best > band2)
-			return -1;
 		int32_t next = -1;
 		double nd = best, nq[3];
 		enum fct_tri_region nr = *r;
