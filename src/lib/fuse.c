@@ -5,23 +5,24 @@
  * Nearest points.  Hilton finds each band voxel's nearest point on the
  * view's mesh with a k-D tree.  A range-image mesh is organised by its own
  * sensor, so here the search starts in the view's image.  Each candidate
- * voxel (the blocks around the surface's cells, grown by the band) is
+ * voxel (within the band of its block's box of surface points) is
  * projected, goes to the foot of the perpendicular on the plane of the
  * triangle seen there, and again from the triangle seen at the foot until
  * it stays (on a grid the foot is then the nearest point), then walks
  * downhill on the mesh (across the edge or around the vertex where its
- * closest point lies) to the local minimum.  Voxels in front of the surface they see but out of its band
- * also try the surfaces a band's width away in the image (around
- * silhouettes).  The triangle seen at a point of the image: for a range
- * image's grid (every vertex on a pixel centre) that of its pixel cell,
- * which also gives the triangles around a vertex; for other meshes a raster
- * at two samples per pixel (the nearest and the farthest triangle of each
+ * closest point lies) to the local minimum.  Voxels in front of the
+ * surface they see but out of its band also try the surfaces a band's
+ * width away in the image (around silhouettes and in concave corners).
+ * The triangle seen at a point of the image: for a range image's grid
+ * (every vertex on a pixel centre) that of its pixel cell, which also
+ * gives the triangles around a vertex; for other meshes a raster at two
+ * samples per pixel (the nearest and the farthest triangle of each
  * sample).  Cost: a few lookups and closest-point tests per candidate
  * voxel, nothing per triangle but the cells or the raster.  The lookups
- * wait on memory more than they compute, so a block's voxels are projected and
- * their triangles looked up for all of them before any is searched.  Blocks
- * are shared out among threads and each writes only its own results, so
- * the volume is the same for any thread count. */
+ * wait on memory more than they compute, so a block's voxels are
+ * projected and their triangles looked up for all of them before any is
+ * searched.  Blocks are shared out among threads and each writes only its
+ * own results, so the volume is the same for any thread count. */
 #include "fuse.h"
 
 #include <math.h>
@@ -975,7 +976,8 @@ static int grid_cells(struct raster *R, struct fct_err *err)
 				goto not_grid;
 			corners |= 1u << (dx + 2 * dy);
 		}
-		if (!(corners == 7 || corners == 11 || corners == 13 || corners == 14) || (size_t)cx + 1 >= P->w || (size_t)cy + 1 >= P->h)
+		int three = corners == 7 || corners == 11 || corners == 13 || corners == 14;
+		if (!three || (size_t)cx + 1 >= P->w || (size_t)cy + 1 >= P->h)
 			goto not_grid;
 		int out = __builtin_ctz(~corners & 15);
 		size_t c = (size_t)cy * P->w + (size_t)cx;
