@@ -889,6 +889,24 @@ static int wire_moments(const struct fct_mesh *m, const struct fct_wire *w, size
 	return 0;
 }
 
+/* Each plane's area and centroid, from the wireframe when wired (else
+ * from the patches), into *area and *cen, allocated when NULL.  0 or -1. */
+static int plane_moments(const struct fct_mesh *m, int wired, const struct fct_wire *wire,
+                         size_t nwire, const int32_t *patch, const struct fct_plane *pl, size_t npl,
+                         double **area, double **cen, struct fct_err *err)
+{
+	if (!*area)
+		*area = fct_alloc_array(npl, sizeof **area, err);
+	if (!*cen)
+		*cen = fct_alloc_array(3 * npl, sizeof **cen, err);
+	if (!*area || !*cen)
+		return -1;
+	if (wired)
+		return wire_moments(m, wire, nwire, pl, npl, *area, *cen, err);
+	patch_moments(m, patch, npl, *area, *cen);
+	return 0;
+}
+
 /* Make sure m has a scalar vertex column name (float when added). */
 static int texcoord_column(struct fct_mesh *m, const char *name, struct fct_err *err)
 {
@@ -1444,12 +1462,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		 * patches are the reliable ones, while small patches of a noisy,
 		 * curved or cluttered surface meet at every angle (and more of
 		 * them look orthogonal the more depth is stretched). */
-		area = fct_alloc_array(npl, sizeof *area, err);
-		cen = fct_alloc_array(3 * npl, sizeof *cen, err);
-		if (!area || !cen)
-			goto out;
-		if (wired ? wire_moments(m, wire, nwire, pl, npl, area, cen, err)
-		          : (patch_moments(m, patch, npl, area, cen), 0))
+		if (plane_moments(m, wired, wire, nwire, patch, pl, npl, &area, &cen, err))
 			goto out;
 		double total = 0;
 		for (size_t i = 0; i < npl; i++)
@@ -1479,17 +1492,9 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	}
 	if (p->ortho_angle > 0) {
 		/* The scale fix's moments serve unless it moved the points. */
-		if (!area || planes_changed) {
-			if (!area)
-				area = fct_alloc_array(npl, sizeof *area, err);
-			if (!cen)
-				cen = fct_alloc_array(3 * npl, sizeof *cen, err);
-			if (!area || !cen)
-				goto out;
-			if (wired ? wire_moments(m, wire, nwire, pl, npl, area, cen, err)
-			          : (patch_moments(m, patch, npl, area, cen), 0))
-				goto out;
-		}
+		if ((!area || planes_changed) &&
+		    plane_moments(m, wired, wire, nwire, patch, pl, npl, &area, &cen, err))
+			goto out;
 		double prior[3], down[3] = { 0, -1, 0 };
 		int use_prior = have_cam || have_pose;
 		if (have_pose) {
