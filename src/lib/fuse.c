@@ -994,14 +994,40 @@ not_grid:
 	return 0;
 }
 
-/* The triangle of the grid under sample point (x, y), or -1. */
-static inline int32_t grid_seen(const struct pixgrid *P, double x, double y)
+/* The cell of the grid under sample point (x, y), or -1. */
+static inline long grid_cell_at(const struct pixgrid *P, double x, double y)
 {
 	if (!(x >= 0 && y >= 0 && x < (double)(P->w - 1) && y < (double)(P->h - 1)))
 		return -1;
-	size_t cx = (size_t)x, cy = (size_t)y, c = cy * P->w + cx;
-	double fx = x - (double)cx, fy = y - (double)cy;
+	return (long)((size_t)y * P->w + (size_t)x);
+}
+
+/* The triangle of the grid under sample point (x, y), or -1. */
+static inline int32_t grid_seen(const struct pixgrid *P, double x, double y)
+{
+	long c = grid_cell_at(P, x, y);
+	if (c < 0)
+		return -1;
+	double fx = x - (double)(long)x, fy = y - (double)(long)y;
 	return P->cell[2 * c + (P->diag[c] == DIAG_UP ? fx + fy > 1 : fy > fx)];
+}
+
+/* Ask for the memory that tells the triangle seen at sample point (x, y). */
+static inline void prefetch_seen(const struct raster *R, double x, double y)
+{
+	if (R->grid.cell) {
+		long c = grid_cell_at(&R->grid, x, y);
+		if (c >= 0) {
+			__builtin_prefetch(&R->grid.cell[2 * c]);
+			__builtin_prefetch(&R->grid.diag[c]);
+		}
+		return;
+	}
+	long si = sample_index(R, x, y);
+	if (si >= 0) {
+		__builtin_prefetch(&R->id[si]);
+		__builtin_prefetch(&R->idf[si]);
+	}
 }
 
 /* The triangle seen at sample point (x, y) in layer id (the grid's, when
@@ -1435,23 +1461,21 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 			break;
 		t = ts, s = s2;
 	}
-	/* Far from the plane seen, on either side: a walk downhill from
-	 * there seldom comes into the band (surfaces behind another are the
-	 * far layer's).  From half a voxel out it did for 250 of the 385,000
-	 * band voxels of a room view at 2 cm, and the walks that ended out of
-	 * the band were 40% of all. */
+	/* Far from the plane seen, on either side: the walk would start out
+	 * of the band and give up (surfaces behind another are the far
+	 * layer's); this spares it, and locate. */
 	if (fabs(s) > band + 0.5 * F->vox)
 		return -1;
-	/* The sample is the nearest one, not the triangle under the foot:
-	 * find that one in the image first (cheaper than walking around
-	 * vertices in space).  A grid's cell is exact. */
 	if (stays && R->grid.cell) {
-		/* The foot is on t (its cell half is), so it is the point of t
-		 * nearest x, inside it: a walk would stop there. */
+		/* A grid's cell is exact: the foot is on t, so it is the point
+		 * of t nearest x, inside it, and a walk would stop there. */
 		*d2 = s * s, *r = FCT_TRI_FACE;
 		memcpy(q, f, sizeof f);
 		return (float)*d2 <= band * band ? t : -1;
 	}
+	/* A raster's sample is the nearest one, not the triangle under the
+	 * foot: find that one in the image first (cheaper than walking
+	 * around vertices in space). */
 	if (stays)
 		t = locate(R, t, sx, sy);
 	t = walk(G, t, x, band * band, d2, q, r);
@@ -1573,19 +1597,7 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 					e->x[0] = i * vox, e->x[1] = j * vox, e->x[2] = k * vox;
 					if (!in_clip(F->p, i, j, k) || !sample_of(R, e->x, &e->sx, &e->sy, &depth))
 						continue;
-					if (R->grid.cell) {
-						if (e->sx >= 0 && e->sy >= 0 && e->sx < R->w - 1 && e->sy < R->h - 1) {
-							size_t c = (size_t)e->sy * (size_t)R->w + (size_t)e->sx;
-							__builtin_prefetch(&R->grid.cell[2 * c]);
-							__builtin_prefetch(&R->grid.diag[c]);
-						}
-					} else {
-						long si = sample_index(R, e->sx, e->sy);
-						if (si >= 0) {
-							__builtin_prefetch(&R->id[si]);
-							__builtin_prefetch(&R->idf[si]);
-						}
-					}
+					prefetch_seen(R, e->sx, e->sy);
 					e->l = (int16_t)(xx + FCT_VOXBLOCK * (y + FCT_VOXBLOCK * z));
 					n++;
 				}
