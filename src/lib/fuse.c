@@ -5,7 +5,7 @@
  * Nearest points.  Hilton finds each band voxel's nearest point on the
  * view's mesh with a k-D tree.  A range-image mesh is organised by its own
  * sensor, so here the search starts in the view's image.  Each candidate
- * voxel (within the band of its block's box of surface points) is
+ * voxel (within the band of its block's box and slab of surface points) is
  * projected, goes to the foot of the perpendicular on the plane of the
  * triangle seen there, and again from the triangle seen at the foot until
  * it stays (on a grid the foot is then the nearest point), then walks
@@ -57,6 +57,9 @@ struct sblock {
 	struct fct_voxblock *vb; /* the volume's block, updated in place (each block is one thread's) */
 	int fresh;               /* vb was created for this view: dropped again if nothing is put */
 	double plo[3], phi[3];   /* candidates' surface blocks: box of their points, voxel units */
+	double sn[3], slo, shi;  /* and the slab of their points: sn . p in [slo, shi] (sn 0: none) */
+	uint8_t row[FCT_VOXBLOCK * FCT_VOXBLOCK];   /* true distance: the candidates of row y + 8 z,
+	                                              * bit x */
 };
 
 /* Voxel l of b gets distance d with weight w: the weighted average.  A
@@ -177,6 +180,7 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	b->bx = bx, b->by = by, b->bz = bz;
 	for (int a = 0; a < 3; a++)
 		b->lo[a] = FCT_VOXBLOCK, b->hi[a] = -1, b->plo[a] = INFINITY, b->phi[a] = -INFINITY;
+	b->slo = INFINITY, b->shi = -INFINITY;
 	size_t h = key_hash(k, s->cap);
 	while (s->keys[h] != UINT64_MAX)
 		h = (h + 1) & (s->cap - 1);
@@ -1128,7 +1132,8 @@ done:
 
 /* Candidate voxels: the box of the surface's points (vertices, and points
  * at most half a voxel apart on larger triangles) per block of their cells,
- * grown by the band. ------------------------------------------------------ */
+ * grown by the band; for true distance also the slab of those points
+ * across the block's mean normal, grown by the band. -------------------- */
 
 struct cand {
 	struct scratch cells;    /* blocks with the box of their surface points (plo, phi) */
@@ -1186,6 +1191,21 @@ static inline int add_box(struct scratch *s, const int32_t lo[3], const int32_t 
 	return 0;
 }
 
+/* The box lo..hi (voxel units) holds surface points of b: into b's slab. */
+static inline void slab_extend(struct sblock *b, const double lo[3], const double hi[3])
+{
+	if (!(b->sn[0] || b->sn[1] || b->sn[2]))
+		return;
+	double dl = 0, dh = 0;
+	for (int k = 0; k < 3; k++) {
+		double a = b->sn[k] * lo[k], c = b->sn[k] * hi[k];
+		dl += a < c ? a : c;
+		dh += a < c ? c : a;
+	}
+	b->slo = dl < b->slo ? dl : b->slo;
+	b->shi = dh > b->shi ? dh : b->shi;
+}
+
 /* The box lo..hi (voxel units) of surface points in cells clo..chi into
  * the boxes of the blocks of those cells, clipped to each block's extent
  * [8 B, 8 B + 8] along an axis where it spans several (c->cells.last
@@ -1204,6 +1224,7 @@ static inline int add_span(struct cand *c, const double lo[3], const double hi[3
 			lb->plo[k] = lo[k] < lb->plo[k] ? lo[k] : lb->plo[k];
 			lb->phi[k] = hi[k] > lb->phi[k] ? hi[k] : lb->phi[k];
 		}
+		slab_extend(lb, lo, hi);
 		return 0;
 	}
 	for (int32_t bz = blo[2]; bz <= bhi[2]; bz++)
@@ -1213,6 +1234,7 @@ static inline int add_span(struct cand *c, const double lo[3], const double hi[3
 				if (!b)
 					return -1;
 				int32_t bb[3] = { bx, by, bz };
+				double cl[3], ch[3];
 				for (int k = 0; k < 3; k++) {
 					double l = lo[k], h = hi[k], o = (double)bb[k] * FCT_VOXBLOCK;
 					if (blo[k] < bhi[k]) {
@@ -1221,7 +1243,9 @@ static inline int add_span(struct cand *c, const double lo[3], const double hi[3
 					}
 					b->plo[k] = l < b->plo[k] ? l : b->plo[k];
 					b->phi[k] = h > b->phi[k] ? h : b->phi[k];
+					cl[k] = l, ch[k] = h;
 				}
+				slab_extend(b, cl, ch);
 			}
 	return 0;
 }
@@ -1238,6 +1262,80 @@ static inline int add_point(struct cand *c, const double p[3], double h)
 	return add_span(c, lo, hi, i, i);
 }
 
+/* The slabs of the vertices' blocks (vb: each vertex's), across the mean
+ * normal of the triangles at their first vertex: a voxel within the band
+ * of a point of the block is within the band of its slab too, so walls
+ * across the axes need not search the whole box around them. */
+static void vertex_slabs(struct cand *c, const struct geo *G, struct sblock **vb)
+{
+	for (size_t t = 0; t < G->nt; t++) {
+		const float *n = &G->tn[4 * t];
+		if (isnan(n[0]))
+			continue;
+		struct sblock *b = vb[G->tv[3 * t]];
+		for (int k = 0; k < 3; k++)
+			b->sn[k] += n[k];
+	}
+	for (size_t bi = 0; bi < c->cells.n; bi++) {
+		struct sblock *b = c->cells.blk[bi];
+		double len = sqrt(b->sn[0] * b->sn[0] + b->sn[1] * b->sn[1] + b->sn[2] * b->sn[2]);
+		for (int k = 0; k < 3; k++)
+			b->sn[k] = len > 0 ? b->sn[k] / len : 0;
+	}
+	for (size_t i = 0; i < G->nv; i++) {
+		double p[3];
+		for (int k = 0; k < 3; k++)
+			p[k] = G->xyz[3 * i + k] * c->inv;
+		slab_extend(vb[i], p, p);
+	}
+}
+
+/* True distance: the voxels of box lo..hi within rb of cb's slab, row by
+ * row, into the rows of their blocks in s.  0 or -1. */
+static int add_rows(struct scratch *s, const struct sblock *cb, const int32_t lo[3], const int32_t hi[3],
+                    double rb, struct fct_err *err)
+{
+	const double *n = cb->sn;
+	int slab = (n[0] || n[1] || n[2]) && cb->slo <= cb->shi;
+	double A = cb->slo - rb, B = cb->shi + rb;
+	for (int32_t z = lo[2]; z <= hi[2]; z++)
+		for (int32_t y = lo[1]; y <= hi[1]; y++) {
+			int32_t x0 = lo[0], x1 = hi[0];
+			if (slab) {
+				double r = n[1] * y + n[2] * z;
+				if (fabs(n[0]) > 1e-9) {
+					double a = (A - r) / n[0], bb = (B - r) / n[0];
+					if (a > bb)
+						a = bb, bb = (A - r) / n[0];
+					if (a > x0)
+						x0 = a > x1 + 1 ? x1 + 1 : (int32_t)ceil(a);
+					if (bb < x1)
+						x1 = bb < x0 - 1 ? x0 - 1 : (int32_t)floor(bb);
+				} else if (!(r >= A && r <= B)) {
+					continue;
+				}
+			}
+			if (x0 > x1)
+				continue;
+			int32_t by = fct_vox_block_of(y), bz = fct_vox_block_of(z);
+			int ly = y - by * FCT_VOXBLOCK, lz = z - bz * FCT_VOXBLOCK;
+			for (int32_t bx = fct_vox_block_of(x0); bx <= fct_vox_block_of(x1); bx++) {
+				struct sblock *b = scratch_block(s, bx, by, bz, 1, err);
+				if (!b)
+					return -1;
+				int32_t o = bx * FCT_VOXBLOCK;
+				int l = x0 > o ? x0 - o : 0, h = x1 < o + FCT_VOXBLOCK - 1 ? x1 - o : FCT_VOXBLOCK - 1;
+				b->row[ly + FCT_VOXBLOCK * lz] |= (uint8_t)((0xffu << l) & (0xffu >> (7 - h)));
+				int8_t bl[3] = { (int8_t)l, (int8_t)ly, (int8_t)lz }, bh[3] = { (int8_t)h, (int8_t)ly, (int8_t)lz };
+				for (int k = 0; k < 3; k++) {
+					b->lo[k] = bl[k] < b->lo[k] ? bl[k] : b->lo[k];
+					b->hi[k] = bh[k] > b->hi[k] ? bh[k] : b->hi[k];
+				}
+			}
+		}
+	return 0;
+}
+
 /* Triangles at most this many voxels across add the box of their vertices
  * (within a band that is wider anyway); larger ones, points at most half
  * a voxel apart. */
@@ -1248,13 +1346,15 @@ enum { BOX_TRIANGLE = 4 };
  * s.  Projective: the voxels of the box of the surface's cells per block
  * (vertices, triangles over a voxel), grown by ceil(band / vox) and one
  * for the cells' far corners; every voxel in front is written.  True
- * distance: only the voxels within band of the box of the surface's
- * points in every axis (a voxel farther than that from all the points in
- * one axis is farther in space).  For that every point of a triangle is
- * in a box: a triangle whose vertices are in one block is in that block's
- * box; one across blocks adds its box, clipped per block, even below a
- * voxel; a sampled one adds its samples grown by half a voxel (each of
- * its points is that close to a sample in every axis). */
+ * distance: only the voxels within band of a block's box of surface
+ * points in every axis and of its slab across the normal (a voxel farther
+ * than that from all the points in one direction is farther in space).
+ * For that every point of a triangle is in one block's box and slab: a
+ * triangle whose vertices are in one block is in that block's; one across
+ * blocks is put whole into its first vertex's (which then reaches past
+ * the block by a triangle's size at most); a sampled one adds its samples
+ * grown by half a voxel (each of its points is that close to a sample in
+ * every axis) to their blocks. */
 static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
                       double vox, double band, int proj, struct fct_err *err)
 {
@@ -1270,6 +1370,8 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 		if (vb)
 			vb[i] = c.cells.last;
 	}
+	if (vb)
+		vertex_slabs(&c, G, vb);
 	for (size_t t = 0; t < G->nt; t++) {
 		const uint32_t *tv = &G->tv[3 * t];
 		if (vb && vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]])
@@ -1282,6 +1384,22 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 		}
 		if (proj && !(e > vox))
 			continue;
+		if (vb && e <= BOX_TRIANGLE * vox) {
+			/* Into the box of one of its blocks, whole: the box may
+			 * reach past the block, a triangle's size at most. */
+			struct sblock *b0 = vb[tv[0]];
+			const double *v3[3] = { a, b, cc };
+			for (int m = 0; m < 3; m++) {
+				double sv[3];
+				for (int k = 0; k < 3; k++) {
+					sv[k] = v3[m][k] * c.inv;
+					b0->plo[k] = sv[k] < b0->plo[k] ? sv[k] : b0->plo[k];
+					b0->phi[k] = sv[k] > b0->phi[k] ? sv[k] : b0->phi[k];
+				}
+				slab_extend(b0, sv, sv);
+			}
+			continue;
+		}
 		if (e <= BOX_TRIANGLE * vox) {
 			double sa[3], sb[3], sc[3], lo[3], hi[3];
 			int32_t ia[3], ib[3], ic[3], clo[3], chi[3];
@@ -1336,7 +1454,7 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 				hi[k] = (int32_t)floor(cb->phi[k] + rb);
 			}
 		}
-		if (add_box(s, lo, hi, err))
+		if (proj ? add_box(s, lo, hi, err) : add_rows(s, cb, lo, hi, rb, err))
 			goto done;
 	}
 	for (size_t bi = 0; bi < s->n; bi++) {
@@ -1590,6 +1708,8 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 		for (int z = b->lo[2]; z <= b->hi[2]; z++)
 			for (int y = b->lo[1]; y <= b->hi[1]; y++)
 				for (int xx = b->lo[0]; xx <= b->hi[0]; xx++) {
+					if (!(b->row[y + FCT_VOXBLOCK * z] >> xx & 1))
+						continue;
 					int32_t i = b->bx * FCT_VOXBLOCK + xx, j = b->by * FCT_VOXBLOCK + y,
 					        k = b->bz * FCT_VOXBLOCK + z;
 					struct seen *e = &V[n];

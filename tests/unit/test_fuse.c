@@ -1,6 +1,6 @@
 /* test_fuse.c - true signed distances of a hand-made view, the same view
  * twice, border voxels, a range image's grid against the general raster,
- * the band's last layer, the .conf quaternion, and carving marks. */
+ * the band's last layer, a plane across the axes, the .conf quaternion, and carving marks. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -180,6 +180,63 @@ static void test_band_edge(void)
 	fct_mesh_free(&m);
 }
 
+/* A plane across all three axes, z = 0.5 + 0.3 x + 0.2 y, meshed from its
+ * depth image: inside the view every voxel within the band of it has its
+ * distance, none beyond does (the candidates keep to a slab around each
+ * block's points, and must not lose a voxel of the band to it). */
+static void test_tilted_plane(void)
+{
+	struct fct_err err;
+	struct fct_image img;
+	CHECK(fct_image_alloc(&img, 64, 64, 1, FCT_PIX_F32, &err) == 0);
+	float *d = img.data;
+	for (int y = 0; y < 64; y++)
+		for (int x = 0; x < 64; x++)
+			d[y * 64 + x] = (float)(0.5 / (1 - 0.3 * (x - 31.5) / 32 - 0.2 * (y - 31.5) / 32));
+	struct fct_fuse_view v;
+	struct fct_mesh m;
+	struct fct_depth_params dp;
+	fct_depth_params_default(&dp);
+	dp.texcoords = 0;
+	view_of(&v, &m);
+	CHECK(fct_depth_mesh(&m, &img, &v.cam, &dp, NULL, &err) == 0);
+	double band = 0.03, norm = sqrt(1 + 0.09 + 0.04);
+	struct fct_fuse_params p = { band, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	size_t inside = 0, worse = 0;
+	double worst = 0;
+	for (int k = 20; k <= 110; k++)
+		for (int j = -60; j <= 60; j++)
+			for (int i = -60; i <= 60; i++) {
+				double x = 0.01 * i, y = 0.01 * j, z = 0.01 * k;
+				double sdf = (0.5 - (z - 0.3 * x - 0.2 * y)) / norm;
+				/* Its foot on the plane, well inside the image. */
+				double f[3] = { x + 0.3 * sdf / norm, y + 0.2 * sdf / norm, z - sdf / norm };
+				double u = 32 * f[0] / f[2] + 31.5, w = 32 * f[1] / f[2] + 31.5;
+				double pu = 32 * x / z + 31.5, pw = 32 * y / z + 31.5;
+				if (!(u > 6 && u < 57 && w > 6 && w < 57 && pu > 6 && pu < 57 && pw > 6 && pw < 57))
+					continue;
+				float s, wt;
+				int got = fct_voxgrid_get(g, i, j, k, &s, &wt) && wt > 0;
+				if (fabs(sdf) < band - 1e-3) {
+					inside++;
+					if (!got)
+						worse++;
+					else
+						worst = fmax(worst, fabs(s - sdf));
+				} else if (fabs(sdf) > band + 1e-3 && got) {
+					worse++;
+				}
+			}
+	CHECK_MSG(inside > 20000, "%zu voxels inside the band", inside);
+	CHECK_MSG(worse == 0, "%zu voxels wrongly in or out of the band", worse);
+	CHECK_NEAR(worst, 0, 1e-5);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
+	fct_image_free(&img);
+}
+
 static void test_carve(void)
 {
 	struct fct_err err;
@@ -227,6 +284,7 @@ int main(void)
 	test_plane();
 	test_grid();
 	test_band_edge();
+	test_tilted_plane();
 	test_carve();
 	test_quat();
 	CHECK_DONE();
