@@ -4,6 +4,9 @@
  * distance in a sparse volume, confidence-weighted averaging, optional
  * space carving, marching cubes, and level-set curvature flow. */
 #include <getopt.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -453,6 +456,13 @@ static void color_vertices(const struct options *o, const struct loaded *L,
 int main(int argc, char **argv)
 {
 	fct_cli_init("tsdfuse");
+#ifdef __GLIBC__
+	/* Each view allocates and frees arrays of several MB (normals,
+	 * projections, cells); glibc would give them back to the kernel and
+	 * fault them in afresh, zeroed, for the next view. */
+	mallopt(M_MMAP_THRESHOLD, 32 << 20);
+	mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
 	struct options o;
 	parse_options(argc, argv, &o);
 	struct fct_err err;
