@@ -23,19 +23,6 @@ double fct_closest_on_segment(const double p[3], const double a[3], const double
 	return fct_v3_dist2(p, q);
 }
 
-int fct_triangle_degenerate(const double a[3], const double b[3], const double c[3])
-{
-	double ab[3], ac[3], bc[3], n[3];
-	fct_v3_sub(ab, b, a);
-	fct_v3_sub(ac, c, a);
-	fct_v3_sub(bc, c, b);
-	fct_v3_cross(n, ab, ac);
-	double l2 = fmax(fct_v3_dot(ab, ab), fmax(fct_v3_dot(ac, ac), fct_v3_dot(bc, bc)));
-	double lim = 1e-12 * l2;
-	/* l2 == 0 (all corners equal) is degenerate too: 0 <= 0. */
-	return fct_v3_dot(n, n) <= lim * lim;
-}
-
 double fct_closest_on_triangle(const double p[3], const double a[3], const double b[3],
                                const double c[3], double q[3], enum fct_tri_region *region)
 {

@@ -50,6 +50,13 @@ static inline void fct_v3_cross(double r[3], const double a[3], const double b[3
 	r[2] = z;
 }
 
+/* fmax(x, y) without the call to libm: a NaN gives way to the other
+ * operand (of +0 and -0 either may come, as with fmax). */
+static inline double fct_fmax(double x, double y)
+{
+	return x > y || y != y ? x : y;
+}
+
 /* Squared distance between points a and b. */
 static inline double fct_v3_dist2(const double a[3], const double b[3])
 {
@@ -73,8 +80,20 @@ double fct_closest_on_segment(const double p[3], const double a[3], const double
 /* Does triangle abc have too little area for its face region to be computed
  * reliably?  True when |(b-a) x (c-a)| <= 1e-12 * (longest edge)^2, i.e. the
  * face is nowhere wider than 1e-12 of its length, so treating it as its three
- * edges moves no closest point by more than that. */
-int fct_triangle_degenerate(const double a[3], const double b[3], const double c[3]);
+ * edges moves no closest point by more than that.  Inline, so that a caller
+ * that has the cross product (b-a) x (c-a) already shares it. */
+static inline int fct_triangle_degenerate(const double a[3], const double b[3], const double c[3])
+{
+	double ab[3], ac[3], bc[3], n[3];
+	fct_v3_sub(ab, b, a);
+	fct_v3_sub(ac, c, a);
+	fct_v3_sub(bc, c, b);
+	fct_v3_cross(n, ab, ac);
+	double l2 = fct_fmax(fct_v3_dot(ab, ab), fct_fmax(fct_v3_dot(ac, ac), fct_v3_dot(bc, bc)));
+	double lim = 1e-12 * l2;
+	/* l2 == 0 (all corners equal) is degenerate too: 0 <= 0. */
+	return fct_v3_dot(n, n) <= lim * lim;
+}
 
 /* Closest point q on triangle abc to p; returns |p - q|^2 and, when region is
  * not NULL, the region it found.  Degenerate triangles (see above: collinear

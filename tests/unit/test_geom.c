@@ -1,6 +1,9 @@
 /* test_geom - closest points on segments and triangles against hand-computed
  * answers: every Voronoi region of a triangle, the same after a rigid motion,
- * and degenerate triangles (collinear, two or three corners equal, slivers). */
+ * and degenerate triangles (collinear, two or three corners equal, slivers);
+ * fct_fmax against fmax's rules for NaN. */
+#include <math.h>
+
 #include "check.h"
 #include "geom.h"
 
@@ -127,6 +130,18 @@ static void test_degenerate(void)
 	CHECK_INT(r, FCT_TRI_FACE);
 }
 
+/* fct_fmax is fmax: the larger, and a NaN gives way to the other operand. */
+static void test_fmax(void)
+{
+	double nan = NAN;
+	CHECK_NEAR(fct_fmax(2, 3), 3, 0);
+	CHECK_NEAR(fct_fmax(3, 2), 3, 0);
+	CHECK_NEAR(fct_fmax(nan, 1), 1, 0);
+	CHECK_NEAR(fct_fmax(1, nan), 1, 0);
+	CHECK(fct_fmax(nan, nan) != fct_fmax(nan, nan));
+	CHECK(fct_fmax(-INFINITY, nan) == -INFINITY);
+}
+
 static void test_area(void)
 {
 	double a[3] = {1, 2, 3}, b[3] = {4, 2, 3}, c[3] = {1, 2, 7};   /* legs 3 and 4 */
@@ -146,6 +161,7 @@ int main(void)
 	test_moved();
 	test_segment();
 	test_degenerate();
+	test_fmax();
 	test_area();
 	CHECK_DONE();
 }
