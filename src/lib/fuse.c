@@ -271,6 +271,7 @@ struct geo {
 	const struct pixgrid *grid;   /* instead of vfs and vf when the mesh is a grid */
 	const struct fct_mesh *m;    /* the triangles as a mesh: the input or tris */
 	struct fct_mesh tris;    /* the triangulated mesh when the input has polygons */
+	atomic_size_t nproper;   /* triangles with a normal */
 	int own;
 };
 
@@ -285,23 +286,34 @@ static void geo_free(struct geo *G)
 	memset(G, 0, sizeof *G);
 }
 
+/* Unit normal and offset of each triangle (NaN: degenerate), and the count
+ * of the proper ones. */
 static void normals_chunk(void *ctx, size_t lo, size_t hi)
 {
 	struct geo *G = ctx;
+	const double *xyz = G->xyz;
+	const uint32_t *tv = G->tv;
+	size_t proper = 0;
 	for (size_t f = lo; f < hi; f++) {
-		const uint32_t *v = &G->tv[3 * f];
-		const double *a = &G->xyz[3 * v[0]], *b = &G->xyz[3 * v[1]], *c = &G->xyz[3 * v[2]];
+		const uint32_t *v = &tv[3 * f];
+		const double *a = &xyz[3 * v[0]], *b = &xyz[3 * v[1]], *c = &xyz[3 * v[2]];
 		double e1[3], e2[3], n[3];
 		fct_v3_sub(e1, b, a);
 		fct_v3_sub(e2, c, a);
 		fct_v3_cross(n, e1, e2);
 		double len = sqrt(fct_v3_dot(n, n));
-		int degenerate = !(len > 0) || !isfinite(len) || fct_triangle_degenerate(a, b, c);
-		for (int k = 0; k < 3; k++)
-			G->tn[4 * f + k] = degenerate ? NAN : (float)(n[k] / len);
-		const float *tn = &G->tn[4 * f];
-		G->tn[4 * f + 3] = (float)(tn[0] * a[0] + tn[1] * a[1] + tn[2] * a[2]);   /* NaN with the normal */
+		/* Inline, fct_triangle_degenerate shares e1, e2 and n. */
+		float u[3] = { NAN, NAN, NAN };
+		if (len > 0 && isfinite(len) && !fct_triangle_degenerate(a, b, c)) {
+			for (int k = 0; k < 3; k++)
+				u[k] = (float)(n[k] / len);
+			proper++;
+		}
+		float *o = &G->tn[4 * f];
+		o[0] = u[0], o[1] = u[1], o[2] = u[2];
+		o[3] = (float)(u[0] * a[0] + u[1] * a[1] + u[2] * a[2]);   /* NaN with the normal */
 	}
+	atomic_fetch_add(&G->nproper, proper);
 }
 
 /* Triangles of m (polygons fan-triangulated); with topo, their unit
@@ -1824,8 +1836,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	if (proj) {
 		st->faces += v->mesh->nf;
 	} else {
-		for (size_t t = 0; t < G.nt; t++)
-			st->faces += !isnan(G.tn[4 * t]);
+		st->faces += G.nproper;
 	}
 	rc = 0;
 done:
