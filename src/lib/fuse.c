@@ -974,33 +974,40 @@ static int grid_cells(struct raster *R, struct fct_err *err)
 	 * x + y <= 1 first). */
 	static const uint8_t diag[4] = { DIAG_UP, DIAG_DOWN, DIAG_DOWN, DIAG_UP };
 	static const uint8_t slot[4] = { 1, 1, 0, 0 };
-	for (size_t f = 0; f < G->nt; f++) {
-		if (isnan(G->tn[4 * f]))
+	/* In locals: the stores to cd (bytes) would have the compiler load
+	 * every pointer and size again for each triangle. */
+	const float *tn = G->tn;
+	const uint32_t *tvs = G->tv;
+	const int32_t *at = R->at;
+	int32_t *cell = P->cell;
+	uint8_t *cd = P->diag;
+	size_t nt = G->nt, w = P->w, h = P->h;
+	for (size_t f = 0; f < nt; f++) {
+		if (isnan(tn[4 * f]))
 			continue;
-		const uint32_t *tv = &G->tv[3 * f];
-		int32_t x[3], y[3];
-		for (int k = 0; k < 3; k++)
-			x[k] = R->at[2 * tv[k]], y[k] = R->at[2 * tv[k] + 1];
-		if ((x[0] | x[1] | x[2]) < 0)
+		const uint32_t *tv = &tvs[3 * f];
+		const int32_t *a = &at[2 * tv[0]], *b = &at[2 * tv[1]], *d = &at[2 * tv[2]];
+		if ((a[0] | b[0] | d[0]) < 0)
 			goto not_grid;
-		int32_t cx = x[0] < x[1] ? x[0] : x[1], cy = y[0] < y[1] ? y[0] : y[1];
-		cx = x[2] < cx ? x[2] : cx, cy = y[2] < cy ? y[2] : cy;
-		unsigned corners = 0;
-		for (int k = 0; k < 3; k++) {
-			int32_t dx = x[k] - cx, dy = y[k] - cy;
-			if (dx > 1 || dy > 1)
-				goto not_grid;
-			corners |= 1u << (dx + 2 * dy);
-		}
-		int three = corners == 7 || corners == 11 || corners == 13 || corners == 14;
-		if (!three || (size_t)cx + 1 >= P->w || (size_t)cy + 1 >= P->h)
+		int32_t cx = a[0] < b[0] ? a[0] : b[0], cy = a[1] < b[1] ? a[1] : b[1];
+		cx = d[0] < cx ? d[0] : cx, cy = d[1] < cy ? d[1] : cy;
+		int32_t ax = a[0] - cx, ay = a[1] - cy, bx = b[0] - cx, by = b[1] - cy, dx = d[0] - cx,
+		        dy = d[1] - cy;
+		if ((ax | ay | bx | by | dx | dy) > 1)
+			goto not_grid;   /* not within one cell */
+		unsigned corners = 1u << (ax + 2 * ay) | 1u << (bx + 2 * by) | 1u << (dx + 2 * dy);
+		/* Three corners: corners is 7, 11, 13 or 14 (tested without
+		 * branches, as the diagonals of a range image follow its data). */
+		if (!(0x6880u >> corners & 1) || (size_t)cx + 1 >= w || (size_t)cy + 1 >= h)
 			goto not_grid;
 		int out = __builtin_ctz(~corners & 15);
-		size_t c = (size_t)cy * P->w + (size_t)cx;
-		if ((P->diag[c] && P->diag[c] != diag[out]) || P->cell[2 * c + slot[out]] >= 0)
+		size_t c = (size_t)cy * w + (size_t)cx;
+		/* Not on a cell split the other way (DIAG_DOWN and DIAG_UP are
+		 * bits), nor on a half taken. */
+		if ((cd[c] & ~diag[out]) | (cell[2 * c + slot[out]] >= 0))
 			goto not_grid;
-		P->diag[c] = diag[out];
-		P->cell[2 * c + slot[out]] = (int32_t)f;
+		cd[c] = diag[out];
+		cell[2 * c + slot[out]] = (int32_t)f;
 	}
 	return 1;
 not_grid:
