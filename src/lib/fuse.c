@@ -693,24 +693,57 @@ static inline long sample_index(const struct raster *R, double x, double y)
 	return (long)(y + 0.5) * R->w + (long)(x + 0.5);
 }
 
+/* The projection of G's vertices into R's sensor: R->sp in sensor
+ * coordinates (u, v, depth; NaN: not seen) and the box of those seen. */
+struct projection {
+	struct raster *R;
+	pthread_mutex_t lock;    /* over lo and hi */
+	double lo[2], hi[2];
+};
+
 static void project_chunk(void *ctx, size_t lo, size_t hi)
 {
-	struct raster *R = ctx;
+	struct projection *P = ctx;
+	const struct raster *R = P->R;
+	const double *xyz = R->G->xyz;
+	double *restrict sp = R->sp;   /* no store to it changes R's matrix */
+	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
+	/* The chunk's box, merged into the view's: minima and maxima, the
+	 * same in any order (but for the sign of a zero, which the frame
+	 * does not see: floor(-0) - 1 = floor(0) - 1). */
+	double blo[2] = { HUGE_VAL, HUGE_VAL }, bhi[2] = { -HUGE_VAL, -HUGE_VAL };
 	for (size_t i = lo; i < hi; i++) {
 		double u, v, d;
-		double *o = &R->sp[3 * i];
+		double *o = &sp[3 * i];
 		/* In double: a range image's vertices lie on pixel centres, and
 		 * a border vertex rounded off its centre would lose its pixel. */
-		if (sensor_project(R, &R->G->xyz[3 * i], &u, &v, &d) && (d > 0 || R->v->cam.kind == FCT_CAMERA_NONE) &&
-		    isfinite(u) && isfinite(v) && isfinite(d))
+		if (sensor_project(R, &xyz[3 * i], &u, &v, &d) && (d > 0 || ortho) && isfinite(u) &&
+		    isfinite(v) && isfinite(d)) {
 			o[0] = u, o[1] = v, o[2] = d;
-		else
+			blo[0] = u < blo[0] ? u : blo[0], bhi[0] = u > bhi[0] ? u : bhi[0];
+			blo[1] = v < blo[1] ? v : blo[1], bhi[1] = v > bhi[1] ? v : bhi[1];
+		} else {
 			o[0] = o[1] = o[2] = NAN;
+		}
 	}
+	pthread_mutex_lock(&P->lock);
+	for (int k = 0; k < 2; k++) {
+		P->lo[k] = blo[k] < P->lo[k] ? blo[k] : P->lo[k];
+		P->hi[k] = bhi[k] > P->hi[k] ? bhi[k] : P->hi[k];
+	}
+	pthread_mutex_unlock(&P->lock);
+}
+
+/* The depth the raster keeps for vertex i (sp: sample coordinates). */
+static inline float vertex_depth(const struct raster *R, size_t i)
+{
+	double d = R->sp[3 * i + 2];
+	return (float)(R->v->cam.kind == FCT_CAMERA_PINHOLE ? 1 / d : d);
 }
 
 /* Vertices from sensor to sample coordinates (x, y, depth or 1/depth for
- * pinholes; NaN: not seen), in place. */
+ * pinholes; NaN: not seen), in place; with R->at, the sample each lies on,
+ * and with R->zv its depth. */
 static void samples_chunk(void *ctx, size_t lo, size_t hi)
 {
 	struct raster *R = ctx;
@@ -726,9 +759,18 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi)
 			         x < R->w && y < R->h;
 			R->at[2 * i] = on ? (int32_t)x : -1;
 			R->at[2 * i + 1] = on ? (int32_t)y : -1;
-			R->zv[i] = (float)(pin ? 1 / sp[2] : sp[2]);
 		}
+		if (R->zv)
+			R->zv[i] = vertex_depth(R, i);
 	}
+}
+
+/* The depths of R's vertices, when its frame was made without them. */
+static void depths_chunk(void *ctx, size_t lo, size_t hi)
+{
+	struct raster *R = ctx;
+	for (size_t i = lo; i < hi; i++)
+		R->zv[i] = vertex_depth(R, i);
 }
 
 /* A triangle of a range image's grid: its vertices on samples (one per
@@ -851,7 +893,8 @@ static void raster_rows(void *ctx, size_t lo, size_t hi)
 
 /* G's vertices in the sample coordinates of v with S samples per sensor
  * pixel (fewer when more than max_samples would be needed): R's extent and
- * sp, and at S = 1 at and zv.  0 or -1; R->w is 0 when nothing is seen. */
+ * sp, and at S = 1 at (and zv unless proper).  0 or -1; R->w is 0 when
+ * nothing is seen. */
 static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
                         double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
 {
@@ -866,14 +909,12 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 	R->sp = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->sp, err);
 	if (!R->sp)
 		return -1;
-	run(nthreads, project_chunk, R, G->nv, 0);
-	double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
-	for (size_t i = 0; i < G->nv; i++)
-		for (int k = 0; k < 2; k++) {
-			double s = R->sp[3 * i + k];   /* NaN compares false */
-			lo[k] = s < lo[k] ? s : lo[k];
-			hi[k] = s > hi[k] ? s : hi[k];
-		}
+	struct projection P = { R, .lo = { HUGE_VAL, HUGE_VAL }, .hi = { -HUGE_VAL, -HUGE_VAL } };
+	if (pthread_mutex_init(&P.lock, NULL))
+		return fct_fail(err, "cannot make a lock");
+	run(nthreads, project_chunk, &P, G->nv, 0);
+	pthread_mutex_destroy(&P.lock);
+	double lo[2] = { P.lo[0], P.lo[1] }, hi[2] = { P.hi[0], P.hi[1] };
 	if (!(lo[0] <= hi[0] && lo[1] <= hi[1])) {
 		R->w = R->h = 0;
 		return 0;   /* nothing seen */
@@ -906,9 +947,10 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 	}
 	R->S = S;
 	if (S == 1) {
+		/* A true-distance frame is for a pixel grid first, which needs
+		 * no depths: raster_fill makes them if it comes to a raster. */
 		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
-		R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err);
-		if (!R->at || !R->zv)
+		if (!R->at || (!proper && !(R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err))))
 			return -1;
 	}
 	run(nthreads, samples_chunk, R, G->nv, 0);
@@ -935,6 +977,11 @@ static int raster_fill(struct raster *R, struct fct_err *err)
 		for (size_t i = 0; i < n; i++)
 			R->zf[i] = -INFINITY;
 		memset(R->idf, 0xff, n * sizeof *R->idf);
+	}
+	if (R->at && !R->zv) {
+		if (!(R->zv = fct_alloc_array(R->G->nv ? R->G->nv : 1, sizeof *R->zv, err)))
+			return -1;
+		run(R->nthreads, depths_chunk, R, R->G->nv, 0);
 	}
 	if (R->at && raster_grid(R, err))
 		return -1;
