@@ -1257,6 +1257,15 @@ static inline int add_box(struct scratch *s, const int32_t lo[3], const int32_t 
 	return 0;
 }
 
+/* The box pl..ph (a point: pl = ph) into the box lo..hi. */
+static inline void box_add(double lo[3], double hi[3], const double pl[3], const double ph[3])
+{
+	for (int k = 0; k < 3; k++) {
+		lo[k] = pl[k] < lo[k] ? pl[k] : lo[k];
+		hi[k] = ph[k] > hi[k] ? ph[k] : hi[k];
+	}
+}
+
 /* The box lo..hi (voxel units) holds surface points of b: into b's slab. */
 static inline void slab_extend(struct sblock *b, const double lo[3], const double hi[3])
 {
@@ -1286,10 +1295,7 @@ static inline int add_span(struct cand *c, const double lo[3], const double hi[3
 	if (lb && blo[0] == lb->bx && bhi[0] == lb->bx && blo[1] == lb->by && bhi[1] == lb->by &&
 	    blo[2] == lb->bz && bhi[2] == lb->bz) {
 		/* Within the block of the box before (most boxes are). */
-		for (int k = 0; k < 3; k++) {
-			lb->plo[k] = lo[k] < lb->plo[k] ? lo[k] : lb->plo[k];
-			lb->phi[k] = hi[k] > lb->phi[k] ? hi[k] : lb->phi[k];
-		}
+		box_add(lb->plo, lb->phi, lo, hi);
 		slab_extend(lb, lo, hi);
 		return 0;
 	}
@@ -1326,6 +1332,41 @@ static inline int add_point(struct cand *c, const double p[3], double h)
 	for (int k = 0; k < 3; k++)
 		lo[k] = s[k] - h, hi[k] = s[k] + h;
 	return add_span(c, lo, hi, i, i);
+}
+
+/* The vertices into the boxes of their cells' blocks; with vb, vb[i] is
+ * vertex i's block.  Consecutive vertices are mostly in one block: a run
+ * of them makes its box in locals and puts it into the block's once
+ * (minima and maxima taken in the same order, so the box is the same). */
+static int vertex_boxes(struct cand *c, const struct geo *G, struct sblock **vb)
+{
+	for (size_t i = 0; i < G->nv;) {
+		double s[3], lo[3], hi[3];
+		int32_t cell[3];
+		if (cell_of(c, &G->xyz[3 * i], s, cell))
+			return -1;
+		struct sblock *b = scratch_block(&c->cells, fct_vox_block_of(cell[0]), fct_vox_block_of(cell[1]),
+		                                 fct_vox_block_of(cell[2]), 1, c->err);
+		if (!b)
+			return -1;
+		int32_t base[3] = { b->bx * FCT_VOXBLOCK, b->by * FCT_VOXBLOCK, b->bz * FCT_VOXBLOCK };
+		memcpy(lo, s, sizeof s);
+		memcpy(hi, s, sizeof s);
+		if (vb)
+			vb[i] = b;
+		for (i++; i < G->nv; i++) {
+			if (cell_of(c, &G->xyz[3 * i], s, cell))
+				return -1;
+			if ((uint32_t)(cell[0] - base[0]) >= FCT_VOXBLOCK || (uint32_t)(cell[1] - base[1]) >= FCT_VOXBLOCK ||
+			    (uint32_t)(cell[2] - base[2]) >= FCT_VOXBLOCK)
+				break;   /* the next run's first vertex */
+			box_add(lo, hi, s, s);
+			if (vb)
+				vb[i] = b;
+		}
+		box_add(b->plo, b->phi, lo, hi);
+	}
+	return 0;
 }
 
 /* The slabs of the vertices' blocks (vb: each vertex's), across the mean
@@ -1430,12 +1471,8 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 	struct sblock **vb = NULL;   /* true distance: a vertex's block */
 	if (!proj && !(vb = fct_alloc_array(G->nv ? G->nv : 1, sizeof *vb, err)))
 		return -1;
-	for (size_t i = 0; i < G->nv; i++) {
-		if (add_point(&c, &G->xyz[3 * i], 0))
-			goto done;
-		if (vb)
-			vb[i] = c.cells.last;
-	}
+	if (vertex_boxes(&c, G, vb))
+		goto done;
 	if (vb)
 		vertex_slabs(&c, G, vb);
 	for (size_t t = 0; t < G->nt; t++) {
