@@ -1398,7 +1398,8 @@ static void vertex_slabs(struct cand *c, const struct geo *G, struct sblock **vb
 }
 
 /* True distance: the voxels of box lo..hi within rb of cb's slab, row by
- * row, into the rows of their blocks in s.  0 or -1. */
+ * row, into the rows of their blocks in s (rows_box makes their boxes).
+ * 0 or -1. */
 static int add_rows(struct scratch *s, const struct sblock *cb, const int32_t lo[3], const int32_t hi[3],
                     double rb, struct fct_err *err)
 {
@@ -1433,14 +1434,27 @@ static int add_rows(struct scratch *s, const struct sblock *cb, const int32_t lo
 				int32_t o = bx * FCT_VOXBLOCK;
 				int l = x0 > o ? x0 - o : 0, h = x1 < o + FCT_VOXBLOCK - 1 ? x1 - o : FCT_VOXBLOCK - 1;
 				b->row[ly + FCT_VOXBLOCK * lz] |= (uint8_t)((0xffu << l) & (0xffu >> (7 - h)));
-				int8_t bl[3] = { (int8_t)l, (int8_t)ly, (int8_t)lz }, bh[3] = { (int8_t)h, (int8_t)ly, (int8_t)lz };
-				for (int k = 0; k < 3; k++) {
-					b->lo[k] = bl[k] < b->lo[k] ? bl[k] : b->lo[k];
-					b->hi[k] = bh[k] > b->hi[k] ? bh[k] : b->hi[k];
-				}
 			}
 		}
 	return 0;
+}
+
+/* True distance: the box of b's candidates (lo..hi) from its rows, once
+ * they are all in (rather than at each row put). */
+static void rows_box(struct sblock *b)
+{
+	unsigned any = 0;
+	for (int z = 0; z < FCT_VOXBLOCK; z++)
+		for (int y = 0; y < FCT_VOXBLOCK; y++) {
+			unsigned r = b->row[y + FCT_VOXBLOCK * z];
+			if (!r)
+				continue;
+			any |= r;
+			b->lo[1] = (int8_t)(y < b->lo[1] ? y : b->lo[1]), b->hi[1] = (int8_t)(y > b->hi[1] ? y : b->hi[1]);
+			b->lo[2] = (int8_t)(z < b->lo[2] ? z : b->lo[2]), b->hi[2] = (int8_t)(z > b->hi[2] ? z : b->hi[2]);
+		}
+	if (any)
+		b->lo[0] = (int8_t)__builtin_ctz(any), b->hi[0] = (int8_t)(31 - __builtin_clz(any));
 }
 
 /* Triangles at most this many voxels across add the box of their vertices
@@ -1489,16 +1503,18 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 			continue;
 		if (vb && e <= BOX_TRIANGLE * vox) {
 			/* Into the box of one of its blocks, whole: the box may
-			 * reach past the block, a triangle's size at most. */
+			 * reach past the block, a triangle's size at most.  Its
+			 * corners in that block are in its box and slab already
+			 * (the same products, vertex_boxes and vertex_slabs). */
 			struct sblock *b0 = vb[tv[0]];
 			const double *v3[3] = { a, b, cc };
-			for (int m = 0; m < 3; m++) {
+			for (int m = 1; m < 3; m++) {
+				if (vb[tv[m]] == b0)
+					continue;
 				double sv[3];
-				for (int k = 0; k < 3; k++) {
+				for (int k = 0; k < 3; k++)
 					sv[k] = v3[m][k] * c.inv;
-					b0->plo[k] = sv[k] < b0->plo[k] ? sv[k] : b0->plo[k];
-					b0->phi[k] = sv[k] > b0->phi[k] ? sv[k] : b0->phi[k];
-				}
+				box_add(b0->plo, b0->phi, sv, sv);
 				slab_extend(b0, sv, sv);
 			}
 			continue;
@@ -1562,6 +1578,8 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 	}
 	for (size_t bi = 0; bi < s->n; bi++) {
 		struct sblock *b = s->blk[bi];
+		if (!proj)
+			rows_box(b);
 		long gi = fct_voxgrid_index(g, b->bx, b->by, b->bz);
 		b->fresh = gi < 0;
 		b->vb = gi >= 0 ? fct_voxgrid_at(g, (size_t)gi) : fct_voxgrid_block(g, b->bx, b->by, b->bz, 1, err);
