@@ -35,16 +35,26 @@
 #include "adj.h"
 #include "geom.h"
 
+/* Minima and maxima as comparisons (no libm call; equal operands give
+ * the first, a NaN the second). */
+static inline double dmin(double a, double b)
+{
+	return a < b ? a : b;
+}
+
+static inline double dmax(double a, double b)
+{
+	return a > b ? a : b;
+}
+
 static inline double dmin3(double a, double b, double c)
 {
-	double m = a < b ? a : b;
-	return m < c ? m : c;
+	return dmin(dmin(a, b), c);
 }
 
 static inline double dmax3(double a, double b, double c)
 {
-	double m = a > b ? a : b;
-	return m > c ? m : c;
+	return dmax(dmax(a, b), c);
 }
 
 /* Per-view scratch: a hash of 8^3 blocks, the candidate voxels of a view
@@ -1208,16 +1218,35 @@ struct cand {
 };
 
 /* p in voxel units in s, its cell in i; -1 (err set) when p is too far out. */
+/* Point p in voxel units.  The axes written out, as all the helpers of
+ * the candidates' passes: a loop over them is not unrolled at -O2 and
+ * goes through the stack, in loops over every vertex. */
+static inline void to_voxels(const struct cand *c, const double p[3], double s[3])
+{
+	s[0] = p[0] * c->inv, s[1] = p[1] * c->inv, s[2] = p[2] * c->inv;
+}
+
+/* floor(s) for |s| < MAX_INDEX, without a call. */
+static inline int32_t floor_index(double s)
+{
+	int32_t t = (int32_t)s;
+	return t - (s < (double)t);
+}
+
+/* cell_of's failure, on the first axis out (i set all the same). */
+static int too_far(struct cand *c, const double p[3], const double s[3], int32_t i[3])
+{
+	i[0] = i[1] = i[2] = 0;
+	int k = !(fabs(s[0]) < MAX_INDEX) ? 0 : !(fabs(s[1]) < MAX_INDEX) ? 1 : 2;
+	return fct_fail(c->err, "the view reaches %g m: too far from the origin for the voxel size", p[k]);
+}
+
 static inline int cell_of(struct cand *c, const double p[3], double s[3], int32_t i[3])
 {
-	for (int k = 0; k < 3; k++) {
-		s[k] = p[k] * c->inv;
-		if (!(fabs(s[k]) < MAX_INDEX))
-			return fct_fail(c->err, "the view reaches %g m: too far from the origin for the voxel size",
-			                p[k]);
-		int32_t t = (int32_t)s[k];   /* floor, without a call */
-		i[k] = t - (s[k] < (double)t);
-	}
+	to_voxels(c, p, s);
+	if (!(fabs(s[0]) < MAX_INDEX && fabs(s[1]) < MAX_INDEX && fabs(s[2]) < MAX_INDEX))
+		return too_far(c, p, s, i);
+	i[0] = floor_index(s[0]), i[1] = floor_index(s[1]), i[2] = floor_index(s[2]);
 	return 0;
 }
 
@@ -1260,25 +1289,22 @@ static inline int add_box(struct scratch *s, const int32_t lo[3], const int32_t 
 /* The box pl..ph (a point: pl = ph) into the box lo..hi. */
 static inline void box_add(double lo[3], double hi[3], const double pl[3], const double ph[3])
 {
-	for (int k = 0; k < 3; k++) {
-		lo[k] = pl[k] < lo[k] ? pl[k] : lo[k];
-		hi[k] = ph[k] > hi[k] ? ph[k] : hi[k];
-	}
+	lo[0] = dmin(pl[0], lo[0]), lo[1] = dmin(pl[1], lo[1]), lo[2] = dmin(pl[2], lo[2]);
+	hi[0] = dmax(ph[0], hi[0]), hi[1] = dmax(ph[1], hi[1]), hi[2] = dmax(ph[2], hi[2]);
 }
 
 /* The box lo..hi (voxel units) holds surface points of b: into b's slab. */
 static inline void slab_extend(struct sblock *b, const double lo[3], const double hi[3])
 {
-	if (!(b->sn[0] || b->sn[1] || b->sn[2]))
+	const double *n = b->sn;
+	if (!(n[0] || n[1] || n[2]))
 		return;
-	double dl = 0, dh = 0;
-	for (int k = 0; k < 3; k++) {
-		double a = b->sn[k] * lo[k], c = b->sn[k] * hi[k];
-		dl += a < c ? a : c;
-		dh += a < c ? c : a;
-	}
-	b->slo = dl < b->slo ? dl : b->slo;
-	b->shi = dh > b->shi ? dh : b->shi;
+	double a0 = n[0] * lo[0], c0 = n[0] * hi[0], a1 = n[1] * lo[1], c1 = n[1] * hi[1],
+	       a2 = n[2] * lo[2], c2 = n[2] * hi[2];
+	double dl = 0 + dmin(a0, c0) + dmin(a1, c1) + dmin(a2, c2);
+	double dh = 0 + dmax(c0, a0) + dmax(c1, a1) + dmax(c2, a2);
+	b->slo = dmin(dl, b->slo);
+	b->shi = dmax(dh, b->shi);
 }
 
 /* The box lo..hi (voxel units) of surface points in cells clo..chi into
@@ -1391,8 +1417,7 @@ static void vertex_slabs(struct cand *c, const struct geo *G, struct sblock **vb
 	}
 	for (size_t i = 0; i < G->nv; i++) {
 		double p[3];
-		for (int k = 0; k < 3; k++)
-			p[k] = G->xyz[3 * i + k] * c->inv;
+		to_voxels(c, &G->xyz[3 * i], p);
 		slab_extend(vb[i], p, p);
 	}
 }
@@ -1495,10 +1520,9 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 			continue;
 		const double *a = &G->xyz[3 * tv[0]], *b = &G->xyz[3 * tv[1]], *cc = &G->xyz[3 * tv[2]];
 		double e = 0;
-		for (int k = 0; k < 3; k++) {
-			double ek = dmax3(a[k], b[k], cc[k]) - dmin3(a[k], b[k], cc[k]);
-			e = ek > e ? ek : e;
-		}
+		e = dmax(dmax3(a[0], b[0], cc[0]) - dmin3(a[0], b[0], cc[0]), e);
+		e = dmax(dmax3(a[1], b[1], cc[1]) - dmin3(a[1], b[1], cc[1]), e);
+		e = dmax(dmax3(a[2], b[2], cc[2]) - dmin3(a[2], b[2], cc[2]), e);
 		if (proj && !(e > vox))
 			continue;
 		if (vb && e <= BOX_TRIANGLE * vox) {
@@ -1512,8 +1536,7 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 				if (vb[tv[m]] == b0)
 					continue;
 				double sv[3];
-				for (int k = 0; k < 3; k++)
-					sv[k] = v3[m][k] * c.inv;
+				to_voxels(&c, v3[m], sv);
 				box_add(b0->plo, b0->phi, sv, sv);
 				slab_extend(b0, sv, sv);
 			}
