@@ -1,9 +1,11 @@
 /* test_fuse.c - true signed distances of a hand-made view, the same view
  * twice, border voxels, a range image's grid against the general raster,
- * the band's last layer, a plane across the axes, the .conf quaternion, and carving marks. */
+ * the band's last layer, a plane across the axes, a view too far out for
+ * the voxel size, the .conf quaternion, and carving marks. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "depthmesh.h"
@@ -237,6 +239,28 @@ static void test_tilted_plane(void)
 	fct_image_free(&img);
 }
 
+/* A vertex too far out for the voxel size (its y and z beyond 2^23
+ * voxels): the message names its first axis out, and the volume keeps
+ * nothing of the view. */
+static void test_too_far(void)
+{
+	struct fct_err err;
+	struct fct_mesh m;
+	square(&m, 4, 0.5);
+	m.xyz[3 * 7 + 1] = 1e5;
+	m.xyz[3 * 7 + 2] = 2e5;
+	struct fct_fuse_view v;
+	view_of(&v, &m);
+	struct fct_voxgrid *g = fct_voxgrid_new(0.001, 0, &err);
+	struct fct_fuse_params p = { 0.003, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == -1);
+	CHECK_MSG(strcmp(err.msg, "the view reaches 100000 m: too far from the origin for the voxel size") == 0,
+	          "%s", err.msg);
+	CHECK_INT(fct_voxgrid_count(g), 0);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
+}
+
 static void test_carve(void)
 {
 	struct fct_err err;
@@ -285,6 +309,7 @@ int main(void)
 	test_grid();
 	test_band_edge();
 	test_tilted_plane();
+	test_too_far();
 	test_carve();
 	test_quat();
 	CHECK_DONE();
