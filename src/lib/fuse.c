@@ -57,6 +57,13 @@ static inline double dmax3(double a, double b, double c)
 	return dmax(dmax(a, b), c);
 }
 
+/* The box pl..ph (a point: pl = ph) into the box lo..hi. */
+static inline void box_add(double lo[3], double hi[3], const double pl[3], const double ph[3])
+{
+	lo[0] = dmin(pl[0], lo[0]), lo[1] = dmin(pl[1], lo[1]), lo[2] = dmin(pl[2], lo[2]);
+	hi[0] = dmax(ph[0], hi[0]), hi[1] = dmax(ph[1], hi[1]), hi[2] = dmax(ph[2], hi[2]);
+}
+
 /* Per-view scratch: a hash of 8^3 blocks, the candidate voxels of a view
  * (lo..hi, local coordinates) and their results. ------------------------- */
 
@@ -282,6 +289,7 @@ struct geo {
 	const struct fct_mesh *m;    /* the triangles as a mesh: the input or tris */
 	struct fct_mesh tris;    /* the triangulated mesh when the input has polygons */
 	atomic_size_t nproper;   /* triangles with a normal */
+	double nondegen;         /* a cross product squared above it: not degenerate */
 	int own;
 };
 
@@ -311,10 +319,11 @@ static void normals_chunk(void *ctx, size_t lo, size_t hi)
 		fct_v3_sub(e1, b, a);
 		fct_v3_sub(e2, c, a);
 		fct_v3_cross(n, e1, e2);
-		double len = sqrt(fct_v3_dot(n, n));
-		/* Inline, fct_triangle_degenerate shares e1, e2 and n. */
+		double nn = fct_v3_dot(n, n), len = sqrt(nn);
+		/* Most are far above the view's bound (degenerate_bound); the
+		 * others take the test itself, which shares e1, e2 and n. */
 		float u[3] = { NAN, NAN, NAN };
-		if (len > 0 && isfinite(len) && !fct_triangle_degenerate(a, b, c)) {
+		if (len > 0 && isfinite(len) && (nn > G->nondegen || !fct_triangle_degenerate(a, b, c))) {
 			for (int k = 0; k < 3; k++)
 				u[k] = (float)(n[k] / len);
 			proper++;
@@ -324,6 +333,22 @@ static void normals_chunk(void *ctx, size_t lo, size_t hi)
 		o[3] = (float)(u[0] * a[0] + u[1] * a[1] + u[2] * a[2]);   /* NaN with the normal */
 	}
 	atomic_fetch_add(&G->nproper, proper);
+}
+
+/* A bound for G's triangles: one whose corners are finite (as they are when
+ * its cross product is) and whose cross product squared exceeds it is not
+ * degenerate.  An edge's difference along an axis is at most the extent of
+ * G's box there, so fct_degenerate_limit of the box's diagonal squared
+ * bounds the triangle's limit (each rounding in the same expression is
+ * monotone).  Not finite when the box is not: no triangle passes then. */
+static double degenerate_bound(const struct geo *G)
+{
+	double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+	for (size_t i = 0; i < G->nv; i++)
+		box_add(lo, hi, &G->xyz[3 * i], &G->xyz[3 * i]);   /* NaN compares false: left out */
+	double e[3];
+	fct_v3_sub(e, hi, lo);
+	return fct_degenerate_limit(fct_v3_dot(e, e));
 }
 
 /* Triangles of m (polygons fan-triangulated); with topo, their unit
@@ -368,6 +393,7 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthr
 	G->tn = fct_alloc_array(nt, 4 * sizeof *G->tn, err);
 	if (!G->tn)
 		goto fail;
+	G->nondegen = degenerate_bound(G);
 	run(nthreads, normals_chunk, G, nt, 0);
 	return 0;
 fail:
@@ -1284,13 +1310,6 @@ static inline int add_box(struct scratch *s, const int32_t lo[3], const int32_t 
 				}
 			}
 	return 0;
-}
-
-/* The box pl..ph (a point: pl = ph) into the box lo..hi. */
-static inline void box_add(double lo[3], double hi[3], const double pl[3], const double ph[3])
-{
-	lo[0] = dmin(pl[0], lo[0]), lo[1] = dmin(pl[1], lo[1]), lo[2] = dmin(pl[2], lo[2]);
-	hi[0] = dmax(ph[0], hi[0]), hi[1] = dmax(ph[1], hi[1]), hi[2] = dmax(ph[2], hi[2]);
 }
 
 /* The box lo..hi (voxel units) holds surface points of b: into b's slab. */

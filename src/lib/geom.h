@@ -77,6 +77,15 @@ enum fct_tri_region {
 double fct_closest_on_segment(const double p[3], const double a[3], const double b[3],
                               double q[3]);
 
+/* The square of fct_triangle_degenerate's limit on |(b-a) x (c-a)| for a
+ * longest edge squared of l2; it grows with l2 (rounding is monotone), so
+ * the limit of a bound on l2 bounds the limit. */
+static inline double fct_degenerate_limit(double l2)
+{
+	double lim = 1e-12 * l2;
+	return lim * lim;
+}
+
 /* Does triangle abc have too little area for its face region to be computed
  * reliably?  True when |(b-a) x (c-a)| <= 1e-12 * (longest edge)^2, i.e. the
  * face is nowhere wider than 1e-12 of its length, so treating it as its three
@@ -90,9 +99,8 @@ static inline int fct_triangle_degenerate(const double a[3], const double b[3], 
 	fct_v3_sub(bc, c, b);
 	fct_v3_cross(n, ab, ac);
 	double l2 = fct_fmax(fct_v3_dot(ab, ab), fct_fmax(fct_v3_dot(ac, ac), fct_v3_dot(bc, bc)));
-	double lim = 1e-12 * l2;
 	/* l2 == 0 (all corners equal) is degenerate too: 0 <= 0. */
-	return fct_v3_dot(n, n) <= lim * lim;
+	return fct_v3_dot(n, n) <= fct_degenerate_limit(l2);
 }
 
 /* Closest point q on triangle abc to p; returns |p - q|^2 and, when region is

@@ -1,7 +1,7 @@
 /* test_fuse.c - true signed distances of a hand-made view, the same view
  * twice, border voxels, a range image's grid against the general raster,
- * the band's last layer, a plane across the axes, a view too far out for
- * the voxel size, the .conf quaternion, and carving marks. */
+ * the band's last layer, a plane across the axes, slivers, a view too far
+ * out for the voxel size, the .conf quaternion, and carving marks. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +10,7 @@
 #include "check.h"
 #include "depthmesh.h"
 #include "fuse.h"
+#include "geom.h"
 #include "mcubes.h"
 #include "rangegrid.h"
 #include "square.h"
@@ -239,6 +240,35 @@ static void test_tilted_plane(void)
 	fct_image_free(&img);
 }
 
+/* Triangles with (nearly) no area have no normal and are not counted:
+ * a sliver 1e-14 wide (degenerate), and one 1e-6 wide (not), added to a
+ * square of 32 triangles, well inside its box. */
+static void test_sliver(void)
+{
+	struct fct_err err;
+	struct fct_mesh m;
+	square(&m, 4, 0.5);
+	uint32_t v0 = (uint32_t)m.nv;
+	fct_mesh_add_vertex(&m, 0, 0, 0.6, &err);
+	fct_mesh_add_vertex(&m, 0.5, 0, 0.6, &err);
+	fct_mesh_add_vertex(&m, 0.25, 1e-14, 0.6, &err);
+	fct_mesh_add_vertex(&m, 0.25, 1e-6, 0.6, &err);
+	uint32_t thin[3] = { v0, v0 + 1, v0 + 2 }, thick[3] = { v0, v0 + 1, v0 + 3 };
+	fct_mesh_add_face(&m, thin, 3, &err);
+	fct_mesh_add_face(&m, thick, 3, &err);
+	CHECK(fct_triangle_degenerate(&m.xyz[3 * v0], &m.xyz[3 * (v0 + 1)], &m.xyz[3 * (v0 + 2)]));
+	CHECK(!fct_triangle_degenerate(&m.xyz[3 * v0], &m.xyz[3 * (v0 + 1)], &m.xyz[3 * (v0 + 3)]));
+	struct fct_fuse_view v;
+	view_of(&v, &m);
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	struct fct_fuse_stats st = { 0 };
+	CHECK(fct_fuse_view(g, &v, &p, &st, &err) == 0);
+	CHECK_INT(st.faces, 33);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
+}
+
 /* A vertex too far out for the voxel size (its y and z beyond 2^23
  * voxels): the message names its first axis out, and the volume keeps
  * nothing of the view. */
@@ -309,6 +339,7 @@ int main(void)
 	test_grid();
 	test_band_edge();
 	test_tilted_plane();
+	test_sliver();
 	test_too_far();
 	test_carve();
 	test_quat();
