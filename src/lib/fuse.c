@@ -1441,6 +1441,28 @@ static void vertex_slabs(struct cand *c, const struct geo *G, struct sblock **vb
 	}
 }
 
+/* The blocks of s around one cell block, for add_rows: its rows come back
+ * to the same few blocks again and again, and a hash lookup for each costs
+ * more than the row.  By block from base (NULL: not looked up yet); those
+ * farther out (bands of many voxels) are looked up each time. */
+enum { NEAR = 4 };
+struct near {
+	int32_t base[3];
+	struct sblock *b[NEAR][NEAR][NEAR];
+};
+
+static inline struct sblock *near_block(struct scratch *s, struct near *nb, int32_t bx, int32_t by,
+                                        int32_t bz, struct fct_err *err)
+{
+	uint32_t i = (uint32_t)(bx - nb->base[0]), j = (uint32_t)(by - nb->base[1]), k = (uint32_t)(bz - nb->base[2]);
+	if (i >= NEAR || j >= NEAR || k >= NEAR)
+		return scratch_block(s, bx, by, bz, 1, err);
+	struct sblock **p = &nb->b[k][j][i];
+	if (!*p)
+		*p = scratch_block(s, bx, by, bz, 1, err);   /* created where it was before */
+	return *p;
+}
+
 /* True distance: the voxels of box lo..hi within rb of cb's slab, row by
  * row, into the rows of their blocks in s (rows_box makes their boxes).
  * 0 or -1. */
@@ -1450,6 +1472,7 @@ static int add_rows(struct scratch *s, const struct sblock *cb, const int32_t lo
 	const double *n = cb->sn;
 	int slab = (n[0] || n[1] || n[2]) && cb->slo <= cb->shi;
 	double A = cb->slo - rb, B = cb->shi + rb;
+	struct near nb = { { fct_vox_block_of(lo[0]), fct_vox_block_of(lo[1]), fct_vox_block_of(lo[2]) }, { { { 0 } } } };
 	for (int32_t z = lo[2]; z <= hi[2]; z++)
 		for (int32_t y = lo[1]; y <= hi[1]; y++) {
 			int32_t x0 = lo[0], x1 = hi[0];
@@ -1472,7 +1495,7 @@ static int add_rows(struct scratch *s, const struct sblock *cb, const int32_t lo
 			int32_t by = fct_vox_block_of(y), bz = fct_vox_block_of(z);
 			int ly = y - by * FCT_VOXBLOCK, lz = z - bz * FCT_VOXBLOCK;
 			for (int32_t bx = fct_vox_block_of(x0); bx <= fct_vox_block_of(x1); bx++) {
-				struct sblock *b = scratch_block(s, bx, by, bz, 1, err);
+				struct sblock *b = near_block(s, &nb, bx, by, bz, err);
 				if (!b)
 					return -1;
 				int32_t o = bx * FCT_VOXBLOCK;
