@@ -35,8 +35,8 @@
 #include "adj.h"
 #include "geom.h"
 
-/* Minima and maxima as comparisons (no libm call; equal operands give
- * the first, a NaN the second). */
+/* Minima and maxima as comparisons, without a libm call: b unless a is
+ * strictly smaller (larger), so equal operands and a NaN give b. */
 static inline double dmin(double a, double b)
 {
 	return a < b ? a : b;
@@ -756,17 +756,15 @@ static void project_chunk(void *ctx, size_t lo, size_t hi)
 		if (sensor_project(R, &xyz[3 * i], &u, &v, &d) && (d > 0 || ortho) && isfinite(u) &&
 		    isfinite(v) && isfinite(d)) {
 			o[0] = u, o[1] = v, o[2] = d;
-			blo[0] = u < blo[0] ? u : blo[0], bhi[0] = u > bhi[0] ? u : bhi[0];
-			blo[1] = v < blo[1] ? v : blo[1], bhi[1] = v > bhi[1] ? v : bhi[1];
+			blo[0] = dmin(u, blo[0]), bhi[0] = dmax(u, bhi[0]);
+			blo[1] = dmin(v, blo[1]), bhi[1] = dmax(v, bhi[1]);
 		} else {
 			o[0] = o[1] = o[2] = NAN;
 		}
 	}
 	pthread_mutex_lock(&P->lock);
-	for (int k = 0; k < 2; k++) {
-		P->lo[k] = blo[k] < P->lo[k] ? blo[k] : P->lo[k];
-		P->hi[k] = bhi[k] > P->hi[k] ? bhi[k] : P->hi[k];
-	}
+	for (int k = 0; k < 2; k++)
+		P->lo[k] = dmin(blo[k], P->lo[k]), P->hi[k] = dmax(bhi[k], P->hi[k]);
 	pthread_mutex_unlock(&P->lock);
 }
 
@@ -1243,7 +1241,6 @@ struct cand {
 	struct fct_err *err;
 };
 
-/* p in voxel units in s, its cell in i; -1 (err set) when p is too far out. */
 /* Point p in voxel units.  The axes written out, as all the helpers of
  * the candidates' passes: a loop over them is not unrolled at -O2 and
  * goes through the stack, in loops over every vertex. */
@@ -1267,6 +1264,7 @@ static int too_far(struct cand *c, const double p[3], const double s[3], int32_t
 	return fct_fail(c->err, "the view reaches %g m: too far from the origin for the voxel size", p[k]);
 }
 
+/* p in voxel units in s, its cell in i; -1 (err set) when p is too far out. */
 static inline int cell_of(struct cand *c, const double p[3], double s[3], int32_t i[3])
 {
 	to_voxels(c, p, s);
@@ -1320,6 +1318,7 @@ static inline void slab_extend(struct sblock *b, const double lo[3], const doubl
 		return;
 	double a0 = n[0] * lo[0], c0 = n[0] * hi[0], a1 = n[1] * lo[1], c1 = n[1] * hi[1],
 	       a2 = n[2] * lo[2], c2 = n[2] * hi[2];
+	/* Sums from 0, in this order (-0 comes out +0). */
 	double dl = 0 + dmin(a0, c0) + dmin(a1, c1) + dmin(a2, c2);
 	double dh = 0 + dmax(c0, a0) + dmax(c1, a1) + dmax(c2, a2);
 	b->slo = dmin(dl, b->slo);
@@ -1507,7 +1506,8 @@ static int add_rows(struct scratch *s, const struct sblock *cb, const int32_t lo
 }
 
 /* True distance: the box of b's candidates (lo..hi) from its rows, once
- * they are all in (rather than at each row put). */
+ * they are all in (add_rows keeps to the bits: a byte store there had the
+ * compiler load everything again for each row). */
 static void rows_box(struct sblock *b)
 {
 	unsigned any = 0;
