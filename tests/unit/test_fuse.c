@@ -25,6 +25,36 @@ static void view_of(struct fct_fuse_view *v, const struct fct_mesh *m)
 		v->pose[k] = id[k];
 }
 
+/* v seeing the 64 x 64 depth image depth(x, y) of view_of's camera,
+ * meshed into m as dm2mesh meshes it. */
+static void depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*depth)(int x, int y))
+{
+	struct fct_err err;
+	struct fct_image img;
+	CHECK(fct_image_alloc(&img, 64, 64, 1, FCT_PIX_F32, &err) == 0);
+	float *d = img.data;
+	for (int y = 0; y < 64; y++)
+		for (int x = 0; x < 64; x++)
+			d[y * 64 + x] = depth(x, y);
+	struct fct_depth_params dp;
+	fct_depth_params_default(&dp);
+	dp.texcoords = 0;
+	view_of(v, m);
+	CHECK(fct_depth_mesh(m, &img, &v->cam, &dp, NULL, &err) == 0);
+	fct_image_free(&img);
+}
+
+/* A fresh volume of 1 cm voxels with v fused into it: a 3 cm band,
+ * constant weights. */
+static struct fct_voxgrid *fused(const struct fct_fuse_view *v, struct fct_fuse_stats *st)
+{
+	struct fct_err err;
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	CHECK(g && fct_fuse_view(g, v, &p, st, &err) == 0);
+	return g;
+}
+
 static void test_plane(void)
 {
 	struct fct_err err;
@@ -99,22 +129,18 @@ static size_t compare_grids(const struct fct_voxgrid *g, const struct fct_voxgri
  * camera, never seen) goes through the general raster.  Both give the
  * distances of the scene: a plane at depth 0.5 on the left half of the
  * image, a step back to 0.8 on the right (a silhouette). */
+static float step_depth(int x, int y)
+{
+	(void)y;
+	return x < 32 ? 0.5f : 0.8f;
+}
+
 static void test_grid(void)
 {
 	struct fct_err err;
-	struct fct_image img;
-	CHECK(fct_image_alloc(&img, 64, 64, 1, FCT_PIX_F32, &err) == 0);
-	float *d = img.data;
-	for (int y = 0; y < 64; y++)
-		for (int x = 0; x < 64; x++)
-			d[y * 64 + x] = x < 32 ? 0.5f : 0.8f;
 	struct fct_fuse_view v;
 	struct fct_mesh m, m2;
-	struct fct_depth_params dp;
-	fct_depth_params_default(&dp);
-	dp.texcoords = 0;
-	view_of(&v, &m);
-	CHECK(fct_depth_mesh(&m, &img, &v.cam, &dp, NULL, &err) == 0);
+	depth_view(&v, &m, step_depth);
 	CHECK(m.nf > 3000);
 	fct_mesh_init(&m2);
 	for (size_t i = 0; i < m.nv; i++)
@@ -154,7 +180,6 @@ static void test_grid(void)
 	fct_voxgrid_free(h);
 	fct_mesh_free(&m);
 	fct_mesh_free(&m2);
-	fct_image_free(&img);
 }
 
 /* A plane a hair in front of a voxel layer: the layers at band distance
@@ -163,14 +188,11 @@ static void test_grid(void)
  * more than the band for that), the next ones are not written. */
 static void test_band_edge(void)
 {
-	struct fct_err err;
 	struct fct_mesh m;
 	square(&m, 60, 0.5 - 1e-10);   /* 3.3 cm triangles: their boxes, no samples */
 	struct fct_fuse_view v;
 	view_of(&v, &m);
-	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
-	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	struct fct_voxgrid *g = fused(&v, NULL);
 	float s, w;
 	for (int j = -30; j <= 30; j += 10)
 		for (int k = 46; k <= 54; k++) {
@@ -187,26 +209,18 @@ static void test_band_edge(void)
  * depth image: inside the view every voxel within the band of it has its
  * distance, none beyond does (the candidates keep to a slab around each
  * block's points, and must not lose a voxel of the band to it). */
+static float tilted_depth(int x, int y)
+{
+	return (float)(0.5 / (1 - 0.3 * (x - 31.5) / 32 - 0.2 * (y - 31.5) / 32));
+}
+
 static void test_tilted_plane(void)
 {
-	struct fct_err err;
-	struct fct_image img;
-	CHECK(fct_image_alloc(&img, 64, 64, 1, FCT_PIX_F32, &err) == 0);
-	float *d = img.data;
-	for (int y = 0; y < 64; y++)
-		for (int x = 0; x < 64; x++)
-			d[y * 64 + x] = (float)(0.5 / (1 - 0.3 * (x - 31.5) / 32 - 0.2 * (y - 31.5) / 32));
 	struct fct_fuse_view v;
 	struct fct_mesh m;
-	struct fct_depth_params dp;
-	fct_depth_params_default(&dp);
-	dp.texcoords = 0;
-	view_of(&v, &m);
-	CHECK(fct_depth_mesh(&m, &img, &v.cam, &dp, NULL, &err) == 0);
+	depth_view(&v, &m, tilted_depth);
 	double band = 0.03, norm = sqrt(1 + 0.09 + 0.04);
-	struct fct_fuse_params p = { band, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
-	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	struct fct_voxgrid *g = fused(&v, NULL);
 	size_t inside = 0, worse = 0;
 	double worst = 0;
 	for (int k = 20; k <= 110; k++)
@@ -237,7 +251,6 @@ static void test_tilted_plane(void)
 	CHECK_NEAR(worst, 0, 1e-5);
 	fct_voxgrid_free(g);
 	fct_mesh_free(&m);
-	fct_image_free(&img);
 }
 
 /* Triangles with (nearly) no area have no normal and are not counted:
@@ -260,10 +273,8 @@ static void test_sliver(void)
 	CHECK(!fct_triangle_degenerate(&m.xyz[3 * v0], &m.xyz[3 * (v0 + 1)], &m.xyz[3 * (v0 + 3)]));
 	struct fct_fuse_view v;
 	view_of(&v, &m);
-	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
 	struct fct_fuse_stats st = { 0 };
-	CHECK(fct_fuse_view(g, &v, &p, &st, &err) == 0);
+	struct fct_voxgrid *g = fused(&v, &st);
 	CHECK_INT(st.faces, 33);
 	fct_voxgrid_free(g);
 	fct_mesh_free(&m);
@@ -298,9 +309,7 @@ static void test_carve(void)
 	square(&m, 40, 0.5);
 	struct fct_fuse_view v;
 	view_of(&v, &m);
-	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
-	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	struct fct_voxgrid *g = fused(&v, NULL);
 	struct fct_range_image r;
 	CHECK(fct_range_image_make(&r, &v, 1 << 20, &err) == 0);
 	/* The centre pixel sees the square at depth 0.5. */
