@@ -1357,10 +1357,9 @@ static inline int add_span(struct cand *c, const double lo[3], const double hi[3
 						l = l < o ? o : l;
 						h = h > o + FCT_VOXBLOCK ? o + FCT_VOXBLOCK : h;
 					}
-					b->plo[k] = l < b->plo[k] ? l : b->plo[k];
-					b->phi[k] = h > b->phi[k] ? h : b->phi[k];
 					cl[k] = l, ch[k] = h;
 				}
+				box_add(b->plo, b->phi, cl, ch);
 				slab_extend(b, cl, ch);
 			}
 	return 0;
