@@ -1,11 +1,12 @@
 /* square.h - the square [-1,1]^2 at depth z, facing -z (towards a camera at
  * the origin looking along +z), split into n x n cells of two triangles: the
- * one flat view the fusion and colouring tests share. */
+ * one flat view the fusion and colouring tests share, and that camera. */
 #ifndef FCT_TEST_SQUARE_H
 #define FCT_TEST_SQUARE_H
 
 #include <stdint.h>
 
+#include "fuse.h"
 #include "mesh.h"
 
 static void square(struct fct_mesh *m, int n, double z)
@@ -22,6 +23,16 @@ static void square(struct fct_mesh *m, int n, double z)
 			fct_mesh_add_face(m, t1, 3, &err);
 			fct_mesh_add_face(m, t2, 3, &err);
 		}
+}
+
+/* v: mesh m seen by a 64 x 64 pinhole (focal 32, centre 31.5) at the
+ * origin looking along +z. */
+static inline void view_of(struct fct_fuse_view *v, const struct fct_mesh *m)
+{
+	*v = (struct fct_fuse_view){ 0 };
+	v->mesh = m;
+	v->cam = (struct fct_camera){ FCT_CAMERA_PINHOLE, 64, 64, 32, 32, 31.5, 31.5, 0, 0 };
+	v->pose[0] = v->pose[5] = v->pose[10] = 1;
 }
 
 #endif

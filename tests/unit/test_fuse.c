@@ -15,16 +15,6 @@
 #include "rangegrid.h"
 #include "square.h"
 
-static void view_of(struct fct_fuse_view *v, const struct fct_mesh *m)
-{
-	*v = (struct fct_fuse_view){ 0 };
-	v->mesh = m;
-	v->cam = (struct fct_camera){ FCT_CAMERA_PINHOLE, 64, 64, 32, 32, 31.5, 31.5, 0, 0 };
-	double id[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
-	for (int k = 0; k < 12; k++)
-		v->pose[k] = id[k];
-}
-
 /* v seeing the 64 x 64 depth image depth(x, y) of view_of's camera,
  * meshed into m as dm2mesh meshes it. */
 static void depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*depth)(int x, int y))

@@ -17,8 +17,6 @@
 #include "square.h"
 #include "viewcolor.h"
 
-static const double identity[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
-
 static void add_normals(struct fct_mesh *m)
 {
 	struct fct_err err;
@@ -48,8 +46,8 @@ static void test_flat(void)
 	struct fct_err err;
 	struct fct_mesh view, out;
 	square(&view, 40, 0.5);
-	struct fct_fuse_view v = { &view, { FCT_CAMERA_PINHOLE, 64, 64, 32, 32, 31.5, 31.5, 0, 0 }, { 0 }, 0 };
-	memcpy(v.pose, identity, sizeof v.pose);
+	struct fct_fuse_view v;
+	view_of(&v, &view);
 	struct fct_range_image r;
 	CHECK(fct_range_image_make(&r, &v, 1 << 20, &err) == 0);
 	/* The "fused" surface: the same square, finer, with normals, and the
@@ -109,8 +107,8 @@ static void test_two(void)
 	struct fct_err err;
 	struct fct_mesh view, out;
 	square(&view, 40, 0.5);
-	struct fct_fuse_view v1 = { &view, { FCT_CAMERA_PINHOLE, 64, 64, 32, 32, 31.5, 31.5, 0, 0 }, { 0 }, 0 };
-	memcpy(v1.pose, identity, sizeof v1.pose);
+	struct fct_fuse_view v1;
+	view_of(&v1, &view);
 	struct fct_fuse_view v2 = v1;
 	v2.pose[3] = 0.1;
 	v2.pose[11] = -0.5;      /* twice as far */
