@@ -1230,6 +1230,15 @@ done:
 	return rc;
 }
 
+/* The band that true distance keeps: a thousandth of a voxel over the
+ * band, so that a layer of voxels at the band's distance (a wall on a
+ * voxel plane, as the floor at z = 0) is kept whole rather than half, as
+ * the rounding of float depths and planes would fall. */
+static inline double band_kept(double band, double vox)
+{
+	return band + 1e-3 * vox;
+}
+
 /* Candidate voxels: the box of the surface's points (vertices, and points
  * at most half a voxel apart on larger triangles) per block of their cells,
  * grown by the band; for true distance also the slab of those points
@@ -1613,10 +1622,9 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 					goto done;
 			}
 	}
-	/* Projective: r voxels (at most 100); true distance: rb voxels, a
-	 * little more for rounding (search keeps a voxel whose squared
-	 * distance rounds to band squared as a float). */
-	double r = ceil(band / vox), rb = band / vox;
+	/* Projective: r voxels (at most 100); true distance: the kept band
+	 * in voxels, a little more for rounding. */
+	double r = ceil(band / vox), rb = band_kept(band, vox) / vox;
 	r = r < 100 ? r : 100;
 	rb = rb < 100 ? rb : 100;
 	rb += 1e-6 * (1 + rb);
@@ -1687,6 +1695,7 @@ struct fctx {
 	const struct fct_fuse_params *p;
 	const struct scratch *s;
 	double vox;
+	double band;             /* band_kept */
 };
 
 /* The triangle seen at sample (x, y), or at one of its 8 neighbours. */
@@ -1741,7 +1750,7 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 {
 	const struct geo *G = F->G;
 	const struct raster *R = F->R;
-	double sx, sy, depth, band = F->p->band;
+	double sx, sy, depth, band = F->band;
 	double s = plane_dist(G, t, x);
 	/* In front of the surface seen, the distance to its plane bounds the
 	 * distance (for convex surfaces); behind it the nearest point may be
@@ -1774,7 +1783,7 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 		 * of t nearest x, inside it, and a walk would stop there. */
 		*d2 = s * s, *r = FCT_TRI_FACE;
 		memcpy(q, f, sizeof f);
-		return (float)*d2 <= band * band ? t : -1;
+		return *d2 <= band * band ? t : -1;
 	}
 	/* A raster's sample is the nearest one, not the triangle under the
 	 * foot: find that one in the image first (cheaper than walking
@@ -1782,7 +1791,7 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 	if (stays)
 		t = locate(R, t, sx, sy);
 	t = walk(G, t, x, band * band, d2, q, r);
-	return t >= 0 && (float)*d2 <= band * band ? t : -1;   /* as float: the band's last layer stays in */
+	return t >= 0 && *d2 <= band * band ? t : -1;
 }
 
 /* Voxel l of block b, at x, seen at sample (sx, sy) on triangle t. */
@@ -1791,7 +1800,7 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 {
 	const struct geo *G = F->G;
 	const struct raster *R = F->R;
-	double vox = F->vox, band = F->p->band;
+	double vox = F->vox, band = F->band;
 	double d2, q[3], xq[3];
 	enum fct_tri_region r;
 	int32_t t0 = t;
@@ -1866,6 +1875,8 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 		}
 		d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
 	}
+	/* The kept band's extra thousandth of a voxel is not a distance. */
+	d = dmax(-F->p->band, dmin(d, F->p->band));
 	put(b, l, (float)d, (float)view_weight(F->v, F->p, q, n));
 }
 
@@ -2001,7 +2012,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	if (R.w > 0) {
 		if (candidates(&s, g, &G, vox, band, proj, err))
 			goto done;
-		struct fctx F = { &G, &R, v, p, &s, vox };
+		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox) };
 		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);
 		if (commit(g, from, &s, st, err))
 			goto done;

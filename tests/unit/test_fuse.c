@@ -161,11 +161,14 @@ static void test_grid(void)
 	size_t missing, n = compare_grids(g, h, &worst, &missing);
 	CHECK(n > 10000);
 	CHECK_NEAR(worst, 0, 1e-5);
-	/* Voxels on the band's edge may fall either way of it. */
-	CHECK_MSG(missing < n / 200, "%zu of %zu voxels not in the raster's", missing, n);
+	/* Just out of the view, where the band's edge meets the frustum's:
+	 * a voxel whose sample is off the image is searched from the nearest
+	 * pixel's cell, a pixel away at most, but from the raster's sample
+	 * half a pixel away at most. */
+	CHECK_MSG(missing < n / 100, "%zu of %zu voxels not in the raster's", missing, n);
 	compare_grids(h, g, &worst, &missing);
 	CHECK_NEAR(worst, 0, 1e-5);
-	CHECK_MSG(missing < n / 200, "%zu of %zu voxels not in the grid's", missing, n);
+	CHECK_MSG(missing < n / 100, "%zu of %zu voxels not in the grid's", missing, n);
 	fct_voxgrid_free(g);
 	fct_voxgrid_free(h);
 	fct_mesh_free(&m);
