@@ -5,6 +5,13 @@
  *                                       key=value lines (seconds, voxels, ...):
  *                                       CPU seconds of the process (all its
  *                                       threads) and wall seconds
+ *   gen_mcubes [-r RUNS] [-t THREADS] [-s VOXEL] fused VIEW.ply...
+ *                                       the same on the volume tsdfuse fuses from
+ *                                       the views (dm2mesh meshes with camera and
+ *                                       pose comments; true distance, band 3
+ *                                       voxels, constant weight; VOXEL 0.01), so
+ *                                       that marching cubes is timed alone on a
+ *                                       real volume
  *   gen_mcubes estimate                 blocks and bytes of a 10 x 10 x 3 m room
  *                                       band at 1 cm, counted without allocating
  * room: a 4 x 4 x 2.5 m room at 1 cm voxels, a 0.5 m ball and a 1 x 0.6 x 0.75 m
@@ -20,7 +27,10 @@
 #include <time.h>
 
 #include "cli.h"
+#include "fuse.h"
+#include "header.h"
 #include "mcubes.h"
+#include "meshio.h"
 
 struct scene {
 	double room[3];         /* interior from 0 to room */
@@ -89,6 +99,29 @@ static size_t room_blocks(const struct scene *s, double vox, double trunc, struc
 	return count;
 }
 
+/* Fuse the dm2mesh views at paths[0..n-1] into g as tsdfuse does by
+ * default (true distance, band 3 voxels, constant weight). */
+static void fuse_views(struct fct_voxgrid *g, char **paths, int n, int threads)
+{
+	struct fct_err err;
+	struct fct_fuse_params fp = { 0 };
+	fp.band = 3 * fct_voxgrid_voxel(g);
+	fp.weight = FCT_FUSE_CONSTANT;
+	fp.threads = threads;
+	for (int i = 0; i < n; i++) {
+		struct fct_mesh m;
+		struct fct_fuse_view v = { 0 };
+		if (fct_mesh_read_file(&m, paths[i], NULL, &err))
+			fct_die_err(&err);
+		if (fct_header_camera(&m, &v.cam, &err) != 1 || fct_header_pose(&m, v.pose, &err) != 1)
+			fct_die(1, "%s: needs the camera and pose comments dm2mesh writes", paths[i]);
+		v.mesh = &m;
+		if (fct_fuse_view(g, &v, &fp, NULL, &err))
+			fct_die_err(&err);
+		fct_mesh_free(&m);
+	}
+}
+
 /* CPU seconds of this process: the machines are shared, wall time is not
  * ours alone. */
 static double cpu_now(void)
@@ -143,16 +176,19 @@ int main(int argc, char **argv)
 	fct_cli_init("gen_mcubes");
 	struct fct_err err;
 	int runs = 5, threads = 1, a = 1;
+	double voxel = 0.01;
 	for (; a + 2 < argc; a += 2) {
 		if (!strcmp(argv[a], "-r"))
 			runs = (int)fct_opt_long("-r", argv[a + 1], 1, 1000);
 		else if (!strcmp(argv[a], "-t"))
 			threads = (int)fct_opt_long("-t", argv[a + 1], 1, 64);
+		else if (!strcmp(argv[a], "-s"))
+			voxel = fct_opt_double("-s", argv[a + 1], 1e-6, 1e6);
 		else
 			break;
 	}
-	if (a + 1 != argc)
-		fct_usage_error("usage: gen_mcubes [-r RUNS] [-t THREADS] room|dense|estimate");
+	if (a >= argc || (a + 1 != argc && strcmp(argv[a], "fused")))
+		fct_usage_error("usage: gen_mcubes [-r RUNS] [-t THREADS] [-s VOXEL] room|dense|estimate|fused VIEW.ply...");
 	const char *what = argv[a];
 	if (!strcmp(what, "estimate")) {
 		struct scene s = { { 10, 10, 3 }, { 5, 5, -10, 0 }, { 0, 0, -9, 0, 0, -9 } };
@@ -165,7 +201,7 @@ int main(int argc, char **argv)
 		printf("dense_gb=%.1f\n", 1000.0 * 1000 * 300 * 8 / 1e9);
 		return 0;
 	}
-	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_voxgrid *g = fct_voxgrid_new(strcmp(what, "fused") ? 0.01 : voxel, 0, &err);
 	if (!g)
 		fct_die_err(&err);
 	if (!strcmp(what, "room")) {
@@ -185,6 +221,8 @@ int main(int argc, char **argv)
 						b->weight[v] = 1;
 					}
 				}
+	} else if (!strcmp(what, "fused")) {
+		fuse_views(g, argv + a + 1, argc - a - 1, threads);
 	} else {
 		fct_usage_error("gen_mcubes: unknown scene %s", what);
 	}
@@ -228,8 +266,8 @@ int main(int argc, char **argv)
 	printf("threads=%zu\nband_voxels=%.0f\nmcubes_band_mvox_s=%.1f\n", st.threads, band,
 	       band / t / 1e6);
 	printf("mcubes_wall_s=%.5f\nmcubes_wall_mvox_s=%.1f\n", t_wall, vox / t_wall / 1e6);
-	printf("blocks=%zu\nvoxels=%.0f\nvertices=%zu\nfaces=%zu\ncubes=%zu\n", nb, vox, m.nv, m.nf,
-	       st.cubes);
+	printf("blocks=%zu\nvoxels=%.0f\nvertices=%zu\nfaces=%zu\ncubes=%zu\nambiguous=%zu\ncentres=%zu\n",
+	       nb, vox, m.nv, m.nf, st.cubes, st.ambiguous, st.centres);
 	printf("mcubes_s=%.5f\nmcubes_mvox_s=%.1f\nref_s=%.5f\nref_mvox_s=%.1f\nchecksum=%.3g\n", t,
 	       vox / t / 1e6, t_ref, vox / t_ref / 1e6, sum);
 	printf("grid_mb=%.1f\nmesh_fnv=%016llx\n", fct_voxgrid_bytes(g) / 1e6,
