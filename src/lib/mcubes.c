@@ -45,6 +45,8 @@
 #include <emmintrin.h>
 #endif
 
+#include <pthread.h>
+
 #include "par.h"
 
 /* Cube geometry ----------------------------------------------------------- */
@@ -195,6 +197,78 @@ static void build_case(const struct geom *G, int cfg, int joinneg, struct mc_cas
 	}
 }
 
+/* Triangles and centroid vertices of a contour. */
+static void case_counts(const struct mc_case *mc, uint32_t *nt, uint32_t *nc)
+{
+	for (int l = 0; l < mc->nloops; l++) {
+		*nt += mc->centre[l] ? mc->len[l] : mc->len[l] - 2u;
+		*nc += mc->centre[l];
+	}
+}
+
+/* The contours of every sign pattern under every decision on its ambiguous
+ * faces (656 in all), so that no cube builds one on the spot.  Variant v of
+ * pattern cfg is var[first[cfg] + v]: bit i of v set when the i-th of its
+ * ambiguous faces (in face order) joins the negative diagonal; variant 0
+ * joins every positive one and its amb lists the ambiguous faces. */
+#define MC_VARIANTS 656
+
+struct mc_tables {
+	struct geom G;
+	uint16_t first[256];
+	struct mc_case var[MC_VARIANTS];
+	uint8_t ntri[MC_VARIANTS], ncentre[MC_VARIANTS];
+	uint8_t tedge[MC_VARIANTS][36];         /* the fans' edges, when no loop has a centre */
+	uint8_t pop8[256];
+};
+
+static struct mc_tables tables;
+static pthread_once_t tables_once = PTHREAD_ONCE_INIT;
+
+/* The face mask of the faces of amb picked by the bits of v (bit i: the
+ * i-th face of amb). */
+static int expand_faces(int amb, int v)
+{
+	int mask = 0;
+	for (int f = 0, i = 0; f < 6; f++)
+		if (amb >> f & 1)
+			mask |= (v >> i++ & 1) << f;
+	return mask;
+}
+
+static void tables_init(void)
+{
+	struct mc_tables *T = &tables;
+	geom_init(&T->G);
+	int n = 0;
+	for (int cfg = 0; cfg < 256; cfg++) {
+		T->first[cfg] = (uint16_t)n;
+		struct mc_case base;
+		build_case(&T->G, cfg, 0, &base);
+		int nv = 1 << __builtin_popcount(base.amb);
+		if (n + nv > MC_VARIANTS)
+			abort();
+		for (int v = 0; v < nv; v++, n++) {
+			struct mc_case *mc = &T->var[n];
+			build_case(&T->G, cfg, expand_faces(base.amb, v), mc);
+			uint32_t nt = 0, nc = 0;
+			case_counts(mc, &nt, &nc);
+			T->ntri[n] = (uint8_t)nt;
+			T->ncentre[n] = (uint8_t)nc;
+			const uint8_t *ed = mc->edge;
+			for (int l = 0, j = 0; l < mc->nloops && !nc; ed += mc->len[l], l++)
+				for (int i = 1; i + 1 < mc->len[l]; i++, j += 3) {
+					T->tedge[n][j] = ed[0];
+					T->tedge[n][j + 1] = ed[i];
+					T->tedge[n][j + 2] = ed[i + 1];
+				}
+		}
+		T->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
+	}
+	if (n != MC_VARIANTS)
+		abort();
+}
+
 /* Per-block data ------------------------------------------------------------ */
 
 #define NONE UINT32_MAX
@@ -236,11 +310,7 @@ struct mc {
 	int colour;
 	double voxel;
 	const int32_t *lo, *hi;         /* clip box or NULL */
-	struct geom G;
-	struct mc_case table[256];
-	uint8_t ntri[256], ncentre[256];
-	uint8_t tedge[256][36];         /* the triangles' edges, when no loop has a centre */
-	uint8_t pop8[256];
+	const struct mc_tables *T;
 
 	struct own *own;                /* per block */
 	struct aux *aux;                /* per block with an observed voxel */
@@ -573,44 +643,50 @@ static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *
 	o->aux = NONE;
 }
 
-/* The faces of cube (x, y, z) of block B (sign pattern cfg, with an
- * ambiguous face) on which the asymptotic decider joins the negative
- * diagonal, as a face mask; computed from exact products of the corner
- * values, so both cubes sharing a face decide it alike. */
-static int decide(const struct mc *M, const struct fct_voxblock *B, int x, int y, int z, int cfg)
+/* Sign pattern of cube (x, y, z) of record A: bit c set when corner c is
+ * negative. */
+static inline int cube_cfg(const struct aux *A, int x, int y, int z)
 {
-	const struct mc_case *mc = &M->table[cfg];
+	return (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
+	       (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
+}
+
+/* The contour of cube (x, y, z) of the block whose upper neighbours (k &
+ * 1, k >> 1 & 1, k >> 2: the block itself at 0) are up[k], sign pattern
+ * cfg: its index in M->T->var.  On an ambiguous face the asymptotic
+ * decider picks the diagonal from exact products of the corner values, so
+ * both cubes sharing the face decide it alike. */
+static int cube_case(const struct mc *M, const struct fct_voxblock *const up[8], int x, int y,
+                     int z, int cfg)
+{
+	const struct mc_tables *T = M->T;
+	int amb = T->var[T->first[cfg]].amb;
+	if (!amb)
+		return T->first[cfg];
 	float val[8];
 	for (int k = 0; k < 8; k++) {
-		float s, wt;
-		if (!fct_voxgrid_get(M->g, 8 * B->bx + x + (k & 1), 8 * B->by + y + (k >> 1 & 1),
-		                     8 * B->bz + z + (k >> 2 & 1), &s, &wt) ||
-		    !observed(M->thr, s, wt))
+		int px = x + (k & 1), py = y + (k >> 1 & 1), pz = z + (k >> 2);
+		const struct fct_voxblock *b = up[(px >> 3) | (py >> 3) << 1 | (pz >> 3) << 2];
+		int v = (px & 7) + 8 * ((py & 7) + 8 * (pz & 7));
+		/* pass 1 saw all eight corners observed */
+		if (!b || !observed(M->thr, b->sdf[v], b->weight[v]))
 			abort();
-		val[k] = s;
+		val[k] = b->sdf[v];
 	}
-	int joinneg = 0;
+	int variant = 0, i = 0;
 	for (int f = 0; f < 6; f++) {
-		if (!(mc->amb >> f & 1))
+		if (!(amb >> f & 1))
 			continue;
-		const uint8_t *fc = M->G.face_corners[f];
+		const uint8_t *fc = T->G.face_corners[f];
 		double d0 = (double)val[fc[0]] * (double)val[fc[2]];
 		double d1 = (double)val[fc[1]] * (double)val[fc[3]];
 		int c0neg = cfg >> fc[0] & 1;
 		double pos = c0neg ? d1 : d0, neg = c0neg ? d0 : d1;
 		if (!(pos >= neg))
-			joinneg |= 1 << f;
+			variant |= 1 << i;
+		i++;
 	}
-	return joinneg;
-}
-
-/* Triangles and centroid vertices of a contour. */
-static void case_counts(const struct mc_case *mc, uint32_t *nt, uint32_t *nc)
-{
-	for (int l = 0; l < mc->nloops; l++) {
-		*nt += mc->centre[l] ? mc->len[l] : mc->len[l] - 2u;
-		*nc += mc->centre[l];
-	}
+	return T->first[cfg] + variant;
 }
 
 /* Pass 1 on block b: its edge and cube bits, exact counts of vertices,
@@ -664,25 +740,20 @@ static int pass1(const struct mc *M, size_t b, struct aux *A)
 	for (int a = 0; a < 3; a++)
 		for (int r = 0; r < 64; r++) {
 			A->pre[a][r] = (uint16_t)count;
-			count += M->pop8[A->bits[a][r]];
+			count += M->T->pop8[A->bits[a][r]];
 		}
 	A->nverts = count;
+	const struct fct_voxblock *upb[8];
+	for (int k = 0; k < 8; k++)
+		upb[k] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
 	uint32_t nt = 0, nc = 0;
 	for (int z = 0; z < 8 && A->any_active; z++)
 		for (int y = 0; y < 8; y++)
 			for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
 				int x = __builtin_ctz(m);
-				int cfg = (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
-				          (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
-				int joinneg = M->table[cfg].amb ? decide(M, B, x, y, z, cfg) : 0;
-				if (joinneg) {
-					struct mc_case local;
-					build_case(&M->G, cfg, joinneg, &local);
-					case_counts(&local, &nt, &nc);
-				} else {
-					nt += M->ntri[cfg];
-					nc += M->ncentre[cfg];
-				}
+				int id = cube_case(M, upb, x, y, z, cube_cfg(A, x, y, z));
+				nt += M->T->ntri[id];
+				nc += M->T->ncentre[id];
 			}
 	A->ntri = nt;
 	A->ncent = nc;
@@ -694,14 +765,14 @@ static int pass1(const struct mc *M, size_t b, struct aux *A)
 static inline uint32_t edge_vertex(const struct mc *M, const struct aux *const up[8], int x, int y,
                                    int z, int e)
 {
-	int lo = M->G.edge_lo[e], a = e >> 2;
+	int lo = M->T->G.edge_lo[e], a = e >> 2;
 	int px = x + (lo & 1), py = y + (lo >> 1 & 1), pz = z + (lo >> 2 & 1);
 	const struct aux *A = up[(px >> 3) | (py >> 3) << 1 | (pz >> 3) << 2];
 	int r = 8 * (pz & 7) + (py & 7), bit = px & 7;
 	unsigned row = A ? A->bits[a][r] : 0;
 	if (!(row >> bit & 1))
 		abort();
-	return A->base + A->pre[a][r] + M->pop8[row & ((1u << bit) - 1)];
+	return A->base + A->pre[a][r] + M->T->pop8[row & ((1u << bit) - 1)];
 }
 
 static inline void mark_used(const struct mc *M, uint32_t v)
@@ -709,42 +780,29 @@ static inline void mark_used(const struct mc *M, uint32_t v)
 	atomic_store_explicit(&M->used[v], 1, memory_order_relaxed);
 }
 
-/* The triangles of cube (x, y, z) of the current block, sign pattern cfg,
+/* The triangles of cube (x, y, z) of the current block, contour M->T->var[id],
  * at *t (advanced); centroid vertices numbered from *cid (advanced). */
 static void emit_cube(struct worker *w, const struct aux *const up[8], int x, int y, int z,
-                      int cfg, uint32_t **tp, uint32_t *cid)
+                      int id, uint32_t **tp, uint32_t *cid)
 {
 	const struct mc *M = w->M;
-	const struct mc_case *mc = &M->table[cfg];
-	struct mc_case local;
+	const struct mc_case *mc = &M->T->var[id];
 	uint32_t vid[12], *t = *tp;
-	if (!mc->amb && !M->ncentre[cfg]) {
-		/* the common case: the tabulated fans */
-		for (unsigned m = mc->emask; m; m &= m - 1) {
-			int e = __builtin_ctz(m);
-			vid[e] = edge_vertex(M, up, x, y, z, e);
-			mark_used(M, vid[e]);
-		}
-		const uint8_t *te = M->tedge[cfg];
-		int n = 3 * M->ntri[cfg];
-		for (int j = 0; j < n; j++)
-			t[j] = vid[te[j]];
-		*tp = t + n;
-		w->st.cubes++;
-		return;
-	}
-	if (mc->amb) {
-		int joinneg = decide(M, w->cur->nb[13], x, y, z, cfg);
-		w->st.ambiguous++;
-		if (joinneg) {
-			build_case(&M->G, cfg, joinneg, &local);
-			mc = &local;
-		}
-	}
+	w->st.cubes++;
+	w->st.ambiguous += mc->amb != 0;
 	for (unsigned m = mc->emask; m; m &= m - 1) {
 		int e = __builtin_ctz(m);
 		vid[e] = edge_vertex(M, up, x, y, z, e);
 		mark_used(M, vid[e]);
+	}
+	if (!M->T->ncentre[id]) {
+		/* the common case: the tabulated fans */
+		const uint8_t *te = M->T->tedge[id];
+		int n = 3 * M->T->ntri[id];
+		for (int j = 0; j < n; j++)
+			t[j] = vid[te[j]];
+		*tp = t + n;
+		return;
 	}
 	const uint8_t *ed = mc->edge;
 	for (int l = 0; l < mc->nloops; l++) {
@@ -777,7 +835,6 @@ static void emit_cube(struct worker *w, const struct aux *const up[8], int x, in
 		ed += len;
 	}
 	*tp = t;
-	w->st.cubes++;
 }
 
 /* The triangles of block record A, at A->tbase onwards. */
@@ -787,16 +844,16 @@ static void block_triangles(struct worker *w, const struct aux *A)
 	const struct aux *up[8];
 	for (int k = 0; k < 8; k++)
 		up[k] = A->up[k] >= 0 && M->own[A->up[k]].aux != NONE ? &M->aux[M->own[A->up[k]].aux] : NULL;
-	w->cur = &w->c[0];
-	ctx_block(M, w->cur, fct_voxgrid_at(M->g, A->block), NULL);
+	const struct fct_voxblock *upb[8];
+	for (int k = 0; k < 8; k++)
+		upb[k] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
 	uint32_t *t = M->tri + 3 * (size_t)A->tbase, cid = (uint32_t)M->nverts + A->cbase;
 	for (int z = 0; z < 8; z++)
 		for (int y = 0; y < 8; y++)
 			for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
 				int x = __builtin_ctz(m);
-				int cfg = (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
-				          (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
-				emit_cube(w, up, x, y, z, cfg, &t, &cid);
+				int id = cube_case(M, upb, x, y, z, cube_cfg(A, x, y, z));
+				emit_cube(w, up, x, y, z, id, &t, &cid);
 			}
 	/* pass 1 counted the same cubes with the same decisions */
 	if (t != M->tri + 3 * ((size_t)A->tbase + A->ntri) || cid != M->nverts + A->cbase + A->ncent)
@@ -903,23 +960,9 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 		M->thr = INFINITY;
 	M->colour = fct_voxgrid_has_colour(g);
 	M->voxel = fct_voxgrid_voxel(g);
-	geom_init(&M->G);
-	for (int cfg = 0; cfg < 256; cfg++) {
-		struct mc_case *mc = &M->table[cfg];
-		build_case(&M->G, cfg, 0, mc);
-		uint32_t nt = 0, nc = 0;
-		case_counts(mc, &nt, &nc);
-		M->ntri[cfg] = (uint8_t)nt;
-		const uint8_t *ed = mc->edge;
-		for (int l = 0, j = 0; l < mc->nloops; ed += mc->len[l], l++)
-			for (int i = 1; i + 1 < mc->len[l] && !mc->centre[l]; i++, j += 3) {
-				M->tedge[cfg][j] = ed[0];
-				M->tedge[cfg][j + 1] = ed[i];
-				M->tedge[cfg][j + 2] = ed[i + 1];
-			}
-		M->ncentre[cfg] = (uint8_t)nc;
-		M->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
-	}
+	if (pthread_once(&tables_once, tables_init))
+		abort();
+	M->T = &tables;
 
 	int rc = -1, nthreads = fct_par_threads(threads);
 	size_t nb = fct_voxgrid_count(g), naux = 0, ntri = 0, ncent = 0, nverts = 0;
