@@ -38,7 +38,6 @@
 
 #include <float.h>
 #include <math.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #if defined(__SSE2__)
@@ -283,7 +282,8 @@ struct own {
 
 /* Pass-1 record of a block that owns crossings or has extracted cubes. */
 struct aux {
-	uint8_t bits[3][64];    /* crossing edges it owns, per axis: row z * 8 + y, bit x */
+	uint8_t bits[3][64];    /* crossing edges it owns, per axis: row z * 8 + y, bit x;
+	                         * after pass 2 only those an extracted cube uses */
 	uint16_t pre[3][64];    /* the block's vertices before each row */
 	uint32_t base, nverts;  /* its first edge vertex, their count */
 	uint32_t tbase, ntri;   /* its first triangle, their count */
@@ -313,6 +313,8 @@ struct mc {
 	const struct mc_tables *T;
 
 	struct own *own;                /* per block */
+	int32_t (*down)[8];             /* per block: block - (k & 1, k >> 1 & 1, k >> 2),
+	                                 * -1 absent (pass 1 links the blocks it reads) */
 	struct aux *aux;                /* per block with an observed voxel */
 	uint32_t *live;                 /* aux records with something, in block order */
 	size_t nlive;
@@ -323,7 +325,6 @@ struct mc {
 	float *nrm[3];
 	uint8_t *rgb[3];
 	uint32_t *tri;
-	atomic_uchar *used;             /* vertex used by a triangle */
 
 	struct worker *w;               /* one per thread */
 };
@@ -616,8 +617,11 @@ static void block_vertices(struct worker *w, const struct aux *A)
 }
 
 /* Pass 0 on block B: its own bits, clipped. */
-static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *o)
+static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *o,
+                  int32_t down[8])
 {
+	for (int k = 0; k < 8; k++)
+		down[k] = -1;
 	const int32_t *lo = M->lo, *hi = M->hi;
 	unsigned any = 0, xm = 0xFF;
 	if (lo)
@@ -689,18 +693,21 @@ static int cube_case(const struct mc *M, const struct fct_voxblock *const up[8],
 	return T->first[cfg] + variant;
 }
 
-/* Pass 1 on block b: its edge and cube bits, exact counts of vertices,
- * triangles and centroids.  Returns 1 when the block has anything (A
+/* Pass 1 on block b: its edge and cube bits, exact counts of triangles
+ * and centroids.  Returns 1 when the block has anything (A
  * filled), else 0. */
-static int pass1(const struct mc *M, size_t b, struct aux *A)
+static int pass1(struct mc *M, size_t b, struct aux *A)
 {
 	const struct own *own = M->own;
 	const struct fct_voxblock *B = fct_voxgrid_at(M->g, b);
 	A->block = (uint32_t)b;
 	A->up[0] = (int32_t)b;
-	for (int k = 1; k < 8; k++)
+	for (int k = 1; k < 8; k++) {
 		A->up[k] = (int32_t)fct_voxgrid_index(M->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
 		                                      B->bz + (k >> 2));
+		if (A->up[k] >= 0)
+			M->down[A->up[k]][k] = (int32_t)b;      /* its only writer */
+	}
 	uint16_t obs[9][9];
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++) {
@@ -736,13 +743,6 @@ static int pass1(const struct mc *M, size_t b, struct aux *A)
 		}
 	if (!anything)
 		return 0;
-	uint32_t count = 0;
-	for (int a = 0; a < 3; a++)
-		for (int r = 0; r < 64; r++) {
-			A->pre[a][r] = (uint16_t)count;
-			count += M->T->pop8[A->bits[a][r]];
-		}
-	A->nverts = count;
 	const struct fct_voxblock *upb[8];
 	for (int k = 0; k < 8; k++)
 		upb[k] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
@@ -760,6 +760,49 @@ static int pass1(const struct mc *M, size_t b, struct aux *A)
 	return 1;
 }
 
+/* Pass 2 on record A: keep the crossing edges that an extracted cube uses
+ * (one of the four around the edge, some in the lower neighbours' records),
+ * so that no vertex is made that no triangle uses, and count them. */
+static void pass2(const struct mc *M, struct aux *A)
+{
+	/* act[z + 1][y + 1], bit x + 1: cube (x, y, z) extracted, -1..7 */
+	uint16_t act[9][9];
+	memset(act, 0, sizeof act);
+	for (int r = 0; r < 64; r++)
+		act[(r >> 3) + 1][(r & 7) + 1] = (uint16_t)(A->active[r] << 1);
+	for (int k = 1; k < 8; k++) {
+		int dx = k & 1, dy = k >> 1 & 1, dz = k >> 2;
+		int32_t n = M->down[A->block][k];
+		if (n < 0 || M->own[n].aux == NONE)
+			continue;
+		const struct aux *D = &M->aux[M->own[n].aux];
+		/* its cubes at local 7 on the axes it lies below on, 0..7 on the others */
+		for (int z = dz ? 7 : 0; z < 8; z++)
+			for (int y = dy ? 7 : 0; y < 8; y++) {
+				unsigned m = D->active[8 * z + y];
+				m = dx ? m >> 7 : m << 1;
+				act[dz ? 0 : z + 1][dy ? 0 : y + 1] |= (uint16_t)m;
+			}
+	}
+	uint32_t count = 0;
+	for (int z = 0; z < 8; z++)
+		for (int y = 0; y < 8; y++) {
+			int r = 8 * z + y;
+			unsigned c11 = act[z + 1][y + 1], c01 = act[z][y + 1], c10 = act[z + 1][y];
+			unsigned ux = c11 | c01 | c10 | act[z][y];      /* cubes (x, y-1..y, z-1..z) */
+			unsigned uy = c11 | c01, uz = c11 | c10;        /* (x-1..x, y, z-1..z), (x-1..x, y-1..y, z) */
+			A->bits[0][r] &= (uint8_t)(ux >> 1);
+			A->bits[1][r] &= (uint8_t)(uy | uy >> 1);
+			A->bits[2][r] &= (uint8_t)(uz | uz >> 1);
+		}
+	for (int a = 0; a < 3; a++)
+		for (int r = 0; r < 64; r++) {
+			A->pre[a][r] = (uint16_t)count;
+			count += M->T->pop8[A->bits[a][r]];
+		}
+	A->nverts = count;
+}
+
 /* Vertex of crossing edge e of cube (x, y, z); up holds the records of the
  * block and its upper neighbours. */
 static inline uint32_t edge_vertex(const struct mc *M, const struct aux *const up[8], int x, int y,
@@ -775,11 +818,6 @@ static inline uint32_t edge_vertex(const struct mc *M, const struct aux *const u
 	return A->base + A->pre[a][r] + M->T->pop8[row & ((1u << bit) - 1)];
 }
 
-static inline void mark_used(const struct mc *M, uint32_t v)
-{
-	atomic_store_explicit(&M->used[v], 1, memory_order_relaxed);
-}
-
 /* The triangles of cube (x, y, z) of the current block, contour M->T->var[id],
  * at *t (advanced); centroid vertices numbered from *cid (advanced). */
 static void emit_cube(struct worker *w, const struct aux *const up[8], int x, int y, int z,
@@ -793,7 +831,6 @@ static void emit_cube(struct worker *w, const struct aux *const up[8], int x, in
 	for (unsigned m = mc->emask; m; m &= m - 1) {
 		int e = __builtin_ctz(m);
 		vid[e] = edge_vertex(M, up, x, y, z, e);
-		mark_used(M, vid[e]);
 	}
 	if (!M->T->ncentre[id]) {
 		/* the common case: the tabulated fans */
@@ -824,7 +861,6 @@ static void emit_cube(struct worker *w, const struct aux *const up[8], int x, in
 				if (M->colour)
 					M->rgb[k][id] = to_u8(col[k] / len);
 			}
-			mark_used(M, id);
 			w->st.centres++;
 			for (int i = 0; i < len; i++, t += 3)
 				t[0] = id, t[1] = vid[ed[i]], t[2] = vid[ed[(i + 1) % len]];
@@ -866,7 +902,7 @@ static void run_pass0(void *ctx, size_t lo, size_t hi, int worker)
 	struct mc *M = ctx;
 	(void)worker;
 	for (size_t b = lo; b < hi; b++)
-		pass0(M, fct_voxgrid_at(M->g, b), &M->own[b]);
+		pass0(M, fct_voxgrid_at(M->g, b), &M->own[b], M->down[b]);
 }
 
 static void run_pass1(void *ctx, size_t lo, size_t hi, int worker)
@@ -884,6 +920,14 @@ static void run_pass1(void *ctx, size_t lo, size_t hi, int worker)
 		else
 			M->own[b].aux = NONE;
 	}
+}
+
+static void run_pass2(void *ctx, size_t lo, size_t hi, int worker)
+{
+	struct mc *M = ctx;
+	(void)worker;
+	for (size_t i = lo; i < hi; i++)
+		pass2(M, &M->aux[M->live[i]]);
 }
 
 static void run_vertices(void *ctx, size_t lo, size_t hi, int worker)
@@ -915,30 +959,6 @@ static void run_triangles(void *ctx, size_t lo, size_t hi, int worker)
 			block_triangles(&M->w[worker], &M->aux[M->live[i]]);
 }
 
-/* Drop the vertices no triangle uses (crossings at the rim of the observed
- * region), keeping the order of the others; returns the count kept. */
-static size_t compact(struct mc *M, size_t nv, size_t nt, uint32_t *remap)
-{
-	size_t n = 0;
-	for (size_t v = 0; v < nv; v++) {
-		remap[v] = (uint32_t)n;
-		if (!atomic_load_explicit(&M->used[v], memory_order_relaxed))
-			continue;
-		if (n != v) {
-			for (int k = 0; k < 3; k++) {
-				M->xyz[3 * n + k] = M->xyz[3 * v + k];
-				M->nrm[k][n] = M->nrm[k][v];
-				if (M->colour)
-					M->rgb[k][n] = M->rgb[k][v];
-			}
-		}
-		n++;
-	}
-	for (size_t i = 0; i < 3 * nt; i++)
-		M->tri[i] = remap[M->tri[i]];
-	return n;
-}
-
 /* Chunks of the parallel loops: fixed, so the work is cut alike for any
  * thread count (the results do not depend on it anyway). */
 #define MC_CHUNKS 64
@@ -966,10 +986,10 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 
 	int rc = -1, nthreads = fct_par_threads(threads);
 	size_t nb = fct_voxgrid_count(g), naux = 0, ntri = 0, ncent = 0, nverts = 0;
-	uint32_t *remap = NULL;
 	M->w = calloc((size_t)nthreads, sizeof *M->w);
 	M->own = fct_alloc_array(nb, sizeof *M->own, err);
-	if (!M->w || !M->own) {
+	M->down = fct_alloc_array(nb, sizeof *M->down, err);
+	if (!M->w || !M->own || !M->down) {
 		if (!M->w)
 			fct_fail(err, "out of memory");
 		goto done;
@@ -986,12 +1006,13 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	    !(M->live = fct_alloc_array(naux, sizeof *M->live, err)))
 		goto done;
 	fct_par_run(nthreads, nb, MC_CHUNKS, run_pass1, M);
+	for (size_t b = 0; b < nb; b++)
+		if (M->own[b].aux != NONE)
+			M->live[M->nlive++] = M->own[b].aux;
+	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_pass2, M);
 	/* every record's place in the output, in block order */
-	for (size_t b = 0; b < nb; b++) {
-		if (M->own[b].aux == NONE)
-			continue;
-		struct aux *A = &M->aux[M->own[b].aux];
-		M->live[M->nlive++] = M->own[b].aux;
+	for (size_t i = 0; i < M->nlive; i++) {
+		struct aux *A = &M->aux[M->live[i]];
 		A->base = (uint32_t)nverts;
 		A->tbase = (uint32_t)ntri;
 		A->cbase = (uint32_t)ncent;
@@ -1026,24 +1047,8 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	}
 	M->xyz = out->xyz;
 	M->tri = out->fvert;
-	if (!(M->used = fct_alloc_array(nverts + ncent, sizeof *M->used, err)))
-		goto done;
-	for (size_t v = 0; v < nverts + ncent; v++)
-		atomic_init(&M->used[v], 0);
-
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_vertices, M);
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_triangles, M);
-
-	size_t nv = nverts + ncent, unused = 0;
-	for (size_t v = 0; v < nv; v++)
-		unused += !atomic_load_explicit(&M->used[v], memory_order_relaxed);
-	if (unused) {
-		if (!(remap = fct_alloc_array(nv, sizeof *remap, err)))
-			goto done;
-		nv = compact(M, nv, ntri, remap);
-	}
-	if (fct_mesh_set_vertex_count(out, nv, err) || fct_mesh_set_triangle_count(out, ntri, err))
-		goto done;
 	if (stats) {
 		memset(stats, 0, sizeof *stats);
 		for (int t = 0; t < nthreads; t++) {
@@ -1060,11 +1065,10 @@ done:
 	if (rc)
 		fct_mesh_free(out);
 	free(M->own);
+	free(M->down);
 	free(M->aux);
 	free(M->live);
-	free(M->used);
 	free(M->w);
-	free(remap);
 	free(M);
 	return rc;
 }
