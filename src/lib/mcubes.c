@@ -219,6 +219,7 @@ struct mc_tables {
 	uint8_t ntri[MC_VARIANTS], ncentre[MC_VARIANTS];
 	uint8_t tedge[MC_VARIANTS][36];         /* the fans' edges, when no loop has a centre */
 	uint8_t pop8[256];
+	uint8_t amb_corners[64];                /* the corners of a set of faces */
 };
 
 static struct mc_tables tables;
@@ -264,6 +265,10 @@ static void tables_init(void)
 		}
 		T->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
 	}
+	for (int faces = 0; faces < 64; faces++)
+		for (int f = 0; f < 6; f++)
+			for (int k = 0; faces >> f & 1 && k < 4; k++)
+				T->amb_corners[faces] |= (uint8_t)(1u << T->G.face_corners[f][k]);
 	if (n != MC_VARIANTS)
 		abort();
 }
@@ -659,7 +664,9 @@ static inline int cube_cfg(const struct aux *A, int x, int y, int z)
  * 1, k >> 1 & 1, k >> 2: the block itself at 0) are up[k], sign pattern
  * cfg: its index in M->T->var.  On an ambiguous face the asymptotic
  * decider picks the diagonal from exact products of the corner values, so
- * both cubes sharing the face decide it alike. */
+ * both cubes sharing the face decide it alike.  Only the sdf of the
+ * ambiguous faces' corners is read (pass 1 found the cube observed): these
+ * reads miss the cache, the rest of the extraction works on bits. */
 static int cube_case(const struct mc *M, const struct fct_voxblock *const up[8], int x, int y,
                      int z, int cfg)
 {
@@ -668,14 +675,13 @@ static int cube_case(const struct mc *M, const struct fct_voxblock *const up[8],
 	if (!amb)
 		return T->first[cfg];
 	float val[8];
-	for (int k = 0; k < 8; k++) {
+	for (unsigned m = T->amb_corners[amb]; m; m &= m - 1) {
+		int k = __builtin_ctz(m);
 		int px = x + (k & 1), py = y + (k >> 1 & 1), pz = z + (k >> 2);
 		const struct fct_voxblock *b = up[(px >> 3) | (py >> 3) << 1 | (pz >> 3) << 2];
-		int v = (px & 7) + 8 * ((py & 7) + 8 * (pz & 7));
-		/* pass 1 saw all eight corners observed */
-		if (!b || !observed(M->thr, b->sdf[v], b->weight[v]))
+		if (!b)
 			abort();
-		val[k] = b->sdf[v];
+		val[k] = b->sdf[(px & 7) + 8 * ((py & 7) + 8 * (pz & 7))];
 	}
 	int variant = 0, i = 0;
 	for (int f = 0; f < 6; f++) {
