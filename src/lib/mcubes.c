@@ -14,26 +14,26 @@
  * the segments close into loops, and a loop triangulated as a fan (or
  * around its centroid, when it uses two segments of one face, so that no
  * fan diagonal can lie on a face and meet the neighbour's) gives triangles
- * facing the positive side.  The 256 sign patterns with every ambiguous face
- * joining its positive diagonal are tabulated; a cube whose decider says
- * otherwise on some face is built by the same routine on the spot.
+ * facing the positive side.  The 256 sign patterns under every outcome of
+ * the decider on their ambiguous faces (656 contours) are tabulated once per
+ * process.
  *
  * Passes over the blocks.  Pass 0 turns each block into rows of sign and
  * "observed" bits.  Pass 1 reads each block and its upper neighbours' bits
  * into 9x9 rows, marks the crossing lattice edges each voxel owns (the edges
  * from it towards +x, +y, +z) in three 512-bit masks and counts exactly the
- * block's vertices, triangles and centroid vertices (running the decider on
- * its ambiguous cubes); prefix sums in block order then fix every block's
- * place in the output, so that the last two passes -- the vertices (values
- * gathered once per block, gradients once per corner; the rows a block reads
- * are found, and their loads started, while the block before it is worked
- * on, so that its cache misses overlap that work) and the triangles --
- * write disjoint ranges and run on threads with the same bytes for any
- * count.  A vertex's number is its block's base plus a popcount in its
+ * block's triangles and centroid vertices (running the decider on its
+ * ambiguous cubes).  Pass 2 keeps the crossing edges that an extracted cube
+ * uses (the others, at the rim of the observed region, would be vertices no
+ * triangle uses) and counts the block's vertices.  Prefix sums in block
+ * order then fix every block's place in the output, so that the last two
+ * passes -- the vertices (values gathered once per block, gradients once
+ * per corner; the rows a block reads are found, and their loads started,
+ * while the block before it is worked on, so that its cache misses overlap
+ * that work) and the triangles -- write disjoint ranges and run on threads
+ * with the same bytes for any count.  A vertex's number is its block's base plus a popcount in its
  * masks, so the triangles find the vertices of a cube's twelve edges, in its
- * own block or the upper neighbours, without any per-edge table.  Vertices
- * that no triangle uses (crossings at the edge of the observed region) are
- * dropped last. */
+ * own block or the upper neighbours, without any per-edge table. */
 #include "mcubes.h"
 
 #include <float.h>
