@@ -652,7 +652,9 @@ struct raster {
 	double S, u0, v0;
 	int w, h;
 	float *z;                /* depth; INFINITY: nothing */
-	int32_t *id;             /* -1: nothing */
+	int32_t *id;             /* -1: nothing; only with proper (the searches start from
+	                          * the triangles; projective fusion and range images
+	                          * need the depths alone) */
 	float *zf;               /* true distance: the farthest triangle too */
 	int32_t *idf;
 	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes);
@@ -807,30 +809,48 @@ static void depths_chunk(void *ctx, size_t lo, size_t hi)
 		R->zv[i] = vertex_depth(R, i);
 }
 
-/* A triangle of a range image's grid: its vertices on samples (one per
- * pixel) a pixel apart at most, covering no sample but its vertices.  The
+/* The corners of a pixel cell that triangle tv takes, as bits x + 2 y of
+ * the cell (cx, cy) (at: per vertex, its sample's x and y, or -1), when its
+ * vertices lie on three distinct corners of one cell: 7, 11, 13 or 14.
+ * 0 when they do not (a vertex off the samples, a triangle larger than a
+ * cell or degenerate in the image).  Tested without branches, as the
+ * diagonals of a range image follow its data. */
+static inline unsigned cell_corners(const int32_t *at, const uint32_t tv[3], int32_t *cx, int32_t *cy)
+{
+	const int32_t *a = &at[2 * tv[0]], *b = &at[2 * tv[1]], *d = &at[2 * tv[2]];
+	if ((a[0] | b[0] | d[0]) < 0)
+		return 0;
+	int32_t x = a[0] < b[0] ? a[0] : b[0], y = a[1] < b[1] ? a[1] : b[1];
+	x = d[0] < x ? d[0] : x, y = d[1] < y ? d[1] : y;
+	int32_t ax = a[0] - x, ay = a[1] - y, bx = b[0] - x, by = b[1] - y, dx = d[0] - x, dy = d[1] - y;
+	if ((ax | ay | bx | by | dx | dy) > 1)
+		return 0;   /* not within one cell */
+	unsigned corners = 1u << (ax + 2 * ay) | 1u << (bx + 2 * by) | 1u << (dx + 2 * dy);
+	*cx = x, *cy = y;
+	return 0x6880u >> corners & 1 ? corners : 0;
+}
+
+/* A triangle of a range image's grid (its vertices on three corners of a
+ * pixel cell, one sample per pixel) covers no sample but its vertices: the
  * raster's depth is the vertex's there (barycentric weights 1, 0, 0). */
 static inline int grid_triangle(const struct raster *R, const uint32_t tv[3])
 {
-	long x[3], y[3];
-	for (int k = 0; k < 3; k++)
-		x[k] = R->at[2 * tv[k]], y[k] = R->at[2 * tv[k] + 1];
-	if ((x[0] | x[1] | x[2]) < 0)
-		return 0;
-	for (int k = 0; k < 3; k++) {
-		long dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
-		if (dx < -1 || dx > 1 || dy < -1 || dy > 1)
-			return 0;
-	}
-	return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) != 0;
+	int32_t cx, cy;
+	return cell_corners(R->at, tv, &cx, &cy) != 0;
 }
 
 /* Triangle f at depth zf on sample s.  Every sample takes the nearest
  * triangle's depth and id (at equal depth the lower id), and the farthest's
  * with idf: a minimum, so the order in which triangles come does not
- * matter. */
+ * matter.  Without ids, the nearest depth alone (a minimum without a
+ * branch: the depths of a range image come in no order a branch could
+ * guess). */
 static inline void raster_put(struct raster *R, size_t s, float zf, int32_t f)
 {
+	if (!R->id) {
+		R->z[s] = zf < R->z[s] ? zf : R->z[s];
+		return;
+	}
 	if (zf < R->z[s] || (zf == R->z[s] && f < R->id[s])) {
 		R->z[s] = zf;
 		R->id[s] = f;
@@ -991,19 +1011,21 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 	return 0;
 }
 
-/* The raster of R's frame: nearest triangles, and with R->proper the
- * farthest too.  0 or -1. */
+/* The raster of R's frame: nearest depths; with R->proper the nearest
+ * and farthest triangles too.  0 or -1. */
 static int raster_fill(struct raster *R, struct fct_err *err)
 {
 	size_t n = (size_t)R->w * (size_t)R->h;
 	R->z = fct_alloc_array(n, sizeof *R->z, err);
-	R->id = fct_alloc_array(n, sizeof *R->id, err);
-	if (!R->z || !R->id)
+	if (!R->z)
 		return -1;
 	for (size_t i = 0; i < n; i++)
 		R->z[i] = INFINITY;
-	memset(R->id, 0xff, n * sizeof *R->id);
 	if (R->proper) {
+		R->id = fct_alloc_array(n, sizeof *R->id, err);
+		if (!R->id)
+			return -1;
+		memset(R->id, 0xff, n * sizeof *R->id);
 		R->zf = fct_alloc_array(n, sizeof *R->zf, err);
 		R->idf = fct_alloc_array(n, sizeof *R->idf, err);
 		if (!R->zf || !R->idf)
@@ -1066,20 +1088,9 @@ static int grid_cells(struct raster *R, struct fct_err *err)
 	for (size_t f = 0; f < nt; f++) {
 		if (isnan(tn[4 * f]))
 			continue;
-		const uint32_t *tv = &tvs[3 * f];
-		const int32_t *a = &at[2 * tv[0]], *b = &at[2 * tv[1]], *d = &at[2 * tv[2]];
-		if ((a[0] | b[0] | d[0]) < 0)
-			goto not_grid;
-		int32_t cx = a[0] < b[0] ? a[0] : b[0], cy = a[1] < b[1] ? a[1] : b[1];
-		cx = d[0] < cx ? d[0] : cx, cy = d[1] < cy ? d[1] : cy;
-		int32_t ax = a[0] - cx, ay = a[1] - cy, bx = b[0] - cx, by = b[1] - cy, dx = d[0] - cx,
-		        dy = d[1] - cy;
-		if ((ax | ay | bx | by | dx | dy) > 1)
-			goto not_grid;   /* not within one cell */
-		unsigned corners = 1u << (ax + 2 * ay) | 1u << (bx + 2 * by) | 1u << (dx + 2 * dy);
-		/* Three corners: corners is 7, 11, 13 or 14 (tested without
-		 * branches, as the diagonals of a range image follow its data). */
-		if (!(0x6880u >> corners & 1) || (size_t)cx + 1 >= w || (size_t)cy + 1 >= h)
+		int32_t cx, cy;
+		unsigned corners = cell_corners(at, &tvs[3 * f], &cx, &cy);
+		if (!corners || (size_t)cx + 1 >= w || (size_t)cy + 1 >= h)
 			goto not_grid;
 		int out = __builtin_ctz(~corners & 15);
 		size_t c = (size_t)cy * w + (size_t)cx;
@@ -1386,8 +1397,8 @@ static inline int add_point(struct cand *c, const double p[3], double h)
 	return add_span(c, lo, hi, i, i);
 }
 
-/* The vertices into the boxes of their cells' blocks; with vb, vb[i] is
- * vertex i's block.  Consecutive vertices are mostly in one block: a run
+/* The vertices into the boxes of their cells' blocks; vb[i] is vertex i's
+ * block.  Consecutive vertices are mostly in one block: a run
  * of them makes its box in locals and puts it into the block's once
  * (minima and maxima taken in the same order, so the box is the same). */
 static int vertex_boxes(struct cand *c, const struct geo *G, struct sblock **vb)
@@ -1404,8 +1415,7 @@ static int vertex_boxes(struct cand *c, const struct geo *G, struct sblock **vb)
 		int32_t base[3] = { b->bx * FCT_VOXBLOCK, b->by * FCT_VOXBLOCK, b->bz * FCT_VOXBLOCK };
 		memcpy(lo, s, sizeof s);
 		memcpy(hi, s, sizeof s);
-		if (vb)
-			vb[i] = b;
+		vb[i] = b;
 		for (i++; i < G->nv; i++) {
 			if (cell_of(c, &G->xyz[3 * i], s, cell))
 				return -1;
@@ -1413,8 +1423,7 @@ static int vertex_boxes(struct cand *c, const struct geo *G, struct sblock **vb)
 			    (uint32_t)(cell[2] - base[2]) >= FCT_VOXBLOCK)
 				break;   /* the next run's first vertex */
 			box_add(lo, hi, s, s);
-			if (vb)
-				vb[i] = b;
+			vb[i] = b;
 		}
 		box_add(b->plo, b->phi, lo, hi);
 	}
@@ -1557,16 +1566,17 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 	struct cand c = { { 0 }, 1 / vox, err };
 	int rc = -1;
 	double h = proj ? 0 : 0.5;
-	struct sblock **vb = NULL;   /* true distance: a vertex's block */
-	if (!proj && !(vb = fct_alloc_array(G->nv ? G->nv : 1, sizeof *vb, err)))
+	struct sblock **vb = fct_alloc_array(G->nv ? G->nv : 1, sizeof *vb, err);   /* a vertex's block */
+	if (!vb)
 		return -1;
 	if (vertex_boxes(&c, G, vb))
 		goto done;
-	if (vb)
+	if (!proj)
 		vertex_slabs(&c, G, vb);
 	for (size_t t = 0; t < G->nt; t++) {
 		const uint32_t *tv = &G->tv[3 * t];
-		if (vb && vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]])
+		int one = vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]];   /* corners in one block */
+		if (one && !proj)
 			continue;
 		const double *a = &G->xyz[3 * tv[0]], *b = &G->xyz[3 * tv[1]], *cc = &G->xyz[3 * tv[2]];
 		double e = 0;
@@ -1575,7 +1585,7 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 		e = dmax(dmax3(a[2], b[2], cc[2]) - dmin3(a[2], b[2], cc[2]), e);
 		if (proj && !(e > vox))
 			continue;
-		if (vb && e <= BOX_TRIANGLE * vox) {
+		if (!proj && e <= BOX_TRIANGLE * vox) {
 			/* Into the box of one of its blocks, whole: the box may
 			 * reach past the block, a triangle's size at most.  Its
 			 * corners in that block are in its box and slab already
@@ -1593,6 +1603,11 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 			continue;
 		}
 		if (e <= BOX_TRIANGLE * vox) {
+			/* Projective: the box of its corners, which their block's
+			 * box holds already when they are in one (the same products,
+			 * vertex_boxes). */
+			if (one)
+				continue;
 			double sa[3], sb[3], sc[3], lo[3], hi[3];
 			int32_t ia[3], ib[3], ic[3], clo[3], chi[3];
 			if (cell_of(&c, a, sa, ia) || cell_of(&c, b, sb, ib) || cell_of(&c, cc, sc, ic))
