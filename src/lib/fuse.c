@@ -79,15 +79,13 @@ struct sblock {
 	                                              * bit x */
 };
 
-/* Voxel l of b gets distance d with weight w: the weighted average.  A
+/* Voxel l of vb gets distance d with weight w: the weighted average.  A
  * fresh block holds 0 with weight 0 and each voxel is put once per view, so
  * the average is 0 + d (d w / w is exact in double); a weight that is
  * not positive leaves such a voxel unobserved. */
-static inline void put(struct sblock *b, int l, float d, float w)
+static inline void put_value(struct fct_voxblock *vb, int fresh, int l, float d, float w)
 {
-	b->nvox++;
-	struct fct_voxblock *vb = b->vb;
-	if (b->fresh && w < INFINITY) {
+	if (fresh && w < INFINITY) {
 		if (w > 0)
 			vb->sdf[l] = d + 0.0f, vb->weight[l] = w;   /* + 0: as 0 + d, -0 is 0 */
 		return;
@@ -95,6 +93,13 @@ static inline void put(struct sblock *b, int l, float d, float w)
 	double W = (double)vb->weight[l] + w;
 	vb->sdf[l] = (float)(vb->sdf[l] + ((double)d - vb->sdf[l]) * w / W);
 	vb->weight[l] = (float)W;
+}
+
+/* put_value into voxel l of b's block, counted. */
+static inline void put(struct sblock *b, int l, float d, float w)
+{
+	b->nvox++;
+	put_value(b->vb, b->fresh, l, d, w);
 }
 
 struct scratch {
@@ -1946,12 +1951,19 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 	}
 }
 
+/* The voxels of blocks lo..hi, each the depth difference along its ray
+ * (Curless and Levoy), truncated in front at the band; those farther
+ * behind than the band are left alone.  Pinholes step along a row of
+ * voxels in camera coordinates.  A block's constants are in locals: its
+ * int8_t box would be loaded again after every store of a float. */
 static void projective_chunk(void *ctx, size_t lo, size_t hi)
 {
 	const struct fctx *F = ctx;
 	const struct raster *R = F->R;
-	double vox = F->vox, band = F->p->band;
-	int depth2 = F->p->weight == FCT_FUSE_DEPTH2 && F->v->cam.kind != FCT_CAMERA_NONE;
+	const struct fct_fuse_params *p = F->p;
+	const float *Rz = R->z;
+	double vox = F->vox, band = p->band;
+	int depth2 = p->weight == FCT_FUSE_DEPTH2 && F->v->cam.kind != FCT_CAMERA_NONE;
 	const struct fct_camera *cam = &F->v->cam;
 	int pin = cam->kind == FCT_CAMERA_PINHOLE;
 	const double *M = R->inv;
@@ -1962,19 +1974,27 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 	double ay = cam->fy * R->S, by = (cam->cy - R->v0) * R->S;
 	for (size_t bi = lo; bi < hi; bi++) {
 		struct sblock *b = F->s->blk[bi];
+		struct fct_voxblock *vb = b->vb;
+		int fresh = b->fresh;
+		int32_t o[3] = { b->bx * FCT_VOXBLOCK, b->by * FCT_VOXBLOCK, b->bz * FCT_VOXBLOCK };
+		int lx = b->lo[0], x0 = b->lo[0], x1 = b->hi[0];
+		if (p->has_clip) {   /* the clip box along x, once for the block */
+			x0 = p->clip_lo[0] - o[0] > x0 ? p->clip_lo[0] - o[0] : x0;
+			x1 = p->clip_hi[0] - o[0] < x1 ? p->clip_hi[0] - o[0] : x1;
+		}
+		size_t nvox = 0;
 		for (int z = b->lo[2]; z <= b->hi[2]; z++)
 			for (int y = b->lo[1]; y <= b->hi[1]; y++) {
-				int32_t i0 = b->bx * 8 + b->lo[0], j = b->by * 8 + y, k = b->bz * 8 + z;
+				int32_t i0 = o[0] + lx, j = o[1] + y, k = o[2] + z;
+				if (!in_clip(p, o[0] + x0, j, k))
+					continue;
 				double X = i0 * vox, Y = j * vox, Z = k * vox, c0[3];
 				for (int a = 0; a < 3; a++)
 					c0[a] = M[4 * a] * X + M[4 * a + 1] * Y + M[4 * a + 2] * Z + M[4 * a + 3];
-				for (int xx = b->lo[0]; xx <= b->hi[0]; xx++) {
-					int32_t i = b->bx * 8 + xx;
-					if (!in_clip(F->p, i, j, k))
-						continue;
+				for (int xx = x0; xx <= x1; xx++) {
 					double sx, sy, depth;
 					if (pin) {
-						double n = xx - b->lo[0];
+						double n = xx - lx;
 						double c[3] = { c0[0] + n * dx[0], c0[1] + n * dx[1], c0[2] + n * dx[2] };
 						if (!(c[2] > 0))
 							continue;
@@ -1983,23 +2003,22 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 						sy = ay * c[1] * iz + by;
 						depth = c[2];
 					} else {
-						double x[3] = { i * vox, Y, Z };
+						double x[3] = { (o[0] + xx) * vox, Y, Z };
 						if (!sample_of(R, x, &sx, &sy, &depth))
 							continue;
 					}
 					long si = sample_index(R, sx, sy);
-					if (si < 0)
+					if (si < 0 || !(Rz[si] < INFINITY))
 						continue;
-					float Rz = R->z[si];
-					if (!(Rz < INFINITY))
-						continue;
-					double Rd = Rz, d = Rd - depth;
+					double Rd = Rz[si], d = Rd - depth;
 					if (d < -band)
 						continue;
-					put(b, xx + 8 * (y + 8 * z), (float)(d < band ? d : band),
-					    (float)(depth2 ? 1 / (Rd * Rd) : 1));
+					nvox++;
+					put_value(vb, fresh, xx + 8 * (y + 8 * z), (float)(d < band ? d : band),
+					          (float)(depth2 ? 1 / (Rd * Rd) : 1));
 				}
 			}
+		b->nvox += nvox;
 	}
 }
 
