@@ -1554,7 +1554,8 @@ enum { BOX_TRIANGLE = 4 };
 /* The candidate blocks of G for a band of band metres into s, each with
  * its block of g: created (fresh) when g did not have it, in the order of
  * s.  Projective: the voxels of the box of the surface's cells per block
- * (vertices, triangles over a voxel), grown by ceil(band / vox) and one
+ * (vertices, triangles over a voxel and across blocks: one within a
+ * block adds nothing to its vertices'), grown by ceil(band / vox) and one
  * for the cells' far corners; every voxel in front is written.  True
  * distance: only the voxels within band of a block's box of surface
  * points in every axis and of its slab across the normal (a voxel farther
@@ -1580,14 +1581,17 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 		vertex_slabs(&c, G, vb);
 	for (size_t t = 0; t < G->nt; t++) {
 		const uint32_t *tv = &G->tv[3 * t];
-		int one = vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]];   /* corners in one block */
-		if (one && !proj)
+		/* A triangle whose corners are in one block is in that block's
+		 * box (and slab) already: its points lie in its corners' box,
+		 * and so do its samples, which are kept to it. */
+		if (vb[tv[0]] == vb[tv[1]] && vb[tv[0]] == vb[tv[2]])
 			continue;
 		const double *a = &G->xyz[3 * tv[0]], *b = &G->xyz[3 * tv[1]], *cc = &G->xyz[3 * tv[2]];
-		double e = 0;
-		e = dmax(dmax3(a[0], b[0], cc[0]) - dmin3(a[0], b[0], cc[0]), e);
-		e = dmax(dmax3(a[1], b[1], cc[1]) - dmin3(a[1], b[1], cc[1]), e);
-		e = dmax(dmax3(a[2], b[2], cc[2]) - dmin3(a[2], b[2], cc[2]), e);
+		double tlo[3], thi[3], e = 0;   /* the corners' box, its largest side */
+		for (int k = 0; k < 3; k++) {
+			tlo[k] = dmin3(a[k], b[k], cc[k]), thi[k] = dmax3(a[k], b[k], cc[k]);
+			e = dmax(thi[k] - tlo[k], e);
+		}
 		if (proj && !(e > vox))
 			continue;
 		if (!proj && e <= BOX_TRIANGLE * vox) {
@@ -1608,11 +1612,6 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 			continue;
 		}
 		if (e <= BOX_TRIANGLE * vox) {
-			/* Projective: the box of its corners, which their block's
-			 * box holds already when they are in one (the same products,
-			 * vertex_boxes). */
-			if (one)
-				continue;
 			double sa[3], sb[3], sc[3], lo[3], hi[3];
 			int32_t ia[3], ib[3], ic[3], clo[3], chi[3];
 			if (cell_of(&c, a, sa, ia) || cell_of(&c, b, sb, ib) || cell_of(&c, cc, sc, ic))
@@ -1636,8 +1635,8 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 		for (double i = 0; i <= n; i++)
 			for (double j = 0; i + j <= n; j++) {
 				double p[3];
-				for (int k = 0; k < 3; k++)
-					p[k] = a[k] + (b[k] - a[k]) * (i / n) + (cc[k] - a[k]) * (j / n);
+				for (int k = 0; k < 3; k++)   /* within the corners' box, whatever the rounding */
+					p[k] = dmin(dmax(a[k] + (b[k] - a[k]) * (i / n) + (cc[k] - a[k]) * (j / n), tlo[k]), thi[k]);
 				if (add_point(&c, p, h))
 					goto done;
 			}
