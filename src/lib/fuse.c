@@ -866,32 +866,52 @@ static inline void raster_put(struct raster *R, size_t s, float zf, int32_t f)
 	}
 }
 
+/* Vertex v on its sample (with at) at its depth, as triangle f's corner. */
+static inline void vertex_splat(struct raster *R, uint32_t v, int32_t f, int ortho)
+{
+	size_t s = (size_t)R->at[2 * v + 1] * (size_t)R->w + (size_t)R->at[2 * v];
+	float zf = R->zv[v];
+	if (zf > 0 || ortho)
+		raster_put(R, s, zf, f);
+}
+
 /* With at: the grid triangles, each a splat of its corners' depths on
- * their samples, in one pass; the others go to the list gen.  0 or -1. */
+ * their samples, in one pass; the others go to the list gen.  Without ids
+ * a sample takes the nearest depth whichever triangle brings it, so the
+ * pass only marks the corners and each is splatted once after it (a
+ * third of the splats).  0 or -1. */
 static int raster_grid(struct raster *R, struct fct_err *err)
 {
 	const struct geo *G = R->G;
 	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
-	size_t w = (size_t)R->w;
+	uint8_t *corner = NULL;   /* without ids: per vertex, 1 when a grid triangle's corner */
+	if (!R->id && !(corner = calloc(G->nv ? G->nv : 1, 1)))
+		return fct_fail(err, "out of memory");
+	int rc = -1;
 	for (size_t f = 0; f < G->nt; f++) {
 		const uint32_t *tv = &G->tv[3 * f];
 		if (!grid_triangle(R, tv)) {
 			if (fct_grow((void **)&R->gen, &R->gencap, R->ngen + 1, sizeof *R->gen, err))
-				return -1;
+				goto done;
 			R->gen[R->ngen++] = (uint32_t)f;
 			continue;
 		}
 		if (R->proper && isnan(G->tn[4 * f]))
 			continue;
 		for (int k = 0; k < 3; k++) {
-			size_t s = (size_t)R->at[2 * tv[k] + 1] * w + (size_t)R->at[2 * tv[k]];
-			float zf = R->zv[tv[k]];
-			if (!(zf > 0 || ortho))
-				continue;
-			raster_put(R, s, zf, (int32_t)f);
+			if (corner)
+				corner[tv[k]] = 1;
+			else
+				vertex_splat(R, tv[k], (int32_t)f, ortho);
 		}
 	}
-	return 0;
+	for (size_t v = 0; corner && v < G->nv; v++)
+		if (corner[v])
+			vertex_splat(R, (uint32_t)v, -1, ortho);
+	rc = 0;
+done:
+	free(corner);
+	return rc;
 }
 
 /* Rows lo..hi of the raster: every triangle (with at: those of gen),
