@@ -58,6 +58,10 @@ for mode in true projective; do
 		printf '%-30s %8s (x%5s) %8s (x%5s)\n' "$mode $vox m" ${a% *} ${a#* } ${b% *} ${b#* }
 	done
 done
+echo "projective: the goal is Open3D's VoxelBlockGrid, 14 / 33 ms per view at 0.02 / 0.01 m on"
+echo "one core of this machine; it is given each depth image and preallocates its blocks, while"
+echo "the figures above include rasterising each view's mesh into its depth image and faulting"
+echo "in the volume's memory as it grows"
 row "fusion s at 0.02 m (4 views)" "$(figure fuse_s --voxel 0.02 $V)"
 row "carving s at 0.02 m (4 views)" "$(figure carve_s --carve --voxel 0.02 $V)"
 # Marching cubes on the fused room at 1 cm (M voxels/s: allocated blocks *
