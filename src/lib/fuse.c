@@ -657,6 +657,8 @@ struct raster {
 	double S, u0, v0;
 	int w, h;
 	float *z;                /* depth; INFINITY: nothing */
+	const float *depth;      /* what projective fusion reads: z, or the view's depth
+	                          * image (raster_image; nothing where not > 0) */
 	int32_t *id;             /* -1: nothing; only with proper (the searches start from
 	                          * the triangles; projective fusion and range images
 	                          * need the depths alone) */
@@ -1046,6 +1048,7 @@ static int raster_fill(struct raster *R, struct fct_err *err)
 		return -1;
 	for (size_t i = 0; i < n; i++)
 		R->z[i] = INFINITY;
+	R->depth = R->z;
 	if (R->proper) {
 		R->id = fct_alloc_array(n, sizeof *R->id, err);
 		if (!R->id)
@@ -1079,6 +1082,22 @@ static int raster_build(struct raster *R, const struct fct_fuse_view *v, const s
 	if (raster_frame(R, v, G, S, proper, max_samples, nthreads, err))
 		return -1;
 	return R->w > 0 ? raster_fill(R, err) : 0;
+}
+
+/* For projective fusion of a view given as a depth image: the image is
+ * the raster, one sample per pixel, sample (x, y) on pixel (x, y); no
+ * projection of the mesh and no raster to fill.  0 or -1. */
+static int raster_image(struct raster *R, const struct fct_fuse_view *v, struct fct_err *err)
+{
+	memset(R, 0, sizeof *R);
+	if (v->cam.kind == FCT_CAMERA_NONE || v->cam.width < 1 || v->cam.height < 1)
+		return fct_fail(err, "a depth image needs a camera with its size");
+	R->v = v;
+	fct_pose_invert(v->pose, R->inv);
+	R->S = 1;
+	R->w = v->cam.width, R->h = v->cam.height;
+	R->depth = v->depth;
+	return 0;
 }
 
 /* R's proper triangles as a pixel grid, when they are one (R's frame at
@@ -1980,11 +1999,11 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 	const struct fctx *F = ctx;
 	const struct raster *R = F->R;
 	const struct fct_fuse_params *p = F->p;
-	const float *Rz = R->z;
+	const float *Rz = R->depth;
 	double vox = F->vox, band = p->band;
 	int depth2 = p->weight == FCT_FUSE_DEPTH2 && F->v->cam.kind != FCT_CAMERA_NONE;
 	const struct fct_camera *cam = &F->v->cam;
-	int pin = cam->kind == FCT_CAMERA_PINHOLE;
+	int pin = cam->kind == FCT_CAMERA_PINHOLE, ortho = cam->kind == FCT_CAMERA_NONE;
 	const double *M = R->inv;
 	/* Pinholes: sensor coordinates along a row of voxels by adding a step;
 	 * sample x = ax * c0 / c2 + bx (likewise y). */
@@ -2027,9 +2046,14 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 							continue;
 					}
 					long si = sample_index(R, sx, sy);
-					if (si < 0 || !(Rz[si] < INFINITY))
+					if (si < 0)
 						continue;
-					double Rd = Rz[si], d = Rd - depth;
+					/* No data: INFINITY in a raster, not above 0 in a
+					 * depth image (orthographic depths may be). */
+					float r = Rz[si];
+					if (!(r < INFINITY) || !(r > 0 || ortho))
+						continue;
+					double Rd = r, d = Rd - depth;
 					if (d < -band)
 						continue;
 					nvox++;
@@ -2058,9 +2082,15 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	size_t from = fct_voxgrid_count(g);
 	int rc = -1;
 	size_t max_samples = (size_t)1 << 26;
-	if (proj ? raster_build(&R, v, &G, 1, 0, max_samples, nthreads, err)
-	         : raster_true(&R, v, &G, max_samples, nthreads, err) ||
-	               geo_rings(&G, R.grid.cell ? &R.grid : NULL, err))
+	int failed;
+	if (!proj)
+		failed = raster_true(&R, v, &G, max_samples, nthreads, err) ||
+		         geo_rings(&G, R.grid.cell ? &R.grid : NULL, err);
+	else if (v->depth)
+		failed = raster_image(&R, v, err);
+	else
+		failed = raster_build(&R, v, &G, 1, 0, max_samples, nthreads, err);
+	if (failed)
 		goto done;
 	if (R.w > 0) {
 		if (candidates(&s, g, &G, vox, band, proj, err))

@@ -31,12 +31,25 @@
  * sensor is cam (pinhole or cylindrical) at pose (camera-to-world), or,
  * when cam.kind is FCT_CAMERA_NONE, an orthographic range scanner looking
  * along -z of the frame pose (a range-grid scan) with pixels of ortho_step
- * metres. */
+ * metres.
+ *
+ * depth, for a view that came as a depth image (NULL otherwise): its
+ * cam.width x cam.height depths in metres along the sensor (camera z for
+ * pinholes, rho for cylinders), row by row; a pixel has data when its
+ * depth is above 0 and finite.  Projective fusion reads it as the view's
+ * range image instead of rasterising the mesh (as KinectFusion and Open3D
+ * do); true distance and carving use the mesh alone.  The mesh still
+ * gives the candidate voxels, so depth should hold the pixels of the
+ * mesh's vertices and no others (fct_depth_mesh_pixels): a pixel without
+ * mesh around it would be written only where the mesh's candidates reach.
+ * With those pixels the result is the mesh view's but for the rounding of
+ * the vertices' depths through the pose and back. */
 struct fct_fuse_view {
 	const struct fct_mesh *mesh;
 	struct fct_camera cam;
 	double pose[12];
 	double ortho_step;
+	const float *depth;
 };
 
 enum fct_fuse_weight {

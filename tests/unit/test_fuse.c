@@ -1,7 +1,8 @@
 /* test_fuse.c - true signed distances of a hand-made view, the same view
  * twice, border voxels, a range image's grid against the general raster,
- * the band's last layer, a plane across the axes, slivers, a view too far
- * out for the voxel size, the .conf quaternion, and carving marks. */
+ * the band's last layer, a plane across the axes, projective fusion of a
+ * depth image against its mesh, slivers, a view too far out for the voxel
+ * size, the .conf quaternion, and carving marks. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,8 +17,11 @@
 #include "square.h"
 
 /* v seeing the 64 x 64 depth image depth(x, y) of view_of's camera,
- * meshed into m as dm2mesh meshes it. */
-static void depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*depth)(int x, int y))
+ * meshed into m as dm2mesh meshes it; with kept, a malloc'd copy of the
+ * image holding the pixels of the mesh's vertices only (tsdfuse's
+ * v->depth). */
+static void depth_view_kept(struct fct_fuse_view *v, struct fct_mesh *m, float (*depth)(int x, int y),
+                            float **kept)
 {
 	struct fct_err err;
 	struct fct_image img;
@@ -30,8 +34,20 @@ static void depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*dept
 	fct_depth_params_default(&dp);
 	dp.texcoords = 0;
 	view_of(v, m);
-	CHECK(fct_depth_mesh(m, &img, &v->cam, &dp, NULL, &err) == 0);
+	uint32_t *pixel_of = NULL;
+	CHECK(fct_depth_mesh_pixels(m, &img, &v->cam, &dp, NULL, kept ? &pixel_of : NULL, &err) == 0);
+	if (kept) {
+		*kept = calloc(64 * 64, sizeof **kept);
+		for (size_t i = 0; i < m->nv; i++)
+			(*kept)[pixel_of[i]] = d[pixel_of[i]];
+		free(pixel_of);
+	}
 	fct_image_free(&img);
+}
+
+static void depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*depth)(int x, int y))
+{
+	depth_view_kept(v, m, depth, NULL);
 }
 
 /* A fresh volume of 1 cm voxels with v fused into it: a 3 cm band,
@@ -249,6 +265,88 @@ static void test_tilted_plane(void)
 /* Triangles with (nearly) no area have no normal and are not counted:
  * a sliver 1e-14 wide (degenerate), and one 1e-6 wide (not), added to a
  * square of 32 triangles, well inside its box. */
+/* Projective fusion of a view given as a depth image reads the image
+ * itself: a plane at depth 0.5 seen by view_of's camera turned 30 degrees
+ * about y and moved, every voxel written has 0.5 - its camera depth
+ * (truncated at +band in front); and a tilted plane gives what the same
+ * view gives as a mesh (the mesh's depths went through the pose and
+ * back: a few float roundings). */
+static float flat_depth(int x, int y)
+{
+	(void)x, (void)y;
+	return 0.5f;
+}
+
+static void test_projective_depth(void)
+{
+	struct fct_err err;
+	double a = M_PI / 6, c = cos(a), sn = sin(a);
+	const double pose[12] = { c, 0, sn, 0.1, 0, 1, 0, -0.05, -sn, 0, c, 0.2 };
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 1, 0, { 0 }, { 0 }, 0 };
+	for (int tilted = 0; tilted < 2; tilted++) {
+		struct fct_fuse_view v;
+		struct fct_mesh m;
+		float *kept;
+		depth_view_kept(&v, &m, tilted ? tilted_depth : flat_depth, &kept);
+		CHECK_INT(m.nv, 64 * 64);   /* every pixel a vertex */
+		for (size_t i = 0; i < m.nv; i++)
+			fct_pose_apply(pose, &m.xyz[3 * i], &m.xyz[3 * i]);
+		memcpy(v.pose, pose, sizeof pose);
+		struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err), *h = fct_voxgrid_new(0.01, 0, &err);
+		struct fct_fuse_stats sg = { 0 }, sh = { 0 };
+		CHECK(fct_fuse_view(g, &v, &p, &sg, &err) == 0);   /* the mesh, rasterised */
+		v.depth = kept;
+		CHECK(fct_fuse_view(h, &v, &p, &sh, &err) == 0);   /* the image */
+		CHECK_INT(sh.voxels, sg.voxels);
+		double worst;
+		size_t missing, n = compare_grids(h, g, &worst, &missing);
+		CHECK_MSG(n > 20000, "%zu voxels", n);
+		CHECK_INT(missing, 0);
+		CHECK_NEAR(worst, 0, 1e-6);
+		compare_grids(g, h, &worst, &missing);
+		CHECK_INT(missing, 0);
+		if (!tilted) {
+			/* Voxel x in the camera: R^T (x - t); its sdf 0.5 - z. */
+			size_t bad = 0;
+			double err_max = 0;
+			for (size_t b = 0; b < fct_voxgrid_count(h); b++) {
+				const struct fct_voxblock *vb = fct_voxgrid_at(h, b);
+				for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
+					if (!(vb->weight[l] > 0))
+						continue;
+					double x[3] = { 0.01 * (vb->bx * 8 + l % 8) - pose[3],
+					                0.01 * (vb->by * 8 + l / 8 % 8) - pose[7],
+					                0.01 * (vb->bz * 8 + l / 64) - pose[11] };
+					double z = pose[2] * x[0] + pose[6] * x[1] + pose[10] * x[2];
+					double want = fmin(0.5 - z, 0.03);
+					bad += !(0.5 - z >= -0.03 - 1e-9) || vb->weight[l] != 1;
+					err_max = fmax(err_max, fabs(vb->sdf[l] - want));
+				}
+			}
+			CHECK_INT(bad, 0);
+			CHECK_NEAR(err_max, 0, 1e-6);
+		}
+		fct_voxgrid_free(g);
+		fct_voxgrid_free(h);
+		fct_mesh_free(&m);
+		free(kept);
+	}
+	/* An orthographic view has no depth image. */
+	struct fct_fuse_view v;
+	struct fct_mesh m;
+	square(&m, 4, 0.5);
+	view_of(&v, &m);
+	float img[64 * 64] = { 0 };
+	v.cam.kind = FCT_CAMERA_NONE;
+	v.ortho_step = 0.01;
+	v.depth = img;
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == -1);
+	CHECK_MSG(strcmp(err.msg, "a depth image needs a camera with its size") == 0, "%s", err.msg);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
+}
+
 static void test_sliver(void)
 {
 	struct fct_err err;
@@ -341,6 +439,7 @@ int main(void)
 	test_grid();
 	test_band_edge();
 	test_tilted_plane();
+	test_projective_depth();
 	test_sliver();
 	test_too_far();
 	test_carve();
