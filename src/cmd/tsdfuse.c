@@ -271,15 +271,34 @@ static double machine_bytes(void)
 	return pages > 0 && size > 0 ? (double)pages * (double)size : 4e9;
 }
 
-/* Everything one view needs: its mesh, camera and pose, and with --color
- * its colour image (malloc'd path, NULL for none). */
+/* Everything one view needs: its mesh, camera and pose, with --color its
+ * colour image (malloc'd path, NULL for none), and for a depth image fused
+ * with --projective the depths of its mesh's pixels (view.depth). */
 struct loaded {
 	struct fct_mesh mesh;
 	struct fct_fuse_view view;
 	char name[512];
 	int depth_image;
 	char *image;
+	float *depth;
 };
+
+/* The depths of img (metres) at the pixels of the mesh's vertices
+ * (pixel_of), 0 elsewhere: the pixels a depth jump or a speck left out of
+ * the mesh have no candidates around them (fuse.h). */
+static float *mesh_depths(const struct fct_image *img, const uint32_t *pixel_of, size_t nv,
+                          const struct fct_depth_params *dp, struct fct_err *err)
+{
+	float *d = fct_alloc_array((size_t)img->width * (size_t)img->height, sizeof *d, err);
+	if (!d)
+		return NULL;
+	memset(d, 0, (size_t)img->width * (size_t)img->height * sizeof *d);
+	for (size_t v = 0; v < nv; v++) {
+		uint32_t p = pixel_of[v];
+		d[p] = (float)fct_depth_at(img, (int)(p % (uint32_t)img->width), (int)(p / (uint32_t)img->width), dp);
+	}
+	return d;
+}
 
 /* Load view number idx (operands first, then the .conf scans). */
 static void load_view(struct options *o, size_t idx, const struct fct_conf *conf,
@@ -343,7 +362,12 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		if (cam.width != img.width || cam.height != img.height)
 			fct_die(1, "%s: image is %dx%d, the camera %dx%d", path, img.width, img.height,
 			        cam.width, cam.height);
-		int rc = fct_depth_mesh(&L->mesh, &img, &cam, dp, NULL, &err);
+		uint32_t *pixel_of = NULL;
+		int rc = fct_depth_mesh_pixels(&L->mesh, &img, &cam, dp, NULL,
+		                               o->fp.projective ? &pixel_of : NULL, &err);
+		if (!rc && pixel_of && !(L->depth = mesh_depths(&img, pixel_of, L->mesh.nv, dp, &err)))
+			rc = -1;
+		free(pixel_of);
 		fct_image_free(&img);
 		if (rc) {
 			fct_err_prefix(&err, "%s", path);
@@ -353,6 +377,7 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 			fct_pose_apply(pose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
 		memcpy(L->view.pose, pose, sizeof pose);
 		L->view.cam = cam;
+		L->view.depth = L->depth;
 		L->depth_image = 1;
 	} else {
 		const char *path = o->views[idx];
@@ -596,6 +621,7 @@ int main(int argc, char **argv)
 		if (!ncolor)
 			fct_range_image_free(&ri[i]);
 		fct_mesh_free(&L[i].mesh);
+		free(L[i].depth);
 	}
 	double flow_s = 0;
 	if (o.flow) {
