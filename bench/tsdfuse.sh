@@ -2,7 +2,8 @@
 # tsdfuse: time per 640x480 view of mkscene's room (four views) at 2 cm and
 # 1 cm voxels, true distance beside the projective baseline (--projective),
 # carving against fusion, marching cubes throughput, and the Stanford bunny
-# (ten scans, 0.5 mm) judged with meshdist both ways.  Goals (issue 7):
+# (ten scans, 0.5 mm) judged with meshdist both ways; the projective rows
+# again from the depth images themselves (-K, --poses).  Goals (issue 7):
 # true distance under 50 ms per view at 2 cm and 150 ms at 1 cm on one core;
 # carving at most twice the fusion; marching cubes above 150 M voxels/s on
 # one core; bunny within 0.10 mm both ways.  Medians of RUNS runs.
@@ -19,6 +20,16 @@ for i in 00 01 02 03; do
 	dm2mesh --camera "$dir/room/view$i.camera" --pose "$dir/room/view$i.pose" \
 		-o "$dir/v$i.ply" "$dir/room/view$i.depth.pfm"
 	V="$V $dir/v$i.ply"
+done
+# The same views as depth images (mkscene's PFM, metres) with -K from the
+# camera files ("camera pinhole W H fx fy cx cy") and a 4x4 pose file each.
+K=$(awk '{ print $5 "," $6 "," $7 "," $8 }' "$dir/room/view00.camera")
+D="-K $K"
+for i in 00 01 02 03; do
+	D="$D --poses $dir/room/view$i.pose"
+done
+for i in 00 01 02 03; do
+	D="$D $dir/room/view$i.depth.pfm"
 done
 # figure KEY ARGS...: median over RUNS of tsdfuse -v's KEY.
 figure() {
@@ -48,20 +59,22 @@ cell() {
 }
 echo "tsdfuse: mkscene room, four 640x480 views (610k faces each); ms per view, and"
 echo "its ratio to reading one view in the same run (median of $RUNS runs)"
-printf '%-30s %16s %16s\n' "" "1 thread" "all threads"
-for mode in true projective; do
+printf '%-36s %16s %16s\n' "" "1 thread" "all threads"
+for mode in true projective depth; do
 	for vox in 0.02 0.01; do
-		m=""
-		[ $mode = projective ] && m=--projective
-		a=$(cell ms_per_view --threads 1 $m --voxel $vox $V)
-		b=$(cell ms_per_view $m --voxel $vox $V)
-		printf '%-30s %8s (x%5s) %8s (x%5s)\n' "$mode $vox m" ${a% *} ${a#* } ${b% *} ${b#* }
+		m="" in=$V label="$mode $vox m"
+		[ $mode != true ] && m=--projective
+		[ $mode = depth ] && in=$D label="projective from depth images $vox m"
+		a=$(cell ms_per_view --threads 1 $m --voxel $vox $in)
+		b=$(cell ms_per_view $m --voxel $vox $in)
+		printf '%-36s %8s (x%5s) %8s (x%5s)\n' "$label" ${a% *} ${a#* } ${b% *} ${b#* }
 	done
 done
 echo "projective: the goal is Open3D's VoxelBlockGrid, 14 / 33 ms per view at 0.02 / 0.01 m on"
-echo "one core of this machine; it is given each depth image and preallocates its blocks, while"
-echo "the figures above include rasterising each view's mesh into its depth image and faulting"
-echo "in the volume's memory as it grows"
+echo "one core of this machine; it is given each depth image and preallocates its blocks.  The"
+echo "mesh rows include rasterising each view's mesh into its depth image; the depth-image rows"
+echo "read the image itself (like Open3D; their ratio is to reading and meshing one image), and"
+echo "all rows fault in the volume's memory as it grows"
 row "fusion s at 0.02 m (4 views)" "$(figure fuse_s --voxel 0.02 $V)"
 row "carving s at 0.02 m (4 views)" "$(figure carve_s --carve --voxel 0.02 $V)"
 # Marching cubes on the fused room at 1 cm (M voxels/s: allocated blocks *
