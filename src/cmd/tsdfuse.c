@@ -283,23 +283,6 @@ struct loaded {
 	float *depth;
 };
 
-/* The depths of img (metres) at the pixels of the mesh's vertices
- * (pixel_of), 0 elsewhere: the pixels a depth jump or a speck left out of
- * the mesh have no candidates around them (fuse.h). */
-static float *mesh_depths(const struct fct_image *img, const uint32_t *pixel_of, size_t nv,
-                          const struct fct_depth_params *dp, struct fct_err *err)
-{
-	float *d = fct_alloc_array((size_t)img->width * (size_t)img->height, sizeof *d, err);
-	if (!d)
-		return NULL;
-	memset(d, 0, (size_t)img->width * (size_t)img->height * sizeof *d);
-	for (size_t v = 0; v < nv; v++) {
-		uint32_t p = pixel_of[v];
-		d[p] = (float)fct_depth_at(img, (int)(p % (uint32_t)img->width), (int)(p / (uint32_t)img->width), dp);
-	}
-	return d;
-}
-
 /* Load view number idx (operands first, then the .conf scans). */
 static void load_view(struct options *o, size_t idx, const struct fct_conf *conf,
                       const struct traj *tr, const struct fct_camera *dcam,
@@ -362,12 +345,9 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		if (cam.width != img.width || cam.height != img.height)
 			fct_die(1, "%s: image is %dx%d, the camera %dx%d", path, img.width, img.height,
 			        cam.width, cam.height);
-		uint32_t *pixel_of = NULL;
-		int rc = fct_depth_mesh_pixels(&L->mesh, &img, &cam, dp, NULL,
-		                               o->fp.projective ? &pixel_of : NULL, &err);
-		if (!rc && pixel_of && !(L->depth = mesh_depths(&img, pixel_of, L->mesh.nv, dp, &err)))
-			rc = -1;
-		free(pixel_of);
+		/* --projective reads the depths the mesh keeps (fuse.h). */
+		int rc = fct_depth_mesh_kept(&L->mesh, &img, &cam, dp, NULL,
+		                             o->fp.projective ? &L->depth : NULL, &err);
 		fct_image_free(&img);
 		if (rc) {
 			fct_err_prefix(&err, "%s", path);

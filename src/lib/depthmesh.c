@@ -43,16 +43,16 @@ int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct
                    const struct fct_depth_params *p, struct fct_grid_stats *stats,
                    struct fct_err *err)
 {
-	return fct_depth_mesh_pixels(m, img, cam, p, stats, NULL, err);
+	return fct_depth_mesh_kept(m, img, cam, p, stats, NULL, err);
 }
 
-int fct_depth_mesh_pixels(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
-                          const struct fct_depth_params *p, struct fct_grid_stats *stats,
-                          uint32_t **pixel_of, struct fct_err *err)
+int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *p, struct fct_grid_stats *stats, float **kept,
+                        struct fct_err *err)
 {
 	fct_mesh_init(m);
-	if (pixel_of)
-		*pixel_of = NULL;
+	if (kept)
+		*kept = NULL;
 	if (img->channels != 1)
 		return fct_fail(err, "depth image has %d channels; one is needed", img->channels);
 	if (cam->kind == FCT_CAMERA_NONE)
@@ -101,13 +101,17 @@ int fct_depth_mesh_pixels(struct fct_mesh *m, const struct fct_image *img, const
 			t[v] = (float)(1 - (r + 0.5) / img->height);
 		}
 	}
-	if (pixel_of) {
+	if (kept) {
+		size_t w = (size_t)img->width;
+		if (!(*kept = calloc(w * (size_t)img->height, sizeof **kept))) {
+			fct_fail(err, "out of memory");
+			goto out;
+		}
 		/* Cell (i, j) is pixel (i step, j step). */
-		for (size_t v = 0; v < m->nv; v++)
-			cell_of[v] = cell_of[v] % (uint32_t)gw * (uint32_t)step +
-			             cell_of[v] / (uint32_t)gw * (uint32_t)step * (uint32_t)img->width;
-		*pixel_of = cell_of;
-		cell_of = NULL;
+		for (size_t v = 0; v < m->nv; v++) {
+			size_t i = cell_of[v] % (size_t)gw, j = cell_of[v] / (size_t)gw;
+			(*kept)[j * (size_t)step * w + i * (size_t)step] = (float)depth[cell_of[v]];
+		}
 	}
 	rc = 0;
 out:

@@ -51,11 +51,12 @@ int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct
                    const struct fct_depth_params *p, struct fct_grid_stats *stats,
                    struct fct_err *err);
 
-/* fct_depth_mesh, and when pixel_of is not NULL a malloc'd array giving
- * each vertex's pixel, x + y * width (the pixels the mesh keeps: those a
- * depth jump or a speck left out are in no triangle). */
-int fct_depth_mesh_pixels(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
-                          const struct fct_depth_params *p, struct fct_grid_stats *stats,
-                          uint32_t **pixel_of, struct fct_err *err);
+/* fct_depth_mesh, and when kept is not NULL a malloc'd width x height
+ * image of the depths (metres) the mesh keeps: those of its vertices'
+ * pixels, 0 elsewhere (a pixel a depth jump or a speck left out is in no
+ * triangle). */
+int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *p, struct fct_grid_stats *stats, float **kept,
+                        struct fct_err *err);
 
 #endif

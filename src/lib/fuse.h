@@ -40,7 +40,7 @@
  * range image instead of rasterising the mesh (as KinectFusion and Open3D
  * do); true distance and carving use the mesh alone.  The mesh still
  * gives the candidate voxels, so depth should hold the pixels of the
- * mesh's vertices and no others (fct_depth_mesh_pixels): a pixel without
+ * mesh's vertices and no others (fct_depth_mesh_kept): a pixel without
  * mesh around it would be written only where the mesh's candidates reach.
  * With those pixels the result is the mesh view's but for the rounding of
  * the vertices' depths through the pose and back. */

@@ -34,14 +34,7 @@ static void depth_view_kept(struct fct_fuse_view *v, struct fct_mesh *m, float (
 	fct_depth_params_default(&dp);
 	dp.texcoords = 0;
 	view_of(v, m);
-	uint32_t *pixel_of = NULL;
-	CHECK(fct_depth_mesh_pixels(m, &img, &v->cam, &dp, NULL, kept ? &pixel_of : NULL, &err) == 0);
-	if (kept) {
-		*kept = calloc(64 * 64, sizeof **kept);
-		for (size_t i = 0; i < m->nv; i++)
-			(*kept)[pixel_of[i]] = d[pixel_of[i]];
-		free(pixel_of);
-	}
+	CHECK(fct_depth_mesh_kept(m, &img, &v->cam, &dp, NULL, kept, &err) == 0);
 	fct_image_free(&img);
 }
 
@@ -262,9 +255,6 @@ static void test_tilted_plane(void)
 	fct_mesh_free(&m);
 }
 
-/* Triangles with (nearly) no area have no normal and are not counted:
- * a sliver 1e-14 wide (degenerate), and one 1e-6 wide (not), added to a
- * square of 32 triangles, well inside its box. */
 /* Projective fusion of a view given as a depth image reads the image
  * itself: a plane at depth 0.5 seen by view_of's camera turned 30 degrees
  * about y and moved, every voxel written has 0.5 - its camera depth
@@ -347,6 +337,9 @@ static void test_projective_depth(void)
 	fct_mesh_free(&m);
 }
 
+/* Triangles with (nearly) no area have no normal and are not counted:
+ * a sliver 1e-14 wide (degenerate), and one 1e-6 wide (not), added to a
+ * square of 32 triangles, well inside its box. */
 static void test_sliver(void)
 {
 	struct fct_err err;
