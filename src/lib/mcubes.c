@@ -31,9 +31,10 @@
  * per corner; the rows a block reads are found, and their loads started,
  * while the block before it is worked on, so that its cache misses overlap
  * that work) and the triangles -- write disjoint ranges and run on threads
- * with the same bytes for any count.  A vertex's number is its block's base plus a popcount in its
- * masks, so the triangles find the vertices of a cube's twelve edges, in its
- * own block or the upper neighbours, without any per-edge table. */
+ * with the same bytes for any count.  A vertex's number is its block's
+ * base plus a popcount in its masks, so the triangles find the vertices of
+ * a cube's twelve edges, in its own block or the upper neighbours, without
+ * any per-edge table. */
 #include "mcubes.h"
 
 #include <float.h>
