@@ -1799,62 +1799,100 @@ static int32_t locate(const struct raster *R, int32_t t, double px, double py)
 	return t;
 }
 
-/* From triangle t seen at x's sample in layer id: to the foot of x on the
- * plane of t, and again from the triangle seen at the foot, until it
- * stays; then downhill on the mesh.  The triangle, or -1 when x is out of
- * the band. */
-static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const double x[3],
-                      double *d2, double q[3], enum fct_tri_region *r)
+/* The search for the triangle nearest x, from triangle t seen at x's
+ * sample in layer id: to the foot of x on the plane of t, and again from
+ * the triangle seen at the foot, until it stays; then downhill on the
+ * mesh.  Its state between the steps of the first part, so that a
+ * block's voxels can take those steps side by side (search_step's chain of
+ * dependent loads and a division is long, the voxels' chains are
+ * independent). */
+struct foot {
+	double s;                /* x's distance to the plane of t */
+	double f[3], sx, sy;     /* the foot on that plane and its sample */
+	int32_t t;               /* -1: out of the band, given up */
+	int8_t it, stays, done;
+};
+
+static inline void search_begin(const struct fctx *F, int32_t t, const double x[3], struct foot *S)
 {
-	const struct geo *G = F->G;
-	const struct raster *R = F->R;
-	double sx, sy, depth, band = F->band;
-	double s = plane_dist(G, t, x);
+	S->s = plane_dist(F->G, t, x);
+	S->t = t, S->it = 0, S->stays = 0, S->done = 0;
 	/* In front of the surface seen, the distance to its plane bounds the
 	 * distance (for convex surfaces); behind it the nearest point may be
 	 * anywhere, around a silhouette. */
-	if (s > band + 2 * F->vox)
+	if (S->s > F->band + 2 * F->vox)
+		S->t = -1, S->done = 1;
+}
+
+/* One move to the triangle seen at the foot; S->done when it stays or the
+ * moves end. */
+static inline void search_step(const struct fctx *F, const int32_t *id, const double x[3],
+                               struct foot *S)
+{
+	const struct geo *G = F->G;
+	double depth;
+	const float *n = &G->tn[4 * (size_t)S->t];
+	double *f = S->f, s = S->s;
+	f[0] = x[0] - s * n[0], f[1] = x[1] - s * n[1], f[2] = x[2] - s * n[2];
+	S->done = 1;
+	if (!sample_of(F->R, f, &S->sx, &S->sy, &depth))
+		return;
+	int32_t ts = seen(F->R, id, S->sx, S->sy);
+	if (ts < 0 || (S->stays = ts == S->t))
+		return;
+	/* Not onto another surface farther away (off a silhouette). */
+	double s2 = plane_dist(G, ts, x);
+	if (fabs(s2) > fabs(s) + F->vox)
+		return;
+	S->t = ts, S->s = s2;
+	S->done = ++S->it == 8;
+}
+
+/* The triangle nearest x from a search's state, or -1 when x is out of
+ * the band. */
+static int32_t search_end(const struct fctx *F, const int32_t *id, const double x[3], struct foot *S,
+                          double *d2, double q[3], enum fct_tri_region *r)
+{
+	double band = F->band, s = S->s;
+	int32_t t = S->t;
+	if (t < 0)
 		return -1;
-	int stays = 0;
-	double f[3];
-	for (int it = 0; it < 8; it++) {
-		const float *n = &G->tn[4 * (size_t)t];
-		f[0] = x[0] - s * n[0], f[1] = x[1] - s * n[1], f[2] = x[2] - s * n[2];
-		if (!sample_of(R, f, &sx, &sy, &depth))
-			break;
-		int32_t ts = seen(R, id, sx, sy);
-		if (ts < 0 || (stays = ts == t))
-			break;
-		/* Not onto another surface farther away (off a silhouette). */
-		double s2 = plane_dist(G, ts, x);
-		if (fabs(s2) > fabs(s) + F->vox)
-			break;
-		t = ts, s = s2;
-	}
+	while (!S->done)
+		search_step(F, id, x, S);
+	t = S->t, s = S->s;
 	/* Far from the plane seen, on either side: the walk would start out
 	 * of the band and give up (surfaces behind another are the far
 	 * layer's); this spares it, and locate. */
 	if (fabs(s) > band + 0.5 * F->vox)
 		return -1;
-	if (stays && R->grid.cell) {
+	if (S->stays && F->R->grid.cell) {
 		/* A grid's cell is exact: the foot is on t, so it is the point
 		 * of t nearest x, inside it, and a walk would stop there. */
 		*d2 = s * s, *r = FCT_TRI_FACE;
-		memcpy(q, f, sizeof f);
+		memcpy(q, S->f, sizeof S->f);
 		return *d2 <= band * band ? t : -1;
 	}
 	/* A raster's sample is the nearest one, not the triangle under the
 	 * foot: find that one in the image first (cheaper than walking
 	 * around vertices in space). */
-	if (stays)
-		t = locate(R, t, sx, sy);
-	t = walk(G, t, x, band * band, d2, q, r);
+	if (S->stays)
+		t = locate(F->R, t, S->sx, S->sy);
+	t = walk(F->G, t, x, band * band, d2, q, r);
 	return t >= 0 && *d2 <= band * band ? t : -1;
 }
 
-/* Voxel l of block b, at x, seen at sample (sx, sy) on triangle t. */
+static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const double x[3],
+                      double *d2, double q[3], enum fct_tri_region *r)
+{
+	struct foot S;
+	search_begin(F, t, x, &S);
+	return search_end(F, id, x, &S, d2, q, r);
+}
+
+/* Voxel l of block b, at x, seen at sample (sx, sy) on triangle t, whose
+ * search from t has begun in S. */
 static void true_voxel(const struct fctx *F, struct sblock *b, int l, const double x[3], double sx,
-                       double sy, int32_t t)
+                       double sy, int32_t t, struct foot *S)
 {
 	const struct geo *G = F->G;
 	const struct raster *R = F->R;
@@ -1862,7 +1900,7 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 	double d2, q[3], xq[3];
 	enum fct_tri_region r;
 	int32_t t0 = t;
-	t = search(F, R->id, t, x, &d2, q, &r);
+	t = search_end(F, R->id, x, S, &d2, q, &r);
 	/* A second layer (the far side of a closed object, a surface behind
 	 * another) where there is one. */
 	int32_t tf = R->idf ? seen_at(R, R->idf, sx, sy) : -1;
@@ -1947,6 +1985,7 @@ struct seen {
 	double x[3], sx, sy;
 	int32_t t;               /* -1: nothing seen (or out of the clip box) */
 	int16_t l;               /* the voxel in its block */
+	struct foot S;           /* the search from t */
 };
 
 static void true_chunk(void *ctx, size_t lo, size_t hi)
@@ -1985,7 +2024,14 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 		}
 		for (int v = 0; v < n; v++)
 			if (V[v].t >= 0)
-				true_voxel(F, b, V[v].l, V[v].x, V[v].sx, V[v].sy, V[v].t);
+				search_begin(F, V[v].t, V[v].x, &V[v].S);
+		for (int step = 0; step < 2; step++)
+			for (int v = 0; v < n; v++)
+				if (V[v].t >= 0 && !V[v].S.done)
+					search_step(F, R->id, V[v].x, &V[v].S);
+		for (int v = 0; v < n; v++)
+			if (V[v].t >= 0)
+				true_voxel(F, b, V[v].l, V[v].x, V[v].sx, V[v].sy, V[v].t, &V[v].S);
 	}
 }
 
