@@ -1916,27 +1916,37 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 	if (t < 0 && plane_dist(G, t0, x) > 0) {
 		/* In front of the surface seen but out of its band: a surface
 		 * beside, around a silhouette or in a concave corner, may be
-		 * near.  Try the ones a band's width away in the image. */
+		 * near.  Look for it along the image's axes, half a band's
+		 * width away and then a band's: the first other surface met
+		 * is the one to search (the one farther out is mostly the same
+		 * surface again, and most probers find nothing, so a probe
+		 * that saw another surface ends that direction). */
 		const double *P = F->v->pose;
 		double e[3] = { x[0] + (band + vox) * P[0], x[1] + (band + vox) * P[4],
 		                x[2] + (band + vox) * P[8] }, ex, ey, ed;
 		if (!sample_of(R, e, &ex, &ey, &ed))
 			return;
-		double rp = hypot(ex - sx, ey - sy);
-		static const double dir[8][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 },
-		                                   { .5, 0 }, { -.5, 0 }, { 0, .5 }, { 0, -.5 } };
-		for (int di = 0; di < 8; di++) {
-			int32_t ts = seen(R, R->id, sx + rp * dir[di][0], sy + rp * dir[di][1]);
-			if (ts < 0 || ts == t0 || fabs(plane_dist(G, ts, x)) > band)
-				continue;
-			double d2f, qf[3];
-			enum fct_tri_region rf;
-			int32_t tf2 = search(F, R->id, ts, x, &d2f, qf, &rf);
-			if (tf2 >= 0 && (t < 0 || d2f < d2)) {
-				t = tf2, d2 = d2f, r = rf;
-				memcpy(q, qf, sizeof qf);
+		double rp = hypot(ex - sx, ey - sy), s0 = plane_dist(G, t0, x);
+		static const double dir[4][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } };
+		for (int di = 0; di < 4; di++)
+			for (double reach = 0.5; reach <= 1; reach += 0.5) {
+				int32_t ts = seen(R, R->id, sx + reach * rp * dir[di][0], sy + reach * rp * dir[di][1]);
+				if (ts < 0)
+					continue;
+				double sp = plane_dist(G, ts, x);
+				if (ts == t0 || fabs(sp - s0) <= vox)
+					continue;   /* the surface seen: maybe another farther out */
+				if (fabs(sp) <= band) {
+					double d2f, qf[3];
+					enum fct_tri_region rf;
+					int32_t tf2 = search(F, R->id, ts, x, &d2f, qf, &rf);
+					if (tf2 >= 0 && (t < 0 || d2f < d2)) {
+						t = tf2, d2 = d2f, r = rf;
+						memcpy(q, qf, sizeof qf);
+					}
+				}
+				break;
 			}
-		}
 	}
 	if (t < 0)
 		return;
