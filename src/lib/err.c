@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 int fct_fail(struct fct_err *err, const char *fmt, ...)
 {
@@ -75,10 +76,25 @@ void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err)
 		fct_fail(err, "size overflow");
 		return NULL;
 	}
-	void *p = malloc(bytes);
+	void *p = bytes >= FCT_BIG_BYTES ? fct_alloc_big(bytes) : malloc(bytes);
 	if (!p)
 		fct_fail(err, "out of memory (%zu bytes)", bytes);
 	return p;
+}
+
+void *fct_alloc_big(size_t bytes)
+{
+#ifdef MADV_HUGEPAGE
+	const size_t huge = (size_t)2 << 20;
+	void *p;
+	if (posix_memalign(&p, huge, bytes ? bytes : 1))
+		return NULL;
+	if (bytes >= huge)
+		madvise(p, bytes - bytes % huge, MADV_HUGEPAGE);
+	return p;
+#else
+	return malloc(bytes ? bytes : 1);
+#endif
 }
 
 char *fct_strdup(const char *s, struct fct_err *err)

@@ -8,8 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <sys/mman.h>
-
 /* Blocks per allocation: a slab fills most of 2 MB, which the kernel may
  * back with one huge page (one fault instead of one per block or two).
  * Measured on a 2-vCPU VM (Linux 6.18, THP "madvise", defrag "madvise"):
@@ -51,20 +49,14 @@ struct fct_voxgrid {
 	size_t hcap;            /* power of two */
 };
 
-/* A zeroed slab of SLAB_BLOCKS blocks, 2 MB aligned where huge pages can
- * be asked for; NULL when out of memory.  Freed with free(). */
+/* A zeroed slab of SLAB_BLOCKS blocks (huge pages where there are);
+ * NULL when out of memory.  Freed with free(). */
 static struct fct_voxblock *slab_alloc(void)
 {
-#ifdef MADV_HUGEPAGE
-	void *p;
-	if (posix_memalign(&p, SLAB_BYTES, SLAB_BYTES))
-		return NULL;
-	madvise(p, SLAB_BYTES, MADV_HUGEPAGE);
-	memset(p, 0, SLAB_BLOCKS * sizeof(struct fct_voxblock));
+	void *p = fct_alloc_big(SLAB_BYTES);
+	if (p)
+		memset(p, 0, SLAB_BLOCKS * sizeof(struct fct_voxblock));
 	return p;
-#else
-	return calloc(SLAB_BLOCKS, sizeof(struct fct_voxblock));
-#endif
 }
 
 static inline size_t hash_key(int32_t bx, int32_t by, int32_t bz)
