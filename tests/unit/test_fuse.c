@@ -1,5 +1,6 @@
 /* test_fuse.c - true signed distances of a hand-made view, the same view
  * twice, border voxels, a range image's grid against the general raster,
+ * a concave corner,
  * the band's last layer, a plane across the axes, projective fusion of a
  * depth image against its mesh, slivers, a view too far out for the voxel
  * size, the .conf quaternion, and carving marks. */
@@ -182,6 +183,72 @@ static void test_grid(void)
 	fct_voxgrid_free(h);
 	fct_mesh_free(&m);
 	fct_mesh_free(&m2);
+}
+
+/* A concave corner: a wall at depth 0.8 and a floor at y = 0.2 below it,
+ * which view_of's camera sees from image row 40 down (a strip between
+ * rows 39 and 40 joins them).  The mesh is the extrusion along x of the
+ * polyline of a column's vertices in (y, z), so the true distance is the
+ * distance to that polyline.  Voxels whose rays meet the wall but which
+ * are out of its band and within the band of the floor or the strip have
+ * the distance to those: the search from the wall gives up, the probes
+ * beside in the image find them.  Voxels out of every band stay out.  A
+ * 5 cm band: the camera's pixels are 2.5 cm at the wall. */
+static float corner_depth(int x, int y)
+{
+	(void)x;
+	return y > 39.5 ? (float)(0.2 * 32 / (y - 31.5)) : 0.8f;
+}
+
+static double corner_distance(double y, double z)
+{
+	double best = INFINITY;
+	for (int r = 0; r + 1 < 64; r++) {
+		double z0 = corner_depth(0, r), z1 = corner_depth(0, r + 1);
+		double y0 = (r - 31.5) / 32 * z0, y1 = (r - 30.5) / 32 * z1;
+		double dy = y1 - y0, dz = z1 - z0;
+		double t = ((y - y0) * dy + (z - z0) * dz) / (dy * dy + dz * dz);
+		t = t < 0 ? 0 : t > 1 ? 1 : t;
+		best = fmin(best, hypot(y - y0 - t * dy, z - z0 - t * dz));
+	}
+	return best;
+}
+
+static void test_corner(void)
+{
+	struct fct_fuse_view v;
+	struct fct_mesh m;
+	depth_view(&v, &m, corner_depth);
+	struct fct_err err;
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_fuse_params p = { 0.05, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	CHECK(g && fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	double band = p.band, worst = 0;
+	size_t probed = 0, wrong = 0;
+	for (int k = 60; k <= 79; k++)
+		for (int j = 10; j <= 25; j++) {
+			double y = 0.01 * j, z = 0.01 * k, d = corner_distance(y, z);
+			if (!(31.5 + 32 * y / z < 38.9 && 0.8 - z > band + 1e-3))
+				continue;   /* the ray meets the wall out of its band */
+			for (int i = -10; i <= 10; i += 5) {
+				float s, w;
+				int got = fct_voxgrid_get(g, i, j, k, &s, &w) && w > 0;
+				if (d < band - 1e-3) {
+					probed++;
+					if (!got)
+						wrong++;
+					else
+						worst = fmax(worst, fabs(s - d));
+				} else if (d > band + 1e-3 && got) {
+					wrong++;
+				}
+			}
+		}
+	CHECK_MSG(probed >= 20, "%zu voxels for the probes", probed);
+	CHECK_MSG(wrong == 0, "%zu voxels wrongly in or out of the band", wrong);
+	CHECK_NEAR(worst, 0, 1e-5);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&m);
 }
 
 /* A plane a hair in front of a voxel layer: the layers at band distance
@@ -430,6 +497,7 @@ int main(void)
 {
 	test_plane();
 	test_grid();
+	test_corner();
 	test_band_edge();
 	test_tilted_plane();
 	test_projective_depth();
