@@ -31,6 +31,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "adj.h"
 #include "geom.h"
@@ -2045,10 +2048,60 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 	}
 }
 
+#if defined(__SSE2__)
+/* A row of voxels seen by a pinhole, two at a time (SSE2: the division
+ * and the projection were half of projective_chunk's time): the
+ * operations of the scalar code below, in its order, so the same numbers
+ * and samples.  Camera
+ * coordinates c0 + n step for n = first .. first + cnt - 1; for each voxel
+ * its sample (sample_index; -1 outside the raster or behind the camera)
+ * and its depth. */
+struct pin_step {
+	double step[3];          /* camera coordinates from one voxel to the next */
+	double ax, bx, ay, by;   /* sample x = ax c0 / c2 + bx, likewise y */
+	double wlim, hlim;       /* sample_index's bounds */
+	int w;
+};
+
+static inline void pin_row(const struct pin_step *P, const double c0[3], int first, int cnt,
+                           long *si, double *depth)
+{
+	const __m128d X0 = _mm_set1_pd(c0[0]), Y0 = _mm_set1_pd(c0[1]), Z0 = _mm_set1_pd(c0[2]);
+	const __m128d SX = _mm_set1_pd(P->step[0]), SY = _mm_set1_pd(P->step[1]), SZ = _mm_set1_pd(P->step[2]);
+	const __m128d half = _mm_set1_pd(0.5), mhalf = _mm_set1_pd(-0.5), one = _mm_set1_pd(1);
+	const __m128d AX = _mm_set1_pd(P->ax), BX = _mm_set1_pd(P->bx), AY = _mm_set1_pd(P->ay),
+	              BY = _mm_set1_pd(P->by), WL = _mm_set1_pd(P->wlim), HL = _mm_set1_pd(P->hlim);
+	double dd[2];
+	for (int m = 0; m < cnt; m += 2) {
+		__m128d n = _mm_set_pd((double)(first + m + 1), (double)(first + m));
+		__m128d cx = _mm_add_pd(X0, _mm_mul_pd(n, SX)), cy = _mm_add_pd(Y0, _mm_mul_pd(n, SY)),
+		        cz = _mm_add_pd(Z0, _mm_mul_pd(n, SZ));
+		__m128d iz = _mm_div_pd(one, cz);
+		__m128d sx = _mm_add_pd(_mm_mul_pd(_mm_mul_pd(AX, cx), iz), BX);
+		__m128d sy = _mm_add_pd(_mm_mul_pd(_mm_mul_pd(AY, cy), iz), BY);
+		__m128d in = _mm_and_pd(_mm_and_pd(_mm_cmpgt_pd(cz, _mm_setzero_pd()), _mm_cmpgt_pd(sx, mhalf)),
+		                        _mm_and_pd(_mm_and_pd(_mm_cmpgt_pd(sy, mhalf), _mm_cmplt_pd(sx, WL)),
+		                                   _mm_cmplt_pd(sy, HL)));
+		/* outside: 0 before the conversion */
+		__m128i ix = _mm_cvttpd_epi32(_mm_and_pd(_mm_add_pd(sx, half), in));
+		__m128i iy = _mm_cvttpd_epi32(_mm_and_pd(_mm_add_pd(sy, half), in));
+		int bits = _mm_movemask_pd(in);
+		_mm_storeu_pd(dd, cz);
+		si[m] = bits & 1 ? (long)_mm_cvtsi128_si32(iy) * P->w + _mm_cvtsi128_si32(ix) : -1;
+		depth[m] = dd[0];
+		if (m + 1 < cnt) {
+			si[m + 1] = bits & 2 ? (long)_mm_cvtsi128_si32(_mm_shuffle_epi32(iy, 1)) * P->w +
+			                       _mm_cvtsi128_si32(_mm_shuffle_epi32(ix, 1)) : -1;
+			depth[m + 1] = dd[1];
+		}
+	}
+}
+#endif
+
 /* The voxels of blocks lo..hi, each the depth difference along its ray
  * (Curless and Levoy), truncated in front at the band; those farther
  * behind than the band are left alone.  Pinholes step along a row of
- * voxels in camera coordinates.  A block's constants are in locals: its
+ * voxels in camera coordinates (pin_row where there is SSE2).  A block's constants are in locals: its
  * int8_t box would be loaded again after every store of a float. */
 static void projective_chunk(void *ctx, size_t lo, size_t hi)
 {
@@ -2066,6 +2119,9 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 	double dx[3] = { M[0] * vox, M[4] * vox, M[8] * vox };
 	double ax = cam->fx * R->S, bx = (cam->cx - R->u0) * R->S;
 	double ay = cam->fy * R->S, by = (cam->cy - R->v0) * R->S;
+#if defined(__SSE2__)
+	struct pin_step P = { { dx[0], dx[1], dx[2] }, ax, bx, ay, by, R->w - 0.5, R->h - 0.5, R->w };
+#endif
 	for (size_t bi = lo; bi < hi; bi++) {
 		struct sblock *b = F->s->blk[bi];
 		struct fct_voxblock *vb = b->vb;
@@ -2085,6 +2141,28 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 				double X = i0 * vox, Y = j * vox, Z = k * vox, c0[3];
 				for (int a = 0; a < 3; a++)
 					c0[a] = M[4 * a] * X + M[4 * a + 1] * Y + M[4 * a + 2] * Z + M[4 * a + 3];
+#if defined(__SSE2__)
+				if (pin && x0 <= x1) {
+					long si[FCT_VOXBLOCK];
+					double dep[FCT_VOXBLOCK];
+					pin_row(&P, c0, x0 - lx, x1 - x0 + 1, si, dep);
+					for (int xx = x0; xx <= x1; xx++) {
+						long s = si[xx - x0];
+						if (s < 0)
+							continue;
+						float r = Rz[s];
+						if (!(r < INFINITY) || !(r > 0))
+							continue;
+						double Rd = r, d = Rd - dep[xx - x0];
+						if (d < -band)
+							continue;
+						nvox++;
+						put_value(vb, fresh, xx + 8 * (y + 8 * z), (float)(d < band ? d : band),
+						          (float)(depth2 ? 1 / (Rd * Rd) : 1));
+					}
+					continue;
+				}
+#endif
 				for (int xx = x0; xx <= x1; xx++) {
 					double sx, sy, depth;
 					if (pin) {
