@@ -2048,14 +2048,30 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 	}
 }
 
+/* Voxel l of vb at camera depth `depth`, against the depth r its sample
+ * holds: the depth difference, truncated in front at the band, unless r is
+ * no data (INFINITY in a raster, not above 0 in a depth image; orthographic
+ * depths may be) or the voxel is farther behind than the band.  1 when
+ * put. */
+static inline int put_depth(struct fct_voxblock *vb, int fresh, int l, float r, int ortho, double depth,
+                            double band, int depth2)
+{
+	if (!(r < INFINITY) || !(r > 0 || ortho))
+		return 0;
+	double Rd = r, d = Rd - depth;
+	if (d < -band)
+		return 0;
+	put_value(vb, fresh, l, (float)(d < band ? d : band), (float)(depth2 ? 1 / (Rd * Rd) : 1));
+	return 1;
+}
+
 #if defined(__SSE2__)
 /* A row of voxels seen by a pinhole, two at a time (SSE2: the division
  * and the projection were half of projective_chunk's time): the
  * operations of the scalar code below, in its order, so the same numbers
- * and samples.  Camera
- * coordinates c0 + n step for n = first .. first + cnt - 1; for each voxel
- * its sample (sample_index; -1 outside the raster or behind the camera)
- * and its depth. */
+ * and samples.  Camera coordinates c0 + n step for n = first .. first +
+ * cnt - 1; for each voxel its sample (sample_index; -1 outside the raster
+ * or behind the camera) and its depth. */
 struct pin_step {
 	double step[3];          /* camera coordinates from one voxel to the next */
 	double ax, bx, ay, by;   /* sample x = ax c0 / c2 + bx, likewise y */
@@ -2101,8 +2117,9 @@ static inline void pin_row(const struct pin_step *P, const double c0[3], int fir
 /* The voxels of blocks lo..hi, each the depth difference along its ray
  * (Curless and Levoy), truncated in front at the band; those farther
  * behind than the band are left alone.  Pinholes step along a row of
- * voxels in camera coordinates (pin_row where there is SSE2).  A block's constants are in locals: its
- * int8_t box would be loaded again after every store of a float. */
+ * voxels in camera coordinates (pin_row where there is SSE2).  A block's
+ * constants are in locals: its int8_t box would be loaded again after
+ * every store of a float. */
 static void projective_chunk(void *ctx, size_t lo, size_t hi)
 {
 	const struct fctx *F = ctx;
@@ -2148,17 +2165,9 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 					pin_row(&P, c0, x0 - lx, x1 - x0 + 1, si, dep);
 					for (int xx = x0; xx <= x1; xx++) {
 						long s = si[xx - x0];
-						if (s < 0)
-							continue;
-						float r = Rz[s];
-						if (!(r < INFINITY) || !(r > 0))
-							continue;
-						double Rd = r, d = Rd - dep[xx - x0];
-						if (d < -band)
-							continue;
-						nvox++;
-						put_value(vb, fresh, xx + 8 * (y + 8 * z), (float)(d < band ? d : band),
-						          (float)(depth2 ? 1 / (Rd * Rd) : 1));
+						if (s >= 0)
+							nvox += put_depth(vb, fresh, xx + 8 * (y + 8 * z), Rz[s], 0,
+							                  dep[xx - x0], band, depth2);
 					}
 					continue;
 				}
@@ -2180,19 +2189,9 @@ static void projective_chunk(void *ctx, size_t lo, size_t hi)
 							continue;
 					}
 					long si = sample_index(R, sx, sy);
-					if (si < 0)
-						continue;
-					/* No data: INFINITY in a raster, not above 0 in a
-					 * depth image (orthographic depths may be). */
-					float r = Rz[si];
-					if (!(r < INFINITY) || !(r > 0 || ortho))
-						continue;
-					double Rd = r, d = Rd - depth;
-					if (d < -band)
-						continue;
-					nvox++;
-					put_value(vb, fresh, xx + 8 * (y + 8 * z), (float)(d < band ? d : band),
-					          (float)(depth2 ? 1 / (Rd * Rd) : 1));
+					if (si >= 0)
+						nvox += put_depth(vb, fresh, xx + 8 * (y + 8 * z), Rz[si], ortho, depth,
+						                  band, depth2);
 				}
 			}
 		b->nvox += nvox;
