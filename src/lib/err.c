@@ -76,7 +76,7 @@ void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err)
 		fct_fail(err, "size overflow");
 		return NULL;
 	}
-	void *p = bytes >= FCT_BIG_BYTES ? fct_alloc_big(bytes) : malloc(bytes);
+	void *p = malloc(bytes);
 	if (!p)
 		fct_fail(err, "out of memory (%zu bytes)", bytes);
 	return p;
