@@ -213,13 +213,22 @@ static void case_counts(const struct mc_case *mc, uint32_t *nt, uint32_t *nc)
  * joins every positive one and its amb lists the ambiguous faces. */
 #define MC_VARIANTS 656
 
+/* A block's vertex table: the vertex of the lattice edge along axis a from
+ * local corner (x, y, z), 0..8 each (the block's own edges and those of its
+ * upper neighbours that its cubes use). */
+#define VT_IDX(a, x, y, z) ((a) * 729 + (x) + 9 * (y) + 81 * (z))
+
 struct mc_tables {
 	struct geom G;
 	uint16_t first[256];
 	struct mc_case var[MC_VARIANTS];
 	uint8_t ntri[MC_VARIANTS], ncentre[MC_VARIANTS];
 	uint8_t tedge[MC_VARIANTS][36];         /* the fans' edges, when no loop has a centre */
+	uint16_t toff[MC_VARIANTS][36];         /* the same as places in a block's vertex
+	                                         * table (VT below), from the cube's */
+	uint16_t eoff[12];                      /* edge e's place in it, from the cube's */
 	uint8_t pop8[256];
+	uint8_t amb[256];                       /* a pattern's ambiguous faces */
 	uint8_t amb_corners[64];                /* the corners of a set of faces */
 };
 
@@ -265,7 +274,15 @@ static void tables_init(void)
 				}
 		}
 		T->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
+		T->amb[cfg] = base.amb;
 	}
+	for (int e = 0; e < 12; e++) {
+		int lo = T->G.edge_lo[e];
+		T->eoff[e] = (uint16_t)(VT_IDX(e >> 2, lo & 1, lo >> 1 & 1, lo >> 2));
+	}
+	for (int i = 0; i < MC_VARIANTS; i++)
+		for (int j = 0; j < 36; j++)
+			T->toff[i][j] = T->eoff[T->tedge[i][j]];
 	for (int faces = 0; faces < 64; faces++)
 		for (int f = 0; f < 6; f++)
 			for (int k = 0; faces >> f & 1 && k < 4; k++)
@@ -286,6 +303,10 @@ struct own {
 	int anyobs;
 };
 
+/* Ambiguous cubes per block whose decision pass 1 keeps; the triangle pass
+ * decides the others again. */
+#define AMB_KEEP 32
+
 /* Pass-1 record of a block that owns crossings or has extracted cubes. */
 struct aux {
 	uint8_t bits[3][64];    /* crossing edges it owns, per axis: row z * 8 + y, bit x;
@@ -300,6 +321,10 @@ struct aux {
 	uint16_t neg[9][9];     /* [z][y]: bit x (0..8) set when negative */
 	uint8_t active[64];     /* row z * 8 + y: bit x set when cube (x, y, z) is extracted */
 	uint8_t any_active;
+	uint8_t nvar;           /* decisions kept in var */
+	uint8_t var[AMB_KEEP];  /* the decider's outcome (variant) of its first ambiguous
+	                         * cubes, in cube order, for the triangle pass */
+	uint32_t ncubes, namb;  /* its extracted cubes, those with an ambiguous face */
 };
 
 /* The sdf around the current block, local -1..9 on each axis (only the
@@ -355,6 +380,7 @@ struct worker {
 	struct blockctx *cur;
 	float val[CW * CW * CW];        /* valid where the block's vertices need it */
 	double grad[729][3];            /* gradients at corners 0..8, where needed */
+	uint32_t vt[3 * 729];           /* the triangle pass: the block's vertex table */
 	struct fct_mcubes_stats st;
 	char pad[64];                   /* no cache line shared with the next thread's */
 };
@@ -668,13 +694,10 @@ static inline int cube_cfg(const struct aux *A, int x, int y, int z)
  * both cubes sharing the face decide it alike.  Only the sdf of the
  * ambiguous faces' corners is read (pass 1 found the cube observed): these
  * reads miss the cache, the rest of the extraction works on bits. */
-static int cube_case(const struct mc *M, const struct fct_voxblock *const up[8], int x, int y,
-                     int z, int cfg)
+static int cube_variant(const struct mc *M, const struct fct_voxblock *const up[8], int x, int y,
+                        int z, int cfg, int amb)
 {
 	const struct mc_tables *T = M->T;
-	int amb = T->var[T->first[cfg]].amb;
-	if (!amb)
-		return T->first[cfg];
 	float val[8];
 	for (unsigned m = T->amb_corners[amb]; m; m &= m - 1) {
 		int k = __builtin_ctz(m);
@@ -697,7 +720,7 @@ static int cube_case(const struct mc *M, const struct fct_voxblock *const up[8],
 			variant |= 1 << i;
 		i++;
 	}
-	return T->first[cfg] + variant;
+	return variant;
 }
 
 /* Pass 1 on block b: its edge and cube bits, exact counts of triangles
@@ -753,17 +776,29 @@ static int pass1(struct mc *M, size_t b, struct aux *A)
 	const struct fct_voxblock *upb[8];
 	for (int k = 0; k < 8; k++)
 		upb[k] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
-	uint32_t nt = 0, nc = 0;
+	const struct mc_tables *T = M->T;
+	uint32_t nt = 0, nc = 0, ncubes = 0, namb = 0;
 	for (int z = 0; z < 8 && A->any_active; z++)
 		for (int y = 0; y < 8; y++)
 			for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
-				int x = __builtin_ctz(m);
-				int id = cube_case(M, upb, x, y, z, cube_cfg(A, x, y, z));
-				nt += M->T->ntri[id];
-				nc += M->T->ncentre[id];
+				int x = __builtin_ctz(m), cfg = cube_cfg(A, x, y, z), id = T->first[cfg];
+				int amb = T->amb[cfg];
+				if (amb) {
+					int v = cube_variant(M, upb, x, y, z, cfg, amb);
+					if (namb < AMB_KEEP)
+						A->var[namb] = (uint8_t)v;
+					namb++;
+					id += v;
+				}
+				ncubes++;
+				nt += T->ntri[id];
+				nc += T->ncentre[id];
 			}
 	A->ntri = nt;
 	A->ncent = nc;
+	A->ncubes = ncubes;
+	A->namb = namb;
+	A->nvar = (uint8_t)(namb < AMB_KEEP ? namb : AMB_KEEP);
 	return 1;
 }
 
@@ -810,43 +845,71 @@ static void pass2(const struct mc *M, struct aux *A)
 	A->nverts = count;
 }
 
-/* Vertex of crossing edge e of cube (x, y, z); up holds the records of the
- * block and its upper neighbours. */
-static inline uint32_t edge_vertex(const struct mc *M, const struct aux *const up[8], int x, int y,
-                                   int z, int e)
+/* Fill vt (VT_IDX) for record A: its own edges, and those of its upper
+ * neighbours' records up[k] (NULL: none) that its cubes use, the edges
+ * with a lower corner at local 8 on an axis other than their own.  Only
+ * the entries of edges that have a vertex are written. */
+static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const up[8])
 {
-	int lo = M->T->G.edge_lo[e], a = e >> 2;
-	int px = x + (lo & 1), py = y + (lo >> 1 & 1), pz = z + (lo >> 2 & 1);
-	const struct aux *A = up[(px >> 3) | (py >> 3) << 1 | (pz >> 3) << 2];
-	int r = 8 * (pz & 7) + (py & 7), bit = px & 7;
-	unsigned row = A ? A->bits[a][r] : 0;
-	if (!(row >> bit & 1))
-		abort();
-	return A->base + A->pre[a][r] + M->T->pop8[row & ((1u << bit) - 1)];
+	for (int a = 0; a < 3; a++)
+		for (int r = 0; r < 64; r++) {
+			uint32_t id = A->base + A->pre[a][r], *row = vt + VT_IDX(a, 0, r & 7, r >> 3);
+			for (unsigned m = A->bits[a][r]; m; m &= m - 1)
+				row[__builtin_ctz(m)] = id++;
+		}
+	const struct aux *N;
+	/* +x: along y and z at x = 8 (the neighbour's x = 0) */
+	if ((N = up[1]))
+		for (int a = 1; a < 3; a++)
+			for (int r = 0; r < 64; r++)
+				if (N->bits[a][r] & 1)
+					vt[VT_IDX(a, 8, r & 7, r >> 3)] = N->base + N->pre[a][r];
+	/* +y: along x and z at y = 8, the neighbour's rows (z, 0) */
+	if ((N = up[2]))
+		for (int a = 0; a < 3; a += 2)
+			for (int z = 0; z < 8; z++) {
+				uint32_t id = N->base + N->pre[a][8 * z], *row = vt + VT_IDX(a, 0, 8, z);
+				for (unsigned m = N->bits[a][8 * z]; m; m &= m - 1)
+					row[__builtin_ctz(m)] = id++;
+			}
+	/* +z: along x and y at z = 8, rows (0, y) */
+	if ((N = up[4]))
+		for (int a = 0; a < 2; a++)
+			for (int y = 0; y < 8; y++) {
+				uint32_t id = N->base + N->pre[a][y], *row = vt + VT_IDX(a, 0, y, 8);
+				for (unsigned m = N->bits[a][y]; m; m &= m - 1)
+					row[__builtin_ctz(m)] = id++;
+			}
+	/* +x+y: along z at (8, 8, z); +x+z: along y at (8, y, 8); +y+z: along x
+	 * at (x, 8, 8) */
+	if ((N = up[3]))
+		for (int z = 0; z < 8; z++)
+			if (N->bits[2][8 * z] & 1)
+				vt[VT_IDX(2, 8, 8, z)] = N->base + N->pre[2][8 * z];
+	if ((N = up[5]))
+		for (int y = 0; y < 8; y++)
+			if (N->bits[1][y] & 1)
+				vt[VT_IDX(1, 8, y, 8)] = N->base + N->pre[1][y];
+	if ((N = up[6])) {
+		uint32_t id = N->base + N->pre[0][0];
+		for (unsigned m = N->bits[0][0]; m; m &= m - 1)
+			vt[VT_IDX(0, __builtin_ctz(m), 8, 8)] = id++;
+	}
 }
 
-/* The triangles of cube (x, y, z) of the current block, contour M->T->var[id],
- * at *t (advanced); centroid vertices numbered from *cid (advanced). */
-static void emit_cube(struct worker *w, const struct aux *const up[8], int x, int y, int z,
-                      int id, uint32_t **tp, uint32_t *cid)
+/* The triangles of a cube whose contour M->T->var[id] has a loop around
+ * its centroid, at t (returned advanced); its vertex table entries from
+ * vt (the cube's place in it); centroid vertices numbered from *cid
+ * (advanced). */
+static uint32_t *emit_centred(struct worker *w, const uint32_t *vt, int id, uint32_t *t,
+                              uint32_t *cid)
 {
 	const struct mc *M = w->M;
 	const struct mc_case *mc = &M->T->var[id];
-	uint32_t vid[12], *t = *tp;
-	w->st.cubes++;
-	w->st.ambiguous += mc->amb != 0;
+	uint32_t vid[12];
 	for (unsigned m = mc->emask; m; m &= m - 1) {
 		int e = __builtin_ctz(m);
-		vid[e] = edge_vertex(M, up, x, y, z, e);
-	}
-	if (!M->T->ncentre[id]) {
-		/* the common case: the tabulated fans */
-		const uint8_t *te = M->T->tedge[id];
-		int n = 3 * M->T->ntri[id];
-		for (int j = 0; j < n; j++)
-			t[j] = vid[te[j]];
-		*tp = t + n;
-		return;
+		vid[e] = vt[M->T->eoff[e]];
 	}
 	const uint8_t *ed = mc->edge;
 	for (int l = 0; l < mc->nloops; l++) {
@@ -877,27 +940,48 @@ static void emit_cube(struct worker *w, const struct aux *const up[8], int x, in
 		}
 		ed += len;
 	}
-	*tp = t;
+	return t;
 }
 
 /* The triangles of block record A, at A->tbase onwards. */
 static void block_triangles(struct worker *w, const struct aux *A)
 {
 	const struct mc *M = w->M;
+	const struct mc_tables *T = M->T;
 	const struct aux *up[8];
 	for (int k = 0; k < 8; k++)
 		up[k] = A->up[k] >= 0 && M->own[A->up[k]].aux != NONE ? &M->aux[M->own[A->up[k]].aux] : NULL;
 	const struct fct_voxblock *upb[8];
-	for (int k = 0; k < 8; k++)
+	for (int k = 0; A->namb > A->nvar && k < 8; k++)
 		upb[k] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
+	uint32_t *vt = w->vt;
+	fill_vt(vt, A, up);
 	uint32_t *t = M->tri + 3 * (size_t)A->tbase, cid = (uint32_t)M->nverts + A->cbase;
+	unsigned k = 0;
 	for (int z = 0; z < 8; z++)
 		for (int y = 0; y < 8; y++)
 			for (unsigned m = A->active[8 * z + y]; m; m &= m - 1) {
-				int x = __builtin_ctz(m);
-				int id = cube_case(M, upb, x, y, z, cube_cfg(A, x, y, z));
-				emit_cube(w, up, x, y, z, id, &t, &cid);
+				int x = __builtin_ctz(m), cfg = cube_cfg(A, x, y, z), id = T->first[cfg];
+				if (T->amb[cfg]) {
+					/* pass 1's decision, or the same one again */
+					id += k < A->nvar ? A->var[k]
+					                  : cube_variant(M, upb, x, y, z, cfg, T->amb[cfg]);
+					k++;
+				}
+				const uint32_t *cv = vt + VT_IDX(0, x, y, z);
+				if (T->ncentre[id]) {
+					t = emit_centred(w, cv, id, t, &cid);
+					continue;
+				}
+				/* the common case: the tabulated fans */
+				const uint16_t *to = T->toff[id];
+				int n = 3 * T->ntri[id];
+				for (int j = 0; j < n; j++)
+					t[j] = cv[to[j]];
+				t += n;
 			}
+	w->st.cubes += A->ncubes;
+	w->st.ambiguous += A->namb;
 	/* pass 1 counted the same cubes with the same decisions */
 	if (t != M->tri + 3 * ((size_t)A->tbase + A->ntri) || cid != M->nverts + A->cbase + A->ncent)
 		abort();
