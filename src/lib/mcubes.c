@@ -236,7 +236,6 @@ struct mc_tables {
 	uint16_t toff[MC_VARIANTS][36];         /* the same as places in a block's vertex
 	                                         * table (VT below), from the cube's */
 	uint16_t eoff[12];                      /* edge e's place in it, from the cube's */
-	uint8_t pop8[256];
 	uint8_t amb[256];                       /* a pattern's ambiguous faces */
 	uint8_t amb_corners[64];                /* the corners of a set of faces */
 };
@@ -282,7 +281,6 @@ static void tables_init(void)
 					T->tedge[n][j + 2] = ed[i + 1];
 				}
 		}
-		T->pop8[cfg] = (uint8_t)__builtin_popcount((unsigned)cfg);
 		T->amb[cfg] = base.amb;
 	}
 	for (int e = 0; e < 12; e++) {
@@ -320,7 +318,7 @@ struct own {
 struct aux {
 	uint8_t bits[3][64];    /* crossing edges it owns, per axis: row z * 8 + y, bit x;
 	                         * after pass 2 only those an extracted cube uses */
-	uint16_t pre[3][64];    /* the block's vertices before each row */
+	uint16_t pre[3][8];     /* the block's vertices before each z layer of rows */
 	uint32_t base, nverts;  /* its first edge vertex, their count */
 	uint32_t tbase, ntri;   /* its first triangle, their count */
 	uint32_t cbase, ncent;  /* its first centroid vertex (numbered after every
@@ -492,6 +490,15 @@ static inline uint64_t rows8(const uint8_t *b)
 		v |= (uint64_t)b[j] << 8 * j;
 #endif
 	return v;
+}
+
+/* Set bits of v (no popcnt instruction in the baseline x86-64). */
+static inline int pop64(uint64_t v)
+{
+	v -= (v >> 1) & UINT64_C(0x5555555555555555);
+	v = (v & UINT64_C(0x3333333333333333)) + ((v >> 2) & UINT64_C(0x3333333333333333));
+	v = (v + (v >> 4)) & UINT64_C(0x0F0F0F0F0F0F0F0F);
+	return (int)((v * UINT64_C(0x0101010101010101)) >> 56);
 }
 
 static uint8_t to_u8(double v)
@@ -865,9 +872,9 @@ static void pass2(const struct mc *M, struct aux *A)
 			A->bits[2][r] &= (uint8_t)(uz | uz >> 1);
 		}
 	for (int a = 0; a < 3; a++)
-		for (int r = 0; r < 64; r++) {
-			A->pre[a][r] = (uint16_t)count;
-			count += M->T->pop8[A->bits[a][r]];
+		for (int z = 0; z < 8; z++) {
+			A->pre[a][z] = (uint16_t)count;
+			count += pop64(rows8(A->bits[a] + 8 * z));
 		}
 	A->nverts = count;
 }
@@ -881,7 +888,7 @@ static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const u
 	const uint64_t col0 = 0x0101010101010101u;      /* bit x = 0 of each row */
 	for (int a = 0; a < 3; a++)
 		for (int z = 0; z < 8; z++) {
-			uint32_t id = A->base + A->pre[a][8 * z], *lay = vt + VT_IDX(a, 0, 0, z);
+			uint32_t id = A->base + A->pre[a][z], *lay = vt + VT_IDX(a, 0, 0, z);
 			for (uint64_t m = rows8(A->bits[a] + 8 * z); m; m &= m - 1) {
 				int p = __builtin_ctzll(m);
 				lay[9 * (p >> 3) + (p & 7)] = id++;
@@ -891,16 +898,19 @@ static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const u
 	/* +x: along y and z at x = 8 (the neighbour's x = 0) */
 	if ((N = up[1]))
 		for (int a = 1; a < 3; a++)
-			for (int z = 0; z < 8; z++)
-				for (uint64_t m = rows8(N->bits[a] + 8 * z) & col0; m; m &= m - 1) {
-					int y = __builtin_ctzll(m) >> 3;
-					vt[VT_IDX(a, 8, y, z)] = N->base + N->pre[a][8 * z + y];
+			for (int z = 0; z < 8; z++) {
+				uint64_t lay = rows8(N->bits[a] + 8 * z);
+				for (uint64_t m = lay & col0; m; m &= m - 1) {
+					int p = __builtin_ctzll(m);
+					vt[VT_IDX(a, 8, p >> 3, z)] =
+						N->base + N->pre[a][z] + pop64(lay & ((UINT64_C(1) << p) - 1));
 				}
+			}
 	/* +y: along x and z at y = 8, the neighbour's rows (z, 0) */
 	if ((N = up[2]))
 		for (int a = 0; a < 3; a += 2)
 			for (int z = 0; z < 8; z++) {
-				uint32_t id = N->base + N->pre[a][8 * z], *row = vt + VT_IDX(a, 0, 8, z);
+				uint32_t id = N->base + N->pre[a][z], *row = vt + VT_IDX(a, 0, 8, z);
 				for (unsigned m = N->bits[a][8 * z]; m; m &= m - 1)
 					row[__builtin_ctz(m)] = id++;
 			}
@@ -918,12 +928,15 @@ static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const u
 	if ((N = up[3]))
 		for (int z = 0; z < 8; z++)
 			if (N->bits[2][8 * z] & 1)
-				vt[VT_IDX(2, 8, 8, z)] = N->base + N->pre[2][8 * z];
-	if ((N = up[5]))
-		for (uint64_t m = rows8(N->bits[1]) & col0; m; m &= m - 1) {
-			int y = __builtin_ctzll(m) >> 3;
-			vt[VT_IDX(1, 8, y, 8)] = N->base + N->pre[1][y];
+				vt[VT_IDX(2, 8, 8, z)] = N->base + N->pre[2][z];
+	if ((N = up[5])) {
+		uint64_t lay = rows8(N->bits[1]);
+		for (uint64_t m = lay & col0; m; m &= m - 1) {
+			int p = __builtin_ctzll(m);
+			vt[VT_IDX(1, 8, p >> 3, 8)] =
+				N->base + N->pre[1][0] + pop64(lay & ((UINT64_C(1) << p) - 1));
 		}
+	}
 	if ((N = up[6])) {
 		uint32_t id = N->base + N->pre[0][0];
 		for (unsigned m = N->bits[0][0]; m; m &= m - 1)
