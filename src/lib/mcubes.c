@@ -1004,6 +1004,7 @@ static void block_triangles(struct worker *w, const struct aux *A)
 	uint32_t *vt = w->vt;
 	fill_vt(vt, A, up);
 	uint32_t *t = M->tri + 3 * (size_t)A->tbase, cid = (uint32_t)M->nverts + A->cbase;
+	uint32_t *tend = M->tri + 3 * ((size_t)A->tbase + A->ntri);
 	unsigned k = 0;
 	for (int z = 0; z < 8; z++)
 		for (uint64_t m = rows8(A->active + 8 * z); m; m &= m - 1) {
@@ -1020,10 +1021,17 @@ static void block_triangles(struct worker *w, const struct aux *A)
 				t = emit_centred(w, cv, id, t, &cid);
 				continue;
 			}
-			/* the common case: the tabulated fans */
+			/* the common case: the tabulated fans; up to 4 triangles
+			 * copied as 12 entries whatever their number, where the
+			 * block's range has room (the excess is overwritten by the
+			 * next cube), so that the copy's length mispredicts no branch */
 			const uint16_t *to = T->toff[id];
-			int n = 3 * T->ntri[id];
-			for (int j = 0; j < n; j++)
+			int n = 3 * T->ntri[id], j = 0;
+			if (t + 12 <= tend) {
+				for (; j < 12; j++)
+					t[j] = cv[to[j]];
+			}
+			for (; j < n; j++)
 				t[j] = cv[to[j]];
 			t += n;
 		}
