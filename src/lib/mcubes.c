@@ -314,6 +314,18 @@ struct own {
  * decides the others again. */
 #define AMB_KEEP 32
 
+/* The extracted cubes of a block's lower neighbours along its lower faces,
+ * which pass 2 needs: pass 1 of each neighbour writes its own field (its
+ * only writer), so that pass 2 reads one record instead of seven.  x: the
+ * -x neighbour's cubes (7, y, z), bit 8 * z + y; y: the -y neighbour's
+ * rows (y = 7), byte z; z: the -z neighbour's layer z = 7, byte y (bit x
+ * in each); xy: (7, 7, z), bit z; xz: (7, y, 7), bit y; yz: (x, 7, 7), bit
+ * x; xyz: (7, 7, 7). */
+struct rim {
+	uint64_t x, y, z;
+	uint8_t xy, xz, yz, xyz;
+};
+
 /* Pass-1 record of a block that owns crossings or has extracted cubes. */
 struct aux {
 	uint8_t bits[3][64];    /* crossing edges it owns, per axis: row z * 8 + y, bit x;
@@ -351,8 +363,7 @@ struct mc {
 	const struct mc_tables *T;
 
 	struct own *own;                /* per block */
-	int32_t (*down)[8];             /* per block: block - (k & 1, k >> 1 & 1, k >> 2),
-	                                 * -1 absent (pass 1 links the blocks it reads) */
+	struct rim *rim;                /* per block */
 	struct aux *aux;                /* per block with an observed voxel */
 	uint32_t *live;                 /* aux records with something, in block order */
 	size_t nlive;
@@ -685,10 +696,9 @@ static void block_vertices(struct worker *w, const struct aux *A)
 
 /* Pass 0 on block B: its own bits, clipped. */
 static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *o,
-                  int32_t down[8])
+                  struct rim *rim)
 {
-	for (int k = 0; k < 8; k++)
-		down[k] = -1;
+	memset(rim, 0, sizeof *rim);
 	const int32_t *lo = M->lo, *hi = M->hi;
 	unsigned any = 0, xm = 0xFF;
 	if (lo)
@@ -758,6 +768,39 @@ HOT static int cube_variant(const struct mc *M, const struct fct_voxblock *const
 	return variant;
 }
 
+/* The bits of m at 0, 8, ..., 56 as bits 0..7. */
+static inline unsigned gather8(uint64_t m)
+{
+	return (unsigned)((m * UINT64_C(0x0102040810204080)) >> 56);
+}
+
+/* Give record A's upper neighbours (A->up) its cubes along their lower
+ * faces (struct rim). */
+static void push_rim(struct mc *M, const struct aux *A)
+{
+	const uint64_t col0 = 0x0101010101010101u;
+	const uint8_t *ac = A->active;
+	uint64_t x = 0, y = 0, z = rows8(ac + 56);
+	for (int l = 0; l < 8; l++) {
+		x |= (uint64_t)gather8(rows8(ac + 8 * l) >> 7 & col0) << 8 * l;
+		y |= (uint64_t)ac[8 * l + 7] << 8 * l;
+	}
+	if (A->up[1] >= 0)
+		M->rim[A->up[1]].x = x;
+	if (A->up[2] >= 0)
+		M->rim[A->up[2]].y = y;
+	if (A->up[4] >= 0)
+		M->rim[A->up[4]].z = z;
+	if (A->up[3] >= 0)
+		M->rim[A->up[3]].xy = (uint8_t)gather8(y >> 7 & col0);
+	if (A->up[5] >= 0)
+		M->rim[A->up[5]].xz = (uint8_t)gather8(z >> 7 & col0);
+	if (A->up[6] >= 0)
+		M->rim[A->up[6]].yz = ac[63];
+	if (A->up[7] >= 0)
+		M->rim[A->up[7]].xyz = (uint8_t)(ac[63] >> 7);
+}
+
 /* Pass 1 on block b: its edge and cube bits, exact counts of triangles
  * and centroids.  Returns 1 when the block has anything (A
  * filled), else 0. */
@@ -770,8 +813,6 @@ static int pass1(struct mc *M, size_t b, struct aux *A)
 	for (int k = 1; k < 8; k++) {
 		A->up[k] = (int32_t)fct_voxgrid_index(M->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
 		                                      B->bz + (k >> 2));
-		if (A->up[k] >= 0)
-			M->down[A->up[k]][k] = (int32_t)b;      /* its only writer */
 	}
 	uint16_t obs[9][9];
 	for (int z = 0; z < 9; z++)
@@ -833,6 +874,8 @@ static int pass1(struct mc *M, size_t b, struct aux *A)
 	A->ncubes = ncubes;
 	A->namb = namb;
 	A->nvar = (uint8_t)(namb < AMB_KEEP ? namb : AMB_KEEP);
+	if (A->any_active)
+		push_rim(M, A);
 	return 1;
 }
 
@@ -846,20 +889,17 @@ static void pass2(const struct mc *M, struct aux *A)
 	memset(act, 0, sizeof act);
 	for (int r = 0; r < 64; r++)
 		act[(r >> 3) + 1][(r & 7) + 1] = (uint16_t)(A->active[r] << 1);
-	for (int k = 1; k < 8; k++) {
-		int dx = k & 1, dy = k >> 1 & 1, dz = k >> 2;
-		int32_t n = M->down[A->block][k];
-		if (n < 0 || M->own[n].aux == NONE)
-			continue;
-		const struct aux *D = &M->aux[M->own[n].aux];
-		/* its cubes at local 7 on the axes it lies below on, 0..7 on the others */
-		for (int z = dz ? 7 : 0; z < 8; z++)
-			for (int y = dy ? 7 : 0; y < 8; y++) {
-				unsigned m = D->active[8 * z + y];
-				m = dx ? m >> 7 : m << 1;
-				act[dz ? 0 : z + 1][dy ? 0 : y + 1] |= (uint16_t)m;
-			}
+	/* the lower neighbours' cubes at -1 */
+	const struct rim *R = &M->rim[A->block];
+	for (uint64_t m = R->x; m; m &= m - 1) {
+		int p = __builtin_ctzll(m);
+		act[(p >> 3) + 1][(p & 7) + 1] |= 1;
 	}
+	for (int l = 0; l < 8; l++) {
+		act[l + 1][0] |= (uint16_t)((R->y >> 8 * l & 0xFF) << 1 | (R->xy >> l & 1));
+		act[0][l + 1] |= (uint16_t)((R->z >> 8 * l & 0xFF) << 1 | (R->xz >> l & 1));
+	}
+	act[0][0] |= (uint16_t)(R->yz << 1 | R->xyz);
 	uint32_t count = 0;
 	for (int z = 0; z < 8; z++)
 		for (int y = 0; y < 8; y++) {
@@ -1048,7 +1088,7 @@ HOT static void run_pass0(void *ctx, size_t lo, size_t hi, int worker)
 	struct mc *M = ctx;
 	(void)worker;
 	for (size_t b = lo; b < hi; b++)
-		pass0(M, fct_voxgrid_at(M->g, b), &M->own[b], M->down[b]);
+		pass0(M, fct_voxgrid_at(M->g, b), &M->own[b], &M->rim[b]);
 }
 
 HOT static void run_pass1(void *ctx, size_t lo, size_t hi, int worker)
@@ -1134,8 +1174,8 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	size_t nb = fct_voxgrid_count(g), naux = 0, ntri = 0, ncent = 0, nverts = 0;
 	M->w = calloc((size_t)nthreads, sizeof *M->w);
 	M->own = fct_alloc_array(nb, sizeof *M->own, err);
-	M->down = fct_alloc_array(nb, sizeof *M->down, err);
-	if (!M->w || !M->own || !M->down) {
+	M->rim = fct_alloc_array(nb, sizeof *M->rim, err);
+	if (!M->w || !M->own || !M->rim) {
 		if (!M->w)
 			fct_fail(err, "out of memory");
 		goto done;
@@ -1211,7 +1251,7 @@ done:
 	if (rc)
 		fct_mesh_free(out);
 	free(M->own);
-	free(M->down);
+	free(M->rim);
 	free(M->aux);
 	free(M->live);
 	free(M->w);
