@@ -23,18 +23,22 @@
  * into 9x9 rows, marks the crossing lattice edges each voxel owns (the edges
  * from it towards +x, +y, +z) in three 512-bit masks and counts exactly the
  * block's triangles and centroid vertices (running the decider on its
- * ambiguous cubes).  Pass 2 keeps the crossing edges that an extracted cube
- * uses (the others, at the rim of the observed region, would be vertices no
- * triangle uses) and counts the block's vertices.  Prefix sums in block
+ * ambiguous cubes and keeping the outcomes for the triangle pass); it hands
+ * each upper neighbour its extracted cubes along that neighbour's lower
+ * faces.  Pass 2 keeps the crossing edges that an extracted cube uses (the
+ * others, at the rim of the observed region, would be vertices no triangle
+ * uses) and counts the block's vertices per z layer.  Prefix sums in block
  * order then fix every block's place in the output, so that the last two
  * passes -- the vertices (values gathered once per block, gradients once
  * per corner; the rows a block reads are found, and their loads started,
  * while the block before it is worked on, so that its cache misses overlap
  * that work) and the triangles -- write disjoint ranges and run on threads
  * with the same bytes for any count.  A vertex's number is its block's
- * base plus a popcount in its masks, so the triangles find the vertices of
- * a cube's twelve edges, in its own block or the upper neighbours, without
- * any per-edge table. */
+ * base plus a popcount in its masks; the triangle pass writes the numbers
+ * of the edges a block's cubes use (its own and its upper neighbours') into
+ * a 3x9x9x9 table once per block and reads a cube's fans from it through
+ * tabulated offsets.  The bit rows of a z layer are walked as one 64-bit
+ * word, so that empty rows cost no branch. */
 #include "mcubes.h"
 
 #include <float.h>
