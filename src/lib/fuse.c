@@ -1856,13 +1856,12 @@ static inline void search_step(const struct fctx *F, const int32_t *id, const do
 static int32_t search_end(const struct fctx *F, const int32_t *id, const double x[3], struct foot *S,
                           double *d2, double q[3], enum fct_tri_region *r)
 {
-	double band = F->band, s = S->s;
-	int32_t t = S->t;
-	if (t < 0)
+	if (S->t < 0)
 		return -1;
 	while (!S->done)
 		search_step(F, id, x, S);
-	t = S->t, s = S->s;
+	double band = F->band, s = S->s;
+	int32_t t = S->t;
 	/* Far from the plane seen, on either side: the walk would start out
 	 * of the band and give up (surfaces behind another are the far
 	 * layer's); this spares it, and locate. */
