@@ -1915,7 +1915,8 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 			memcpy(q, qf, sizeof qf);
 		}
 	}
-	if (t < 0 && plane_dist(G, t0, x) > 0) {
+	double s0;
+	if (t < 0 && (s0 = plane_dist(G, t0, x)) > 0) {
 		/* In front of the surface seen but out of its band: a surface
 		 * beside, around a silhouette or in a concave corner, may be
 		 * near.  Look for it along the image's axes, half a band's
@@ -1928,11 +1929,12 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 		                x[2] + (band + vox) * P[8] }, ex, ey, ed;
 		if (!sample_of(R, e, &ex, &ey, &ed))
 			return;
-		double rp = hypot(ex - sx, ey - sy), s0 = plane_dist(G, t0, x);
+		double rp = hypot(ex - sx, ey - sy);
 		static const double dir[4][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } };
 		for (int di = 0; di < 4; di++)
-			for (double reach = 0.5; reach <= 1; reach += 0.5) {
-				int32_t ts = seen(R, R->id, sx + reach * rp * dir[di][0], sy + reach * rp * dir[di][1]);
+			for (int halves = 1; halves <= 2; halves++) {
+				double reach = 0.5 * halves * rp;
+				int32_t ts = seen(R, R->id, sx + reach * dir[di][0], sy + reach * dir[di][1]);
 				if (ts < 0)
 					continue;
 				double sp = plane_dist(G, ts, x);

@@ -44,13 +44,13 @@ static void depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*dept
 	depth_view_kept(v, m, depth, NULL);
 }
 
-/* A fresh volume of 1 cm voxels with v fused into it: a 3 cm band,
- * constant weights. */
-static struct fct_voxgrid *fused(const struct fct_fuse_view *v, struct fct_fuse_stats *st)
+/* A fresh volume of 1 cm voxels with v fused into it: a band of band
+ * metres (3 cm in most tests), constant weights. */
+static struct fct_voxgrid *fused(const struct fct_fuse_view *v, double band, struct fct_fuse_stats *st)
 {
 	struct fct_err err;
 	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	struct fct_fuse_params p = { band, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
 	CHECK(g && fct_fuse_view(g, v, &p, st, &err) == 0);
 	return g;
 }
@@ -219,11 +219,8 @@ static void test_corner(void)
 	struct fct_fuse_view v;
 	struct fct_mesh m;
 	depth_view(&v, &m, corner_depth);
-	struct fct_err err;
-	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
-	struct fct_fuse_params p = { 0.05, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
-	CHECK(g && fct_fuse_view(g, &v, &p, NULL, &err) == 0);
-	double band = p.band, worst = 0;
+	double band = 0.05, worst = 0;
+	struct fct_voxgrid *g = fused(&v, band, NULL);
 	size_t probed = 0, wrong = 0;
 	for (int k = 60; k <= 79; k++)
 		for (int j = 10; j <= 25; j++) {
@@ -261,7 +258,7 @@ static void test_band_edge(void)
 	square(&m, 60, 0.5 - 1e-10);   /* 3.3 cm triangles: their boxes, no samples */
 	struct fct_fuse_view v;
 	view_of(&v, &m);
-	struct fct_voxgrid *g = fused(&v, NULL);
+	struct fct_voxgrid *g = fused(&v, 0.03, NULL);
 	float s, w;
 	for (int j = -30; j <= 30; j += 10)
 		for (int k = 46; k <= 54; k++) {
@@ -289,7 +286,7 @@ static void test_tilted_plane(void)
 	struct fct_mesh m;
 	depth_view(&v, &m, tilted_depth);
 	double band = 0.03, norm = sqrt(1 + 0.09 + 0.04);
-	struct fct_voxgrid *g = fused(&v, NULL);
+	struct fct_voxgrid *g = fused(&v, 0.03, NULL);
 	size_t inside = 0, worse = 0;
 	double worst = 0;
 	for (int k = 20; k <= 110; k++)
@@ -425,7 +422,7 @@ static void test_sliver(void)
 	struct fct_fuse_view v;
 	view_of(&v, &m);
 	struct fct_fuse_stats st = { 0 };
-	struct fct_voxgrid *g = fused(&v, &st);
+	struct fct_voxgrid *g = fused(&v, 0.03, &st);
 	CHECK_INT(st.faces, 33);
 	fct_voxgrid_free(g);
 	fct_mesh_free(&m);
@@ -460,7 +457,7 @@ static void test_carve(void)
 	square(&m, 40, 0.5);
 	struct fct_fuse_view v;
 	view_of(&v, &m);
-	struct fct_voxgrid *g = fused(&v, NULL);
+	struct fct_voxgrid *g = fused(&v, 0.03, NULL);
 	struct fct_range_image r;
 	CHECK(fct_range_image_make(&r, &v, 1 << 20, &err) == 0);
 	/* The centre pixel sees the square at depth 0.5. */
