@@ -1891,72 +1891,147 @@ static int32_t search(const struct fctx *F, const int32_t *id, int32_t t, const 
 	return search_end(F, id, x, &S, d2, q, r);
 }
 
-/* Voxel l of block b, at x, seen at sample (sx, sy) on triangle t, whose
- * search from t has begun in S. */
-static void true_voxel(const struct fctx *F, struct sblock *b, int l, const double x[3], double sx,
-                       double sy, int32_t t, struct foot *S)
+/* The point of a view's mesh nearest a voxel: its triangle (-1: none in
+ * the band), squared distance, the point and its region there. */
+struct hit {
+	int32_t t;
+	enum fct_tri_region r;
+	double d2, q[3];
+};
+
+/* h: the nearer of h and the search from triangle ts in layer id. */
+static void search_nearer(const struct fctx *F, const int32_t *id, int32_t ts, const double x[3],
+                          struct hit *h)
+{
+	struct hit o;
+	o.t = search(F, id, ts, x, &o.d2, o.q, &o.r);
+	if (o.t >= 0 && (h->t < 0 || o.d2 < h->d2))
+		*h = o;
+}
+
+/* A block's voxels, in stages: each voxel is projected and the sample it
+ * falls on asked for; then the triangle seen there is looked up and its
+ * plane and corners asked for; then the voxels are searched; those in
+ * front of the surface seen but out of its band probe beside it; then the
+ * distances are put.  Each search's or probe's loads depend on each other,
+ * the block's voxels' do not, so the memory is read for many voxels at
+ * once. */
+struct seen {
+	double x[3], sx, sy;
+	int32_t t;               /* -1: nothing seen (or out of the clip box) */
+	int16_t l;               /* the voxel in its block */
+	struct foot S;           /* the search from t */
+	struct hit h;            /* its outcome */
+};
+
+/* e's search, ended, and the far layer's where there is one (the far side
+ * of a closed object, a surface behind another). */
+static void search_seen(const struct fctx *F, struct seen *e)
+{
+	const struct raster *R = F->R;
+	struct hit *h = &e->h;
+	h->t = search_end(F, R->id, e->x, &e->S, &h->d2, h->q, &h->r);
+	int32_t tf = R->idf ? seen_at(R, R->idf, e->sx, e->sy) : -1;
+	if (tf >= 0 && tf != e->t)
+		search_nearer(F, R->idf, tf, e->x, h);
+}
+
+/* Probes: a voxel in front of the surface seen but out of its band may be
+ * near a surface beside, around a silhouette or in a concave corner.  It
+ * looks for one along the image's four axes, half a band's width away and
+ * then a band's: the first other surface met in a direction is the one to
+ * search (the one farther out is mostly the same surface again, and most
+ * probers find nothing, so a probe that saw another surface ends that
+ * direction).  The samples are asked for, then the triangles seen there
+ * with their planes, for all of a block's probers, before any is used. */
+enum { PROBES = 8 };   /* 4 directions, 2 reaches */
+
+struct prober {
+	struct seen *e;
+	double s0;               /* e's distance to the plane of the triangle it sees */
+	double px[PROBES], py[PROBES];
+	int32_t ts[PROBES];      /* the triangle seen at each probe */
+};
+
+/* p's probe samples; 0 when the band's reach leaves the view. */
+static int probe_samples(const struct fctx *F, struct prober *p)
+{
+	const struct seen *e = p->e;
+	const double *P = F->v->pose, *x = e->x;
+	double r = F->band + F->vox;
+	double end[3] = { x[0] + r * P[0], x[1] + r * P[4], x[2] + r * P[8] }, ex, ey, ed;
+	if (!sample_of(F->R, end, &ex, &ey, &ed))
+		return 0;
+	double rp = hypot(ex - e->sx, ey - e->sy);
+	static const double dir[4][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } };
+	for (int di = 0; di < 4; di++)
+		for (int halves = 1; halves <= 2; halves++) {
+			double reach = 0.5 * halves * rp;
+			int k = 2 * di + halves - 1;
+			p->px[k] = e->sx + reach * dir[di][0], p->py[k] = e->sy + reach * dir[di][1];
+			prefetch_seen(F->R, p->px[k], p->py[k]);
+		}
+	return 1;
+}
+
+static void probe_look(const struct fctx *F, struct prober *p)
+{
+	for (int k = 0; k < PROBES; k++) {
+		p->ts[k] = seen(F->R, F->R->id, p->px[k], p->py[k]);
+		if (p->ts[k] >= 0)
+			__builtin_prefetch(&F->G->tn[4 * (size_t)p->ts[k]]);
+	}
+}
+
+static void probe_search(const struct fctx *F, struct prober *p)
+{
+	struct seen *e = p->e;
+	for (int di = 0; di < 4; di++)
+		for (int halves = 1; halves <= 2; halves++) {
+			int32_t ts = p->ts[2 * di + halves - 1];
+			if (ts < 0)
+				continue;
+			double sp = plane_dist(F->G, ts, e->x);
+			if (ts == e->t || fabs(sp - p->s0) <= F->vox)
+				continue;   /* the surface seen: maybe another farther out */
+			if (fabs(sp) <= F->band)
+				search_nearer(F, F->R->id, ts, e->x, &e->h);
+			break;
+		}
+}
+
+/* The probes of a block's voxels V[0 .. n) that need them. */
+static void probe_block(const struct fctx *F, struct seen *V, int n)
+{
+	struct prober P[FCT_VOXBLOCK_N];
+	int np = 0;
+	for (int v = 0; v < n; v++) {
+		struct seen *e = &V[v];
+		if (e->t < 0 || e->h.t >= 0)
+			continue;
+		double s0 = plane_dist(F->G, e->t, e->x);
+		if (!(s0 > 0))
+			continue;
+		P[np].e = e, P[np].s0 = s0;
+		np += probe_samples(F, &P[np]);
+	}
+	for (int i = 0; i < np; i++)
+		probe_look(F, &P[i]);
+	for (int i = 0; i < np; i++)
+		probe_search(F, &P[i]);
+}
+
+/* Voxel l of block b, at x, whose nearest point is h: its signed distance
+ * (by the normal there: the face's, or the mean of the faces' at an edge
+ * or a corner) into b, unless that point is on a border. */
+static void put_true(const struct fctx *F, struct sblock *b, int l, const double x[3], const struct hit *h)
 {
 	const struct geo *G = F->G;
-	const struct raster *R = F->R;
-	double vox = F->vox, band = F->band;
-	double d2, q[3], xq[3];
-	enum fct_tri_region r;
-	int32_t t0 = t;
-	t = search_end(F, R->id, x, S, &d2, q, &r);
-	/* A second layer (the far side of a closed object, a surface behind
-	 * another) where there is one. */
-	int32_t tf = R->idf ? seen_at(R, R->idf, sx, sy) : -1;
-	if (tf >= 0 && tf != t0) {
-		double d2f, qf[3];
-		enum fct_tri_region rf;
-		tf = search(F, R->idf, tf, x, &d2f, qf, &rf);
-		if (tf >= 0 && (t < 0 || d2f < d2)) {
-			t = tf, d2 = d2f, r = rf;
-			memcpy(q, qf, sizeof qf);
-		}
-	}
-	double s0;
-	if (t < 0 && (s0 = plane_dist(G, t0, x)) > 0) {
-		/* In front of the surface seen but out of its band: a surface
-		 * beside, around a silhouette or in a concave corner, may be
-		 * near.  Look for it along the image's axes, half a band's
-		 * width away and then a band's: the first other surface met
-		 * is the one to search (the one farther out is mostly the same
-		 * surface again, and most probers find nothing, so a probe
-		 * that saw another surface ends that direction). */
-		const double *P = F->v->pose;
-		double e[3] = { x[0] + (band + vox) * P[0], x[1] + (band + vox) * P[4],
-		                x[2] + (band + vox) * P[8] }, ex, ey, ed;
-		if (!sample_of(R, e, &ex, &ey, &ed))
-			return;
-		double rp = hypot(ex - sx, ey - sy);
-		static const double dir[4][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } };
-		for (int di = 0; di < 4; di++)
-			for (int halves = 1; halves <= 2; halves++) {
-				double reach = 0.5 * halves * rp;
-				int32_t ts = seen(R, R->id, sx + reach * dir[di][0], sy + reach * dir[di][1]);
-				if (ts < 0)
-					continue;
-				double sp = plane_dist(G, ts, x);
-				if (ts == t0 || fabs(sp - s0) <= vox)
-					continue;   /* the surface seen: maybe another farther out */
-				if (fabs(sp) <= band) {
-					double d2f, qf[3];
-					enum fct_tri_region rf;
-					int32_t tf2 = search(F, R->id, ts, x, &d2f, qf, &rf);
-					if (tf2 >= 0 && (t < 0 || d2f < d2)) {
-						t = tf2, d2 = d2f, r = rf;
-						memcpy(q, qf, sizeof qf);
-					}
-				}
-				break;
-			}
-	}
-	if (t < 0)
-		return;
-	double n[3];
+	int32_t t = h->t;
+	enum fct_tri_region r = h->r;
+	double n[3], xq[3];
 	tri_normal(G, t, n);
-	fct_v3_sub(xq, x, q);
+	fct_v3_sub(xq, x, h->q);
 	double d;
 	if (r == FCT_TRI_FACE) {
 		d = fct_v3_dot(xq, n);
@@ -1967,7 +2042,7 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 			b->nborder++;
 			return;
 		}
-		d = copysign(sqrt(d2), fct_v3_dot(xq, vn));
+		d = copysign(sqrt(h->d2), fct_v3_dot(xq, vn));
 	} else {
 		int e = r == FCT_TRI_AB ? 0 : r == FCT_TRI_BC ? 1 : 2;
 		const uint32_t *tv = &G->tv[3 * (size_t)t];
@@ -1983,24 +2058,12 @@ static void true_voxel(const struct fctx *F, struct sblock *b, int l, const doub
 		} else {
 			memcpy(pn, n, sizeof pn);
 		}
-		d = copysign(sqrt(d2), fct_v3_dot(xq, pn));
+		d = copysign(sqrt(h->d2), fct_v3_dot(xq, pn));
 	}
 	/* The kept band's extra thousandth of a voxel is not a distance. */
 	d = dmax(-F->p->band, dmin(d, F->p->band));
-	put(b, l, (float)d, (float)view_weight(F->v, F->p, q, n));
+	put(b, l, (float)d, (float)view_weight(F->v, F->p, h->q, n));
 }
-
-/* A block at a time, in stages: its voxels are projected and the samples
- * they fall on asked for; then the triangles seen there are looked up and
- * their planes and corners asked for; then the voxels are searched.  Each
- * search's loads depend on each other, the block's voxels' do not, so the
- * memory is read for many voxels at once. */
-struct seen {
-	double x[3], sx, sy;
-	int32_t t;               /* -1: nothing seen (or out of the clip box) */
-	int16_t l;               /* the voxel in its block */
-	struct foot S;           /* the search from t */
-};
 
 static void true_chunk(void *ctx, size_t lo, size_t hi)
 {
@@ -2045,7 +2108,11 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 					search_step(F, R->id, V[v].x, &V[v].S);
 		for (int v = 0; v < n; v++)
 			if (V[v].t >= 0)
-				true_voxel(F, b, V[v].l, V[v].x, V[v].sx, V[v].sy, V[v].t, &V[v].S);
+				search_seen(F, &V[v]);
+		probe_block(F, V, n);
+		for (int v = 0; v < n; v++)
+			if (V[v].t >= 0 && V[v].h.t >= 0)
+				put_true(F, b, V[v].l, V[v].x, &V[v].h);
 	}
 }
 
