@@ -1827,28 +1827,46 @@ static inline void search_begin(const struct fctx *F, int32_t t, const double x[
 		S->t = -1, S->done = 1;
 }
 
+/* A move in three parts, so that a block's voxels can ask for the memory
+ * of the next part before any of them uses it.  step_foot: the foot on
+ * the plane of t and its sample (0 and S->done when it has none). */
+static inline int step_foot(const struct fctx *F, const double x[3], struct foot *S)
+{
+	double depth;
+	const float *n = &F->G->tn[4 * (size_t)S->t];
+	double *f = S->f, s = S->s;
+	f[0] = x[0] - s * n[0], f[1] = x[1] - s * n[1], f[2] = x[2] - s * n[2];
+	S->done = 1;
+	return sample_of(F->R, f, &S->sx, &S->sy, &depth);
+}
+
+/* step_seen: the triangle seen at the foot's sample (S->done when none or
+ * the same: S->stays then); 1 when it is another one. */
+static inline int step_seen(const struct fctx *F, const int32_t *id, struct foot *S, int32_t *ts)
+{
+	*ts = seen(F->R, id, S->sx, S->sy);
+	return !(*ts < 0 || (S->stays = *ts == S->t));
+}
+
+/* step_move: onto ts, unless its plane is farther (off a silhouette);
+ * S->done when the moves end. */
+static inline void step_move(const struct fctx *F, const double x[3], struct foot *S, int32_t ts)
+{
+	double s2 = plane_dist(F->G, ts, x);
+	if (fabs(s2) > fabs(S->s) + F->vox)
+		return;
+	S->t = ts, S->s = s2;
+	S->done = ++S->it == 8;
+}
+
 /* One move to the triangle seen at the foot; S->done when it stays or the
  * moves end. */
 static inline void search_step(const struct fctx *F, const int32_t *id, const double x[3],
                                struct foot *S)
 {
-	const struct geo *G = F->G;
-	double depth;
-	const float *n = &G->tn[4 * (size_t)S->t];
-	double *f = S->f, s = S->s;
-	f[0] = x[0] - s * n[0], f[1] = x[1] - s * n[1], f[2] = x[2] - s * n[2];
-	S->done = 1;
-	if (!sample_of(F->R, f, &S->sx, &S->sy, &depth))
-		return;
-	int32_t ts = seen(F->R, id, S->sx, S->sy);
-	if (ts < 0 || (S->stays = ts == S->t))
-		return;
-	/* Not onto another surface farther away (off a silhouette). */
-	double s2 = plane_dist(G, ts, x);
-	if (fabs(s2) > fabs(s) + F->vox)
-		return;
-	S->t = ts, S->s = s2;
-	S->done = ++S->it == 8;
+	int32_t ts;
+	if (step_foot(F, x, S) && step_seen(F, id, S, &ts))
+		step_move(F, x, S, ts);
 }
 
 /* The triangle nearest x from a search's state, or -1 when x is out of
@@ -2102,10 +2120,23 @@ static void true_chunk(void *ctx, size_t lo, size_t hi)
 		for (int v = 0; v < n; v++)
 			if (V[v].t >= 0)
 				search_begin(F, V[v].t, V[v].x, &V[v].S);
-		for (int step = 0; step < 2; step++)
+		for (int step = 0; step < 2; step++) {
+			int8_t go[FCT_VOXBLOCK_N];
+			int32_t ts[FCT_VOXBLOCK_N];
+			for (int v = 0; v < n; v++) {
+				go[v] = V[v].t >= 0 && !V[v].S.done && step_foot(F, V[v].x, &V[v].S);
+				if (go[v])
+					prefetch_seen(R, V[v].S.sx, V[v].S.sy);
+			}
+			for (int v = 0; v < n; v++) {
+				go[v] = go[v] && step_seen(F, R->id, &V[v].S, &ts[v]);
+				if (go[v])
+					__builtin_prefetch(&G->tn[4 * (size_t)ts[v]]);
+			}
 			for (int v = 0; v < n; v++)
-				if (V[v].t >= 0 && !V[v].S.done)
-					search_step(F, R->id, V[v].x, &V[v].S);
+				if (go[v])
+					step_move(F, V[v].x, &V[v].S, ts[v]);
+		}
 		for (int v = 0; v < n; v++)
 			if (V[v].t >= 0)
 				search_seen(F, &V[v]);
