@@ -1593,6 +1593,181 @@ static void rows_box(struct sblock *b)
  * a voxel apart. */
 enum { BOX_TRIANGLE = 4 };
 
+/* Boxes of surface points waiting to go into the cell blocks: consecutive
+ * boxes over the same blocks make one, as add_span would put their union's
+ * box into each of those blocks anyway (clipping to a block's extent
+ * commutes with minima and maxima). */
+struct pending {
+	double lo[3], hi[3];     /* voxel units */
+	int32_t clo[3], chi[3];  /* cells of a box of the union */
+	int32_t blo[3], bhi[3];  /* and their blocks */
+	int any;
+};
+
+static int pending_flush(struct cand *c, struct pending *P)
+{
+	if (!P->any)
+		return 0;
+	P->any = 0;
+	return add_span(c, P->lo, P->hi, P->clo, P->chi);
+}
+
+/* Box lo..hi over cells clo..chi, into P.  0 or -1. */
+static int pending_add(struct cand *c, struct pending *P, const double lo[3], const double hi[3],
+                       const int32_t clo[3], const int32_t chi[3])
+{
+	int32_t blo[3], bhi[3];
+	for (int k = 0; k < 3; k++)
+		blo[k] = fct_vox_block_of(clo[k]), bhi[k] = fct_vox_block_of(chi[k]);
+	if (P->any && !memcmp(blo, P->blo, sizeof blo) && !memcmp(bhi, P->bhi, sizeof bhi)) {
+		box_add(P->lo, P->hi, lo, hi);
+		return 0;
+	}
+	if (pending_flush(c, P))
+		return -1;
+	memcpy(P->lo, lo, sizeof P->lo), memcpy(P->hi, hi, sizeof P->hi);
+	memcpy(P->clo, clo, sizeof P->clo), memcpy(P->chi, chi, sizeof P->chi);
+	memcpy(P->blo, blo, sizeof P->blo), memcpy(P->bhi, bhi, sizeof P->bhi);
+	P->any = 1;
+	return 0;
+}
+
+/* A pixel of a depth image in image_cells: its vertex in voxel units,
+ * that point's cell and the cell's block (block_key). */
+struct pixpoint {
+	double s[3];
+	int32_t cell[3];
+	uint64_t key;
+};
+
+/* The box of points p[0..n) into P when it is more than a voxel and at
+ * most BOX_TRIANGLE voxels across (the triangle pass's bounds, measured
+ * here in voxel units: 1e-6 voxel leaves room for the rounding of the
+ * points' scaling, which is far less, so a box is left out only where
+ * the triangle pass leaves its triangles out, and kept where it keeps
+ * them): 1 when larger (not added), 0 or -1. */
+static int corner_box(struct cand *c, struct pending *P, const struct pixpoint *const *p, int n)
+{
+	double lo[3], hi[3], e = 0;
+	int32_t clo[3], chi[3];
+	for (int k = 0; k < 3; k++) {
+		lo[k] = hi[k] = p[0]->s[k], clo[k] = chi[k] = p[0]->cell[k];
+		for (int m = 1; m < n; m++) {
+			lo[k] = dmin(p[m]->s[k], lo[k]), hi[k] = dmax(p[m]->s[k], hi[k]);
+			clo[k] = p[m]->cell[k] < clo[k] ? p[m]->cell[k] : clo[k];
+			chi[k] = p[m]->cell[k] > chi[k] ? p[m]->cell[k] : chi[k];
+		}
+		e = dmax(hi[k] - lo[k], e);
+	}
+	if (e < 1 - 1e-6)
+		return 0;
+	if (e > BOX_TRIANGLE + 1e-6)
+		return 1;
+	return pending_add(c, P, lo, hi, clo, chi);
+}
+
+/* A pinhole view given as a depth image whose mesh is its pixel grid:
+ * its pixels with data are the mesh's vertices, in row-major order, and
+ * there are as many.  (fct_depth_mesh_kept makes it so; fuse.h.) */
+static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
+{
+	if (!v->depth || v->cam.kind != FCT_CAMERA_PINHOLE)
+		return 0;
+	size_t n = (size_t)v->cam.width * (size_t)v->cam.height, k = 0;
+	for (size_t i = 0; i < n; i++)
+		k += v->depth[i] > 0 && v->depth[i] < INFINITY;
+	return k == G->nv;
+}
+
+/* Projective candidates of a view given as a depth image (image_grid), in
+ * place of the triangle pass over its mesh: a pass over the image's pixel
+ * cells (the square between four pixel centres), each standing for the
+ * triangles of the mesh it holds, whichever they are (a triangle joins
+ * three corners of one cell).  A cell whose corners with data (three or
+ * four) are not all in one block adds the box of those corners, clipped
+ * to the blocks they span, when it is more than a voxel and at most
+ * BOX_TRIANGLE voxels across; a larger cell adds each three of its corners
+ * whose box is so.  A triangle's box is within its cell's box or is one of
+ * the threes, over the same blocks or more (and a box within one block
+ * along an axis is within that block's extent there), so the candidates
+ * hold the triangle pass's, and the voxels written hold those it would
+ * have written (put_depth's test is the voxel's own), but for one kind:
+ * the samples the triangle pass takes inside a triangle over BOX_TRIANGLE
+ * voxels across.  Such a triangle joins pixels whose points lie more than
+ * four voxels apart (a depth jump the mesher bridged, or a surface seen
+ * edge-on): its inside is the mesher's interpolation, which no pixel
+ * measured; a voxel by it reads its distance from a corner's pixel all
+ * the same, and those near the corners stay candidates through the
+ * vertices' boxes (vertex_boxes, as for any mesh).  The gain: each pixel's
+ * point is scaled once, not once per triangle corner, and a run of cells
+ * over the same blocks goes into them once (on the room at 1 cm about two
+ * thirds of the cells cross blocks, the floor lying on a block face, and
+ * some 40 thousand add_spans take their 110 thousand boxes).  0 or -1. */
+static int image_cells(struct cand *c, const struct fct_fuse_view *v, const struct geo *G)
+{
+	size_t w = (size_t)v->cam.width, h = (size_t)v->cam.height;
+	struct pixpoint *row = fct_alloc_array(w ? 2 * w : 1, sizeof *row, c->err);   /* two rows */
+	unsigned char *has = fct_alloc_array(w ? 2 * w : 1, 1, c->err);
+	int rc = -1;
+	if (!row || !has)
+		goto done;
+	struct pixpoint *p0 = row, *p1 = row + w;
+	unsigned char *h0 = has, *h1 = has + w;
+	const double *xyz = G->xyz;
+	struct pending P = { .any = 0 };
+	for (size_t y = 0; y < h; y++) {
+		const float *d = &v->depth[y * w];
+		for (size_t x = 0; x < w; x++) {
+			h1[x] = d[x] > 0 && d[x] < INFINITY;
+			if (!h1[x])
+				continue;
+			struct pixpoint *q = &p1[x];
+			if (cell_of(c, xyz, q->s, q->cell))
+				goto done;
+			xyz += 3;   /* the next pixel with data has the next vertex */
+			q->key = block_key(fct_vox_block_of(q->cell[0]), fct_vox_block_of(q->cell[1]),
+			                   fct_vox_block_of(q->cell[2]));
+		}
+		for (size_t x = 0; y > 0 && x + 1 < w; x++) {
+			if (h0[x] + h0[x + 1] + h1[x] + h1[x + 1] < 3)
+				continue;
+			const struct pixpoint *q[4];
+			int n = 0;
+			if (h0[x])
+				q[n++] = &p0[x];
+			if (h0[x + 1])
+				q[n++] = &p0[x + 1];
+			if (h1[x])
+				q[n++] = &p1[x];
+			if (h1[x + 1])
+				q[n++] = &p1[x + 1];
+			uint64_t k0 = q[0]->key;
+			if (q[1]->key == k0 && q[2]->key == k0 && (n == 3 || q[3]->key == k0))
+				continue;   /* within one block's vertex box */
+			int big = corner_box(c, &P, q, n);
+			if (big < 0)
+				goto done;
+			for (int skip = 0; big && n == 4 && skip < 4; skip++) {
+				const struct pixpoint *t[3];
+				for (int m = 0, j = 0; m < 4; m++)
+					if (m != skip)
+						t[j++] = q[m];
+				if ((t[1]->key != t[0]->key || t[2]->key != t[0]->key) && corner_box(c, &P, t, 3) < 0)
+					goto done;
+			}
+		}
+		struct pixpoint *tp = p0;
+		p0 = p1, p1 = tp;
+		unsigned char *th = h0;
+		h0 = h1, h1 = th;
+	}
+	rc = pending_flush(c, &P);
+done:
+	free(row);
+	free(has);
+	return rc;
+}
+
 /* The candidate blocks of G for a band of band metres into s, each with
  * its block of g: created (fresh) when g did not have it, in the order of
  * s.  Projective: the voxels of the box of the surface's cells per block
@@ -1607,9 +1782,11 @@ enum { BOX_TRIANGLE = 4 };
  * blocks is put whole into its first vertex's (which then reaches past
  * the block by a triangle's size at most); a sampled one adds its samples
  * grown by half a voxel (each of its points is that close to a sample in
- * every axis) to their blocks. */
+ * every axis) to their blocks.  img: a projective view given as a depth
+ * image whose pixel cells stand for the triangles (image_cells), or NULL. */
 static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
-                      double vox, double band, int proj, struct fct_err *err)
+                      const struct fct_fuse_view *img, double vox, double band, int proj,
+                      struct fct_err *err)
 {
 	struct cand c = { { 0 }, 1 / vox, err };
 	int rc = -1;
@@ -1621,7 +1798,9 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 		goto done;
 	if (!proj)
 		vertex_slabs(&c, G, vb);
-	for (size_t t = 0; t < G->nt; t++) {
+	if (img && image_cells(&c, img, G))
+		goto done;
+	for (size_t t = 0; !img && t < G->nt; t++) {
 		const uint32_t *tv = &G->tv[3 * t];
 		/* A triangle whose corners are in one block is in that block's
 		 * box (and slab) already: its points lie in its corners' box,
@@ -2325,7 +2504,8 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	if (failed)
 		goto done;
 	if (R.w > 0) {
-		if (candidates(&s, g, &G, vox, band, proj, err))
+		const struct fct_fuse_view *img = proj && image_grid(v, &G) ? v : NULL;
+		if (candidates(&s, g, &G, img, vox, band, proj, err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox) };
 		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);

@@ -38,12 +38,18 @@
  * pinholes, rho for cylinders), row by row; a pixel has data when its
  * depth is above 0 and finite.  Projective fusion reads it as the view's
  * range image instead of rasterising the mesh (as KinectFusion and Open3D
- * do); true distance and carving use the mesh alone.  The mesh still
- * gives the candidate voxels, so depth should hold the pixels of the
- * mesh's vertices and no others (fct_depth_mesh_kept): a pixel without
- * mesh around it would be written only where the mesh's candidates reach.
- * With those pixels the result is the mesh view's but for the rounding of
- * the vertices' depths through the pose and back. */
+ * do); true distance and carving use the mesh alone.  depth should hold
+ * the pixels of the mesh's vertices and no others (fct_depth_mesh_kept):
+ * a pixel without mesh around it is written only where the candidate
+ * voxels reach.  Those come from the mesh's vertices and, for a pinhole
+ * whose mesh has one vertex per pixel with data in row-major order (as
+ * fct_depth_mesh_kept makes it, at step 1), from the image's pixel cells
+ * instead of the mesh's triangles.  The result then holds every voxel the
+ * mesh view writes, with its value but for the rounding of the vertices'
+ * depths through the pose and back, and some more in front of the surface
+ * (truncated at +band), except voxels written only through the inside of
+ * triangles over four voxels across, which no pixel measured (fuse.c,
+ * image_cells). */
 struct fct_fuse_view {
 	const struct fct_mesh *mesh;
 	struct fct_camera cam;
