@@ -611,17 +611,40 @@ static void gather(struct worker *w, const struct blockctx *c)
 }
 
 /* The sdf gradient at local voxel (x, y, z) (observed, value s0), per
- * voxel: central differences, one-sided beside unobserved voxels. */
+ * axis: central differences, one-sided beside unobserved voxels.  Written
+ * as f * (P - M), P the value above or s0 where that is unobserved, M the
+ * one below or s0, f 0.5 when both are observed and 1 otherwise, so that it
+ * takes no branch; each case is the same double operations as spelled out
+ * (0.5 * (sp - sm), sp - s0, s0 - sm, s0 - s0 = +0). */
 static inline void gradient(const float *val, int x, int y, int z, double s0, double g[3])
 {
-	static const int step[3] = { 1, CW, CW * CW };
 	const float *p = val + CIDX(x, y, z);
+#if defined(__SSE2__)
+	__m128d sp = _mm_cvtps_pd(_mm_unpacklo_ps(_mm_load_ss(p + 1), _mm_load_ss(p + CW)));
+	__m128d sm = _mm_cvtps_pd(_mm_unpacklo_ps(_mm_load_ss(p - 1), _mm_load_ss(p - CW)));
+	__m128d spz = _mm_cvtss_sd(_mm_setzero_pd(), _mm_load_ss(p + CW * CW));
+	__m128d smz = _mm_cvtss_sd(_mm_setzero_pd(), _mm_load_ss(p - CW * CW));
+	__m128d s = _mm_set1_pd(s0), half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0);
+	__m128d hp = _mm_cmpord_pd(sp, sp), hm = _mm_cmpord_pd(sm, sm);
+	__m128d P = _mm_or_pd(_mm_and_pd(hp, sp), _mm_andnot_pd(hp, s));
+	__m128d M = _mm_or_pd(_mm_and_pd(hm, sm), _mm_andnot_pd(hm, s));
+	__m128d both = _mm_and_pd(hp, hm);
+	__m128d f = _mm_or_pd(_mm_and_pd(both, half), _mm_andnot_pd(both, one));
+	_mm_storeu_pd(g, _mm_mul_pd(f, _mm_sub_pd(P, M)));
+	hp = _mm_cmpord_sd(spz, spz), hm = _mm_cmpord_sd(smz, smz);
+	P = _mm_or_pd(_mm_and_pd(hp, spz), _mm_andnot_pd(hp, s));
+	M = _mm_or_pd(_mm_and_pd(hm, smz), _mm_andnot_pd(hm, s));
+	both = _mm_and_pd(hp, hm);
+	f = _mm_or_pd(_mm_and_pd(both, half), _mm_andnot_pd(both, one));
+	_mm_store_sd(g + 2, _mm_mul_sd(f, _mm_sub_sd(P, M)));
+#else
+	static const int step[3] = { 1, CW, CW * CW };
 	for (int a = 0; a < 3; a++) {
 		float sp = p[step[a]], sm = p[-step[a]];
 		int hp = sp == sp, hm = sm == sm;
-		g[a] = hp ? (hm ? 0.5 * ((double)sp - (double)sm) : (double)sp - s0)
-		          : (hm ? s0 - (double)sm : 0);
+		g[a] = (hp && hm ? 0.5 : 1.0) * ((hp ? (double)sp : s0) - (hm ? (double)sm : s0));
 	}
+#endif
 }
 
 /* Vertex id on the edge from local voxel (x, y, z) along axis a (both ends
@@ -644,9 +667,26 @@ static inline __attribute__((always_inline)) void make_vertex(struct worker *w, 
 	for (int k = 0; k < 3; k++)
 		p[k] = (double)gi[k] * M->voxel;
 	p[a] = ((double)gi[a] + t) * M->voxel;
-	double n[3];
 	const double *g0 = w->grad[x + 9 * (y + 9 * z)];
 	const double *g1 = w->grad[q[0] + 9 * (q[1] + 9 * q[2])];
+#if defined(__SSE2__)
+	/* the scalar code's operations, x and y side by side */
+	__m128d T = _mm_set1_pd(t), U = _mm_set1_pd(1 - t);
+	__m128d nxy = _mm_add_pd(_mm_mul_pd(U, _mm_loadu_pd(g0)), _mm_mul_pd(T, _mm_loadu_pd(g1)));
+	__m128d nz = _mm_add_sd(_mm_mul_sd(U, _mm_load_sd(g0 + 2)), _mm_mul_sd(T, _mm_load_sd(g1 + 2)));
+	__m128d sq = _mm_mul_pd(nxy, nxy);
+	__m128d len = _mm_add_sd(_mm_add_sd(sq, _mm_unpackhi_pd(sq, sq)), _mm_mul_sd(nz, nz));
+	if (_mm_comigt_sd(len, _mm_setzero_pd())) {
+		__m128d inv = _mm_div_sd(_mm_set_sd(1.0), _mm_sqrt_sd(len, len));
+		inv = _mm_unpacklo_pd(inv, inv);
+		__m128 fxy = _mm_cvtpd_ps(_mm_mul_pd(nxy, inv));
+		__m128 fz = _mm_cvtsd_ss(_mm_setzero_ps(), _mm_mul_sd(nz, inv));
+		_mm_store_ss(M->nrm[0] + id, fxy);
+		_mm_store_ss(M->nrm[1] + id, _mm_shuffle_ps(fxy, fxy, 1));
+		_mm_store_ss(M->nrm[2] + id, fz);
+	} else
+#else
+	double n[3];
 	for (int k = 0; k < 3; k++)
 		n[k] = (1 - t) * g0[k] + t * g1[k];
 	double len = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
@@ -654,7 +694,9 @@ static inline __attribute__((always_inline)) void make_vertex(struct worker *w, 
 		len = 1 / sqrt(len);
 		for (int k = 0; k < 3; k++)
 			M->nrm[k][id] = (float)(n[k] * len);
-	} else {
+	} else
+#endif
+	{
 		for (int k = 0; k < 3; k++)
 			M->nrm[k][id] = 0;
 		M->nrm[a][id] = s1 >= 0 ? 1.0f : -1.0f;
