@@ -37,7 +37,9 @@
  * base plus a popcount in its masks; the triangle pass writes the numbers
  * of the edges a block's cubes use (its own and its upper neighbours') into
  * a 3x9x9x9 table once per block and reads a cube's fans from it through
- * tabulated offsets.  The bit rows of a z layer are walked as one 64-bit
+ * tabulated offsets; the cubes with a centroid vertex (which reads back the
+ * vertices of its loop) are queued and worked through with the vertices of
+ * the next few on their way.  The bit rows of a z layer are walked as one 64-bit
  * word, so that empty rows cost no branch. */
 #include "mcubes.h"
 
@@ -395,6 +397,20 @@ struct blockctx {
 	uint16_t win[CW][CW];
 };
 
+/* A cube with a centroid vertex, queued by the triangle pass: its
+ * centroid averages the loop's vertices, which the vertex pass wrote long
+ * before (cache misses), so the queue is worked through with the vertices
+ * of the cubes a few places ahead on their way. */
+struct centred {
+	uint32_t vid[12];       /* its crossed edges' vertices, by edge */
+	uint32_t *t;            /* its triangles' place in the output */
+	uint32_t cid;           /* its first centroid vertex */
+	int id;                 /* its contour */
+};
+
+#define CQ 256          /* queue length */
+#define CQ_AHEAD 8      /* cubes whose vertices are loaded ahead */
+
 /* One thread's scratch: the current block, its neighbours, its values. */
 struct worker {
 	const struct mc *M;
@@ -403,6 +419,8 @@ struct worker {
 	float val[CW * CW * CW];        /* valid where the block's vertices need it */
 	double grad[729][3];            /* gradients at corners 0..8, where needed */
 	uint32_t vt[3 * 729];           /* the triangle pass: the block's vertex table */
+	struct centred cq[CQ];          /* its cubes with a centroid, queued */
+	unsigned ncq;
 	struct fct_mcubes_stats st;
 	char pad[64];                   /* no cache line shared with the next thread's */
 };
@@ -1030,25 +1048,18 @@ static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const u
 	}
 }
 
-/* The triangles of a cube whose contour M->T->var[id] has a loop around
- * its centroid, at t (returned advanced); its vertex table entries from
- * vt (the cube's place in it); centroid vertices numbered from *cid
- * (advanced). */
-HOT static uint32_t *emit_centred(struct worker *w, const uint32_t *vt, int id, uint32_t *t,
-                              uint32_t *cid)
+/* The triangles and centroid vertices of queued cube c. */
+HOT static void emit_centred(struct worker *w, const struct centred *c)
 {
 	const struct mc *M = w->M;
-	const struct mc_case *mc = &M->T->var[id];
-	uint32_t vid[12];
-	for (unsigned m = mc->emask; m; m &= m - 1) {
-		int e = __builtin_ctz(m);
-		vid[e] = vt[M->T->eoff[e]];
-	}
+	const struct mc_case *mc = &M->T->var[c->id];
+	const uint32_t *vid = c->vid;
+	uint32_t *t = c->t, cid = c->cid;
 	const uint8_t *ed = mc->edge;
 	for (int l = 0; l < mc->nloops; l++) {
 		int len = mc->len[l];
 		if (mc->centre[l]) {
-			uint32_t id = (*cid)++;
+			uint32_t id = cid++;
 			double p[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 }, col[3] = { 0, 0, 0 };
 			for (int i = 0; i < len; i++)
 				for (int k = 0; k < 3; k++) {
@@ -1073,7 +1084,37 @@ HOT static uint32_t *emit_centred(struct worker *w, const uint32_t *vt, int id, 
 		}
 		ed += len;
 	}
-	return t;
+	/* pass 1 counted the same triangles and centroids */
+	if (t != c->t + 3 * M->T->ntri[c->id] || cid != c->cid + M->T->ncentre[c->id])
+		abort();
+}
+
+/* Start loading what emit_centred reads of the vertices of queued cube c. */
+static inline void prefetch_centred(const struct mc *M, const struct centred *c)
+{
+	for (unsigned m = M->T->var[c->id].emask; m; m &= m - 1) {
+		uint32_t v = c->vid[__builtin_ctz(m)];
+		__builtin_prefetch(M->xyz + 3 * (size_t)v);
+		__builtin_prefetch(M->xyz + 3 * (size_t)v + 2);
+		for (int k = 0; k < 3; k++)
+			__builtin_prefetch(M->nrm[k] + v);
+		if (M->colour)
+			for (int k = 0; k < 3; k++)
+				__builtin_prefetch(M->rgb[k] + v);
+	}
+}
+
+/* Work through w's queue of cubes with a centroid. */
+static void flush_centred(struct worker *w)
+{
+	for (unsigned i = 0; i < w->ncq && i < CQ_AHEAD; i++)
+		prefetch_centred(w->M, &w->cq[i]);
+	for (unsigned i = 0; i < w->ncq; i++) {
+		if (i + CQ_AHEAD < w->ncq)
+			prefetch_centred(w->M, &w->cq[i + CQ_AHEAD]);
+		emit_centred(w, &w->cq[i]);
+	}
+	w->ncq = 0;
 }
 
 /* The triangles of block record A, at A->tbase onwards. */
@@ -1104,7 +1145,15 @@ static void block_triangles(struct worker *w, const struct aux *A)
 			}
 			const uint32_t *cv = vt + VT_IDX(0, x, y, z);
 			if (T->ncentre[id]) {
-				t = emit_centred(w, cv, id, t, &cid);
+				/* queued, its place in the output kept */
+				if (w->ncq == CQ)
+					flush_centred(w);
+				struct centred *c = &w->cq[w->ncq++];
+				for (unsigned e = T->var[id].emask; e; e &= e - 1)
+					c->vid[__builtin_ctz(e)] = cv[T->eoff[__builtin_ctz(e)]];
+				c->t = t, c->cid = cid, c->id = id;
+				t += 3 * T->ntri[id];
+				cid += T->ncentre[id];
 				continue;
 			}
 			/* the common case: the tabulated fans; up to 4 triangles
@@ -1189,6 +1238,7 @@ HOT static void run_triangles(void *ctx, size_t lo, size_t hi, int worker)
 	for (size_t i = lo; i < hi; i++)
 		if (M->aux[M->live[i]].any_active)
 			block_triangles(&M->w[worker], &M->aux[M->live[i]]);
+	flush_centred(&M->w[worker]);
 }
 
 /* Chunks of the parallel loops: fixed, so the work is cut alike for any
