@@ -393,6 +393,7 @@ struct blockctx {
 	const struct fct_voxblock *nb[27];      /* looked up on demand */
 	unsigned nb_done;
 	int32_t bx, by, bz;
+	double coord[3][9];                     /* (8 * block + i) * voxel on each axis */
 	uint16_t need[9][9];
 	uint16_t win[CW][CW];
 };
@@ -430,6 +431,11 @@ static void ctx_block(const struct mc *M, struct blockctx *c, const struct fct_v
                       const struct aux *A)
 {
 	c->bx = b->bx, c->by = b->by, c->bz = b->bz;
+	for (int i = 0; i < 9; i++) {
+		c->coord[0][i] = (double)(8 * c->bx + i) * M->voxel;
+		c->coord[1][i] = (double)(8 * c->by + i) * M->voxel;
+		c->coord[2][i] = (double)(8 * c->bz + i) * M->voxel;
+	}
 	c->nb_done = 1u << 13;
 	c->nb[13] = b;
 	for (int k = 1; A && k < 8; k++) {
@@ -559,9 +565,7 @@ HOT static void plan(const struct mc *M, struct blockctx *c, const struct aux *A
 	memset(win, 0, sizeof c->win);
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++) {
-			unsigned n = need[z][y];
-			if (!n)
-				continue;
+			unsigned n = need[z][y];     /* no test: the rows are mixed */
 			win[z + 1][y + 1] |= (uint16_t)(n | n << 1 | n << 2);
 			win[z + 1][y] |= (uint16_t)(n << 1);
 			win[z + 1][y + 2] |= (uint16_t)(n << 1);
@@ -682,8 +686,7 @@ static inline __attribute__((always_inline)) void make_vertex(struct worker *w, 
 	struct blockctx *c = w->cur;
 	int32_t gi[3] = { 8 * c->bx + x, 8 * c->by + y, 8 * c->bz + z };
 	double *p = M->xyz + 3 * id;
-	for (int k = 0; k < 3; k++)
-		p[k] = (double)gi[k] * M->voxel;
+	p[0] = c->coord[0][x], p[1] = c->coord[1][y], p[2] = c->coord[2][z];
 	p[a] = ((double)gi[a] + t) * M->voxel;
 	const double *g0 = w->grad[x + 9 * (y + 9 * z)];
 	const double *g1 = w->grad[q[0] + 9 * (q[1] + 9 * q[2])];
@@ -1163,8 +1166,10 @@ static void block_triangles(struct worker *w, const struct aux *A)
 			const uint16_t *to = T->toff[id];
 			int n = 3 * T->ntri[id], j = 0;
 			if (t + 12 <= tend) {
-				for (; j < 12; j++)
-					t[j] = cv[to[j]];
+				for (; j < 12; j += 4) {
+					t[j] = cv[to[j]], t[j + 1] = cv[to[j + 1]];
+					t[j + 2] = cv[to[j + 2]], t[j + 3] = cv[to[j + 3]];
+				}
 			}
 			for (; j < n; j++)
 				t[j] = cv[to[j]];
