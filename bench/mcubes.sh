@@ -9,7 +9,8 @@
 # observed voxels only (weight > 0, the truncation band a fusion leaves).
 # One thread is timed in CPU seconds (the machine is shared; CPU time is
 # ours alone); the wall-clock rows compare 1 and 2 threads and suffer from
-# whatever else runs.
+# whatever else runs.  Every run extracts into fresh memory, so the times
+# include the page faults of the whole output (counted on each scene's line).
 set -eu
 : "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 row() { printf '%-58s %10s %10s\n' "$1" "$2" "$3"; }
@@ -29,7 +30,7 @@ for scene in room dense; do
 	esac
 	echo "$what: $(fig blocks "$f") blocks ($(fig voxels "$f") voxels, $(fig band_voxels "$f") observed)," \
 		"$(fig vertices "$f") vertices, $(fig faces "$f") faces, grid $(fig grid_mb "$f") MB," \
-		"output FNV-1a $(fig mesh_fnv "$f")"
+		"$(fig mcubes_faults "$f") page faults, output FNV-1a $(fig mesh_fnv "$f")"
 	[ "$(fig mesh_fnv "$f")" = "$(fig mesh_fnv "$f.2")" ] || echo "  WARNING: 1 and 2 threads give different meshes"
 	row "  reference: one pass over sdf and weight (CPU)" "$(fig ref_mvox_s "$f")" "$(fig ref_s "$f")"
 	row "  fct_mcubes, 1 thread (CPU)" "$(fig mcubes_mvox_s "$f")" "$(fig mcubes_s "$f")"

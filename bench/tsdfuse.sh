@@ -78,10 +78,15 @@ echo "all rows fault in the volume's memory as it grows"
 row "fusion s at 0.02 m (4 views)" "$(figure fuse_s --voxel 0.02 $V)"
 row "carving s at 0.02 m (4 views)" "$(figure carve_s --carve --voxel 0.02 $V)"
 # Marching cubes on the fused room at 1 cm (M voxels/s: allocated blocks *
-# 512 over the time).  The goal is judged on one core: tsdfuse's own
-# mcubes_s with --threads 1 (wall, everything fct_mcubes_stats does), and
+# 512 over the time, the voxels the extraction must look at, as a dense
+# volume's every voxel or Open3D's active blocks).  The goal is judged on
+# one core: tsdfuse's own mcubes_s with --threads 1 (wall, everything
+# fct_mcubes_stats does: output allocation, every pass, the page faults of
+# the output arrays malloc does not find in memory the views freed), and
 # gen_mcubes timing the extraction alone on the same volume in CPU seconds
-# (steadier on a shared machine); the default thread count beside them.
+# (steadier on a shared machine), every run into fresh memory (all of the
+# output's pages faulted in: the extraction's cost in a one-shot program
+# with nothing freed before it); the default thread count beside them.
 mvox() { awk -v b="$1" -v s="$2" 'BEGIN { printf "%.0f", b * 512 / s / 1e6 }'; }
 blocks=$(figure blocks --voxel 0.01 $V)
 mc1=$(figure mcubes_s --threads 1 --voxel 0.01 $V)
@@ -89,7 +94,8 @@ mc=$(figure mcubes_s --voxel 0.01 $V)
 "$FCT_BENCH/gen_mcubes" -r "$RUNS" -t 1 fused $V >"$dir/mc"
 mcc=$(sed -n 's/^mcubes_s=//p' "$dir/mc")
 echo "marching cubes on the room at 0.01 m: $blocks blocks, $(sed -n 's/^faces=//p' "$dir/mc") faces," \
-	"$(sed -n 's/^cubes=//p' "$dir/mc") cubes ($(sed -n 's/^ambiguous=//p' "$dir/mc") ambiguous)"
+	"$(sed -n 's/^cubes=//p' "$dir/mc") cubes ($(sed -n 's/^ambiguous=//p' "$dir/mc") ambiguous);" \
+	"alone: fresh output, $(sed -n 's/^mcubes_faults=//p' "$dir/mc") page faults per extraction"
 row "marching cubes s, 1 thread (wall)" "$mc1"
 row "marching cubes M voxels/s, 1 thread (wall)" "$(mvox "$blocks" "$mc1")"
 row "marching cubes M voxels/s, 1 thread (CPU, alone)" "$(mvox "$blocks" "$mcc")"
