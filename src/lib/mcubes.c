@@ -868,33 +868,81 @@ static void push_rim(struct mc *M, const struct aux *A)
 		M->rim[A->up[7]].xyz = (uint8_t)(ac[63] >> 7);
 }
 
-/* Pass 1 on block b: its edge and cube bits, exact counts of triangles
- * and centroids.  Returns 1 when the block has anything (A
- * filled), else 0. */
-static int pass1(struct mc *M, size_t b, struct aux *A)
+/* The 9x9 rows of sign and observed bits (bit x of row [z][y], x, y, z in
+ * 0..8) of the block whose upper neighbours' bits (k & 1, k >> 1 & 1, k >>
+ * 2; the block itself at 0) are o[k]. */
+static void rows9(const struct own *const o[8], uint16_t neg[9][9], uint16_t obs[9][9])
 {
-	const struct own *own = M->own;
-	const struct fct_voxblock *B = fct_voxgrid_at(M->g, b);
-	A->block = (uint32_t)b;
-	A->up[0] = (int32_t)b;
-	for (int k = 1; k < 8; k++) {
-		A->up[k] = (int32_t)fct_voxgrid_index(M->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
-		                                      B->bz + (k >> 2));
+#if defined(__SSE2__)
+	/* rows y = 0..7 of a layer as eight 16-bit lanes: the block's byte,
+	 * and bit 0 of its +x neighbour's as bit 8 */
+	const __m128i zero = _mm_setzero_si128(), one = _mm_set1_epi8(1);
+#define ROWS8(lo, hi)                                                              \
+	_mm_or_si128(_mm_unpacklo_epi8(_mm_loadl_epi64((const __m128i *)(lo)), zero), \
+	             _mm_unpacklo_epi8(zero, _mm_and_si128(_mm_loadl_epi64((const __m128i *)(hi)), one)))
+	for (int z = 0; z < 8; z++) {
+		_mm_storeu_si128((__m128i *)neg[z], ROWS8(o[0]->neg + 8 * z, o[1]->neg + 8 * z));
+		_mm_storeu_si128((__m128i *)obs[z], ROWS8(o[0]->obs + 8 * z, o[1]->obs + 8 * z));
+		neg[z][8] = (uint16_t)(o[2]->neg[8 * z] | (o[3]->neg[8 * z] & 1) << 8);
+		obs[z][8] = (uint16_t)(o[2]->obs[8 * z] | (o[3]->obs[8 * z] & 1) << 8);
 	}
-	uint16_t obs[9][9];
+	_mm_storeu_si128((__m128i *)neg[8], ROWS8(o[4]->neg, o[5]->neg));
+	_mm_storeu_si128((__m128i *)obs[8], ROWS8(o[4]->obs, o[5]->obs));
+	neg[8][8] = (uint16_t)(o[6]->neg[0] | (o[7]->neg[0] & 1) << 8);
+	obs[8][8] = (uint16_t)(o[6]->obs[0] | (o[7]->obs[0] & 1) << 8);
+#undef ROWS8
+#else
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++) {
 			int k = (y >> 3) << 1 | (z >> 3) << 2, r = (z & 7) * 8 + (y & 7);
-			unsigned n = 0, o = 0;
-			if (A->up[k] >= 0)
-				n = own[A->up[k]].neg[r], o = own[A->up[k]].obs[r];
-			if (A->up[k | 1] >= 0) {
-				n |= (unsigned)(own[A->up[k | 1]].neg[r] & 1) << 8;
-				o |= (unsigned)(own[A->up[k | 1]].obs[r] & 1) << 8;
-			}
-			A->neg[z][y] = (uint16_t)n;
-			obs[z][y] = (uint16_t)o;
+			neg[z][y] = (uint16_t)(o[k]->neg[r] | (o[k | 1]->neg[r] & 1) << 8);
+			obs[z][y] = (uint16_t)(o[k]->obs[r] | (o[k | 1]->obs[r] & 1) << 8);
 		}
+#endif
+}
+
+/* Record A's crossing edges and extracted cubes (struct aux bits, active,
+ * any_active) from its rows A->neg and obs (rows9).  Returns nonzero when
+ * there is any. */
+static unsigned cube_bits(struct aux *A, const uint16_t obs[9][9])
+{
+#if defined(__SSE2__)
+	/* a layer's eight rows side by side, the scalar code's operations */
+	const __m128i ff = _mm_set1_epi16(0xFF);
+	__m128i anything = _mm_setzero_si128(), active = _mm_setzero_si128();
+	for (int z = 0; z < 8; z++) {
+		__m128i n = _mm_loadu_si128((const __m128i *)&A->neg[z][0]);
+		__m128i n01 = _mm_loadu_si128((const __m128i *)&A->neg[z][1]);
+		__m128i n10 = _mm_loadu_si128((const __m128i *)&A->neg[z + 1][0]);
+		__m128i n11 = _mm_loadu_si128((const __m128i *)&A->neg[z + 1][1]);
+		__m128i o = _mm_loadu_si128((const __m128i *)&obs[z][0]);
+		__m128i o01 = _mm_loadu_si128((const __m128i *)&obs[z][1]);
+		__m128i o10 = _mm_loadu_si128((const __m128i *)&obs[z + 1][0]);
+		__m128i o11 = _mm_loadu_si128((const __m128i *)&obs[z + 1][1]);
+		__m128i b0 = _mm_and_si128(_mm_and_si128(_mm_xor_si128(n, _mm_srli_epi16(n, 1)), o),
+		                           _mm_and_si128(_mm_srli_epi16(o, 1), ff));
+		__m128i b1 = _mm_and_si128(_mm_and_si128(_mm_xor_si128(n, n01), o), _mm_and_si128(o01, ff));
+		__m128i b2 = _mm_and_si128(_mm_and_si128(_mm_xor_si128(n, n10), o), _mm_and_si128(o10, ff));
+		__m128i all = _mm_and_si128(_mm_and_si128(o, o01), _mm_and_si128(o10, o11));
+		__m128i any = _mm_or_si128(_mm_or_si128(n, n01), _mm_or_si128(n10, n11));
+		__m128i every = _mm_and_si128(_mm_and_si128(n, n01), _mm_and_si128(n10, n11));
+		all = _mm_and_si128(all, _mm_srli_epi16(all, 1));
+		any = _mm_or_si128(any, _mm_srli_epi16(any, 1));
+		every = _mm_and_si128(every, _mm_srli_epi16(every, 1));
+		__m128i act = _mm_and_si128(_mm_andnot_si128(every, _mm_and_si128(all, any)), ff);
+		_mm_storel_epi64((__m128i *)&A->bits[0][8 * z], _mm_packus_epi16(b0, b0));
+		_mm_storel_epi64((__m128i *)&A->bits[1][8 * z], _mm_packus_epi16(b1, b1));
+		_mm_storel_epi64((__m128i *)&A->bits[2][8 * z], _mm_packus_epi16(b2, b2));
+		_mm_storel_epi64((__m128i *)&A->active[8 * z], _mm_packus_epi16(act, act));
+		active = _mm_or_si128(active, act);
+		anything = _mm_or_si128(anything, _mm_or_si128(_mm_or_si128(b0, b1), _mm_or_si128(b2, act)));
+	}
+	uint64_t a;
+	_mm_storel_epi64((__m128i *)&a, _mm_packus_epi16(active, active));
+	a |= a >> 32, a |= a >> 16, a |= a >> 8;
+	A->any_active = (uint8_t)a;
+	return _mm_movemask_epi8(_mm_cmpeq_epi8(anything, _mm_setzero_si128())) != 0xFFFF;
+#else
 	unsigned anything = 0;
 	A->any_active = 0;
 	for (int z = 0; z < 8; z++)
@@ -914,6 +962,30 @@ static int pass1(struct mc *M, size_t b, struct aux *A)
 			A->any_active |= A->active[r];
 			anything |= A->bits[0][r] | A->bits[1][r] | A->bits[2][r] | A->active[r];
 		}
+	return anything;
+#endif
+}
+
+/* Pass 1 on block b: its edge and cube bits, exact counts of triangles
+ * and centroids.  Returns 1 when the block has anything (A
+ * filled), else 0. */
+static int pass1(struct mc *M, size_t b, struct aux *A)
+{
+	const struct own *own = M->own;
+	const struct fct_voxblock *B = fct_voxgrid_at(M->g, b);
+	A->block = (uint32_t)b;
+	A->up[0] = (int32_t)b;
+	for (int k = 1; k < 8; k++) {
+		A->up[k] = (int32_t)fct_voxgrid_index(M->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
+		                                      B->bz + (k >> 2));
+	}
+	static const struct own none;   /* an absent neighbour: nothing observed */
+	const struct own *o[8];
+	for (int k = 0; k < 8; k++)
+		o[k] = A->up[k] >= 0 ? &own[A->up[k]] : &none;
+	uint16_t obs[9][9];
+	rows9(o, A->neg, obs);
+	unsigned anything = cube_bits(A, obs);
 	if (!anything)
 		return 0;
 	const struct fct_voxblock *upb[8];
