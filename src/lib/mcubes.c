@@ -388,14 +388,17 @@ struct mc {
  * 1) + 9 * (dz + 1)); for the vertex pass also the voxels its vertices read:
  * need[z][y], bit x: the corners (0..8) at the ends of its crossing edges,
  * whose gradients are needed; win[z + 1][y + 1], bit x + 1: those and their
- * six neighbours. */
+ * six neighbours, wrows[z + 1] bit y + 1 set where that row has any.  The
+ * rows are padded to WROW so that plan() works on them eight at a time. */
+#define WROW 16
 struct blockctx {
 	const struct fct_voxblock *nb[27];      /* looked up on demand */
 	unsigned nb_done;
 	int32_t bx, by, bz;
 	double coord[3][9];                     /* (8 * block + i) * voxel on each axis */
-	uint16_t need[9][9];
-	uint16_t win[CW][CW];
+	uint16_t need[9][WROW];
+	uint16_t win[CW][WROW];
+	uint16_t wrows[CW];
 };
 
 /* A cube with a centroid vertex, queued by the triangle pass: its
@@ -546,14 +549,54 @@ static uint8_t to_u8(double v)
 	return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
-/* Plan block record A's vertex reads in c: its neighbours, need and win
- * (struct blockctx), and start loading every row of the window, so that
- * the misses on the block and its neighbours are on their way while the
- * block before is worked on. */
-HOT static void plan(const struct mc *M, struct blockctx *c, const struct aux *A)
+/* need, win and wrows of c (struct blockctx) for record A. */
+static void plan_rows(const struct aux *A, struct blockctx *c)
 {
-	ctx_block(M, c, fct_voxgrid_at(M->g, A->block), A);
-	uint16_t(*need)[9] = c->need, (*win)[CW] = c->win;
+	uint16_t(*need)[WROW] = c->need, (*win)[WROW] = c->win;
+	memset(win, 0, sizeof c->win);
+#if defined(__SSE2__)
+	/* rows y = 0..15 of a layer as two registers of eight 16-bit lanes;
+	 * UP(k) moves row y to y + k */
+	const __m128i zero = _mm_setzero_si128();
+#define BITS8(p) _mm_unpacklo_epi8(_mm_loadl_epi64((const __m128i *)(p)), zero)
+#define LD(r, h) _mm_loadu_si128((const __m128i *)&(r)[8 * (h)])
+#define OR(r, h, v) _mm_storeu_si128((__m128i *)&(r)[8 * (h)], _mm_or_si128(LD(r, h), v))
+	__m128i carry = zero;   /* b2 of the layer below: need at z + 1 */
+	for (int z = 0; z < 8; z++) {
+		__m128i b0 = BITS8(A->bits[0] + 8 * z), b1 = BITS8(A->bits[1] + 8 * z);
+		__m128i b2 = BITS8(A->bits[2] + 8 * z);
+		__m128i own = _mm_or_si128(_mm_or_si128(b0, _mm_slli_epi16(b0, 1)), _mm_or_si128(b1, b2));
+		_mm_storeu_si128((__m128i *)need[z], _mm_or_si128(_mm_or_si128(own, carry),
+		                                                 _mm_slli_si128(b1, 2)));
+		_mm_storeu_si128((__m128i *)&need[z][8], _mm_srli_si128(b1, 14));
+		carry = b2;
+	}
+	_mm_storeu_si128((__m128i *)need[8], carry);
+	_mm_storeu_si128((__m128i *)&need[8][8], zero);
+	for (int z = 0; z < 9; z++) {
+		__m128i lo = LD(need[z], 0), hi = LD(need[z], 1);
+		__m128i clo = _mm_or_si128(_mm_or_si128(lo, _mm_slli_epi16(lo, 1)), _mm_slli_epi16(lo, 2));
+		__m128i chi = _mm_or_si128(_mm_or_si128(hi, _mm_slli_epi16(hi, 1)), _mm_slli_epi16(hi, 2));
+		__m128i slo = _mm_slli_epi16(lo, 1), shi = _mm_slli_epi16(hi, 1);
+		/* S moved up one row: the window's rows beside, above and below */
+		__m128i s1lo = _mm_slli_si128(slo, 2), s1hi = _mm_or_si128(_mm_slli_si128(shi, 2), _mm_srli_si128(slo, 14));
+		OR(win[z + 1], 0, _mm_or_si128(_mm_or_si128(_mm_slli_si128(clo, 2), slo), _mm_slli_si128(slo, 4)));
+		OR(win[z + 1], 1, _mm_or_si128(_mm_or_si128(_mm_or_si128(_mm_slli_si128(chi, 2), _mm_srli_si128(clo, 14)), shi),
+		                               _mm_or_si128(_mm_slli_si128(shi, 4), _mm_srli_si128(slo, 12))));
+		OR(win[z], 0, s1lo);
+		OR(win[z], 1, s1hi);
+		OR(win[z + 2], 0, s1lo);
+		OR(win[z + 2], 1, s1hi);
+	}
+	for (int wz = 0; wz < CW; wz++) {
+		__m128i empty = _mm_packs_epi16(_mm_cmpeq_epi16(LD(win[wz], 0), zero),
+		                                _mm_cmpeq_epi16(LD(win[wz], 1), zero));
+		c->wrows[wz] = (uint16_t)(~_mm_movemask_epi8(empty) & ((1u << CW) - 1));
+	}
+#undef BITS8
+#undef LD
+#undef OR
+#else
 	memset(need, 0, sizeof c->need);
 	for (int r = 0; r < 64; r++) {
 		int y = r & 7, z = r >> 3;
@@ -562,21 +605,35 @@ HOT static void plan(const struct mc *M, struct blockctx *c, const struct aux *A
 		need[z][y + 1] |= (uint16_t)b1;
 		need[z + 1][y] |= (uint16_t)b2;
 	}
-	memset(win, 0, sizeof c->win);
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++) {
-			unsigned n = need[z][y];     /* no test: the rows are mixed */
+			unsigned n = need[z][y];
 			win[z + 1][y + 1] |= (uint16_t)(n | n << 1 | n << 2);
 			win[z + 1][y] |= (uint16_t)(n << 1);
 			win[z + 1][y + 2] |= (uint16_t)(n << 1);
 			win[z][y + 1] |= (uint16_t)(n << 1);
 			win[z + 2][y + 1] |= (uint16_t)(n << 1);
 		}
+	for (int wz = 0; wz < CW; wz++) {
+		c->wrows[wz] = 0;
+		for (int wy = 0; wy < CW; wy++)
+			c->wrows[wz] |= (uint16_t)((win[wz][wy] != 0) << wy);
+	}
+#endif
+}
+
+/* Plan block record A's vertex reads in c: its neighbours, need and win
+ * (struct blockctx), and start loading every row of the window, so that
+ * the misses on the block and its neighbours are on their way while the
+ * block before is worked on. */
+HOT static void plan(const struct mc *M, struct blockctx *c, const struct aux *A)
+{
+	ctx_block(M, c, fct_voxgrid_at(M->g, A->block), A);
+	plan_rows(A, c);
 	for (int wz = 0; wz < CW; wz++)
-		for (int wy = 0; wy < CW; wy++) {
-			unsigned m = win[wz][wy];
-			if (!m)
-				continue;
+		for (unsigned rows = c->wrows[wz]; rows; rows &= rows - 1) {
+			int wy = __builtin_ctz(rows);
+			unsigned m = c->win[wz][wy];
 			int z = wz - 1, y = wy - 1;
 			int dz = (z + 8) / 8 - 1, dy = (y + 8) / 8 - 1;
 			int row = 8 * ((y + 8) & 7) + 64 * ((z + 8) & 7);
@@ -605,10 +662,9 @@ static void gather(struct worker *w, const struct blockctx *c)
 {
 	float thr = w->M->thr;
 	for (int wz = 0; wz < CW; wz++)
-		for (int wy = 0; wy < CW; wy++) {
+		for (unsigned rows = c->wrows[wz]; rows; rows &= rows - 1) {
+			int wy = __builtin_ctz(rows);
 			unsigned m = c->win[wz][wy];
-			if (!m)
-				continue;
 			int z = wz - 1, y = wy - 1;
 			int dz = (z + 8) / 8 - 1, dy = (y + 8) / 8 - 1;
 			int row = 8 * ((y + 8) & 7) + 64 * ((z + 8) & 7);
@@ -734,7 +790,7 @@ static inline __attribute__((always_inline)) void make_vertex(struct worker *w, 
 /* The vertices of block record A, planned in w->cur, at A->base onwards. */
 static void block_vertices(struct worker *w, const struct aux *A)
 {
-	const uint16_t(*need)[9] = w->cur->need;
+	const uint16_t(*need)[WROW] = w->cur->need;
 	gather(w, w->cur);
 	for (int z = 0; z < 9; z++)
 		for (int y = 0; y < 9; y++)
