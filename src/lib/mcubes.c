@@ -855,6 +855,33 @@ static inline int cube_cfg(const struct aux *A, int x, int y, int z)
 	       (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
 }
 
+/* The sign patterns (cube_cfg) of the cubes of layer z of record A, at
+ * cfg[8 * x + y]. */
+static inline void layer_cfgs(const struct aux *A, int z, uint8_t cfg[64])
+{
+#if defined(__SSE2__)
+	/* the eight rows y side by side, one x at a time */
+	const __m128i three = _mm_set1_epi16(3);
+	__m128i n00 = _mm_loadu_si128((const __m128i *)&A->neg[z][0]);
+	__m128i n01 = _mm_loadu_si128((const __m128i *)&A->neg[z][1]);
+	__m128i n10 = _mm_loadu_si128((const __m128i *)&A->neg[z + 1][0]);
+	__m128i n11 = _mm_loadu_si128((const __m128i *)&A->neg[z + 1][1]);
+	for (int x = 0; x < 8; x++) {
+		__m128i c = _mm_cvtsi32_si128(x);
+		__m128i t = _mm_or_si128(
+			_mm_or_si128(_mm_and_si128(_mm_srl_epi16(n00, c), three),
+		                     _mm_slli_epi16(_mm_and_si128(_mm_srl_epi16(n01, c), three), 2)),
+			_mm_or_si128(_mm_slli_epi16(_mm_and_si128(_mm_srl_epi16(n10, c), three), 4),
+		                     _mm_slli_epi16(_mm_and_si128(_mm_srl_epi16(n11, c), three), 6)));
+		_mm_storel_epi64((__m128i *)(cfg + 8 * x), _mm_packus_epi16(t, t));
+	}
+#else
+	for (int x = 0; x < 8; x++)
+		for (int y = 0; y < 8; y++)
+			cfg[8 * x + y] = (uint8_t)cube_cfg(A, x, y, z);
+#endif
+}
+
 /* The contour of cube (x, y, z) of the block whose upper neighbours (k &
  * 1, k >> 1 & 1, k >> 2: the block itself at 0) are up[k], sign pattern
  * cfg: its index in M->T->var.  On an ambiguous face the asymptotic
@@ -1049,10 +1076,14 @@ static int pass1(struct mc *M, size_t b, struct aux *A)
 		upb[k] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
 	const struct mc_tables *T = M->T;
 	uint32_t nt = 0, nc = 0, ncubes = 0, namb = 0;
-	for (int z = 0; z < 8 && A->any_active; z++)
-		for (uint64_t m = rows8(A->active + 8 * z); m; m &= m - 1) {
+	uint8_t cfgs[64];
+	for (int z = 0; z < 8 && A->any_active; z++) {
+		uint64_t layer = rows8(A->active + 8 * z);
+		if (layer)
+			layer_cfgs(A, z, cfgs);
+		for (uint64_t m = layer; m; m &= m - 1) {
 			int p = __builtin_ctzll(m), x = p & 7, y = p >> 3;
-			int cfg = cube_cfg(A, x, y, z), id = T->first[cfg], amb = T->amb[cfg];
+			int cfg = cfgs[8 * x + y], id = T->first[cfg], amb = T->amb[cfg];
 			if (amb) {
 				int v = cube_variant(M, upb, x, y, z, cfg, amb);
 				if (namb < AMB_KEEP)
@@ -1064,6 +1095,7 @@ static int pass1(struct mc *M, size_t b, struct aux *A)
 			nt += T->ntri[id];
 			nc += T->ncentre[id];
 		}
+	}
 	A->ntri = nt;
 	A->ncent = nc;
 	A->ncubes = ncubes;
@@ -1264,10 +1296,14 @@ static void block_triangles(struct worker *w, const struct aux *A)
 	uint32_t *t = M->tri + 3 * (size_t)A->tbase, cid = (uint32_t)M->nverts + A->cbase;
 	uint32_t *tend = M->tri + 3 * ((size_t)A->tbase + A->ntri);
 	unsigned k = 0;
-	for (int z = 0; z < 8; z++)
-		for (uint64_t m = rows8(A->active + 8 * z); m; m &= m - 1) {
+	uint8_t cfgs[64];
+	for (int z = 0; z < 8; z++) {
+		uint64_t layer = rows8(A->active + 8 * z);
+		if (layer)
+			layer_cfgs(A, z, cfgs);
+		for (uint64_t m = layer; m; m &= m - 1) {
 			int p = __builtin_ctzll(m), x = p & 7, y = p >> 3;
-			int cfg = cube_cfg(A, x, y, z), id = T->first[cfg];
+			int cfg = cfgs[8 * x + y], id = T->first[cfg];
 			if (T->amb[cfg]) {
 				/* pass 1's decision, or the same one again */
 				id += k < A->nvar ? A->var[k]
@@ -1303,6 +1339,7 @@ static void block_triangles(struct worker *w, const struct aux *A)
 				t[j] = cv[to[j]];
 			t += n;
 		}
+	}
 	w->st.cubes += A->ncubes;
 	w->st.ambiguous += A->namb;
 	/* pass 1 counted the same cubes with the same decisions */
