@@ -39,8 +39,11 @@
  * a 3x9x9x9 table once per block and reads a cube's fans from it through
  * tabulated offsets; the cubes with a centroid vertex (which reads back the
  * vertices of its loop) are queued and worked through with the vertices of
- * the next few on their way.  The bit rows of a z layer are walked as one 64-bit
- * word, so that empty rows cost no branch. */
+ * the next few on their way.  The bit rows of a z layer are walked as one
+ * 64-bit word, so that empty rows cost no branch; where rows are combined
+ * (pass 1's rows and masks, a layer's sign patterns, the vertex pass's
+ * window), the eight rows of a layer are 16-bit lanes of one SSE2 register,
+ * the scalar code kept for builds without SSE2. */
 #include "mcubes.h"
 
 #include <float.h>
