@@ -38,8 +38,8 @@
  * of the edges a block's cubes use (its own and its upper neighbours') into
  * a 3x9x9x9 table once per block and reads a cube's fans from it through
  * tabulated offsets; the cubes with a centroid vertex (which reads back the
- * vertices of its loop) are queued and worked through with the vertices of
- * the next few on their way.  The bit rows of a z layer are walked as one
+ * vertices of its loop) are queued and worked through back to back.  The
+ * bit rows of a z layer are walked as one
  * 64-bit word, so that empty rows cost no branch; where rows are combined
  * (pass 1's rows and masks, a layer's sign patterns, the vertex pass's
  * window), the eight rows of a layer are 16-bit lanes of one SSE2 register,
@@ -406,8 +406,8 @@ struct blockctx {
 
 /* A cube with a centroid vertex, queued by the triangle pass: its
  * centroid averages the loop's vertices, which the vertex pass wrote long
- * before (cache misses), so the queue is worked through with the vertices
- * of the cubes a few places ahead on their way. */
+ * before (cache misses); worked through back to back, the cubes' reads
+ * overlap (software prefetches on top gained nothing). */
 struct centred {
 	uint32_t vid[12];       /* its crossed edges' vertices, by edge */
 	uint32_t *t;            /* its triangles' place in the output */
@@ -416,7 +416,6 @@ struct centred {
 };
 
 #define CQ 256          /* queue length */
-#define CQ_AHEAD 8      /* cubes whose vertices are loaded ahead */
 
 /* One thread's scratch: the current block, its neighbours, its values. */
 struct worker {
@@ -1255,31 +1254,11 @@ HOT static void emit_centred(struct worker *w, const struct centred *c)
 		abort();
 }
 
-/* Start loading what emit_centred reads of the vertices of queued cube c. */
-static inline void prefetch_centred(const struct mc *M, const struct centred *c)
-{
-	for (unsigned m = M->T->var[c->id].emask; m; m &= m - 1) {
-		uint32_t v = c->vid[__builtin_ctz(m)];
-		__builtin_prefetch(M->xyz + 3 * (size_t)v);
-		__builtin_prefetch(M->xyz + 3 * (size_t)v + 2);
-		for (int k = 0; k < 3; k++)
-			__builtin_prefetch(M->nrm[k] + v);
-		if (M->colour)
-			for (int k = 0; k < 3; k++)
-				__builtin_prefetch(M->rgb[k] + v);
-	}
-}
-
 /* Work through w's queue of cubes with a centroid. */
 static void flush_centred(struct worker *w)
 {
-	for (unsigned i = 0; i < w->ncq && i < CQ_AHEAD; i++)
-		prefetch_centred(w->M, &w->cq[i]);
-	for (unsigned i = 0; i < w->ncq; i++) {
-		if (i + CQ_AHEAD < w->ncq)
-			prefetch_centred(w->M, &w->cq[i + CQ_AHEAD]);
+	for (unsigned i = 0; i < w->ncq; i++)
 		emit_centred(w, &w->cq[i]);
-	}
 	w->ncq = 0;
 }
 
