@@ -1666,6 +1666,12 @@ static int corner_box(struct cand *c, struct pending *P, const struct pixpoint *
 	return pending_add(c, P, lo, hi, clo, chi);
 }
 
+/* A depth image's pixel has data (fuse.h). */
+static inline int has_data(float d)
+{
+	return d > 0 && d < INFINITY;
+}
+
 /* A pinhole view given as a depth image whose mesh is its pixel grid:
  * its pixels with data are the mesh's vertices, in row-major order, and
  * there are as many.  (fct_depth_mesh_kept makes it so; fuse.h.) */
@@ -1675,7 +1681,7 @@ static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
 		return 0;
 	size_t n = (size_t)v->cam.width * (size_t)v->cam.height, k = 0;
 	for (size_t i = 0; i < n; i++)
-		k += v->depth[i] > 0 && v->depth[i] < INFINITY;
+		k += has_data(v->depth[i]);
 	return k == G->nv;
 }
 
@@ -1718,7 +1724,7 @@ static int image_cells(struct cand *c, const struct fct_fuse_view *v, const stru
 	for (size_t y = 0; y < h; y++) {
 		const float *d = &v->depth[y * w];
 		for (size_t x = 0; x < w; x++) {
-			h1[x] = d[x] > 0 && d[x] < INFINITY;
+			h1[x] = has_data(d[x]);
 			if (!h1[x])
 				continue;
 			struct pixpoint *q = &p1[x];
@@ -2171,6 +2177,7 @@ static int probe_samples(const struct fctx *F, struct prober *p)
 	return 1;
 }
 
+/* The triangles seen at p's probes, and their planes asked for. */
 static void probe_look(const struct fctx *F, struct prober *p)
 {
 	for (int k = 0; k < PROBES; k++) {
@@ -2180,6 +2187,8 @@ static void probe_look(const struct fctx *F, struct prober *p)
 	}
 }
 
+/* In each direction, the first surface other than p's own, searched
+ * when its plane is within the band. */
 static void probe_search(const struct fctx *F, struct prober *p)
 {
 	struct seen *e = p->e;

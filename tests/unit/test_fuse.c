@@ -100,6 +100,20 @@ static void test_plane(void)
 	fct_mesh_free(&m);
 }
 
+/* Voxel l of block vb: its indices. */
+static void voxel_index(const struct fct_voxblock *vb, int l, int32_t ijk[3])
+{
+	ijk[0] = vb->bx * 8 + l % 8, ijk[1] = vb->by * 8 + l / 8 % 8, ijk[2] = vb->bz * 8 + l / 64;
+}
+
+/* Voxel ijk of a 1 cm grid in the camera of the view at pose (inv: its
+ * inverse, fct_pose_invert). */
+static void voxel_in_camera(const double inv[12], const int32_t ijk[3], double c[3])
+{
+	double x[3] = { 0.01 * ijk[0], 0.01 * ijk[1], 0.01 * ijk[2] };
+	fct_pose_apply(inv, x, c);
+}
+
 /* Voxels with a value in g: their count, and the largest difference of
  * distance from h's (which must have them too, else *missing counts). */
 static size_t compare_grids(const struct fct_voxgrid *g, const struct fct_voxgrid *h, double *worst,
@@ -113,9 +127,10 @@ static size_t compare_grids(const struct fct_voxgrid *g, const struct fct_voxgri
 			if (!(vb->weight[l] > 0))
 				continue;
 			n++;
-			int32_t i = vb->bx * 8 + l % 8, j = vb->by * 8 + l / 8 % 8, k = vb->bz * 8 + l / 64;
+			int32_t ijk[3];
+			voxel_index(vb, l, ijk);
 			float s, w;
-			if (!fct_voxgrid_get(h, i, j, k, &s, &w) || !(w > 0))
+			if (!fct_voxgrid_get(h, ijk[0], ijk[1], ijk[2], &s, &w) || !(w > 0))
 				(*missing)++;
 			else
 				*worst = fmax(*worst, fabs((double)s - vb->sdf[l]));
@@ -365,7 +380,9 @@ static void test_projective_depth(void)
 		CHECK_INT(sh.voxels, sg.voxels - (tilted ? 13 : 0) + missing);
 		CHECK_INT(missing, tilted ? 907 : 0);
 		if (!tilted) {
-			/* Voxel x in the camera: R^T (x - t); its sdf 0.5 - z. */
+			/* A voxel at depth z in the camera: its sdf 0.5 - z. */
+			double inv[12];
+			fct_pose_invert(pose, inv);
 			size_t bad = 0;
 			double err_max = 0;
 			for (size_t b = 0; b < fct_voxgrid_count(h); b++) {
@@ -373,10 +390,11 @@ static void test_projective_depth(void)
 				for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
 					if (!(vb->weight[l] > 0))
 						continue;
-					double x[3] = { 0.01 * (vb->bx * 8 + l % 8) - pose[3],
-					                0.01 * (vb->by * 8 + l / 8 % 8) - pose[7],
-					                0.01 * (vb->bz * 8 + l / 64) - pose[11] };
-					double z = pose[2] * x[0] + pose[6] * x[1] + pose[10] * x[2];
+					int32_t ijk[3];
+					double c[3];
+					voxel_index(vb, l, ijk);
+					voxel_in_camera(inv, ijk, c);
+					double z = c[2];
 					double want = fmin(0.5 - z, 0.03);
 					bad += !(0.5 - z >= -0.03 - 1e-9) || vb->weight[l] != 1;
 					err_max = fmax(err_max, fabs(vb->sdf[l] - want));
@@ -427,6 +445,8 @@ static size_t reach(float (*depth)(int x, int y), const double pose[12], int cel
 	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
 	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 1, 0, { 0 }, { 0 }, 0 };
 	CHECK(g && fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	double inv[12];
+	fct_pose_invert(pose, inv);
 	size_t reached = 0;
 	*bad = 0;
 	/* The points: pixels with data, and centres of the cells whose four
@@ -452,9 +472,11 @@ static size_t reach(float (*depth)(int x, int y), const double pose[12], int cel
 				}
 				for (int a = 0; a < 3; a++)
 					e = fmax(e, hi[a] - lo[a]);
-				if (all && e > 0.01 * (1 + 1e-6) && e < 0.04 * (1 - 1e-6))
-					for (int a = 0; a < 3; a++, np += a == 3)
+				if (all && e > 0.01 * (1 + 1e-6) && e < 0.04 * (1 - 1e-6)) {
+					for (int a = 0; a < 3; a++)
 						pts[np][a] = (q[0][a] + q[1][a] + q[2][a] + q[3][a]) / 4;
+					np++;
+				}
 			}
 			for (int n = 0; n < np; n++) {
 				int32_t lo[3], hi[3];
@@ -463,10 +485,9 @@ static size_t reach(float (*depth)(int x, int y), const double pose[12], int cel
 				for (int32_t k = lo[2]; k <= hi[2]; k++)
 					for (int32_t j = lo[1]; j <= hi[1]; j++)
 						for (int32_t i = lo[0]; i <= hi[0]; i++) {
-							/* The voxel in the camera: R^T (x - t). */
-							double X[3] = { 0.01 * i - pose[3], 0.01 * j - pose[7], 0.01 * k - pose[11] }, c[3];
-							for (int a = 0; a < 3; a++)
-								c[a] = pose[a] * X[0] + pose[4 + a] * X[1] + pose[8 + a] * X[2];
+							int32_t ijk[3] = { i, j, k };
+							double c[3];
+							voxel_in_camera(inv, ijk, c);
 							double u = 32 * c[0] / c[2] + 31.5, w = 32 * c[1] / c[2] + 31.5;
 							double fu = floor(u + 0.5), fw = floor(w + 0.5);
 							if (!(c[2] > 0) || fabs(u + 0.5 - fu) < 1e-6 || fabs(w + 0.5 - fw) < 1e-6 ||
@@ -489,10 +510,10 @@ static size_t reach(float (*depth)(int x, int y), const double pose[12], int cel
 		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
 			if (!(vb->weight[l] > 0))
 				continue;
-			double X[3] = { 0.01 * (vb->bx * 8 + l % 8) - pose[3], 0.01 * (vb->by * 8 + l / 8 % 8) - pose[7],
-			                0.01 * (vb->bz * 8 + l / 64) - pose[11] }, c[3];
-			for (int a = 0; a < 3; a++)
-				c[a] = pose[a] * X[0] + pose[4 + a] * X[1] + pose[8 + a] * X[2];
+			int32_t ijk[3];
+			double c[3];
+			voxel_index(vb, l, ijk);
+			voxel_in_camera(inv, ijk, c);
 			double u = floor(32 * c[0] / c[2] + 32), w = floor(32 * c[1] / c[2] + 32);
 			double R = u >= 0 && w >= 0 && u < 64 && w < 64 ? kept[(int)w * 64 + (int)u] : 0;
 			if (!(R > 0) || R - c[2] < -0.03 - 1e-6 || fabs(vb->sdf[l] - fmin(R - c[2], 0.03)) > 1e-6)
