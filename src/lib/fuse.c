@@ -1998,13 +1998,14 @@ struct foot {
 	double s;                /* x's distance to the plane of t */
 	double f[3], sx, sy;     /* the foot on that plane and its sample */
 	int32_t t;               /* -1: out of the band, given up */
+	int32_t back;            /* the triangle before t */
 	int8_t it, stays, done;
 };
 
 static inline void search_begin(const struct fctx *F, int32_t t, const double x[3], struct foot *S)
 {
 	S->s = plane_dist(F->G, t, x);
-	S->t = t, S->it = 0, S->stays = 0, S->done = 0;
+	S->t = t, S->back = -1, S->it = 0, S->stays = 0, S->done = 0;
 	/* In front of the surface seen, the distance to its plane bounds the
 	 * distance (for convex surfaces); behind it the nearest point may be
 	 * anywhere, around a silhouette. */
@@ -2034,14 +2035,17 @@ static inline int step_seen(const struct fctx *F, const int32_t *id, struct foot
 }
 
 /* step_move: onto ts, unless its plane is farther (off a silhouette);
- * S->done when the moves end. */
+ * S->done when the moves end: after 8, or on a move back to the triangle
+ * before (two triangles whose feet fall on each other, as across a fold
+ * of the noise: the moves would go back and forth to the eighth, and the
+ * walk finds the nearer point from either). */
 static inline void step_move(const struct fctx *F, const double x[3], struct foot *S, int32_t ts)
 {
 	double s2 = plane_dist(F->G, ts, x);
 	if (fabs(s2) > fabs(S->s) + F->vox)
 		return;
-	S->t = ts, S->s = s2;
-	S->done = ++S->it == 8;
+	S->done = ++S->it == 8 || ts == S->back;
+	S->back = S->t, S->t = ts, S->s = s2;
 }
 
 /* One move to the triangle seen at the foot; S->done when it stays or the
