@@ -136,4 +136,5 @@ clean:
 .SECONDARY:
 .DELETE_ON_ERROR:
 
--include $(LIB_OBJ:.o=.d) $(PROGS:$(O)/bin/%=$(O)/src/cmd/%.d) $(PROGS:$(O)/bin/%=$(O)/tools/%.d)
+-include $(LIB_OBJ:.o=.d) $(PROGS:$(O)/bin/%=$(O)/src/cmd/%.d) $(PROGS:$(O)/bin/%=$(O)/tools/%.d) \
+	$(UNITS:$(O)/tests/%=$(O)/tests/unit/%.d) $(BENCHES:%=%.d)
