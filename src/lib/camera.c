@@ -352,13 +352,6 @@ int fct_pose_read_file(const char *path, double pose[12], struct fct_err *err)
 	return 0;
 }
 
-void fct_pose_apply(const double pose[12], const double p[3], double out[3])
-{
-	double x = p[0], y = p[1], z = p[2];
-	for (int i = 0; i < 3; i++)
-		out[i] = pose[4 * i] * x + pose[4 * i + 1] * y + pose[4 * i + 2] * z + pose[4 * i + 3];
-}
-
 void fct_pose_invert(const double pose[12], double inv[12])
 {
 	for (int i = 0; i < 3; i++) {

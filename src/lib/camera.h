@@ -69,8 +69,14 @@ int fct_camera_read_file(const char *path, struct fct_camera *cam, struct fct_er
 int fct_pose_read_file(const char *path, double pose[12], struct fct_err *err);
 /* 0 when R of pose is a rotation to within tol, -1 otherwise (message set). */
 int fct_pose_check(const double pose[12], double tol, struct fct_err *err);
-/* out = R p + t (out may be p). */
-void fct_pose_apply(const double pose[12], const double p[3], double out[3]);
+/* out = R p + t (out may be p).  Inline: passes over every vertex of a
+ * view call it. */
+static inline void fct_pose_apply(const double pose[12], const double p[3], double out[3])
+{
+	double x = p[0], y = p[1], z = p[2];
+	for (int i = 0; i < 3; i++)
+		out[i] = pose[4 * i] * x + pose[4 * i + 1] * y + pose[4 * i + 2] * z + pose[4 * i + 3];
+}
 /* The inverse pose [R^T | -R^T t]. */
 void fct_pose_invert(const double pose[12], double inv[12]);
 

@@ -1674,14 +1674,34 @@ static inline int has_data(float d)
 
 /* A pinhole view given as a depth image whose mesh is its pixel grid:
  * its pixels with data are the mesh's vertices, in row-major order, and
- * there are as many.  (fct_depth_mesh_kept makes it so; fuse.h.) */
+ * there are as many (fct_depth_mesh_kept makes it so; fuse.h).  Checked
+ * vertex by vertex, as image_cells takes each pixel's point from the
+ * mesh: it must lie on the pixel's ray at the pixel's depth, within a
+ * thousandth of a pixel (as samples_chunk finds a vertex's sample) and
+ * a hundred-thousandth of the depth.  Without a division: the camera's
+ * x fx is the pixel's (u - cx) z on its ray. */
 static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
 {
 	if (!v->depth || v->cam.kind != FCT_CAMERA_PINHOLE)
 		return 0;
-	size_t n = (size_t)v->cam.width * (size_t)v->cam.height, k = 0;
-	for (size_t i = 0; i < n; i++)
-		k += has_data(v->depth[i]);
+	const struct fct_camera *cam = &v->cam;
+	double inv[12];
+	fct_pose_invert(v->pose, inv);
+	size_t w = (size_t)cam->width, h = (size_t)cam->height, k = 0;
+	for (size_t y = 0; y < h; y++)
+		for (size_t x = 0; x < w; x++) {
+			double d = v->depth[y * w + x];
+			if (!has_data((float)d))
+				continue;
+			if (k == G->nv)
+				return 0;
+			double c[3];
+			fct_pose_apply(inv, &G->xyz[3 * k++], c);
+			double tol = 1e-3 * c[2];
+			if (!(fabs(c[2] - d) <= 1e-5 * d && fabs(c[0] * cam->fx - ((double)x - cam->cx) * c[2]) <= tol &&
+			      fabs(c[1] * cam->fy - ((double)y - cam->cy) * c[2]) <= tol))
+				return 0;
+		}
 	return k == G->nv;
 }
 

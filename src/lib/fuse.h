@@ -43,8 +43,9 @@
  * a pixel without mesh around it is written only where the candidate
  * voxels reach.  Those come from the mesh's vertices and, for a pinhole
  * whose mesh has one vertex per pixel with data in row-major order (as
- * fct_depth_mesh_kept makes it, at step 1), from the image's pixel cells
- * instead of the mesh's triangles.  The result then holds every voxel the
+ * fct_depth_mesh_kept makes it, at step 1; checked: each vertex on its
+ * pixel's ray at its depth), from the image's pixel cells instead of the
+ * mesh's triangles.  The result then holds every voxel the
  * mesh view writes, with its value but for the rounding of the vertices'
  * depths through the pose and back, and some more in front of the surface
  * (truncated at +band), except voxels written only through the inside of

@@ -424,6 +424,64 @@ static void test_projective_depth(void)
 	fct_mesh_free(&m);
 }
 
+/* m's vertices in another order: new vertex k is old vertex order[k]. */
+static void reorder_vertices(struct fct_mesh *m, const uint32_t *order)
+{
+	double *xyz = malloc(3 * m->nv * sizeof *xyz);
+	uint32_t *new_of = malloc(m->nv * sizeof *new_of);
+	CHECK(xyz && new_of);
+	for (size_t k = 0; k < m->nv; k++) {
+		memcpy(&xyz[3 * k], &m->xyz[3 * (size_t)order[k]], 3 * sizeof *xyz);
+		new_of[order[k]] = (uint32_t)k;
+	}
+	memcpy(m->xyz, xyz, 3 * m->nv * sizeof *xyz);
+	for (size_t i = 0; i < m->fstart[m->nf]; i++)
+		m->fvert[i] = new_of[m->fvert[i]];
+	free(xyz);
+	free(new_of);
+}
+
+/* A depth image whose mesh has a vertex per pixel with data but not in the
+ * image's order is not taken for its pixel grid: the voxels written are
+ * the mesh's own, as rasterised (for this flat view the image path writes
+ * the same voxels and values).  Rows 0, 32, 1, 33, ... make cells of
+ * points 32 rows apart, whose boxes are too large to add: taken for the
+ * grid, the view would lose the candidates of its cells across blocks. */
+static void test_projective_order(void)
+{
+	struct fct_err err;
+	double a = M_PI / 6, c = cos(a), sn = sin(a);
+	const double pose[12] = { c, 0, sn, 0.1, 0, 1, 0, -0.05, -sn, 0, c, 0.2 };
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 1, 0, { 0 }, { 0 }, 0 };
+	struct fct_fuse_view v;
+	struct fct_mesh m;
+	float *kept;
+	depth_view_kept(&v, &m, flat_depth, &kept);
+	CHECK_INT(m.nv, 64 * 64);
+	for (size_t i = 0; i < m.nv; i++)
+		fct_pose_apply(pose, &m.xyz[3 * i], &m.xyz[3 * i]);
+	memcpy(v.pose, pose, sizeof pose);
+	uint32_t order[64 * 64];
+	for (uint32_t k = 0; k < 64 * 64; k++)
+		order[k] = (k / 64 % 2 ? 32 + k / 128 : k / 128) * 64 + k % 64;
+	reorder_vertices(&m, order);
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err), *h = fct_voxgrid_new(0.01, 0, &err);
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);   /* the mesh, rasterised */
+	v.depth = kept;
+	CHECK(fct_fuse_view(h, &v, &p, NULL, &err) == 0);   /* the image, candidates from the mesh */
+	double worst;
+	size_t missing, n = compare_grids(g, h, &worst, &missing);
+	CHECK_MSG(n > 20000, "%zu voxels", n);
+	CHECK_INT(missing, 0);
+	CHECK_NEAR(worst, 0, 1e-6);
+	CHECK_INT(compare_grids(h, g, &worst, &missing), n);
+	CHECK_INT(missing, 0);
+	fct_voxgrid_free(g);
+	fct_voxgrid_free(h);
+	fct_mesh_free(&m);
+	free(kept);
+}
+
 /* The candidates of a depth image reach the band: for a tilted plane and
  * a step edge (turned and moved as in test_projective_depth), every voxel
  * within the band's three voxels along each axis of a pixel's point, or of
@@ -636,6 +694,7 @@ int main(void)
 	test_tilted_plane();
 	test_projective_depth();
 	test_projective_reach();
+	test_projective_order();
 	test_sliver();
 	test_too_far();
 	test_carve();
