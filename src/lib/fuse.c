@@ -1690,8 +1690,8 @@ static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
 	size_t w = (size_t)cam->width, h = (size_t)cam->height, k = 0;
 	for (size_t y = 0; y < h; y++)
 		for (size_t x = 0; x < w; x++) {
-			double d = v->depth[y * w + x];
-			if (!has_data((float)d))
+			float d = v->depth[y * w + x];
+			if (!has_data(d))
 				continue;
 			if (k == G->nv)
 				return 0;

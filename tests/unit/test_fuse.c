@@ -44,6 +44,24 @@ static void depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*dept
 	depth_view_kept(v, m, depth, NULL);
 }
 
+/* The pose of the depth-image tests: turned 30 degrees about y and moved. */
+static void turned_pose(double pose[12])
+{
+	double a = M_PI / 6, c = cos(a), sn = sin(a);
+	const double t[12] = { c, 0, sn, 0.1, 0, 1, 0, -0.05, -sn, 0, c, 0.2 };
+	memcpy(pose, t, sizeof t);
+}
+
+/* depth_view_kept with the camera at pose, the mesh moved with it. */
+static void posed_depth_view(struct fct_fuse_view *v, struct fct_mesh *m, float (*depth)(int x, int y),
+                             const double pose[12], float **kept)
+{
+	depth_view_kept(v, m, depth, kept);
+	for (size_t i = 0; i < m->nv; i++)
+		fct_pose_apply(pose, &m->xyz[3 * i], &m->xyz[3 * i]);
+	memcpy(v->pose, pose, sizeof v->pose);
+}
+
 /* A fresh volume of 1 cm voxels with v fused into it: a band of band
  * metres (3 cm in most tests), constant weights. */
 static struct fct_voxgrid *fused(const struct fct_fuse_view *v, double band, struct fct_fuse_stats *st)
@@ -354,18 +372,15 @@ static float flat_depth(int x, int y)
 static void test_projective_depth(void)
 {
 	struct fct_err err;
-	double a = M_PI / 6, c = cos(a), sn = sin(a);
-	const double pose[12] = { c, 0, sn, 0.1, 0, 1, 0, -0.05, -sn, 0, c, 0.2 };
+	double pose[12];
+	turned_pose(pose);
 	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 1, 0, { 0 }, { 0 }, 0 };
 	for (int tilted = 0; tilted < 2; tilted++) {
 		struct fct_fuse_view v;
 		struct fct_mesh m;
 		float *kept;
-		depth_view_kept(&v, &m, tilted ? tilted_depth : flat_depth, &kept);
+		posed_depth_view(&v, &m, tilted ? tilted_depth : flat_depth, pose, &kept);
 		CHECK_INT(m.nv, 64 * 64);   /* every pixel a vertex */
-		for (size_t i = 0; i < m.nv; i++)
-			fct_pose_apply(pose, &m.xyz[3 * i], &m.xyz[3 * i]);
-		memcpy(v.pose, pose, sizeof pose);
 		struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err), *h = fct_voxgrid_new(0.01, 0, &err);
 		struct fct_fuse_stats sg = { 0 }, sh = { 0 };
 		CHECK(fct_fuse_view(g, &v, &p, &sg, &err) == 0);   /* the mesh, rasterised */
@@ -450,17 +465,14 @@ static void reorder_vertices(struct fct_mesh *m, const uint32_t *order)
 static void test_projective_order(void)
 {
 	struct fct_err err;
-	double a = M_PI / 6, c = cos(a), sn = sin(a);
-	const double pose[12] = { c, 0, sn, 0.1, 0, 1, 0, -0.05, -sn, 0, c, 0.2 };
+	double pose[12];
+	turned_pose(pose);
 	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 1, 0, { 0 }, { 0 }, 0 };
 	struct fct_fuse_view v;
 	struct fct_mesh m;
 	float *kept;
-	depth_view_kept(&v, &m, flat_depth, &kept);
+	posed_depth_view(&v, &m, flat_depth, pose, &kept);
 	CHECK_INT(m.nv, 64 * 64);
-	for (size_t i = 0; i < m.nv; i++)
-		fct_pose_apply(pose, &m.xyz[3 * i], &m.xyz[3 * i]);
-	memcpy(v.pose, pose, sizeof pose);
 	uint32_t order[64 * 64];
 	for (uint32_t k = 0; k < 64 * 64; k++)
 		order[k] = (k / 64 % 2 ? 32 + k / 128 : k / 128) * 64 + k % 64;
@@ -495,10 +507,7 @@ static size_t reach(float (*depth)(int x, int y), const double pose[12], int cel
 	struct fct_fuse_view v;
 	struct fct_mesh m;
 	float *kept;
-	depth_view_kept(&v, &m, depth, &kept);
-	for (size_t i = 0; i < m.nv; i++)
-		fct_pose_apply(pose, &m.xyz[3 * i], &m.xyz[3 * i]);
-	memcpy(v.pose, pose, sizeof v.pose);
+	posed_depth_view(&v, &m, depth, pose, &kept);
 	v.depth = kept;
 	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
 	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 1, 0, { 0 }, { 0 }, 0 };
@@ -586,8 +595,8 @@ static size_t reach(float (*depth)(int x, int y), const double pose[12], int cel
 
 static void test_projective_reach(void)
 {
-	double a = M_PI / 6, c = cos(a), sn = sin(a);
-	const double pose[12] = { c, 0, sn, 0.1, 0, 1, 0, -0.05, -sn, 0, c, 0.2 };
+	double pose[12];
+	turned_pose(pose);
 	size_t bad, n = reach(tilted_depth, pose, 1, &bad);
 	CHECK_MSG(n > 100000, "%zu voxels reached", n);
 	CHECK_INT(bad, 0);
