@@ -281,6 +281,7 @@ struct pixgrid {
 	uint8_t *diag;           /* per cell: DIAG_DOWN or DIAG_UP, the diagonal that splits it */
 	const int32_t *at;       /* per vertex: its pixel x, y (-1: none) */
 	size_t w, h;             /* pixels; cells (x, y) for x < w - 1, y < h - 1 */
+	double xend, yend;       /* w - 1 and h - 1: the cells' extent, for the lookups */
 };
 
 enum { DIAG_NONE, DIAG_DOWN, DIAG_UP };   /* DOWN: corners (0, 0)-(1, 1); UP: (1, 0)-(0, 1) */
@@ -1110,6 +1111,7 @@ static int grid_cells(struct raster *R, struct fct_err *err)
 	const struct geo *G = R->G;
 	struct pixgrid *P = &R->grid;
 	P->w = (size_t)R->w, P->h = (size_t)R->h, P->at = R->at;
+	P->xend = (double)(P->w - 1), P->yend = (double)(P->h - 1);
 	size_t n = P->w * P->h;
 	P->cell = fct_alloc_array(n, 2 * sizeof *P->cell, err);
 	P->diag = calloc(n, 1);
@@ -1159,19 +1161,24 @@ not_grid:
 /* The cell of the grid under sample point (x, y), or -1. */
 static inline long grid_cell_at(const struct pixgrid *P, double x, double y)
 {
-	if (!(x >= 0 && y >= 0 && x < (double)(P->w - 1) && y < (double)(P->h - 1)))
+	if (!(x >= 0 && y >= 0 && x < P->xend && y < P->yend))
 		return -1;
-	return (long)((size_t)y * P->w + (size_t)x);
+	return (long)y * (long)P->w + (long)x;
 }
 
-/* The triangle of the grid under sample point (x, y), or -1. */
+/* The triangle of the grid under sample point (x, y), or -1.  The half is
+ * chosen without a branch: the diagonals and the points' sides of them
+ * come in no order a branch could guess (a quarter of the mispredicted
+ * branches of a view's fusion, by cachegrind). */
 static inline int32_t grid_seen(const struct pixgrid *P, double x, double y)
 {
-	long c = grid_cell_at(P, x, y);
-	if (c < 0)
+	if (!(x >= 0 && y >= 0 && x < P->xend && y < P->yend))
 		return -1;
-	double fx = x - (double)(long)x, fy = y - (double)(long)y;
-	return P->cell[2 * c + (P->diag[c] == DIAG_UP ? fx + fy > 1 : fy > fx)];
+	long ix = (long)x, iy = (long)y, c = iy * (long)P->w + ix;
+	double fx = x - (double)ix, fy = y - (double)iy;
+	int up = P->diag[c] == DIAG_UP;
+	int half = (up & (fx + fy > 1)) | (!up & (fy > fx));
+	return P->cell[2 * c + half];
 }
 
 /* Ask for the memory that tells the triangle seen at sample point (x, y). */
