@@ -1134,8 +1134,12 @@ static int grid_cells(struct raster *R, struct fct_err *err)
 	int32_t *cell = P->cell;
 	uint8_t *cd = P->diag;
 	size_t nt = G->nt, w = P->w, h = P->h;
+	/* The normals are read only when some triangle has none: a range
+	 * image's mesh mostly has them all, and the test would bring in 16
+	 * bytes per triangle to fail every time. */
+	int some_degenerate = G->nproper < nt;
 	for (size_t f = 0; f < nt; f++) {
-		if (isnan(tn[4 * f]))
+		if (some_degenerate && isnan(tn[4 * f]))
 			continue;
 		int32_t cx, cy;
 		unsigned corners = cell_corners(at, &tvs[3 * f], &cx, &cy);
