@@ -5,7 +5,8 @@
  *                                       key=value lines (seconds, voxels, ...):
  *                                       CPU seconds of the process (all its
  *                                       threads) and wall seconds, and the
- *                                       page faults of one extraction
+ *                                       page faults of one extraction, and
+ *                                       each phase's wall ms (fct_mcubes_stats)
  *   gen_mcubes [-r RUNS] [-t THREADS] [-s VOXEL] fused VIEW.ply...
  *                                       the same on the volume tsdfuse fuses from
  *                                       the views (dm2mesh meshes with camera and
@@ -244,7 +245,8 @@ int main(int argc, char **argv)
 	 * between runs, they came back from malloc already faulted in or not,
 	 * as glibc's mmap threshold moved, and the median with them.) */
 	struct fct_mesh *ms = calloc((size_t)runs, sizeof *ms);
-	if (!tm || !tr || !tw || !tf || !ms)
+	double *tph = malloc((size_t)runs * FCT_MC_PHASES * sizeof *tph);
+	if (!tm || !tr || !tw || !tf || !ms || !tph)
 		fct_die(1, "out of memory");
 	struct fct_mcubes_stats st;
 	double sum = 0;
@@ -269,6 +271,8 @@ int main(int argc, char **argv)
 		tm[r] = cpu_now() - t0;
 		tw[r] = wall_now() - w0;
 		tf[r] = faults_now() - f0;
+		for (int k = 0; k < FCT_MC_PHASES; k++)
+			tph[k * runs + r] = st.phase_s[k];
 	}
 	const struct fct_mesh *m = &ms[runs - 1];
 	double vox = (double)nb * 512, band = 0;
@@ -284,6 +288,10 @@ int main(int argc, char **argv)
 	printf("blocks=%zu\nvoxels=%.0f\nvertices=%zu\nfaces=%zu\ncubes=%zu\nambiguous=%zu\ncentres=%zu\n",
 	       nb, vox, m->nv, m->nf, st.cubes, st.ambiguous, st.centres);
 	printf("mcubes_faults=%.0f\n", median(tf, runs));
+	/* pass 0, pass 1, pass 2, output allocation, vertices, triangles */
+	printf("phase_ms=");
+	for (int k = 0; k < FCT_MC_PHASES; k++)
+		printf("%.2f%c", 1e3 * median(tph + k * runs, runs), k + 1 < FCT_MC_PHASES ? ' ' : '\n');
 	printf("mcubes_s=%.5f\nmcubes_mvox_s=%.1f\nref_s=%.5f\nref_mvox_s=%.1f\nchecksum=%.3g\n", t,
 	       vox / t / 1e6, t_ref, vox / t_ref / 1e6, sum);
 	printf("grid_mb=%.1f\nmesh_fnv=%016llx\n", fct_voxgrid_bytes(g) / 1e6,
@@ -292,6 +300,7 @@ int main(int argc, char **argv)
 		fct_mesh_free(&ms[r]);
 	free(ms);
 	free(tf);
+	free(tph);
 	fct_voxgrid_free(g);
 	free(tm);
 	free(tr);

@@ -50,6 +50,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -1393,6 +1394,14 @@ HOT static void run_triangles(void *ctx, size_t lo, size_t hi, int worker)
 	flush_centred(&M->w[worker]);
 }
 
+/* Wall seconds, for the phases' times in the stats. */
+static double wall_now(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* Chunks of the parallel loops: fixed, so the work is cut alike for any
  * thread count (the results do not depend on it anyway). */
 #define MC_CHUNKS 64
@@ -1419,6 +1428,7 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	M->T = &tables;
 
 	int rc = -1, nthreads = fct_par_threads(threads);
+	double tp[FCT_MC_PHASES + 1];
 	size_t nb = fct_voxgrid_count(g), naux = 0, ntri = 0, ncent = 0, nverts = 0;
 	M->w = calloc((size_t)nthreads, sizeof *M->w);
 	M->own = fct_alloc_array(nb, sizeof *M->own, err);
@@ -1432,7 +1442,9 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 		M->w[t].M = M;
 	if (clip_lo && (clip_lo[0] >= clip_hi[0] || clip_lo[1] >= clip_hi[1] || clip_lo[2] >= clip_hi[2]))
 		nb = 0;         /* an empty box: no cubes */
+	tp[0] = wall_now();
 	fct_par_run(nthreads, nb, MC_CHUNKS, run_pass0, M);
+	tp[1] = wall_now();
 	for (size_t b = 0; b < nb; b++)
 		if (M->own[b].anyobs)
 			M->own[b].aux = (uint32_t)naux++;
@@ -1440,10 +1452,12 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	    !(M->live = fct_alloc_array(naux, sizeof *M->live, err)))
 		goto done;
 	fct_par_run(nthreads, nb, MC_CHUNKS, run_pass1, M);
+	tp[2] = wall_now();
 	for (size_t b = 0; b < nb; b++)
 		if (M->own[b].aux != NONE)
 			M->live[M->nlive++] = M->own[b].aux;
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_pass2, M);
+	tp[3] = wall_now();
 	/* every record's place in the output, in block order */
 	for (size_t i = 0; i < M->nlive; i++) {
 		struct aux *A = &M->aux[M->live[i]];
@@ -1481,8 +1495,11 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	}
 	M->xyz = out->xyz;
 	M->tri = out->fvert;
+	tp[4] = wall_now();
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_vertices, M);
+	tp[5] = wall_now();
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_triangles, M);
+	tp[6] = wall_now();
 	if (stats) {
 		memset(stats, 0, sizeof *stats);
 		for (int t = 0; t < nthreads; t++) {
@@ -1493,6 +1510,8 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 		stats->blocks = nb;
 		stats->voxels = nb * FCT_VOXBLOCK_N;
 		stats->threads = (size_t)nthreads;
+		for (int k = 0; k < FCT_MC_PHASES; k++)
+			stats->phase_s[k] = tp[k + 1] - tp[k];
 	}
 	rc = 0;
 done:

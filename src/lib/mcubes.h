@@ -60,7 +60,11 @@ struct fct_mcubes_stats {
 	size_t ambiguous;       /* cubes with an ambiguous face */
 	size_t centres;         /* extra centroid vertices */
 	size_t threads;         /* threads used */
+	/* wall seconds of each phase: pass 0, pass 1, pass 2, the output's
+	 * allocation, the vertex pass, the triangle pass (FCT_MC_PHASES) */
+	double phase_s[6];
 };
+#define FCT_MC_PHASES 6
 
 /* Extract the zero level set of g into out (overwritten with fct_mesh_init
  * first; the caller frees it).  clip_lo and clip_hi are both NULL (no clip)
