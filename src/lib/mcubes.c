@@ -1214,6 +1214,34 @@ static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const u
 	}
 }
 
+/* Centroid vertex id of the loop of vertices vid[ed[0..len-1]]: the mean
+ * of their positions (and colours), their normals' sum normalised. */
+static void centroid(struct worker *w, const uint32_t *vid, const uint8_t *ed, int len, uint32_t id)
+{
+	const struct mc *M = w->M;
+	/* the sums in registers (in memory, each add waited for the one before
+	 * through a store and a load); the same additions in the same order */
+	double px = 0, py = 0, pz = 0, nx = 0, ny = 0, nz = 0;
+	for (int i = 0; i < len; i++) {
+		size_t v = vid[ed[i]];
+		const double *q = M->xyz + 3 * v;
+		px += q[0], py += q[1], pz += q[2];
+		nx += M->nrm[0][v], ny += M->nrm[1][v], nz += M->nrm[2][v];
+	}
+	double nl = sqrt(nx * nx + ny * ny + nz * nz), *p = M->xyz + 3 * (size_t)id;
+	p[0] = px / len, p[1] = py / len, p[2] = pz / len;
+	M->nrm[0][id] = nl > 0 ? (float)(nx / nl) : 0.0f;
+	M->nrm[1][id] = nl > 0 ? (float)(ny / nl) : 0.0f;
+	M->nrm[2][id] = nl > 0 ? (float)(nz / nl) : 0.0f;
+	for (int k = 0; M->colour && k < 3; k++) {
+		double col = 0;
+		for (int i = 0; i < len; i++)
+			col += M->rgb[k][vid[ed[i]]];
+		M->rgb[k][id] = to_u8(col / len);
+	}
+	w->st.centres++;
+}
+
 /* The triangles and centroid vertices of queued cube c. */
 HOT static void emit_centred(struct worker *w, const struct centred *c)
 {
@@ -1226,22 +1254,7 @@ HOT static void emit_centred(struct worker *w, const struct centred *c)
 		int len = mc->len[l];
 		if (mc->centre[l]) {
 			uint32_t id = cid++;
-			double p[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 }, col[3] = { 0, 0, 0 };
-			for (int i = 0; i < len; i++)
-				for (int k = 0; k < 3; k++) {
-					p[k] += M->xyz[3 * (size_t)vid[ed[i]] + k];
-					n[k] += M->nrm[k][vid[ed[i]]];
-					if (M->colour)
-						col[k] += M->rgb[k][vid[ed[i]]];
-				}
-			double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-			for (int k = 0; k < 3; k++) {
-				M->xyz[3 * (size_t)id + k] = p[k] / len;
-				M->nrm[k][id] = nl > 0 ? (float)(n[k] / nl) : 0.0f;
-				if (M->colour)
-					M->rgb[k][id] = to_u8(col[k] / len);
-			}
-			w->st.centres++;
+			centroid(w, vid, ed, len, id);
 			for (int i = 0; i < len; i++, t += 3)
 				t[0] = id, t[1] = vid[ed[i]], t[2] = vid[ed[(i + 1) % len]];
 		} else {
