@@ -313,9 +313,11 @@ static void tables_init(void)
 #define NONE UINT32_MAX
 
 /* A block's own voxels as bits, row z * 8 + y, bit x: negative, and
- * observed (inside the clip box). */
+ * observed (inside the clip box); seen: observed, the clip box aside (the
+ * vertex pass's gradients read beyond the box), so that the vertex pass
+ * reads no weights. */
 struct own {
-	uint8_t neg[64], obs[64];
+	uint8_t neg[64], obs[64], seen[64];
 	uint32_t aux;           /* its pass-1 record, or NONE */
 	int anyobs;
 };
@@ -397,6 +399,7 @@ struct mc {
 #define WROW 16
 struct blockctx {
 	const struct fct_voxblock *nb[27];      /* looked up on demand */
+	const uint8_t *seen[27];                /* their struct own seen bits (when nb) */
 	unsigned nb_done;
 	int32_t bx, by, bz;
 	double coord[3][9];                     /* (8 * block + i) * voxel on each axis */
@@ -432,7 +435,17 @@ struct worker {
 	char pad[64];                   /* no cache line shared with the next thread's */
 };
 
-/* Make b, with record A (or NULL), the block of c. */
+/* Neighbour n of c (struct blockctx nb) is block i (-1: absent). */
+static inline void ctx_set(const struct mc *M, struct blockctx *c, int n, long i)
+{
+	c->nb_done |= 1u << n;
+	c->nb[n] = i >= 0 ? fct_voxgrid_at(M->g, (size_t)i) : NULL;
+	c->seen[n] = i >= 0 ? M->own[i].seen : NULL;
+	if (i >= 0)
+		__builtin_prefetch(c->seen[n]);
+}
+
+/* Make b, with record A, the block of c. */
 static void ctx_block(const struct mc *M, struct blockctx *c, const struct fct_voxblock *b,
                       const struct aux *A)
 {
@@ -442,12 +455,10 @@ static void ctx_block(const struct mc *M, struct blockctx *c, const struct fct_v
 		c->coord[1][i] = (double)(8 * c->by + i) * M->voxel;
 		c->coord[2][i] = (double)(8 * c->bz + i) * M->voxel;
 	}
-	c->nb_done = 1u << 13;
-	c->nb[13] = b;
-	for (int k = 1; A && k < 8; k++) {
+	c->nb_done = 0;
+	for (int k = 0; k < 8; k++) {
 		int n = (k & 1) + 1 + 3 * ((k >> 1 & 1) + 1 + 3 * ((k >> 2) + 1));
-		c->nb[n] = A->up[k] >= 0 ? fct_voxgrid_at(M->g, (size_t)A->up[k]) : NULL;
-		c->nb_done |= 1u << n;
+		ctx_set(M, c, n, A->up[k]);
 	}
 }
 
@@ -456,17 +467,9 @@ static inline const struct fct_voxblock *ctx_nb(const struct mc *M, struct block
                                                 int dy, int dz)
 {
 	int k = (dx + 1) + 3 * ((dy + 1) + 3 * (dz + 1));
-	if (!(c->nb_done >> k & 1)) {
-		c->nb_done |= 1u << k;
-		c->nb[k] = fct_voxgrid_block((struct fct_voxgrid *)M->g, c->bx + dx, c->by + dy,
-		                             c->bz + dz, 0, NULL);
-	}
+	if (!(c->nb_done >> k & 1))
+		ctx_set(M, c, k, fct_voxgrid_index(M->g, c->bx + dx, c->by + dy, c->bz + dz));
 	return c->nb[k];
-}
-
-static inline int observed(float thr, float s, float w)
-{
-	return w >= thr && fabsf(s) <= FLT_MAX;
 }
 
 /* Voxel at local coordinates (x, y, z) in -8..15 of c's block: its block
@@ -502,26 +505,28 @@ static inline void bits8(const float *s, const float *w, float thr, unsigned *ne
 #endif
 }
 
-/* 8 consecutive voxels into dst: the sdf where observed, NaN elsewhere. */
-static inline void vals8(const float *s, const float *w, float thr, float *dst)
+/* 8 consecutive voxels into dst: the sdf where bit x of seen is set
+ * (observed, struct own), NaN elsewhere. */
+static inline void vals8_seen(const float *s, unsigned seen, float *dst)
 {
 #if defined(__SSE2__)
-	__m128 t = _mm_set1_ps(thr), big = _mm_set1_ps(FLT_MAX), nan = _mm_set1_ps(NAN);
-	__m128 absm = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-	for (int h = 0; h < 8; h += 4) {
-		__m128 sv = _mm_loadu_ps(s + h), wv = _mm_loadu_ps(w + h);
-		__m128 o = _mm_and_ps(_mm_cmpge_ps(wv, t), _mm_cmple_ps(_mm_and_ps(sv, absm), big));
-		_mm_storeu_ps(dst + h, _mm_or_ps(_mm_and_ps(o, sv), _mm_andnot_ps(o, nan)));
-	}
+	const __m128i lo = _mm_setr_epi32(1, 2, 4, 8), hi = _mm_setr_epi32(16, 32, 64, 128);
+	__m128i b = _mm_set1_epi32((int)seen);
+	__m128 m0 = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(b, lo), lo));
+	__m128 m1 = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(b, hi), hi));
+	__m128 nan = _mm_set1_ps(NAN);
+	_mm_storeu_ps(dst, _mm_or_ps(_mm_and_ps(m0, _mm_loadu_ps(s)), _mm_andnot_ps(m0, nan)));
+	_mm_storeu_ps(dst + 4, _mm_or_ps(_mm_and_ps(m1, _mm_loadu_ps(s + 4)), _mm_andnot_ps(m1, nan)));
 #else
 	for (int x = 0; x < 8; x++)
-		dst[x] = w[x] >= thr && fabsf(s[x]) <= FLT_MAX ? s[x] : NAN;
+		dst[x] = seen >> x & 1 ? s[x] : NAN;
 #endif
 }
 
-static inline float val1(float thr, const struct fct_voxblock *b, int v)
+/* Voxel v of block b (NULL: absent) with its seen bits: its sdf, or NaN. */
+static inline float val1(const struct fct_voxblock *b, const uint8_t *seen, int v)
 {
-	return b && observed(thr, b->sdf[v], b->weight[v]) ? b->sdf[v] : NAN;
+	return b && seen[v >> 3] >> (v & 7) & 1 ? b->sdf[v] : NAN;
 }
 
 /* The 8 rows b[0..7] (8 bits each) as one word, row j in bits 8j..8j+7. */
@@ -644,17 +649,11 @@ HOT static void plan(const struct mc *M, struct blockctx *c, const struct aux *A
 			if ((m & 0x1FE) && (b = ctx_nb(M, c, 0, dy, dz))) {
 				__builtin_prefetch(b->sdf + row);
 				__builtin_prefetch(b->sdf + row + 7);
-				__builtin_prefetch(b->weight + row);
-				__builtin_prefetch(b->weight + row + 7);
 			}
-			if ((m & 0x001) && (b = ctx_nb(M, c, -1, dy, dz))) {
+			if ((m & 0x001) && (b = ctx_nb(M, c, -1, dy, dz)))
 				__builtin_prefetch(b->sdf + row + 7);
-				__builtin_prefetch(b->weight + row + 7);
-			}
-			if ((m & 0x600) && (b = ctx_nb(M, c, 1, dy, dz))) {
+			if ((m & 0x600) && (b = ctx_nb(M, c, 1, dy, dz)))
 				__builtin_prefetch(b->sdf + row);
-				__builtin_prefetch(b->weight + row);
-			}
 		}
 }
 
@@ -663,31 +662,31 @@ HOT static void plan(const struct mc *M, struct blockctx *c, const struct aux *A
  * touched. */
 static void gather(struct worker *w, const struct blockctx *c)
 {
-	float thr = w->M->thr;
 	for (int wz = 0; wz < CW; wz++)
 		for (unsigned rows = c->wrows[wz]; rows; rows &= rows - 1) {
 			int wy = __builtin_ctz(rows);
 			unsigned m = c->win[wz][wy];
 			int z = wz - 1, y = wy - 1;
 			int dz = (z + 8) / 8 - 1, dy = (y + 8) / 8 - 1;
-			int row = 8 * ((y + 8) & 7) + 64 * ((z + 8) & 7);
+			int r = ((y + 8) & 7) + 8 * ((z + 8) & 7), row = 8 * r;
 			float *dst = w->val + CIDX(0, y, z);
 			/* plan() looked up every neighbour read here */
-			const struct fct_voxblock *const *nb = c->nb + 3 * (dy + 1) + 9 * (dz + 1);
+			int n = 3 * (dy + 1) + 9 * (dz + 1);
+			const struct fct_voxblock *const *nb = c->nb + n;
+			const uint8_t *const *seen = c->seen + n;
 			if (m & 0x1FE) {
-				const struct fct_voxblock *b = nb[1];
-				if (b)
-					vals8(b->sdf + row, b->weight + row, thr, dst);
+				if (nb[1])
+					vals8_seen(nb[1]->sdf + row, seen[1][r], dst);
 				else
 					for (int x = 0; x < 8; x++)
 						dst[x] = NAN;
 			}
 			if (m & 0x001)
-				dst[-1] = val1(thr, nb[0], row + 7);
+				dst[-1] = val1(nb[0], seen[0], row + 7);
 			if (m & 0x200)
-				dst[8] = val1(thr, nb[2], row);
+				dst[8] = val1(nb[2], seen[2], row);
 			if (m & 0x400)
-				dst[9] = val1(thr, nb[2], row + 1);
+				dst[9] = val1(nb[2], seen[2], row + 1);
 		}
 }
 
@@ -836,6 +835,7 @@ static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *
 	for (int r = 0; r < 64; r++) {
 		unsigned n, ob;
 		bits8(B->sdf + 8 * r, B->weight + 8 * r, M->thr, &n, &ob);
+		o->seen[r] = (uint8_t)ob;
 		if (lo) {
 			int64_t gy = (int64_t)8 * B->by + (r & 7), gz = (int64_t)8 * B->bz + (r >> 3);
 			if (gy < lo[1] || gy > hi[1] || gz < lo[2] || gz > hi[2])
