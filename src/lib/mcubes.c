@@ -318,6 +318,7 @@ static void tables_init(void)
  * reads no weights. */
 struct own {
 	uint8_t neg[64], obs[64], seen[64];
+	int32_t b[3];           /* the block's coordinates */
 	uint32_t aux;           /* its pass-1 record, or NONE */
 	int anyobs;
 };
@@ -375,6 +376,10 @@ struct mc {
 	const struct mc_tables *T;
 
 	struct own *own;                /* per block */
+	/* the blocks' indices over their bounding box, x fastest from map_lo
+	 * (-1: absent), when that box is small enough (blockmap) */
+	int32_t *map, map_lo[3];
+	size_t map_dim[3];
 	struct rim *rim;                /* per block */
 	struct aux *aux;                /* per block with an observed voxel */
 	uint32_t *live;                 /* aux records with something, in block order */
@@ -435,6 +440,19 @@ struct worker {
 	char pad[64];                   /* no cache line shared with the next thread's */
 };
 
+/* Index of block (bx, by, bz), -1 when absent: one read from M->map where
+ * there is one, instead of a probe of the grid's hash. */
+static inline long block_index(const struct mc *M, int32_t bx, int32_t by, int32_t bz)
+{
+	if (!M->map)
+		return fct_voxgrid_index(M->g, bx, by, bz);
+	size_t x = (size_t)((int64_t)bx - M->map_lo[0]), y = (size_t)((int64_t)by - M->map_lo[1]);
+	size_t z = (size_t)((int64_t)bz - M->map_lo[2]);
+	if (x >= M->map_dim[0] || y >= M->map_dim[1] || z >= M->map_dim[2])
+		return -1;
+	return M->map[x + M->map_dim[0] * (y + M->map_dim[1] * z)];
+}
+
 /* Neighbour n of c (struct blockctx nb) is block i (-1: absent). */
 static inline void ctx_set(const struct mc *M, struct blockctx *c, int n, long i)
 {
@@ -468,7 +486,7 @@ static inline const struct fct_voxblock *ctx_nb(const struct mc *M, struct block
 {
 	int k = (dx + 1) + 3 * ((dy + 1) + 3 * (dz + 1));
 	if (!(c->nb_done >> k & 1))
-		ctx_set(M, c, k, fct_voxgrid_index(M->g, c->bx + dx, c->by + dy, c->bz + dz));
+		ctx_set(M, c, k, block_index(M, c->bx + dx, c->by + dy, c->bz + dz));
 	return c->nb[k];
 }
 
@@ -824,6 +842,7 @@ static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *
                   struct rim *rim)
 {
 	memset(rim, 0, sizeof *rim);
+	o->b[0] = B->bx, o->b[1] = B->by, o->b[2] = B->bz;
 	const int32_t *lo = M->lo, *hi = M->hi;
 	unsigned any = 0, xm = 0xFF;
 	if (lo)
@@ -1062,8 +1081,7 @@ static int pass1(struct mc *M, size_t b, struct aux *A)
 	A->block = (uint32_t)b;
 	A->up[0] = (int32_t)b;
 	for (int k = 1; k < 8; k++) {
-		A->up[k] = (int32_t)fct_voxgrid_index(M->g, B->bx + (k & 1), B->by + (k >> 1 & 1),
-		                                      B->bz + (k >> 2));
+		A->up[k] = (int32_t)block_index(M, B->bx + (k & 1), B->by + (k >> 1 & 1), B->bz + (k >> 2));
 	}
 	static const struct own none;   /* an absent neighbour: nothing observed */
 	const struct own *o[8];
@@ -1407,6 +1425,43 @@ HOT static void run_triangles(void *ctx, size_t lo, size_t hi, int worker)
 	flush_centred(&M->w[worker]);
 }
 
+/* M->map for the nb blocks (their coordinates in M->own) when their
+ * bounding box has at most 16 cells per block (and 2^28 in all), so that
+ * the neighbour lookups of pass 1 and of the vertex pass (about 20 per
+ * block) read a small array, the neighbours along x side by side, instead
+ * of probing the grid's hash.  Left NULL for sparse sites or when out of
+ * memory (the lookups then probe the hash). */
+static void blockmap(struct mc *M, size_t nb)
+{
+	if (!nb)
+		return;
+	int64_t lo[3], hi[3];
+	for (int k = 0; k < 3; k++)
+		lo[k] = hi[k] = M->own[0].b[k];
+	for (size_t b = 1; b < nb; b++)
+		for (int k = 0; k < 3; k++) {
+			int64_t v = M->own[b].b[k];
+			lo[k] = v < lo[k] ? v : lo[k];
+			hi[k] = v > hi[k] ? v : hi[k];
+		}
+	double cells = 1;
+	for (int k = 0; k < 3; k++)
+		cells *= (double)(hi[k] - lo[k] + 1);
+	if (cells > 16.0 * (double)nb + 4096 || cells > (double)(1 << 28) ||
+	    !(M->map = malloc((size_t)cells * sizeof *M->map)))
+		return;
+	for (int k = 0; k < 3; k++) {
+		M->map_lo[k] = (int32_t)lo[k];
+		M->map_dim[k] = (size_t)(hi[k] - lo[k] + 1);
+	}
+	memset(M->map, 0xFF, (size_t)cells * sizeof *M->map);        /* all -1 */
+	for (size_t b = 0; b < nb; b++) {
+		const int32_t *c = M->own[b].b;
+		size_t x = (size_t)(c[0] - lo[0]), y = (size_t)(c[1] - lo[1]), z = (size_t)(c[2] - lo[2]);
+		M->map[x + M->map_dim[0] * (y + M->map_dim[1] * z)] = (int32_t)b;
+	}
+}
+
 /* Wall seconds, for the phases' times in the stats. */
 static double wall_now(void)
 {
@@ -1461,6 +1516,7 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	for (size_t b = 0; b < nb; b++)
 		if (M->own[b].anyobs)
 			M->own[b].aux = (uint32_t)naux++;
+	blockmap(M, nb);
 	if (!(M->aux = fct_alloc_array(naux, sizeof *M->aux, err)) ||
 	    !(M->live = fct_alloc_array(naux, sizeof *M->live, err)))
 		goto done;
@@ -1531,6 +1587,7 @@ done:
 	if (rc)
 		fct_mesh_free(out);
 	free(M->own);
+	free(M->map);
 	free(M->rim);
 	free(M->aux);
 	free(M->live);

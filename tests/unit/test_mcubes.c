@@ -319,6 +319,35 @@ static void test_sphere(void)
 	fct_voxgrid_free(g);
 }
 
+/* A grid whose blocks' bounding box is too sparse for mcubes' block map
+ * (one far block) is looked up through the grid's hash instead: the same
+ * mesh, byte for byte. */
+static void test_sparse_lookup(void)
+{
+	struct sphere s = { { 0.013, -0.021, 0.037 }, 1.0 };
+	int lo[3] = { -24, -24, -24 }, hi[3] = { 24, 24, 24 };
+	double vox = 0.05;
+	struct fct_voxgrid *g = fill(vox, lo, hi, sphere_f, &s, 3 * vox, 0);
+	struct fct_mesh a, b;
+	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 1, &a, NULL, &err), 0);
+	struct fct_voxblock *far = fct_voxgrid_block(g, 100000, -3, 2, 1, &err);
+	CHECK(far != NULL);
+	for (int v = 0; far && v < 512; v++)
+		far->sdf[v] = 0.1f, far->weight[v] = 1;
+	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 2, &b, NULL, &err), 0);
+	CHECK(a.nv > 1000);
+	CHECK_INT(b.nv, a.nv);
+	CHECK_INT(b.nf, a.nf);
+	if (a.nv == b.nv && a.nf == b.nf) {
+		CHECK(!memcmp(a.xyz, b.xyz, 3 * a.nv * sizeof *a.xyz));
+		CHECK(!memcmp(a.fvert, b.fvert, 3 * a.nf * sizeof *a.fvert));
+		CHECK(!memcmp(prop(&a, "nx"), prop(&b, "nx"), a.nv * sizeof(float)));
+	}
+	fct_mesh_free(&a);
+	fct_mesh_free(&b);
+	fct_voxgrid_free(g);
+}
+
 static void test_torus(void)
 {
 	struct torus tr = { 6.0, 2.5 };
@@ -579,6 +608,7 @@ int main(void)
 	test_all_patterns();
 	test_random_fields();
 	test_sphere();
+	test_sparse_lookup();
 	test_torus();
 	test_planes();
 	test_colour();
