@@ -43,7 +43,11 @@
  * 64-bit word, so that empty rows cost no branch; where rows are combined
  * (pass 1's rows and masks, a layer's sign patterns, the vertex pass's
  * window), the eight rows of a layer are 16-bit lanes of one SSE2 register,
- * the scalar code kept for builds without SSE2. */
+ * the scalar code kept for builds without SSE2.  The vertices' normals
+ * are worked in float, four vertices side by side (the same float
+ * operations without SSE2, so the same bits), and in double where float
+ * would not be exact enough (gradients that nearly cancel); their
+ * positions in double. */
 #include "mcubes.h"
 
 #include <float.h>
@@ -432,7 +436,13 @@ struct worker {
 	struct blockctx c[2];           /* the vertex pass: the current block and the next */
 	struct blockctx *cur;
 	float val[CW * CW * CW];        /* valid where the block's vertices need it */
-	double grad[729][3];            /* gradients at corners 0..8, where needed */
+	_Alignas(16) float grad4[729][4]; /* gradients at corners 0..8 (x, y, z, 0), where needed */
+	/* the vertices of one axis of a block (axis_normals): the value index
+	 * (CIDX) and gradient index of each edge's lower end, its local (x, y,
+	 * z) as x | y << 4 | z << 8; then its t and normal */
+	uint16_t lc[512], lg[512], lp[512];
+	double lt[512];
+	float ln[3][512];
 	uint32_t vt[3 * 729];           /* the triangle pass: the block's vertex table */
 	struct centred cq[CQ];          /* its cubes with a centroid, queued */
 	unsigned ncq;
@@ -709,105 +719,214 @@ static void gather(struct worker *w, const struct blockctx *c)
 }
 
 /* The sdf gradient at local voxel (x, y, z) (observed, value s0), per
- * axis: central differences, one-sided beside unobserved voxels.  Written
- * as f * (P - M), P the value above or s0 where that is unobserved, M the
- * one below or s0, f 0.5 when both are observed and 1 otherwise, so that it
- * takes no branch; each case is the same double operations as spelled out
- * (0.5 * (sp - sm), sp - s0, s0 - sm, s0 - s0 = +0). */
-static inline void gradient(const float *val, int x, int y, int z, double s0, double g[3])
+ * axis, in double: central differences, one-sided beside unobserved voxels.
+ * Written as f * (P - M), P the value above or s0 where that is unobserved,
+ * M the one below or s0, f 0.5 when both are observed and 1 otherwise, so
+ * that it takes no branch; each case is the same double operations as
+ * spelled out (0.5 * (sp - sm), sp - s0, s0 - sm, s0 - s0 = +0).  The
+ * reference for the float gradients below, used where they are not exact
+ * enough (exact_normal). */
+static void gradient(const float *val, int x, int y, int z, double s0, double g[3])
 {
-	const float *p = val + CIDX(x, y, z);
-#if defined(__SSE2__)
-	__m128d sp = _mm_cvtps_pd(_mm_unpacklo_ps(_mm_load_ss(p + 1), _mm_load_ss(p + CW)));
-	__m128d sm = _mm_cvtps_pd(_mm_unpacklo_ps(_mm_load_ss(p - 1), _mm_load_ss(p - CW)));
-	__m128d spz = _mm_cvtss_sd(_mm_setzero_pd(), _mm_load_ss(p + CW * CW));
-	__m128d smz = _mm_cvtss_sd(_mm_setzero_pd(), _mm_load_ss(p - CW * CW));
-	__m128d s = _mm_set1_pd(s0), half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0);
-	__m128d hp = _mm_cmpord_pd(sp, sp), hm = _mm_cmpord_pd(sm, sm);
-	__m128d P = _mm_or_pd(_mm_and_pd(hp, sp), _mm_andnot_pd(hp, s));
-	__m128d M = _mm_or_pd(_mm_and_pd(hm, sm), _mm_andnot_pd(hm, s));
-	__m128d both = _mm_and_pd(hp, hm);
-	__m128d f = _mm_or_pd(_mm_and_pd(both, half), _mm_andnot_pd(both, one));
-	_mm_storeu_pd(g, _mm_mul_pd(f, _mm_sub_pd(P, M)));
-	hp = _mm_cmpord_sd(spz, spz), hm = _mm_cmpord_sd(smz, smz);
-	P = _mm_or_pd(_mm_and_pd(hp, spz), _mm_andnot_pd(hp, s));
-	M = _mm_or_pd(_mm_and_pd(hm, smz), _mm_andnot_pd(hm, s));
-	both = _mm_and_pd(hp, hm);
-	f = _mm_or_pd(_mm_and_pd(both, half), _mm_andnot_pd(both, one));
-	_mm_store_sd(g + 2, _mm_mul_sd(f, _mm_sub_sd(P, M)));
-#else
 	static const int step[3] = { 1, CW, CW * CW };
+	const float *p = val + CIDX(x, y, z);
 	for (int a = 0; a < 3; a++) {
 		float sp = p[step[a]], sm = p[-step[a]];
 		int hp = sp == sp, hm = sm == sm;
 		g[a] = (hp && hm ? 0.5 : 1.0) * ((hp ? (double)sp : s0) - (hm ? (double)sm : s0));
 	}
+}
+
+/* The same in float at the voxel at val + c, into g[0..2] (g[3] = 0):
+ * the same float operations with SSE2 and without. */
+static inline void gradient4(const float *val, int c, float g[4])
+{
+	const float *p = val + c;
+#if defined(__SSE2__)
+	__m128 s = _mm_set1_ps(p[0]), half = _mm_set1_ps(0.5f), one = _mm_set1_ps(1.0f);
+	__m128 sp = _mm_setr_ps(p[1], p[CW], p[CW * CW], p[0]);
+	__m128 sm = _mm_setr_ps(p[-1], p[-CW], p[-CW * CW], p[0]);
+	__m128 hp = _mm_cmpord_ps(sp, sp), hm = _mm_cmpord_ps(sm, sm);
+	__m128 P = _mm_or_ps(_mm_and_ps(hp, sp), _mm_andnot_ps(hp, s));
+	__m128 M = _mm_or_ps(_mm_and_ps(hm, sm), _mm_andnot_ps(hm, s));
+	__m128 both = _mm_and_ps(hp, hm);
+	__m128 f = _mm_or_ps(_mm_and_ps(both, half), _mm_andnot_ps(both, one));
+	_mm_store_ps(g, _mm_mul_ps(f, _mm_sub_ps(P, M)));
+#else
+	static const int step[3] = { 1, CW, CW * CW };
+	for (int a = 0; a < 3; a++) {
+		float sp = p[step[a]], sm = p[-step[a]];
+		int hp = sp == sp, hm = sm == sm;
+		g[a] = (hp && hm ? 0.5f : 1.0f) * ((hp ? sp : p[0]) - (hm ? sm : p[0]));
+	}
+	g[3] = 0;
 #endif
 }
 
-/* Vertex id on the edge from local voxel (x, y, z) along axis a (both ends
- * observed, signs differ); w->val and w->grad filled for the block. */
-static inline __attribute__((always_inline)) void make_vertex(struct worker *w, int x, int y,
-                                                              int z, int a, size_t id)
+/* The normal of the vertex at t on the edge from local voxel (x, y, z)
+ * along axis a, in double from double gradients (what every vertex got
+ * before the float path; bit for bit the same): the fallback where float
+ * is not exact enough (near-cancelling gradients, tiny or huge values). */
+static void exact_normal(const float *val, int x, int y, int z, int a, double t, float n_out[3])
 {
-	const struct mc *M = w->M;
 	int q[3] = { x, y, z };
 	q[a]++;
-	float s0 = w->val[CIDX(x, y, z)], s1 = w->val[CIDX(q[0], q[1], q[2])];
-	double t = (double)s0 / ((double)s0 - (double)s1);
-	if (!(t >= 1.0 / 256))
-		t = 1.0 / 256;
-	if (t > 255.0 / 256)
-		t = 255.0 / 256;
-	struct blockctx *c = w->cur;
-	int32_t gi[3] = { 8 * c->bx + x, 8 * c->by + y, 8 * c->bz + z };
-	double *p = M->xyz + 3 * id;
-	p[0] = c->coord[0][x], p[1] = c->coord[1][y], p[2] = c->coord[2][z];
-	p[a] = ((double)gi[a] + t) * M->voxel;
-	const double *g0 = w->grad[x + 9 * (y + 9 * z)];
-	const double *g1 = w->grad[q[0] + 9 * (q[1] + 9 * q[2])];
-#if defined(__SSE2__)
-	/* the scalar code's operations, x and y side by side */
-	__m128d T = _mm_set1_pd(t), U = _mm_set1_pd(1 - t);
-	__m128d nxy = _mm_add_pd(_mm_mul_pd(U, _mm_loadu_pd(g0)), _mm_mul_pd(T, _mm_loadu_pd(g1)));
-	__m128d nz = _mm_add_sd(_mm_mul_sd(U, _mm_load_sd(g0 + 2)), _mm_mul_sd(T, _mm_load_sd(g1 + 2)));
-	__m128d sq = _mm_mul_pd(nxy, nxy);
-	__m128d len = _mm_add_sd(_mm_add_sd(sq, _mm_unpackhi_pd(sq, sq)), _mm_mul_sd(nz, nz));
-	if (_mm_comigt_sd(len, _mm_setzero_pd())) {
-		__m128d inv = _mm_div_sd(_mm_set_sd(1.0), _mm_sqrt_sd(len, len));
-		inv = _mm_unpacklo_pd(inv, inv);
-		__m128 fxy = _mm_cvtpd_ps(_mm_mul_pd(nxy, inv));
-		__m128 fz = _mm_cvtsd_ss(_mm_setzero_ps(), _mm_mul_sd(nz, inv));
-		_mm_store_ss(M->nrm[0] + id, fxy);
-		_mm_store_ss(M->nrm[1] + id, _mm_shuffle_ps(fxy, fxy, 1));
-		_mm_store_ss(M->nrm[2] + id, fz);
-	} else
-#else
-	double n[3];
+	float s0 = val[CIDX(x, y, z)], s1 = val[CIDX(q[0], q[1], q[2])];
+	double g0[3], g1[3], n[3];
+	gradient(val, x, y, z, s0, g0);
+	gradient(val, q[0], q[1], q[2], s1, g1);
 	for (int k = 0; k < 3; k++)
 		n[k] = (1 - t) * g0[k] + t * g1[k];
 	double len = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
 	if (len > 0) {
 		len = 1 / sqrt(len);
 		for (int k = 0; k < 3; k++)
-			M->nrm[k][id] = (float)(n[k] * len);
-	} else
-#endif
-	{
+			n_out[k] = (float)(n[k] * len);
+	} else {
 		for (int k = 0; k < 3; k++)
-			M->nrm[k][id] = 0;
-		M->nrm[a][id] = s1 >= 0 ? 1.0f : -1.0f;
-	}
-	if (M->colour) {
-		int v0, v1;
-		const struct fct_voxblock *b0 = ctx_voxel(M, c, x, y, z, &v0);
-		const struct fct_voxblock *b1 = ctx_voxel(M, c, q[0], q[1], q[2], &v1);
-		for (int k = 0; k < 3; k++)
-			M->rgb[k][id] = to_u8((1 - t) * b0->rgb[3 * v0 + k] + t * b1->rgb[3 * v1 + k]);
+			n_out[k] = 0;
+		n_out[a] = s1 >= 0 ? 1.0f : -1.0f;
 	}
 }
 
-/* The vertices of block record A, planned in w->cur, at A->base onwards. */
+/* A vertex's t on its edge from the values at its ends: the zero crossing
+ * in double, at least 1/256 from either end. */
+static inline double edge_t(float s0, float s1)
+{
+	double t = (double)s0 / ((double)s0 - (double)s1);
+	if (!(t >= 1.0 / 256))
+		t = 1.0 / 256;
+	if (t > 255.0 / 256)
+		t = 255.0 / 256;
+	return t;
+}
+
+/* The float normal's test: accepted when its squared length n2 is a normal
+ * float and at least 1/64 of e2, the squared length of the sum of the
+ * interpolated gradients' magnitudes (per axis |(1 - t) g0| + |t g1|), so
+ * that the float rounding (a few units of 2^-24 of e) moves no component by
+ * more than about 2e-6; cancelling gradients go to exact_normal. */
+#define NRM_CANCEL 64.0f
+
+/* The t and normals of the n vertices listed in w (lc, lg, lp) along axis
+ * a: t into w->lt, normals into w->ln, four at a time in float. */
+static void axis_normals(struct worker *w, int a, int n)
+{
+	static const int vstep[3] = { 1, CW, CW * CW }, gstep[3] = { 1, 9, 81 };
+	const int vs = vstep[a], gs = gstep[a];
+	const float *val = w->val;
+	const float(*g4)[4] = w->grad4;
+	for (int i = n; i & 3; i++)     /* pad the last four with a listed vertex */
+		w->lc[i] = w->lc[0], w->lg[i] = w->lg[0], w->lp[i] = w->lp[0];
+	for (int i = 0; i < n; i += 4) {
+		const uint16_t *lc = w->lc + i, *lg = w->lg + i;
+		unsigned bad;
+#if defined(__SSE2__)
+		__m128 s0 = _mm_setr_ps(val[lc[0]], val[lc[1]], val[lc[2]], val[lc[3]]);
+		__m128 s1 = _mm_setr_ps(val[lc[0] + vs], val[lc[1] + vs], val[lc[2] + vs], val[lc[3] + vs]);
+		/* edge_t, two lanes of double at a time */
+		const __m128d tlo = _mm_set1_pd(1.0 / 256), thi = _mm_set1_pd(255.0 / 256);
+		__m128d a0 = _mm_cvtps_pd(s0), a1 = _mm_cvtps_pd(_mm_movehl_ps(s0, s0));
+		__m128d b0 = _mm_cvtps_pd(s1), b1 = _mm_cvtps_pd(_mm_movehl_ps(s1, s1));
+		__m128d t0 = _mm_min_pd(_mm_max_pd(_mm_div_pd(a0, _mm_sub_pd(a0, b0)), tlo), thi);
+		__m128d t1 = _mm_min_pd(_mm_max_pd(_mm_div_pd(a1, _mm_sub_pd(a1, b1)), tlo), thi);
+		_mm_storeu_pd(w->lt + i, t0);
+		_mm_storeu_pd(w->lt + i + 2, t1);
+		const __m128 one = _mm_set1_ps(1.0f), absm = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+		__m128 T = _mm_movelh_ps(_mm_cvtpd_ps(t0), _mm_cvtpd_ps(t1)), U = _mm_sub_ps(one, T);
+		__m128 nv[4], ev[4];
+#define LANE(j, sh)                                                                          \
+	do {                                                                                 \
+		__m128 p = _mm_mul_ps(_mm_shuffle_ps(U, U, sh), _mm_load_ps(g4[lg[j]]));      \
+		__m128 q = _mm_mul_ps(_mm_shuffle_ps(T, T, sh), _mm_load_ps(g4[lg[j] + gs])); \
+		nv[j] = _mm_add_ps(p, q);                                                    \
+		ev[j] = _mm_add_ps(_mm_and_ps(p, absm), _mm_and_ps(q, absm));                \
+	} while (0)
+		LANE(0, 0x00);
+		LANE(1, 0x55);
+		LANE(2, 0xAA);
+		LANE(3, 0xFF);
+#undef LANE
+		/* to x, y, z across the four vertices */
+		_MM_TRANSPOSE4_PS(nv[0], nv[1], nv[2], nv[3]);
+		_MM_TRANSPOSE4_PS(ev[0], ev[1], ev[2], ev[3]);
+		__m128 n2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(nv[0], nv[0]), _mm_mul_ps(nv[1], nv[1])),
+		                       _mm_mul_ps(nv[2], nv[2]));
+		__m128 e2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(ev[0], ev[0]), _mm_mul_ps(ev[1], ev[1])),
+		                       _mm_mul_ps(ev[2], ev[2]));
+		__m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(n2, _mm_set1_ps(FLT_MIN)),
+		                                  _mm_cmple_ps(n2, _mm_set1_ps(FLT_MAX))),
+		                       _mm_cmpge_ps(_mm_mul_ps(n2, _mm_set1_ps(NRM_CANCEL)), e2));
+		__m128 inv = _mm_div_ps(one, _mm_sqrt_ps(n2));
+		for (int k = 0; k < 3; k++)
+			_mm_storeu_ps(w->ln[k] + i, _mm_mul_ps(nv[k], inv));
+		bad = (unsigned)~_mm_movemask_ps(ok) & 15;
+#else
+		bad = 0;
+		for (int j = 0; j < 4; j++) {
+			float s0 = val[lc[j]], s1 = val[lc[j] + vs];
+			double t = edge_t(s0, s1);
+			w->lt[i + j] = t;
+			float T = (float)t, U = 1.0f - T, nv[3], ev[3];
+			for (int k = 0; k < 3; k++) {
+				float p = U * g4[lg[j]][k], q = T * g4[lg[j] + gs][k];
+				nv[k] = p + q;
+				ev[k] = fabsf(p) + fabsf(q);
+			}
+			float n2 = nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2];
+			float e2 = ev[0] * ev[0] + ev[1] * ev[1] + ev[2] * ev[2];
+			if (n2 >= FLT_MIN && n2 <= FLT_MAX && n2 * NRM_CANCEL >= e2) {
+				float inv = 1.0f / sqrtf(n2);
+				for (int k = 0; k < 3; k++)
+					w->ln[k][i + j] = nv[k] * inv;
+			} else {
+				bad |= 1u << j;
+			}
+		}
+#endif
+		for (; bad; bad &= bad - 1) {
+			int j = __builtin_ctz(bad), p = w->lp[i + j];
+			float nn[3];
+			if (i + j >= n)
+				break;
+			exact_normal(val, p & 15, p >> 4 & 15, p >> 8, a, w->lt[i + j], nn);
+			for (int k = 0; k < 3; k++)
+				w->ln[k][i + j] = nn[k];
+		}
+	}
+}
+
+/* The n vertices listed in w along axis a of the block in w->cur, with
+ * their t and normals (axis_normals), to the output at id onwards. */
+static void axis_output(struct worker *w, int a, int n, size_t id)
+{
+	const struct mc *M = w->M;
+	struct blockctx *c = w->cur;
+	double o = (double)(8 * (a == 0 ? c->bx : a == 1 ? c->by : c->bz));
+	for (int i = 0; i < n; i++) {
+		int p = w->lp[i], x = p & 15, y = p >> 4 & 15, z = p >> 8;
+		int q[3] = { x, y, z };
+		double *xyz = M->xyz + 3 * (id + (size_t)i);
+		xyz[0] = c->coord[0][x], xyz[1] = c->coord[1][y], xyz[2] = c->coord[2][z];
+		xyz[a] = ((o + q[a]) + w->lt[i]) * M->voxel;
+	}
+	for (int k = 0; k < 3; k++)
+		memcpy(M->nrm[k] + id, w->ln[k], (size_t)n * sizeof(float));
+	for (int i = 0; M->colour && i < n; i++) {
+		int p = w->lp[i], x = p & 15, y = p >> 4 & 15, z = p >> 8, v0, v1;
+		int q[3] = { x, y, z };
+		q[a]++;
+		double t = w->lt[i];
+		const struct fct_voxblock *b0 = ctx_voxel(M, c, x, y, z, &v0);
+		const struct fct_voxblock *b1 = ctx_voxel(M, c, q[0], q[1], q[2], &v1);
+		for (int k = 0; k < 3; k++)
+			M->rgb[k][id + (size_t)i] = to_u8((1 - t) * b0->rgb[3 * v0 + k] + t * b1->rgb[3 * v1 + k]);
+	}
+}
+
+/* The vertices of block record A, planned in w->cur, at A->base onwards:
+ * float gradients at the ends of its crossing edges, then per axis the
+ * edges listed and their vertices computed four at a time. */
 static void block_vertices(struct worker *w, const struct aux *A)
 {
 	const uint16_t(*need)[WROW] = w->cur->need;
@@ -816,25 +935,25 @@ static void block_vertices(struct worker *w, const struct aux *A)
 		for (int y = 0; y < 9; y++)
 			for (unsigned m = need[z][y]; m; m &= m - 1) {
 				int x = __builtin_ctz(m);
-				gradient(w->val, x, y, z, w->val[CIDX(x, y, z)], w->grad[x + 9 * (y + 9 * z)]);
+				gradient4(w->val, CIDX(x, y, z), w->grad4[x + 9 * (y + 9 * z)]);
 			}
 	size_t id = A->base;
-	/* one loop per axis, so that each has its own copy of make_vertex */
-	for (int z = 0; z < 8; z++)
-		for (uint64_t m = rows8(A->bits[0] + 8 * z); m; m &= m - 1) {
-			int p = __builtin_ctzll(m);
-			make_vertex(w, p & 7, p >> 3, z, 0, id++);
-		}
-	for (int z = 0; z < 8; z++)
-		for (uint64_t m = rows8(A->bits[1] + 8 * z); m; m &= m - 1) {
-			int p = __builtin_ctzll(m);
-			make_vertex(w, p & 7, p >> 3, z, 1, id++);
-		}
-	for (int z = 0; z < 8; z++)
-		for (uint64_t m = rows8(A->bits[2] + 8 * z); m; m &= m - 1) {
-			int p = __builtin_ctzll(m);
-			make_vertex(w, p & 7, p >> 3, z, 2, id++);
-		}
+	for (int a = 0; a < 3; a++) {
+		int n = 0;
+		for (int z = 0; z < 8; z++)
+			for (uint64_t m = rows8(A->bits[a] + 8 * z); m; m &= m - 1) {
+				int p = __builtin_ctzll(m), x = p & 7, y = p >> 3;
+				w->lc[n] = (uint16_t)CIDX(x, y, z);
+				w->lg[n] = (uint16_t)(x + 9 * (y + 9 * z));
+				w->lp[n] = (uint16_t)(x | y << 4 | z << 8);
+				n++;
+			}
+		if (!n)
+			continue;
+		axis_normals(w, a, n);
+		axis_output(w, a, n, id);
+		id += (size_t)n;
+	}
 }
 
 /* Pass 0 on block B: its own bits, clipped. */
