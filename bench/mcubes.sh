@@ -37,6 +37,7 @@ for scene in room dense; do
 	row "  fct_mcubes, 1 thread (CPU), band voxels only" "$(fig mcubes_band_mvox_s "$f")" "$(fig mcubes_s "$f")"
 	row "  fct_mcubes, 1 thread (wall)" "$(fig mcubes_wall_mvox_s "$f")" "$(fig mcubes_wall_s "$f")"
 	row "  fct_mcubes, 2 threads (wall)" "$(fig mcubes_wall_mvox_s "$f.2")" "$(fig mcubes_wall_s "$f.2")"
+	echo "  1 thread, ms per phase (wall): $(fig phase_ms "$f" | awk '{ printf "pass 0 %s, pass 1 %s, pass 2 %s, allocation %s, vertices %s, triangles %s", $1, $2, $3, $4, $5, $6 }')"
 done
 "$FCT_BENCH/gen_mcubes" estimate >"$dir/est"
 f=$dir/est

@@ -100,6 +100,8 @@ row "marching cubes s, 1 thread (wall)" "$mc1"
 row "marching cubes M voxels/s, 1 thread (wall)" "$(mvox "$blocks" "$mc1")"
 row "marching cubes M voxels/s, 1 thread (CPU, alone)" "$(mvox "$blocks" "$mcc")"
 row "marching cubes M voxels/s, all threads (wall)" "$(mvox "$blocks" "$mc")"
+echo "marching cubes alone, ms per phase (wall, median): $(sed -n 's/^phase_ms=//p' "$dir/mc" |
+	awk '{ printf "pass 0 %s, pass 1 %s, pass 2 %s, allocation %s, vertices %s, triangles %s", $1, $2, $3, $4, $5, $6 }')"
 
 B=/work/shared/data/stanford_bunny
 if [ -r "$B/data/bun.conf" ]; then
