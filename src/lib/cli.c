@@ -7,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "numparse.h"
@@ -166,20 +165,6 @@ void fct_write_text_or_die(const char *text, const char *path)
 	fputs(text, o.f);
 	if (fct_out_commit(&o, &err))
 		fct_die_err(&err);
-}
-
-double fct_now(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-double fct_cpu_time(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 void fct_progress_start(struct fct_progress *p, const char *what)

@@ -7,6 +7,8 @@
 #ifndef FCT_CLI_H
 #define FCT_CLI_H
 
+#include "clock.h"   /* fct_now, fct_cpu_time: every -v figure reads them */
+
 #include "camera.h"
 #include "image.h"
 
@@ -57,10 +59,6 @@ void fct_write_image_or_die(const struct fct_image *img, const char *path);
 /* Write text to path atomically (output.h); exit 1 on failure. */
 void fct_write_text_or_die(const char *text, const char *path);
 
-/* Seconds on a monotonic clock. */
-double fct_now(void);
-/* CPU seconds used by this process. */
-double fct_cpu_time(void);
 
 /* Progress on stderr for long work, with -v or when stderr is a terminal
  * (never with -q); redrawn at most a few times a second. */

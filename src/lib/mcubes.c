@@ -54,13 +54,13 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
 #include <pthread.h>
 
+#include "clock.h"
 #include "par.h"
 
 /* The functions the time goes into start on a cache line, so that their
@@ -1582,13 +1582,6 @@ static void blockmap(struct mc *M, size_t nb)
 	}
 }
 
-/* Wall seconds, for the phases' times in the stats. */
-static double wall_now(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Chunks of the parallel loops: fixed, so the work is cut alike for any
  * thread count (the results do not depend on it anyway). */
@@ -1631,9 +1624,9 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 		M->w[t].M = M;
 	if (clip_lo && (clip_lo[0] >= clip_hi[0] || clip_lo[1] >= clip_hi[1] || clip_lo[2] >= clip_hi[2]))
 		nb = 0;         /* an empty box: no cubes */
-	tp[0] = wall_now();
+	tp[0] = fct_now();
 	fct_par_run(nthreads, nb, MC_CHUNKS, run_pass0, M);
-	tp[1] = wall_now();
+	tp[1] = fct_now();
 	for (size_t b = 0; b < nb; b++)
 		M->auxof[b] = M->own[b].anyobs ? (uint32_t)naux++ : NONE;
 	blockmap(M, nb);
@@ -1641,12 +1634,12 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	    !(M->live = fct_alloc_array(naux, sizeof *M->live, err)))
 		goto done;
 	fct_par_run(nthreads, nb, MC_CHUNKS, run_pass1, M);
-	tp[2] = wall_now();
+	tp[2] = fct_now();
 	for (size_t b = 0; b < nb; b++)
 		if (M->auxof[b] != NONE)
 			M->live[M->nlive++] = M->auxof[b];
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_pass2, M);
-	tp[3] = wall_now();
+	tp[3] = fct_now();
 	/* every record's place in the output, in block order */
 	for (size_t i = 0; i < M->nlive; i++) {
 		struct aux *A = &M->aux[M->live[i]];
@@ -1684,11 +1677,11 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	}
 	M->xyz = out->xyz;
 	M->tri = out->fvert;
-	tp[4] = wall_now();
+	tp[4] = fct_now();
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_vertices, M);
-	tp[5] = wall_now();
+	tp[5] = fct_now();
 	fct_par_run(nthreads, M->nlive, MC_CHUNKS, run_triangles, M);
-	tp[6] = wall_now();
+	tp[6] = fct_now();
 	if (stats) {
 		memset(stats, 0, sizeof *stats);
 		for (int t = 0; t < nthreads; t++) {

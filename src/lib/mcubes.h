@@ -52,6 +52,8 @@
 #include "mesh.h"
 #include "voxgrid.h"
 
+#define FCT_MC_PHASES 6
+
 /* Figures of one extraction (any pointer argument may be NULL). */
 struct fct_mcubes_stats {
 	size_t blocks;          /* blocks visited */
@@ -62,9 +64,8 @@ struct fct_mcubes_stats {
 	size_t threads;         /* threads used */
 	/* wall seconds of each phase: pass 0, pass 1, pass 2, the output's
 	 * allocation, the vertex pass, the triangle pass (FCT_MC_PHASES) */
-	double phase_s[6];
+	double phase_s[FCT_MC_PHASES];
 };
-#define FCT_MC_PHASES 6
 
 /* Extract the zero level set of g into out (overwritten with fct_mesh_init
  * first; the caller frees it).  clip_lo and clip_hi are both NULL (no clip)

@@ -17,9 +17,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "adj.h"
+#include "clock.h"
 
 /* Around a non-manifold edge of more faces, only consecutive ones are paired. */
 #define MAX_ALL_PAIRS 8
@@ -839,13 +839,6 @@ static float select_float(const float *v, size_t n, size_t rank, uint32_t *count
 	return x;
 }
 
-static double now(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
 /* The plane of points p = o + s u (u unit rays from the viewpoint o, s the
  * distance along them) whose noise lies along the rays: such a plane is
  * a.(p - o) = 1, i.e. 1/s = a.u, linear in a, so least squares in 1/s has no
@@ -1029,7 +1022,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                 const struct fct_mesh *m, const struct fct_segment_params *p,
                 struct fct_segment_stats *stats, struct fct_err *err)
 {
-	double t0 = now();
+	double t0 = fct_now();
 	struct seg S;
 	memset(&S, 0, sizeof S);
 	S.m = m, S.p = p, S.err = err;
@@ -1050,7 +1043,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		}
 	if (nf == 0) {
 		if (stats)
-			stats->seconds = now() - t0;
+			stats->seconds = fct_now() - t0;
 		return 0;
 	}
 	double diag2 = 0;
@@ -1232,7 +1225,7 @@ out:
 	free(S.core);
 	free(S.dirty);
 	rh_free(&S.q);
-	S.st.seconds = now() - t0;
+	S.st.seconds = fct_now() - t0;
 	if (stats && rc == 0)
 		*stats = S.st;
 	return rc;
