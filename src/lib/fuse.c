@@ -1176,10 +1176,10 @@ static inline long grid_cell_at(const struct pixgrid *P, double x, double y)
  * branches of a view's fusion, by cachegrind). */
 static inline int32_t grid_seen(const struct pixgrid *P, double x, double y)
 {
-	if (!(x >= 0 && y >= 0 && x < P->xend && y < P->yend))
+	long c = grid_cell_at(P, x, y);
+	if (c < 0)
 		return -1;
-	long ix = (long)x, iy = (long)y, c = iy * (long)P->w + ix;
-	double fx = x - (double)ix, fy = y - (double)iy;
+	double fx = x - (double)(long)x, fy = y - (double)(long)y;
 	int up = P->diag[c] == DIAG_UP;
 	int half = (up & (fx + fy > 1)) | (!up & (fy > fx));
 	return P->cell[2 * c + half];

@@ -132,6 +132,29 @@ static void voxel_in_camera(const double inv[12], const int32_t ijk[3], double c
 	fct_pose_apply(inv, x, c);
 }
 
+/* The voxels of g with a value, one by one: start from { 0, -1 }; each
+ * call moves to the next one (its block, place and indices), 0 after the
+ * last. */
+struct written {
+	size_t b;
+	int l;
+	const struct fct_voxblock *vb;
+	int32_t ijk[3];
+};
+
+static int next_written(const struct fct_voxgrid *g, struct written *w)
+{
+	for (; w->b < fct_voxgrid_count(g); w->b++, w->l = -1) {
+		w->vb = fct_voxgrid_at(g, w->b);
+		while (++w->l < FCT_VOXBLOCK_N)
+			if (w->vb->weight[w->l] > 0) {
+				voxel_index(w->vb, w->l, w->ijk);
+				return 1;
+			}
+	}
+	return 0;
+}
+
 /* Voxels with a value in g: their count, and the largest difference of
  * distance from h's (which must have them too, else *missing counts). */
 static size_t compare_grids(const struct fct_voxgrid *g, const struct fct_voxgrid *h, double *worst,
@@ -139,20 +162,12 @@ static size_t compare_grids(const struct fct_voxgrid *g, const struct fct_voxgri
 {
 	size_t n = 0;
 	*worst = 0, *missing = 0;
-	for (size_t b = 0; b < fct_voxgrid_count(g); b++) {
-		const struct fct_voxblock *vb = fct_voxgrid_at(g, b);
-		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
-			if (!(vb->weight[l] > 0))
-				continue;
-			n++;
-			int32_t ijk[3];
-			voxel_index(vb, l, ijk);
-			float s, w;
-			if (!fct_voxgrid_get(h, ijk[0], ijk[1], ijk[2], &s, &w) || !(w > 0))
-				(*missing)++;
-			else
-				*worst = fmax(*worst, fabs((double)s - vb->sdf[l]));
-		}
+	for (struct written v = { 0, -1, NULL, { 0 } }; next_written(g, &v); n++) {
+		float s, w;
+		if (!fct_voxgrid_get(h, v.ijk[0], v.ijk[1], v.ijk[2], &s, &w) || !(w > 0))
+			(*missing)++;
+		else
+			*worst = fmax(*worst, fabs((double)s - v.vb->sdf[v.l]));
 	}
 	return n;
 }
@@ -400,20 +415,13 @@ static void test_projective_depth(void)
 			fct_pose_invert(pose, inv);
 			size_t bad = 0;
 			double err_max = 0;
-			for (size_t b = 0; b < fct_voxgrid_count(h); b++) {
-				const struct fct_voxblock *vb = fct_voxgrid_at(h, b);
-				for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
-					if (!(vb->weight[l] > 0))
-						continue;
-					int32_t ijk[3];
-					double c[3];
-					voxel_index(vb, l, ijk);
-					voxel_in_camera(inv, ijk, c);
-					double z = c[2];
-					double want = fmin(0.5 - z, 0.03);
-					bad += !(0.5 - z >= -0.03 - 1e-9) || vb->weight[l] != 1;
-					err_max = fmax(err_max, fabs(vb->sdf[l] - want));
-				}
+			for (struct written v = { 0, -1, NULL, { 0 } }; next_written(h, &v);) {
+				double c[3];
+				voxel_in_camera(inv, v.ijk, c);
+				double z = c[2];
+				double want = fmin(0.5 - z, 0.03);
+				bad += !(0.5 - z >= -0.03 - 1e-9) || v.vb->weight[v.l] != 1;
+				err_max = fmax(err_max, fabs(v.vb->sdf[v.l] - want));
 			}
 			CHECK_INT(bad, 0);
 			CHECK_NEAR(err_max, 0, 1e-6);
@@ -572,20 +580,13 @@ static size_t reach(float (*depth)(int x, int y), const double pose[12], int cel
 			}
 		}
 	/* Every voxel written is seen by its pixel, with its distance. */
-	for (size_t b = 0; b < fct_voxgrid_count(g); b++) {
-		const struct fct_voxblock *vb = fct_voxgrid_at(g, b);
-		for (int l = 0; l < FCT_VOXBLOCK_N; l++) {
-			if (!(vb->weight[l] > 0))
-				continue;
-			int32_t ijk[3];
-			double c[3];
-			voxel_index(vb, l, ijk);
-			voxel_in_camera(inv, ijk, c);
-			double u = floor(32 * c[0] / c[2] + 32), w = floor(32 * c[1] / c[2] + 32);
-			double R = u >= 0 && w >= 0 && u < 64 && w < 64 ? kept[(int)w * 64 + (int)u] : 0;
-			if (!(R > 0) || R - c[2] < -0.03 - 1e-6 || fabs(vb->sdf[l] - fmin(R - c[2], 0.03)) > 1e-6)
-				(*bad)++;
-		}
+	for (struct written v = { 0, -1, NULL, { 0 } }; next_written(g, &v);) {
+		double c[3];
+		voxel_in_camera(inv, v.ijk, c);
+		double u = floor(32 * c[0] / c[2] + 32), w = floor(32 * c[1] / c[2] + 32);
+		double R = u >= 0 && w >= 0 && u < 64 && w < 64 ? kept[(int)w * 64 + (int)u] : 0;
+		if (!(R > 0) || R - c[2] < -0.03 - 1e-6 || fabs(v.vb->sdf[v.l] - fmin(R - c[2], 0.03)) > 1e-6)
+			(*bad)++;
 	}
 	fct_voxgrid_free(g);
 	fct_mesh_free(&m);
