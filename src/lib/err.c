@@ -69,6 +69,21 @@ int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *
 	return 0;
 }
 
+int fct_reserve(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
+{
+	size_t bytes;
+	if (need <= *cap)
+		return 0;
+	if (fct_mul_size(need, elem, &bytes))
+		return fct_fail(err, "size overflow");
+	void *p = realloc(*ptr, bytes);
+	if (!p)
+		return fct_fail(err, "out of memory (%zu bytes)", bytes);
+	*ptr = p;
+	*cap = need;
+	return 0;
+}
+
 void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err)
 {
 	size_t bytes;

@@ -30,6 +30,11 @@ int fct_add_size(size_t a, size_t b, size_t *out);
  * doubling; returns 0, or -1 on overflow or out of memory (with a message). */
 int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err);
 
+/* fct_grow to exactly need elements, for storage whose size is known: a
+ * doubled capacity would leave up to half of it never written (and its
+ * pages never faulted in, so that later arrays placed there fault again). */
+int fct_reserve(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err);
+
 /* malloc of n elements of size elem, overflow-checked; n == 0 allocates one
  * element so that NULL always means failure (message set). */
 void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err);

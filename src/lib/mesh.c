@@ -258,40 +258,25 @@ long fct_mesh_add_face(struct fct_mesh *m, const uint32_t *v, size_t n, struct f
 	return (long)m->nf++;
 }
 
-/* Make *ptr hold exactly need elements when it holds fewer (bulk
- * construction knows its size; doubling would waste up to half).
+/* Bulk construction knows its sizes: fct_reserve, exactly.
  *
  * Plain realloc, not fct_alloc_big, although marching cubes' output (73 MB
- * for the room at 1 cm) faults in 17.8k 4 KB pages, about 23 ms: measured
- * on the 2-vCPU VM (THP "madvise"), huge pages for these arrays made
- * gen_mcubes fused 0.094 -> 0.225 s CPU (medians of 9) and tsdfuse
- * --threads 1 mcubes_s 0.078 -> 0.072 s in some runs and 0.125 s in others.
- * The VM hands free 2 MB blocks back to its host (virtio-balloon free page
- * reporting), so a fresh huge page is faulted in by the host 4 KB at a time:
- * 73 MB took 165 ms so, 3.5 ms in huge pages still backed, 24 ms in 4 KB
- * pages (recycled by the guest, always backed).  Calloc for the normals
- * (their zero fill not written twice) changed nothing measurable. */
-static int reserve_exact(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
-{
-	size_t bytes;
-	if (need <= *cap)
-		return 0;
-	if (fct_mul_size(need, elem, &bytes))
-		return fct_fail(err, "size overflow");
-	void *p = realloc(*ptr, bytes);
-	if (!p)
-		return fct_fail(err, "out of memory (%zu bytes)", bytes);
-	*ptr = p;
-	*cap = need;
-	return 0;
-}
-
+ * for the room at 1 cm) faults in 17.8k 4 KB pages, about 23 ms, when it
+ * cannot reuse freed memory: measured on the 2-vCPU VM (THP "madvise"),
+ * huge pages for these arrays made gen_mcubes fused 0.094 -> 0.225 s CPU
+ * (medians of 9) and tsdfuse --threads 1 mcubes_s 0.078 -> 0.072 s in some
+ * runs and 0.125 s in others.  The VM hands free 2 MB blocks back to its
+ * host (virtio-balloon free page reporting), so a fresh huge page is
+ * faulted in by the host 4 KB at a time: 73 MB took 165 ms so, 3.5 ms in
+ * huge pages still backed, 24 ms in 4 KB pages (recycled by the guest,
+ * always backed).  Calloc for the normals (their zero fill not written
+ * twice) changed nothing measurable. */
 int fct_mesh_set_vertex_count(struct fct_mesh *m, size_t nv, struct fct_err *err)
 {
 	size_t n;
 	if (fct_mul_size(nv, 3, &n))
 		return fct_fail(err, "too many vertices");
-	if (reserve_exact((void **)&m->xyz, &m->xyz_cap, n, sizeof *m->xyz, err) ||
+	if (fct_reserve((void **)&m->xyz, &m->xyz_cap, n, sizeof *m->xyz, err) ||
 	    fct_elem_resize(&m->vertex, nv, err))
 		return -1;
 	m->nv = nv;
@@ -302,8 +287,8 @@ int fct_mesh_set_triangle_count(struct fct_mesh *m, size_t nf, struct fct_err *e
 {
 	if (nf > UINT32_MAX / 3)
 		return fct_fail(err, "too many faces");
-	if (reserve_exact((void **)&m->fstart, &m->fstart_cap, nf + 1, sizeof *m->fstart, err) ||
-	    reserve_exact((void **)&m->fvert, &m->fvert_cap, 3 * nf, sizeof *m->fvert, err) ||
+	if (fct_reserve((void **)&m->fstart, &m->fstart_cap, nf + 1, sizeof *m->fstart, err) ||
+	    fct_reserve((void **)&m->fvert, &m->fvert_cap, 3 * nf, sizeof *m->fvert, err) ||
 	    fct_elem_resize(&m->face, nf, err))
 		return -1;
 	for (size_t f = 0; f <= nf; f++)

@@ -299,22 +299,23 @@ static int body_fail(const struct body *b, uint64_t row, const struct slot *s, c
 	return fct_fail(b->err, "%s: element %s %" PRIu64 ": %s", w, b->he->name, row, what);
 }
 
-/* Storage for rows [0, rows) of every scalar destination of the element. */
+/* Storage for exactly rows [0, rows) of every scalar destination of the
+ * element (grow_rows does the doubling when the count is not vouched for). */
 static int reserve_rows(struct body *b, size_t rows)
 {
 	struct fct_mesh *m = b->m;
 	for (size_t j = 0; j < b->he->nprops; j++) {
 		struct slot *s = &b->slots[j];
 		if (s->kind <= SLOT_Z) {
-			if (fct_grow((void **)&m->xyz, &m->xyz_cap, 3 * rows, sizeof *m->xyz, b->err))
+			if (fct_reserve((void **)&m->xyz, &m->xyz_cap, 3 * rows, sizeof *m->xyz, b->err))
 				return -1;
 		} else if (s->kind == SLOT_FACE) {
-			if (fct_grow((void **)&m->fstart, &m->fstart_cap, rows + 1, sizeof *m->fstart, b->err))
+			if (fct_reserve((void **)&m->fstart, &m->fstart_cap, rows + 1, sizeof *m->fstart, b->err))
 				return -1;
 		} else if (s->count_type) {
-			if (fct_grow((void **)&s->col->off, &s->col->off_cap, rows + 1, sizeof *s->col->off, b->err))
+			if (fct_reserve((void **)&s->col->off, &s->col->off_cap, rows + 1, sizeof *s->col->off, b->err))
 				return -1;
-		} else if (fct_grow(&s->col->data, &s->col->cap, rows, s->size, b->err)) {
+		} else if (fct_reserve(&s->col->data, &s->col->cap, rows, s->size, b->err)) {
 			return -1;
 		}
 	}
@@ -532,7 +533,7 @@ static int read_binary_elem(struct body *b)
 	if (b->slots[0].kind == SLOT_FACE && left != UINT64_MAX) {
 		/* Triangles are the rule; the bytes left bound how many indices can come. */
 		size_t guess = left / b->slots[0].size < 3 * (uint64_t)count ? (size_t)(left / b->slots[0].size) : 3 * count;
-		if (fct_grow((void **)&m->fvert, &m->fvert_cap, guess, sizeof *m->fvert, b->err))
+		if (fct_reserve((void **)&m->fvert, &m->fvert_cap, guess, sizeof *m->fvert, b->err))
 			return -1;
 	}
 	plan_fast(b);
