@@ -14,12 +14,22 @@
  *                                       voxels, constant weight; VOXEL 0.01), so
  *                                       that marching cubes is timed alone on a
  *                                       real volume
+ *   gen_mcubes -w ...                   (first option) warm output: each run's mesh
+ *                                       is freed before the next run extracts, and
+ *                                       glibc keeps freed memory (mmap threshold
+ *                                       256 MB, trim threshold 1 GB), so that the
+ *                                       output comes back already faulted in: the
+ *                                       extraction's compute alone, as tsdfuse
+ *                                       sees it when it reuses the views' memory
+ *                                       (the headline rows without -w: fresh
+ *                                       output, page faults included)
  *   gen_mcubes estimate                 blocks and bytes of a 10 x 10 x 3 m room
  *                                       band at 1 cm, counted without allocating
  * room: a 4 x 4 x 2.5 m room at 1 cm voxels, a 0.5 m ball and a 1 x 0.6 x 0.75 m
  * table in it, blocks only where the truncation band (4 voxels) reaches, as a
  * fusion leaves them.  dense: a 256^3 volume, every voxel observed, a ball of
  * radius 100 voxels (the volume scikit-image is usually timed on). */
+#include <malloc.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -185,8 +195,10 @@ int main(int argc, char **argv)
 {
 	fct_cli_init("gen_mcubes");
 	struct fct_err err;
-	int runs = 5, threads = 1, a = 1;
+	int runs = 5, threads = 1, a = 1, warm = 0;
 	double voxel = 0.01;
+	if (a < argc && !strcmp(argv[a], "-w"))
+		warm = 1, a++;
 	for (; a + 2 < argc; a += 2) {
 		if (!strcmp(argv[a], "-r"))
 			runs = (int)fct_opt_long("-r", argv[a + 1], 1, 1000);
@@ -198,7 +210,7 @@ int main(int argc, char **argv)
 			break;
 	}
 	if (a >= argc || (a + 1 != argc && strcmp(argv[a], "fused")))
-		fct_usage_error("usage: gen_mcubes [-r RUNS] [-t THREADS] [-s VOXEL] room|dense|estimate|fused VIEW.ply...");
+		fct_usage_error("usage: gen_mcubes [-w] [-r RUNS] [-t THREADS] [-s VOXEL] room|dense|estimate|fused VIEW.ply...");
 	const char *what = argv[a];
 	if (!strcmp(what, "estimate")) {
 		struct scene s = { { 10, 10, 3 }, { 5, 5, -10, 0 }, { 0, 0, -9, 0, 0, -9 } };
@@ -245,6 +257,12 @@ int main(int argc, char **argv)
 	 * between runs, they came back from malloc already faulted in or not,
 	 * as glibc's mmap threshold moved, and the median with them.) */
 	struct fct_mesh *ms = calloc((size_t)runs, sizeof *ms);
+	if (warm) {
+		/* with -w the meshes are freed between runs and glibc keeps their
+		 * memory for the next */
+		mallopt(M_MMAP_THRESHOLD, 256 << 20);
+		mallopt(M_TRIM_THRESHOLD, 1 << 30);
+	}
 	double *tph = malloc((size_t)runs * FCT_MC_PHASES * sizeof *tph);
 	if (!tm || !tr || !tw || !tf || !ms || !tph)
 		fct_die(1, "out of memory");
@@ -263,6 +281,8 @@ int main(int argc, char **argv)
 		for (int k = 0; k < 8; k++)
 			sum += acc[k];
 		tr[r] = cpu_now() - t0;
+		if (warm && r)
+			fct_mesh_free(&ms[r - 1]);     /* leaves it empty: freed again at the end harmlessly */
 		double f0 = faults_now();
 		t0 = cpu_now();
 		double w0 = wall_now();
