@@ -535,6 +535,26 @@ static inline void bits8(const float *s, const float *w, float thr, unsigned *ne
 #endif
 }
 
+#if defined(__SSE2__)
+/* Bits of 16 consecutive voxels (two rows), as bits8 does for each eight:
+ * the compares' lanes packed to bytes, one movemask each. */
+static inline void bits16(const float *s, const float *w, float thr, unsigned *neg, unsigned *obs)
+{
+	__m128 zero = _mm_setzero_ps(), t = _mm_set1_ps(thr), big = _mm_set1_ps(FLT_MAX);
+	__m128 absm = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+#define NEG(k) _mm_castps_si128(_mm_cmplt_ps(_mm_loadu_ps(s + 4 * (k)), zero))
+#define OBS(k)                                                                     \
+	_mm_castps_si128(_mm_and_ps(_mm_cmpge_ps(_mm_loadu_ps(w + 4 * (k)), t),    \
+	                            _mm_cmple_ps(_mm_and_ps(_mm_loadu_ps(s + 4 * (k)), absm), big)))
+	__m128i nb = _mm_packs_epi16(_mm_packs_epi32(NEG(0), NEG(1)), _mm_packs_epi32(NEG(2), NEG(3)));
+	__m128i ob = _mm_packs_epi16(_mm_packs_epi32(OBS(0), OBS(1)), _mm_packs_epi32(OBS(2), OBS(3)));
+#undef NEG
+#undef OBS
+	*neg = (unsigned)_mm_movemask_epi8(nb);
+	*obs = (unsigned)_mm_movemask_epi8(ob);
+}
+#endif
+
 /* 8 consecutive voxels into dst: the sdf where bit x of seen is set
  * (observed, struct own), NaN elsewhere. */
 static inline void vals8_seen(const float *s, unsigned seen, float *dst)
@@ -966,6 +986,22 @@ static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *
 	o->b[0] = B->bx, o->b[1] = B->by, o->b[2] = B->bz;
 	const int32_t *lo = M->lo, *hi = M->hi;
 	unsigned any = 0, xm = 0xFF;
+#if defined(__SSE2__)
+	if (!lo) {
+		/* two rows at a time, no clip box */
+		for (int r = 0; r < 64; r += 2) {
+			unsigned n, ob;
+			bits16(B->sdf + 8 * r, B->weight + 8 * r, M->thr, &n, &ob);
+			o->seen[r] = o->obs[r] = (uint8_t)ob;
+			o->seen[r + 1] = o->obs[r + 1] = (uint8_t)(ob >> 8);
+			o->neg[r] = (uint8_t)n;
+			o->neg[r + 1] = (uint8_t)(n >> 8);
+			any |= ob;
+		}
+		o->anyobs = any != 0;
+		return;
+	}
+#endif
 	if (lo)
 		for (int x = 0; x < 8; x++) {
 			int64_t gx = (int64_t)8 * B->bx + x;
