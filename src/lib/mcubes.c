@@ -1522,8 +1522,16 @@ HOT static void run_pass0(void *ctx, size_t lo, size_t hi, int worker)
 {
 	struct mc *M = ctx;
 	(void)worker;
-	for (size_t b = lo; b < hi; b++)
+	for (size_t b = lo; b < hi; b++) {
+		if (b + 1 < hi) {
+			const struct fct_voxblock *n = fct_voxgrid_at(M->g, b + 1);
+			for (int k = 0; k < 512; k += 16) {
+				__builtin_prefetch(n->sdf + k);
+				__builtin_prefetch(n->weight + k);
+			}
+		}
 		pass0(M, fct_voxgrid_at(M->g, b), &M->own[b], &M->rim[b]);
+	}
 }
 
 HOT static void run_pass1(void *ctx, size_t lo, size_t hi, int worker)
