@@ -1230,15 +1230,11 @@ static unsigned cube_bits(struct aux *A, const uint16_t obs[9][9])
 /* Pass 1 on block b: its edge and cube bits, exact counts of triangles
  * and centroids.  Returns 1 when the block has anything (A
  * filled), else 0. */
-static int pass1(struct mc *M, size_t b, struct aux *A)
+static int pass1(struct mc *M, size_t b, const int32_t up[8], struct aux *A)
 {
 	const struct own *own = M->own;
-	const struct fct_voxblock *B = fct_voxgrid_at(M->g, b);
 	A->block = (uint32_t)b;
-	A->up[0] = (int32_t)b;
-	for (int k = 1; k < 8; k++) {
-		A->up[k] = (int32_t)block_index(M, B->bx + (k & 1), B->by + (k >> 1 & 1), B->bz + (k >> 2));
-	}
+	memcpy(A->up, up, sizeof A->up);
 	static const struct own none;   /* an absent neighbour: nothing observed */
 	const struct own *o[8];
 	for (int k = 0; k < 8; k++)
@@ -1534,17 +1530,45 @@ HOT static void run_pass0(void *ctx, size_t lo, size_t hi, int worker)
 	}
 }
 
+/* Block b (its coordinates from pass 0) and its upper neighbours (struct
+ * aux up) into up. */
+static void block_up(const struct mc *M, size_t b, int32_t up[8])
+{
+	const int32_t *c = M->own[b].b;
+	up[0] = (int32_t)b;
+	for (int k = 1; k < 8; k++)
+		up[k] = (int32_t)block_index(M, c[0] + (k & 1), c[1] + (k >> 1 & 1), c[2] + (k >> 2));
+}
+
 HOT static void run_pass1(void *ctx, size_t lo, size_t hi, int worker)
 {
 	struct mc *M = ctx;
 	struct aux A;
+	int32_t up[2][8];
 	(void)worker;
-	for (size_t b = lo; b < hi; b++) {
+	if (lo < hi && M->auxof[lo] != NONE)
+		block_up(M, lo, up[0]);
+	for (size_t b = lo, k = 0; b < hi; b++, k ^= 1) {
+		/* the next block's neighbours found, and the loads of their bits
+		 * and of its sdf (the decider's) started, while this one is worked
+		 * on */
+		if (b + 1 < hi && M->auxof[b + 1] != NONE) {
+			int32_t *u = up[k ^ 1];
+			block_up(M, b + 1, u);
+			for (int j = 1; j < 8; j++)
+				if (u[j] >= 0) {
+					__builtin_prefetch(M->own[u[j]].neg);
+					__builtin_prefetch(M->own[u[j]].obs);
+				}
+			const struct fct_voxblock *n = fct_voxgrid_at(M->g, b + 1);
+			for (int j = 0; j < 512; j += 16)
+				__builtin_prefetch(n->sdf + j);
+		}
 		/* computed aside, so that the records of empty blocks stay
 		 * untouched (never paged in) */
 		if (M->auxof[b] == NONE)
 			continue;
-		if (pass1(M, b, &A))
+		if (pass1(M, b, up[k], &A))
 			M->aux[M->auxof[b]] = A;
 		else
 			M->auxof[b] = NONE;
