@@ -1607,9 +1607,21 @@ HOT static void run_vertices(void *ctx, size_t lo, size_t hi, int worker)
 HOT static void run_triangles(void *ctx, size_t lo, size_t hi, int worker)
 {
 	struct mc *M = ctx;
-	for (size_t i = lo; i < hi; i++)
+	for (size_t i = lo; i < hi; i++) {
+		/* the next record's neighbours' records (their vertex bits, counts
+		 * and base: the first four lines) start loading */
+		if (i + 1 < hi) {
+			const struct aux *N = &M->aux[M->live[i + 1]];
+			for (int k = 1; k < 8; k++)
+				if (N->up[k] >= 0 && M->auxof[N->up[k]] != NONE) {
+					const char *r = (const char *)&M->aux[M->auxof[N->up[k]]];
+					for (int l = 0; l < 256; l += 64)
+						__builtin_prefetch(r + l);
+				}
+		}
 		if (M->aux[M->live[i]].any_active)
 			block_triangles(&M->w[worker], &M->aux[M->live[i]]);
+	}
 	flush_centred(&M->w[worker]);
 }
 
