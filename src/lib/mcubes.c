@@ -252,6 +252,7 @@ struct mc_tables {
 	uint16_t eoff[12];                      /* edge e's place in it, from the cube's */
 	uint8_t amb[256];                       /* a pattern's ambiguous faces */
 	uint8_t amb_corners[64];                /* the corners of a set of faces */
+	uint8_t bpre[256][8];                   /* bits of a byte below bit x */
 };
 
 static struct mc_tables tables;
@@ -308,6 +309,9 @@ static void tables_init(void)
 		for (int f = 0; f < 6; f++)
 			for (int k = 0; faces >> f & 1 && k < 4; k++)
 				T->amb_corners[faces] |= (uint8_t)(1u << T->G.face_corners[f][k]);
+	for (int b = 0; b < 256; b++)
+		for (int x = 0; x < 8; x++)
+			T->bpre[b][x] = (uint8_t)__builtin_popcount((unsigned)b & ((1u << x) - 1));
 	if (n != MC_VARIANTS)
 		abort();
 }
@@ -1326,6 +1330,32 @@ static void pass2(const struct mc *M, struct aux *A)
 static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const up[8])
 {
 	const uint64_t col0 = 0x0101010101010101u;      /* bit x = 0 of each row */
+#if defined(__SSE2__)
+	/* a layer's rows written whole, without a branch per vertex: row y's
+	 * eight entries are its first vertex's number plus the vertices before
+	 * x in the row (bpre); the entries of edges without a vertex get a
+	 * number no cube reads */
+	const uint8_t(*bpre)[8] = tables.bpre;
+	const __m128i zero = _mm_setzero_si128();
+	for (int a = 0; a < 3; a++)
+		for (int z = 0; z < 8; z++) {
+			uint64_t l = rows8(A->bits[a] + 8 * z);
+			if (!l)
+				continue;
+			/* the vertices before each row: byte counts, summed up */
+			uint64_t c = l - ((l >> 1) & UINT64_C(0x5555555555555555));
+			c = (c & UINT64_C(0x3333333333333333)) + ((c >> 2) & UINT64_C(0x3333333333333333));
+			c = (c + (c >> 4)) & UINT64_C(0x0F0F0F0F0F0F0F0F);
+			c = (c * col0) << 8;
+			uint32_t id = A->base + A->pre[a][z], *lay = vt + VT_IDX(a, 0, 0, z);
+			for (int y = 0; y < 8; y++, l >>= 8, c >>= 8) {
+				__m128i r = _mm_unpacklo_epi8(_mm_loadl_epi64((const __m128i *)bpre[l & 0xFF]), zero);
+				__m128i b = _mm_set1_epi32((int)(id + (uint32_t)(c & 0xFF)));
+				_mm_storeu_si128((__m128i *)(lay + 9 * y), _mm_add_epi32(b, _mm_unpacklo_epi16(r, zero)));
+				_mm_storeu_si128((__m128i *)(lay + 9 * y + 4), _mm_add_epi32(b, _mm_unpackhi_epi16(r, zero)));
+			}
+		}
+#else
 	for (int a = 0; a < 3; a++)
 		for (int z = 0; z < 8; z++) {
 			uint32_t id = A->base + A->pre[a][z], *lay = vt + VT_IDX(a, 0, 0, z);
@@ -1334,6 +1364,7 @@ static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const u
 				lay[9 * (p >> 3) + (p & 7)] = id++;
 			}
 		}
+#endif
 	const struct aux *N;
 	/* +x: along y and z at x = 8 (the neighbour's x = 0) */
 	if ((N = up[1]))
