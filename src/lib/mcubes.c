@@ -1323,76 +1323,88 @@ static void pass2(const struct mc *M, struct aux *A)
 	A->nverts = count;
 }
 
+/* The vertices before each row of a layer of bits l (row y in byte y):
+ * byte y of the result. */
+static inline uint64_t row_starts(uint64_t l)
+{
+	uint64_t c = l - ((l >> 1) & UINT64_C(0x5555555555555555));
+	c = (c & UINT64_C(0x3333333333333333)) + ((c >> 2) & UINT64_C(0x3333333333333333));
+	c = (c + (c >> 4)) & UINT64_C(0x0F0F0F0F0F0F0F0F);
+	return (c * UINT64_C(0x0101010101010101)) << 8;
+}
+
+/* Entries x = 0..7 of a row of vt whose edges with a vertex are the bits
+ * of b, numbered from id: id plus the vertices before x in the row
+ * (tables.bpre), without a branch per vertex; the entries of edges without
+ * a vertex get numbers no cube reads. */
+static inline void vt_row(uint32_t *row, uint32_t id, unsigned b)
+{
+	const uint8_t *pre = tables.bpre[b];
+#if defined(__SSE2__)
+	const __m128i zero = _mm_setzero_si128();
+	__m128i r = _mm_unpacklo_epi8(_mm_loadl_epi64((const __m128i *)pre), zero);
+	__m128i base = _mm_set1_epi32((int)id);
+	_mm_storeu_si128((__m128i *)row, _mm_add_epi32(base, _mm_unpacklo_epi16(r, zero)));
+	_mm_storeu_si128((__m128i *)(row + 4), _mm_add_epi32(base, _mm_unpackhi_epi16(r, zero)));
+#else
+	for (int x = 0; x < 8; x++)
+		row[x] = id + pre[x];
+#endif
+}
+
+/* Rows y = 0..7 of a layer of vt (row y at lay + 9 y) from a layer of
+ * bits l, numbered from id. */
+static inline void vt_layer(uint32_t *lay, uint32_t id, uint64_t l)
+{
+	uint64_t c = row_starts(l);
+	for (int y = 0; y < 8; y++, l >>= 8, c >>= 8)
+		vt_row(lay + 9 * y, id + (uint32_t)(c & 0xFF), (unsigned)(l & 0xFF));
+}
+
+/* Entries x = 8 of rows y = 0..7 (at col + 9 y) from a neighbour's layer
+ * of bits l numbered from id: its edges at x = 0, each its row's first. */
+static inline void vt_column(uint32_t *col, uint32_t id, uint64_t l)
+{
+	uint64_t c = row_starts(l);
+	for (int y = 0; y < 8; y++, c >>= 8)
+		col[9 * y] = id + (uint32_t)(c & 0xFF);
+}
+
 /* Fill vt (VT_IDX) for record A: its own edges, and those of its upper
  * neighbours' records up[k] (NULL: none) that its cubes use, the edges
- * with a lower corner at local 8 on an axis other than their own.  Only
- * the entries of edges that have a vertex are written. */
+ * with a lower corner at local 8 on an axis other than their own.  The
+ * entries of edges with a vertex are written (and some others, whose
+ * numbers no cube reads). */
 static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const up[8])
 {
 	const uint64_t col0 = 0x0101010101010101u;      /* bit x = 0 of each row */
-#if defined(__SSE2__)
-	/* a layer's rows written whole, without a branch per vertex: row y's
-	 * eight entries are its first vertex's number plus the vertices before
-	 * x in the row (bpre); the entries of edges without a vertex get a
-	 * number no cube reads */
-	const uint8_t(*bpre)[8] = tables.bpre;
-	const __m128i zero = _mm_setzero_si128();
 	for (int a = 0; a < 3; a++)
 		for (int z = 0; z < 8; z++) {
 			uint64_t l = rows8(A->bits[a] + 8 * z);
-			if (!l)
-				continue;
-			/* the vertices before each row: byte counts, summed up */
-			uint64_t c = l - ((l >> 1) & UINT64_C(0x5555555555555555));
-			c = (c & UINT64_C(0x3333333333333333)) + ((c >> 2) & UINT64_C(0x3333333333333333));
-			c = (c + (c >> 4)) & UINT64_C(0x0F0F0F0F0F0F0F0F);
-			c = (c * col0) << 8;
-			uint32_t id = A->base + A->pre[a][z], *lay = vt + VT_IDX(a, 0, 0, z);
-			for (int y = 0; y < 8; y++, l >>= 8, c >>= 8) {
-				__m128i r = _mm_unpacklo_epi8(_mm_loadl_epi64((const __m128i *)bpre[l & 0xFF]), zero);
-				__m128i b = _mm_set1_epi32((int)(id + (uint32_t)(c & 0xFF)));
-				_mm_storeu_si128((__m128i *)(lay + 9 * y), _mm_add_epi32(b, _mm_unpacklo_epi16(r, zero)));
-				_mm_storeu_si128((__m128i *)(lay + 9 * y + 4), _mm_add_epi32(b, _mm_unpackhi_epi16(r, zero)));
-			}
+			if (l)
+				vt_layer(vt + VT_IDX(a, 0, 0, z), A->base + A->pre[a][z], l);
 		}
-#else
-	for (int a = 0; a < 3; a++)
-		for (int z = 0; z < 8; z++) {
-			uint32_t id = A->base + A->pre[a][z], *lay = vt + VT_IDX(a, 0, 0, z);
-			for (uint64_t m = rows8(A->bits[a] + 8 * z); m; m &= m - 1) {
-				int p = __builtin_ctzll(m);
-				lay[9 * (p >> 3) + (p & 7)] = id++;
-			}
-		}
-#endif
 	const struct aux *N;
 	/* +x: along y and z at x = 8 (the neighbour's x = 0) */
 	if ((N = up[1]))
 		for (int a = 1; a < 3; a++)
 			for (int z = 0; z < 8; z++) {
-				uint64_t lay = rows8(N->bits[a] + 8 * z);
-				for (uint64_t m = lay & col0; m; m &= m - 1) {
-					int p = __builtin_ctzll(m);
-					vt[VT_IDX(a, 8, p >> 3, z)] =
-						N->base + N->pre[a][z] + pop64(lay & ((UINT64_C(1) << p) - 1));
-				}
+				uint64_t l = rows8(N->bits[a] + 8 * z);
+				if (l & col0)
+					vt_column(vt + VT_IDX(a, 8, 0, z), N->base + N->pre[a][z], l);
 			}
 	/* +y: along x and z at y = 8, the neighbour's rows (z, 0) */
 	if ((N = up[2]))
 		for (int a = 0; a < 3; a += 2)
-			for (int z = 0; z < 8; z++) {
-				uint32_t id = N->base + N->pre[a][z], *row = vt + VT_IDX(a, 0, 8, z);
-				for (unsigned m = N->bits[a][8 * z]; m; m &= m - 1)
-					row[__builtin_ctz(m)] = id++;
-			}
+			for (int z = 0; z < 8; z++)
+				if (N->bits[a][8 * z])
+					vt_row(vt + VT_IDX(a, 0, 8, z), N->base + N->pre[a][z], N->bits[a][8 * z]);
 	/* +z: along x and y at z = 8, rows (0, y) */
 	if ((N = up[4]))
 		for (int a = 0; a < 2; a++) {
-			uint32_t id = N->base + N->pre[a][0], *lay = vt + VT_IDX(a, 0, 0, 8);
-			for (uint64_t m = rows8(N->bits[a]); m; m &= m - 1) {
-				int p = __builtin_ctzll(m);
-				lay[9 * (p >> 3) + (p & 7)] = id++;
-			}
+			uint64_t l = rows8(N->bits[a]);
+			if (l)
+				vt_layer(vt + VT_IDX(a, 0, 0, 8), N->base + N->pre[a][0], l);
 		}
 	/* +x+y: along z at (8, 8, z); +x+z: along y at (8, y, 8); +y+z: along x
 	 * at (x, 8, 8) */
@@ -1401,12 +1413,9 @@ static void fill_vt(uint32_t *vt, const struct aux *A, const struct aux *const u
 			if (N->bits[2][8 * z] & 1)
 				vt[VT_IDX(2, 8, 8, z)] = N->base + N->pre[2][z];
 	if ((N = up[5])) {
-		uint64_t lay = rows8(N->bits[1]);
-		for (uint64_t m = lay & col0; m; m &= m - 1) {
-			int p = __builtin_ctzll(m);
-			vt[VT_IDX(1, 8, p >> 3, 8)] =
-				N->base + N->pre[1][0] + pop64(lay & ((UINT64_C(1) << p) - 1));
-		}
+		uint64_t l = rows8(N->bits[1]);
+		if (l & col0)
+			vt_column(vt + VT_IDX(1, 8, 0, 8), N->base + N->pre[1][0], l);
 	}
 	if ((N = up[6])) {
 		uint32_t id = N->base + N->pre[0][0];
