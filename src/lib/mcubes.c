@@ -445,7 +445,8 @@ struct worker {
 	_Alignas(16) float grad4[729][4]; /* gradients at corners 0..8 (x, y, z, 0), where needed */
 	/* the vertices of one axis of a block (axis_normals): the value index
 	 * (CIDX) and gradient index of each edge's lower end, its local (x, y,
-	 * z) as x | y << 4 | z << 8; then its t and normal */
+	 * z) as x | y << 4 | z << 8; then its t, and the normals of the
+	 * last four when fewer (the others go to the output directly) */
 	uint16_t lc[512], lg[512], lp[512];
 	double lt[512];
 	float ln[3][512];
@@ -835,8 +836,9 @@ static inline double edge_t(float s0, float s1)
 #define NRM_CANCEL 64.0f
 
 /* The t and normals of the n vertices listed in w (lc, lg, lp) along axis
- * a: t into w->lt, normals into w->ln, four at a time in float. */
-static void axis_normals(struct worker *w, int a, int n)
+ * a: t into w->lt, normals four at a time in float, into the output at id
+ * onwards (the last four, when fewer, through w->ln). */
+static void axis_normals(struct worker *w, int a, int n, size_t id)
 {
 	static const int vstep[3] = { 1, CW, CW * CW }, gstep[3] = { 1, 9, 81 };
 	const int vs = vstep[a], gs = gstep[a];
@@ -847,6 +849,9 @@ static void axis_normals(struct worker *w, int a, int n)
 	for (int i = 0; i < n; i += 4) {
 		const uint16_t *lc = w->lc + i, *lg = w->lg + i;
 		unsigned bad;
+		float *dst[3];
+		for (int k = 0; k < 3; k++)
+			dst[k] = i + 4 <= n ? w->M->nrm[k] + id + (size_t)i : w->ln[k] + i;
 #if defined(__SSE2__)
 		__m128 s0 = _mm_setr_ps(val[lc[0]], val[lc[1]], val[lc[2]], val[lc[3]]);
 		__m128 s1 = _mm_setr_ps(val[lc[0] + vs], val[lc[1] + vs], val[lc[2] + vs], val[lc[3] + vs]);
@@ -885,7 +890,7 @@ static void axis_normals(struct worker *w, int a, int n)
 		                       _mm_cmpge_ps(_mm_mul_ps(n2, _mm_set1_ps(NRM_CANCEL)), e2));
 		__m128 inv = _mm_div_ps(one, _mm_sqrt_ps(n2));
 		for (int k = 0; k < 3; k++)
-			_mm_storeu_ps(w->ln[k] + i, _mm_mul_ps(nv[k], inv));
+			_mm_storeu_ps(dst[k], _mm_mul_ps(nv[k], inv));
 		bad = (unsigned)~_mm_movemask_ps(ok) & 15;
 #else
 		bad = 0;
@@ -904,7 +909,7 @@ static void axis_normals(struct worker *w, int a, int n)
 			if (n2 >= FLT_MIN && n2 <= FLT_MAX && n2 * NRM_CANCEL >= e2) {
 				float inv = 1.0f / sqrtf(n2);
 				for (int k = 0; k < 3; k++)
-					w->ln[k][i + j] = nv[k] * inv;
+					dst[k][j] = nv[k] * inv;
 			} else {
 				bad |= 1u << j;
 			}
@@ -917,13 +922,17 @@ static void axis_normals(struct worker *w, int a, int n)
 				break;
 			exact_normal(val, p & 15, p >> 4 & 15, p >> 8, a, w->lt[i + j], nn);
 			for (int k = 0; k < 3; k++)
-				w->ln[k][i + j] = nn[k];
+				dst[k][j] = nn[k];
 		}
 	}
+	for (int i = n & ~3; i < n; i++)
+		for (int k = 0; k < 3; k++)
+			w->M->nrm[k][id + (size_t)i] = w->ln[k][i];
 }
 
-/* The n vertices listed in w along axis a of the block in w->cur, with
- * their t and normals (axis_normals), to the output at id onwards. */
+/* The positions (and colours) of the n vertices listed in w along axis a
+ * of the block in w->cur, with their t (axis_normals), to the output at id
+ * onwards. */
 static void axis_output(struct worker *w, int a, int n, size_t id)
 {
 	const struct mc *M = w->M;
@@ -936,8 +945,6 @@ static void axis_output(struct worker *w, int a, int n, size_t id)
 		xyz[0] = c->coord[0][x], xyz[1] = c->coord[1][y], xyz[2] = c->coord[2][z];
 		xyz[a] = ((o + q[a]) + w->lt[i]) * M->voxel;
 	}
-	for (int k = 0; k < 3; k++)
-		memcpy(M->nrm[k] + id, w->ln[k], (size_t)n * sizeof(float));
 	for (int i = 0; M->colour && i < n; i++) {
 		int p = w->lp[i], x = p & 15, y = p >> 4 & 15, z = p >> 8, v0, v1;
 		int q[3] = { x, y, z };
@@ -957,12 +964,16 @@ static void block_vertices(struct worker *w, const struct aux *A)
 {
 	const uint16_t(*need)[WROW] = w->cur->need;
 	gather(w, w->cur);
+	/* four rows of need (16 bits each) at a time */
 	for (int z = 0; z < 9; z++)
-		for (int y = 0; y < 9; y++)
-			for (unsigned m = need[z][y]; m; m &= m - 1) {
-				int x = __builtin_ctz(m);
+		for (int y0 = 0; y0 < 9; y0 += 4) {
+			const uint16_t *r = &need[z][y0];
+			uint64_t m = r[0] | (uint64_t)r[1] << 16 | (uint64_t)r[2] << 32 | (uint64_t)r[3] << 48;
+			for (; m; m &= m - 1) {
+				int p = __builtin_ctzll(m), x = p & 15, y = y0 + (p >> 4);
 				gradient4(w->val, CIDX(x, y, z), w->grad4[x + 9 * (y + 9 * z)]);
 			}
+		}
 	size_t id = A->base;
 	for (int a = 0; a < 3; a++) {
 		int n = 0;
@@ -976,7 +987,7 @@ static void block_vertices(struct worker *w, const struct aux *A)
 			}
 		if (!n)
 			continue;
-		axis_normals(w, a, n);
+		axis_normals(w, a, n, id);
 		axis_output(w, a, n, id);
 		id += (size_t)n;
 	}
