@@ -36,9 +36,13 @@
  * with the same bytes for any count.  A vertex's number is its block's
  * base plus a popcount in its masks; the triangle pass writes the numbers
  * of the edges a block's cubes use (its own and its upper neighbours') into
- * a 3x9x9x9 table once per block and reads a cube's fans from it through
- * tabulated offsets; the cubes with a centroid vertex (which reads back the
- * vertices of its loop) are queued and worked through back to back.  The
+ * a 3x9x9x9 table once per block, a row at a time from tabulated bit
+ * prefixes, and reads a cube's fans from it through tabulated offsets; the
+ * cubes with a centroid vertex (which reads back the vertices of its loop)
+ * are queued and worked through back to back.  Blocks lie apart in memory,
+ * where the hardware's prefetchers do not follow, so passes 0 and 1 and
+ * the triangle pass start loading the next block's lines (its values, its
+ * upper neighbours' bits or records) while they work on one.  The
  * bit rows of a z layer are walked as one
  * 64-bit word, so that empty rows cost no branch; where rows are combined
  * (pass 1's rows and masks, a layer's sign patterns, the vertex pass's
