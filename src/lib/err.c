@@ -48,27 +48,6 @@ int fct_add_size(size_t a, size_t b, size_t *out)
 	return 0;
 }
 
-int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
-{
-	if (need <= *cap)
-		return 0;
-	size_t ncap = *cap ? *cap : 16;
-	while (ncap < need) {
-		if (ncap > SIZE_MAX / 2)
-			return fct_fail(err, "size overflow");
-		ncap *= 2;
-	}
-	size_t bytes;
-	if (fct_mul_size(ncap, elem, &bytes))
-		return fct_fail(err, "size overflow");
-	void *p = realloc(*ptr, bytes);
-	if (!p)
-		return fct_fail(err, "out of memory (%zu bytes)", bytes);
-	*ptr = p;
-	*cap = ncap;
-	return 0;
-}
-
 int fct_reserve(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
 {
 	size_t bytes;
@@ -82,6 +61,19 @@ int fct_reserve(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_er
 	*ptr = p;
 	*cap = need;
 	return 0;
+}
+
+int fct_grow(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_err *err)
+{
+	if (need <= *cap)
+		return 0;
+	size_t ncap = *cap ? *cap : 16;
+	while (ncap < need) {
+		if (ncap > SIZE_MAX / 2)
+			return fct_fail(err, "size overflow");
+		ncap *= 2;
+	}
+	return fct_reserve(ptr, cap, ncap, elem, err);
 }
 
 void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err)
