@@ -820,8 +820,10 @@ static void exact_normal(const float *val, int x, int y, int z, int a, double t,
 	}
 }
 
+#if !defined(__SSE2__)
 /* A vertex's t on its edge from the values at its ends: the zero crossing
- * in double, at least 1/256 from either end. */
+ * in double, at least 1/256 from either end (axis_normals's SSE2 code does
+ * the same operations two lanes at a time). */
 static inline double edge_t(float s0, float s1)
 {
 	double t = (double)s0 / ((double)s0 - (double)s1);
@@ -831,6 +833,7 @@ static inline double edge_t(float s0, float s1)
 		t = 255.0 / 256;
 	return t;
 }
+#endif
 
 /* The float normal's test: accepted when its squared length n2 is a normal
  * float and at least 1/64 of e2, the squared length of the sum of the
@@ -1044,6 +1047,7 @@ static void pass0(const struct mc *M, const struct fct_voxblock *B, struct own *
 	o->anyobs = any != 0;
 }
 
+#if !defined(__SSE2__)
 /* Sign pattern of cube (x, y, z) of record A: bit c set when corner c is
  * negative. */
 static inline int cube_cfg(const struct aux *A, int x, int y, int z)
@@ -1051,6 +1055,7 @@ static inline int cube_cfg(const struct aux *A, int x, int y, int z)
 	return (A->neg[z][y] >> x & 3) | (A->neg[z][y + 1] >> x & 3) << 2 |
 	       (A->neg[z + 1][y] >> x & 3) << 4 | (A->neg[z + 1][y + 1] >> x & 3) << 6;
 }
+#endif
 
 /* The sign patterns (cube_cfg) of the cubes of layer z of record A, at
  * cfg[8 * x + y]. */
