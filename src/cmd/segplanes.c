@@ -112,6 +112,17 @@ int main(int argc, char **argv)
 		if (hp > 0)
 			sp.viewpoint[0] = pose[3], sp.viewpoint[1] = pose[7], sp.viewpoint[2] = pose[11];
 	}
+	/* The noise of each vertex from the sensor's model (dm2mesh's sigma). */
+	double *sigma = NULL;
+	const struct fct_prop *sp_sigma = fct_elem_find(&m.vertex, "sigma");
+	if (sp_sigma && sp_sigma->count_type == FCT_NONE) {
+		sigma = malloc((m.nv ? m.nv : 1) * sizeof *sigma);
+		if (!sigma)
+			fct_die(1, "%s: out of memory for %zu vertices", name, m.nv);
+		for (size_t v = 0; v < m.nv; v++)
+			sigma[v] = fct_prop_get(sp_sigma, v);
+		sp.sigma = sigma;
+	}
 	int32_t *patch = malloc(m.nf * sizeof *patch);
 	if (!patch)
 		fct_die(1, "%s: out of memory for %zu faces", name, m.nf);
@@ -140,6 +151,10 @@ int main(int argc, char **argv)
 	fct_report("clusters", "%zu", st.clusters);
 	fct_report("merges", "%zu", st.merges);
 	fct_report("absorbed", "%zu", st.absorbed);
+	fct_report("peeled", "%zu", st.peeled);
+	fct_report("grown", "%zu", st.grown);
+	fct_report("narrow_faces", "%zu", st.narrow_faces);
+	fct_report("free_faces", "%zu", st.free_faces);
 	fct_report("sweeps", "%zu", st.sweeps);
 	fct_report("evaluations", "%zu", st.evaluations);
 	fct_report("repushes", "%zu", st.repushes);
@@ -150,6 +165,7 @@ int main(int argc, char **argv)
 	fct_report("faces_per_s", "%.0f", seg_s > 0 ? m.nf / seg_s : 0);
 	free(patch);
 	free(planes);
+	free(sigma);
 	fct_mesh_free(&m);
 	return 0;
 }

@@ -915,6 +915,24 @@ static int texcoord_column(struct fct_mesh *m, const char *name, struct fct_err 
 	return fct_elem_add_scalar(&m->vertex, name, t, err) ? 0 : -1;
 }
 
+int fct_camera_texcoords(struct fct_mesh *m, const struct fct_camera *cam, const double *inv_pose,
+                         size_t *no_pixel, struct fct_err *err)
+{
+	if (texcoord_column(m, "s", err) || texcoord_column(m, "t", err))
+		return -1;
+	struct fct_prop *ps = fct_elem_find(&m->vertex, "s"), *pt = fct_elem_find(&m->vertex, "t");
+	for (size_t v = 0; v < m->nv; v++) {
+		double s, t;
+		if (fct_project_texcoord(cam, inv_pose, m->xyz + 3 * v, &s, &t)) {
+			fct_prop_set(ps, v, s);
+			fct_prop_set(pt, v, t);
+		} else {
+			++*no_pixel;
+		}
+	}
+	return 0;
+}
+
 /* The point where the ray from the camera centre c through x meets the
  * plane (k = 1), or the point of the planes' line nearest that ray (k = 2),
  * into out; 0 when the ray runs (nearly) along the plane or the line. */
@@ -1691,18 +1709,8 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 
 	/* Section 6. */
 	if (p->texcoords && have_cam && m->nv > 0) {
-		if (texcoord_column(m, "s", err) || texcoord_column(m, "t", err))
+		if (fct_camera_texcoords(m, &cam, have_pose ? inv : NULL, &st.no_pixel, err))
 			goto out;
-		struct fct_prop *ps = fct_elem_find(&m->vertex, "s"), *pt = fct_elem_find(&m->vertex, "t");
-		for (size_t v = 0; v < m->nv; v++) {
-			double s, t;
-			if (fct_project_texcoord(&cam, have_pose ? inv : NULL, m->xyz + 3 * v, &s, &t)) {
-				fct_prop_set(ps, v, s);
-				fct_prop_set(pt, v, t);
-			} else {
-				st.no_pixel++;
-			}
-		}
 		st.texcoords = 1;
 	}
 	if (planes_changed && fct_planes_set(m, pl, npl, err))

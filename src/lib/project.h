@@ -99,6 +99,12 @@ int fct_project_point(const double *normals, const double *offsets, size_t k, co
 int fct_project_texcoord(const struct fct_camera *cam, const double *inv_pose, const double p[3],
                          double *s, double *t);
 
+/* Section 6: each vertex's s t from the camera (fct_project_texcoord), the
+ * columns made (float) when missing; a vertex with no pixel keeps its
+ * values and counts in *no_pixel. */
+int fct_camera_texcoords(struct fct_mesh *m, const struct fct_camera *cam, const double *inv_pose,
+                         size_t *no_pixel, struct fct_err *err);
+
 /* Snapping to a frame (section 8), in degrees A = angle:
  *  1. up: among the plane normals (as lines; with up_prior, only those
  *     within 45 degrees of it, when there are any), the one with the largest

@@ -12,6 +12,7 @@
 
 #include "adj.h"
 #include "geom.h"
+#include "segment.h"
 
 #define DEAD UINT32_MAX
 #define MAX_PASSES 64
@@ -22,6 +23,14 @@
 #define MAX_FAN 512
 
 enum { ALIVE = 1, BORDER = 2, LOCKED = 4, MOVED = 8 };
+/* Planar model: a vertex inside a region, on a curve, at a corner (qem.h). */
+enum { REGION = 0, CURVE = 1, CORNER = 2 };
+/* Planes closer than this to parallel (sine of the angle, squared) have no
+ * line worth moving a vertex to: 10 degrees. */
+#define MIN_SIN2 0.0301536896
+/* Three planes whose normals' determinant is below this meet at no point
+ * worth moving a vertex to. */
+#define MIN_DET3 0.1
 
 /* A quadric x^T A x + 2 b.x + c: a[0..5] = A00 A01 A02 A11 A12 A22,
  * a[6..8] = b, a[9] = c; w is the face area it carries. */
@@ -74,6 +83,14 @@ struct qem {
 	double *attr;           /* nattr interpolated properties per vertex */
 	size_t nattr;
 	long nrm[3];            /* columns of nx ny nz in attr, or -1 */
+
+	int32_t *tlab;          /* planar model: each triangle's patch (-1 free-form), or NULL */
+	unsigned char *cls;     /* planar model: REGION, CURVE or CORNER */
+	const struct fct_plane *planes;
+	double *pd;             /* planar model: each plane's d, relative to the centre */
+	double *wv;             /* with sigma: each vertex's 1 / sigma^2 */
+	int has_vp;             /* with sigma: the viewpoint, relative to the centre */
+	double vp[3];
 
 	size_t target;
 	int close_holes;
@@ -171,32 +188,24 @@ static double quad_noise(const double q[10], const double x[3])
 	return 1e-12 * ((q[0] + q[3] + q[5]) * r2 + 2 * sqrt(b2 * r2) + fabs(q[9]));
 }
 
-/* The cost of collapsing (a, b) and where the vertex goes (see qem.h). */
-static double edge_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3])
+/* The best point of the segment pa-pb for the quadric q: its ends, its
+ * midpoint, the minimum along it.  The ends are tried first and kept on
+ * ties (within rounding), so that vertices that need not move keep their
+ * coordinates bit for bit.  It is where a collapse goes when the quadric
+ * has no trustworthy optimum near the edge, and in the planar model where
+ * the new vertex must stay on the plane or line both ends lie on. */
+static double segment_cost(const double q[10], const double *pa, const double *pb, double x[3])
 {
-	double q[10];
-	const double *pa = s->p + 3 * (size_t)a, *pb = s->p + 3 * (size_t)b;
-	edge_quadric(s, a, b, FACES | BORDERS, q, NULL);
-	double best = quad_eval(q, pa);
+	double best = quad_eval(q, pa), e = quad_eval(q, pb);
 	memcpy(x, pa, sizeof(double[3]));
-	double e = quad_eval(q, pb);
 	if (e < best)
 		best = e, memcpy(x, pb, sizeof(double[3]));
-	double y[3], d[3], mid[3];
+	double bend = best, d[3], mid[3], y[3];
 	fct_v3_sub(d, pb, pa);
 	fct_v3_axpy(mid, pa, 0.5, d);
-	double len2 = fct_v3_dot(d, d);
-	if (quad_solve(q, y) && fct_v3_dist2(y, mid) <= len2) {
-		e = quad_eval(q, y);
-		if (e < best - quad_noise(q, y))
-			best = e, memcpy(x, y, sizeof y);
-		return best;
-	}
-	double bend = best;   /* the better end */
 	e = quad_eval(q, mid);
 	if (e < bend - quad_noise(q, mid))
 		best = e, memcpy(x, mid, sizeof mid);
-	/* The minimum on the segment: Q(pa + t d) is a parabola in t. */
 	double ad[3] = {
 		q[0] * d[0] + q[1] * d[1] + q[2] * d[2],
 		q[1] * d[0] + q[3] * d[1] + q[4] * d[2],
@@ -214,6 +223,85 @@ static double edge_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3]
 		}
 	}
 	return best;
+}
+
+/* The cost of collapsing (a, b) and where the vertex goes (see qem.h). */
+static double edge_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3])
+{
+	double q[10], y[3], d[3], mid[3];
+	const double *pa = s->p + 3 * (size_t)a, *pb = s->p + 3 * (size_t)b;
+	edge_quadric(s, a, b, FACES | BORDERS, q, NULL);
+	fct_v3_sub(d, pb, pa);
+	fct_v3_axpy(mid, pa, 0.5, d);
+	if (!quad_solve(q, y) || fct_v3_dist2(y, mid) > fct_v3_dot(d, d))
+		return segment_cost(q, pa, pb, x);
+	double best = quad_eval(q, pa), e = quad_eval(q, pb);
+	memcpy(x, pa, sizeof(double[3]));
+	if (e < best)
+		best = e, memcpy(x, pb, sizeof(double[3]));
+	e = quad_eval(q, y);
+	if (e < best - quad_noise(q, y))
+		best = e, memcpy(x, y, sizeof y);
+	return best;
+}
+
+/* Planar model --------------------------------------------------------- */
+
+/* Is (v, u) a feature edge: a border, or between triangles of different
+ * patches? */
+static int is_feature(const struct qem *s, uint32_t v, uint32_t u)
+{
+	int n = 0;
+	int32_t lab = 0;
+	const uint32_t *l = s->vt.pool + s->vt.st[v];
+	for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
+		const uint32_t *t = s->tri + 3 * (size_t)l[i];
+		if (t[0] == DEAD || !(t[0] == u || t[1] == u || t[2] == u))
+			continue;
+		if (n++ == 0)
+			lab = s->tlab[l[i]];
+		else if (s->tlab[l[i]] != lab)
+			return 1;
+	}
+	return n == 1;
+}
+
+/* May v be removed into u: inside a region always, on a curve along it. */
+static int may_go(const struct qem *s, uint32_t v, uint32_t u)
+{
+	return s->cls[v] == REGION || (s->cls[v] == CURVE && is_feature(s, v, u));
+}
+
+/* The label of the region v is inside of (its first live triangle's). */
+static int32_t region_label(const struct qem *s, uint32_t v)
+{
+	const uint32_t *l = s->vt.pool + s->vt.st[v];
+	for (uint32_t i = 0; i < s->vt.cnt[v]; i++)
+		if (s->tri[3 * (size_t)l[i]] != DEAD)
+			return s->tlab[l[i]];
+	return -1;
+}
+
+/* The cost of collapsing (a, b) and where the vertex goes: edge_cost, or
+ * in the planar model the rules of qem.h; INFINITY when neither end may
+ * go. */
+static double collapse_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3])
+{
+	if (!s->tlab)
+		return edge_cost(s, a, b, x);
+	int ga = may_go(s, a, b), gb = may_go(s, b, a);
+	if (!ga && !gb)
+		return INFINITY;
+	double q[10];
+	edge_quadric(s, a, b, FACES | BORDERS, q, NULL);
+	if (ga != gb) {
+		const double *keep = s->p + 3 * (size_t)(ga ? b : a);
+		memcpy(x, keep, sizeof(double[3]));
+		return quad_eval(q, keep);
+	}
+	if (s->cls[a] == REGION && region_label(s, a) < 0)
+		return edge_cost(s, a, b, x);   /* free-form: the optimum */
+	return segment_cost(q, s->p + 3 * (size_t)a, s->p + 3 * (size_t)b, x);
 }
 
 /* The heap key of an edge whose collapse costs cost: cost plus
@@ -302,8 +390,12 @@ static void heap_remove(struct qem *s, uint32_t e)
 static void heap_set(struct qem *s, uint32_t e)
 {
 	uint32_t a = s->ev[2 * (size_t)e], b = s->ev[2 * (size_t)e + 1];
-	double x[3];
-	struct entry n = {edge_key(s, a, b, edge_cost(s, a, b, x)), e, a};
+	double x[3], cost = collapse_cost(s, a, b, x);
+	if (cost == INFINITY) {
+		heap_remove(s, e);   /* until an end changes */
+		return;
+	}
+	struct entry n = {edge_key(s, a, b, cost), e, a};
 	uint32_t i = s->hpos[e];
 	if (i == NOPOS) {
 		heap_place(s, s->nheap++, &n);
@@ -327,8 +419,10 @@ static void heap_build(struct qem *s)
 		uint32_t a = s->ev[2 * e], b = s->ev[2 * e + 1];
 		if (a == DEAD || ((s->flag[a] | s->flag[b]) & LOCKED))
 			continue;
-		double x[3];
-		struct entry n = {edge_key(s, a, b, edge_cost(s, a, b, x)), (uint32_t)e, a};
+		double x[3], cost = collapse_cost(s, a, b, x);
+		if (cost == INFINITY)
+			continue;
+		struct entry n = {edge_key(s, a, b, cost), (uint32_t)e, a};
 		heap_place(s, s->nheap++, &n);
 	}
 	for (size_t i = (s->nheap + 2) / 4; i-- > 0;)
@@ -736,7 +830,8 @@ static int run_pass(struct qem *s, struct fct_err *err)
 		heap_remove(s, e);
 		uint32_t a = s->ev[2 * (size_t)e], b = s->ev[2 * (size_t)e + 1];
 		double x[3], fq[10], bqd[10], w, wb;
-		edge_cost(s, a, b, x);
+		if (collapse_cost(s, a, b, x) == INFINITY)
+			continue;
 		edge_quadric(s, a, b, FACES, fq, &w);
 		edge_quadric(s, a, b, BORDERS, bqd, &wb);
 		double fcost = quad_eval(fq, x), bcost = quad_eval(bqd, x);
@@ -775,22 +870,58 @@ static int run_pass(struct qem *s, struct fct_err *err)
 
 /* Set-up ------------------------------------------------------------------ */
 
-/* Add a border plane of weight w to v's border quadric (made on first use;
- * there is room for one per border vertex). */
-static void border_plane(struct qem *s, uint32_t v, const double n[3], double d, double w)
+/* Add a border plane carrying weight w, its quadric weighted wq, to v's
+ * border quadric (made on first use; there is room for one per border
+ * vertex). */
+static void border_plane(struct qem *s, uint32_t v, const double n[3], double d, double wq,
+                         double w)
 {
 	if (s->bq[v] == NOBQ) {
 		s->bq[v] = (uint32_t)s->nbquad++;
 		memset(&s->bquad[s->bq[v]], 0, sizeof s->bquad[0]);
 	}
-	quad_add_plane(&s->bquad[s->bq[v]], n, d, w);
+	quad_add_plane(&s->bquad[s->bq[v]], n, d, wq);
 	s->bquad[s->bq[v]].w += w;
 }
 
+/* The planes through the border edges perpendicular to their triangles,
+ * weighted by border_weight times the squared edge length, in edge order.
+ * In the planar model a border is known to a sample, not to the noise: the
+ * border distance is then in units of border_tol edge lengths. */
+static void border_planes(struct qem *s, double border_weight, double border_tol)
+{
+	for (size_t e = 0; e < s->ne && border_weight > 0; e++) {
+		uint32_t u = s->ev[2 * e], v = s->ev[2 * e + 1];
+		if (!(s->flag[u] & BORDER) || !(s->flag[v] & BORDER) || edge_faces(s, u, v) != 1)
+			continue;
+		const uint32_t *t = NULL, *l = s->vt.pool + s->vt.st[u];
+		for (uint32_t i = 0; i < s->vt.cnt[u] && !t; i++)
+			if (tri_has(s->tri + 3 * (size_t)l[i], v))
+				t = s->tri + 3 * (size_t)l[i];
+		const double *pu = s->p + 3 * (size_t)u, *pv = s->p + 3 * (size_t)v;
+		double fn[3], dir[3], m[3], e2[3];
+		fct_v3_sub(dir, s->p + 3 * (size_t)t[1], s->p + 3 * (size_t)t[0]);
+		fct_v3_sub(e2, s->p + 3 * (size_t)t[2], s->p + 3 * (size_t)t[0]);
+		fct_v3_cross(fn, dir, e2);
+		fct_v3_sub(dir, pv, pu);
+		fct_v3_cross(m, dir, fn);
+		double len = sqrt(fct_v3_dot(m, m));
+		if (len > 0) {
+			m[0] /= len, m[1] /= len, m[2] /= len;
+			double w = border_weight * fct_v3_dot(dir, dir), dd = -fct_v3_dot(m, pu);
+			double wq = s->tlab ? border_weight / (border_tol * border_tol * fct_v3_dot(dir, dir)) : w;
+			if (s->tlab)
+				w = border_weight;
+			border_plane(s, u, m, dd, wq, w);
+			border_plane(s, v, m, dd, wq, w);
+		}
+	}
+}
+
 /* From the adjacency of the triangles: the edges and the vertex lists; lock
- * the vertices on non-manifold edges; flag the border vertices; add the
- * border planes. */
-static int find_topology(struct qem *s, double border_weight, struct fct_err *err)
+ * the vertices on non-manifold edges; flag the border vertices and make
+ * room for their border planes. */
+static int find_topology(struct qem *s, struct fct_err *err)
 {
 	struct fct_mesh tm;
 	struct fct_adj adj;
@@ -832,26 +963,6 @@ static int find_topology(struct qem *s, double border_weight, struct fct_err *er
 		goto out;
 	for (size_t v = 0; v < s->nv; v++)
 		s->bq[v] = NOBQ;
-	for (size_t e = 0; e < adj.ne && border_weight > 0; e++) {
-		if (fct_adj_edge_nfaces(&adj, e) != 1)
-			continue;
-		uint32_t u = adj.edge_v[2 * e], v = adj.edge_v[2 * e + 1];
-		const uint32_t *t = s->tri + 3 * (size_t)adj.edge_f[adj.edge_fstart[e]];
-		const double *pu = s->p + 3 * (size_t)u, *pv = s->p + 3 * (size_t)v;
-		double fn[3], dir[3], m[3], e2[3];
-		fct_v3_sub(dir, s->p + 3 * (size_t)t[1], s->p + 3 * (size_t)t[0]);
-		fct_v3_sub(e2, s->p + 3 * (size_t)t[2], s->p + 3 * (size_t)t[0]);
-		fct_v3_cross(fn, dir, e2);
-		fct_v3_sub(dir, pv, pu);
-		fct_v3_cross(m, dir, fn);
-		double len = sqrt(fct_v3_dot(m, m));
-		if (len > 0) {
-			m[0] /= len, m[1] /= len, m[2] /= len;
-			double w = border_weight * fct_v3_dot(dir, dir), dd = -fct_v3_dot(m, pu);
-			border_plane(s, u, m, dd, w);
-			border_plane(s, v, m, dd, w);
-		}
-	}
 	/* Edges of each vertex, in edge order. */
 	for (size_t v = 0; v < s->nv; v++)
 		vstart[v + 1] += vstart[v];
@@ -891,6 +1002,205 @@ static void qem_free(struct qem *s)
 	free(s->mark);
 	free(s->heap);
 	free(s->attr);
+	free(s->tlab);
+	free(s->cls);
+	free(s->pd);
+	free(s->wv);
+}
+
+/* The squared noise across triangle tv's plane (unit normal n): see qem.h. */
+static double triangle_noise2(const struct qem *s, const uint32_t *tv, const double n[3])
+{
+	double s2 = (1 / s->wv[tv[0]] + 1 / s->wv[tv[1]] + 1 / s->wv[tv[2]]) / 3;
+	if (!s->has_vp)
+		return s2;
+	const double *a = s->p + 3 * (size_t)tv[0], *b = s->p + 3 * (size_t)tv[1];
+	const double *c = s->p + 3 * (size_t)tv[2];
+	double g[3], r[3];
+	for (int i = 0; i < 3; i++)
+		g[i] = (a[i] + b[i] + c[i]) / 3;
+	fct_v3_sub(r, g, s->vp);
+	double r2 = fct_v3_dot(r, r), cos2 = 1;
+	if (r2 > 0) {
+		double nr = fct_v3_dot(n, r);
+		cos2 = nr * nr / r2;
+	}
+	double l = (sqrt(fct_v3_dist2(a, b)) + sqrt(fct_v3_dist2(b, c)) + sqrt(fct_v3_dist2(c, a))) / 3;
+	double e = s2 * cos2 + l * l * (1 - cos2);
+	return e > 0 ? e : s2 > 0 ? s2 : 1;
+}
+
+/* Face quadrics: each triangle's plane (its patch's in the planar model),
+ * weighted by its area (over its corners' mean sigma^2 with sigma); w
+ * carries the area. */
+static void face_quadrics(struct qem *s)
+{
+	for (size_t t = 0; t < s->nt; t++) {
+		const uint32_t *tv = s->tri + 3 * t;
+		const double *a = s->p + 3 * (size_t)tv[0], *b = s->p + 3 * (size_t)tv[1];
+		const double *c = s->p + 3 * (size_t)tv[2];
+		double e1[3], e2[3], n[3];
+		fct_v3_sub(e1, b, a);
+		fct_v3_sub(e2, c, a);
+		fct_v3_cross(n, e1, e2);
+		double len = sqrt(fct_v3_dot(n, n));
+		if (!(len > 0) || !isfinite(len))
+			continue;
+		n[0] /= len, n[1] /= len, n[2] /= len;
+		double d = -fct_v3_dot(n, a), area = 0.5 * len, wq = area;
+		if (s->tlab && s->tlab[t] >= 0) {
+			const struct fct_plane *pl = &s->planes[s->tlab[t]];
+			memcpy(n, pl->n, sizeof n);
+			d = s->pd[s->tlab[t]];
+		}
+		if (s->wv)
+			wq = area / triangle_noise2(s, tv, n);
+		for (int k = 0; k < 3; k++) {
+			quad_add_plane(&s->q[tv[k]], n, d, wq);
+			s->q[tv[k]].w += area;
+		}
+	}
+}
+
+/* The point nearest p on the planes ls[0..n) (unit normals, offsets pd):
+ * x = p - N^T (N N^T)^-1 (N p + d) for n = 1 or 2, the least-squares point
+ * of all of them for n >= 3.  Returns 0 when they meet nowhere useful
+ * (MIN_SIN2, MIN_DET3). */
+static int onto_planes(const struct qem *s, const int32_t *ls, int n, const double p[3],
+                       double x[3])
+{
+	const struct fct_plane *P = s->planes;
+	if (n == 1) {
+		double r = fct_v3_dot(P[ls[0]].n, p) + s->pd[ls[0]];
+		fct_v3_axpy(x, p, -r, P[ls[0]].n);
+		return 1;
+	}
+	if (n == 2) {
+		const double *n1 = P[ls[0]].n, *n2 = P[ls[1]].n;
+		double c = fct_v3_dot(n1, n2), det = 1 - c * c;
+		if (!(det >= MIN_SIN2))
+			return 0;
+		double r1 = fct_v3_dot(n1, p) + s->pd[ls[0]], r2 = fct_v3_dot(n2, p) + s->pd[ls[1]];
+		double l1 = (r1 - c * r2) / det, l2 = (r2 - c * r1) / det;
+		for (int i = 0; i < 3; i++)
+			x[i] = p[i] - l1 * n1[i] - l2 * n2[i];
+		return 1;
+	}
+	double a[6] = {0, 0, 0, 0, 0, 0}, b[3] = {0, 0, 0};
+	for (int k = 0; k < n; k++) {
+		const double *m = P[ls[k]].n, d = s->pd[ls[k]];
+		a[0] += m[0] * m[0], a[1] += m[1] * m[1], a[2] += m[2] * m[2];
+		a[3] += m[0] * m[1], a[4] += m[1] * m[2], a[5] += m[0] * m[2];
+		for (int i = 0; i < 3; i++)
+			b[i] -= d * m[i];
+	}
+	if (!(fct_sym3_min_eigenvalue(a) >= MIN_DET3))
+		return 0;
+	/* Solve by the adjugate, as quad_solve does (here A is well posed). */
+	double q[10] = {a[0], a[3], a[5], a[1], a[4], a[2], -b[0], -b[1], -b[2], 0};
+	return quad_solve(q, x);
+}
+
+/* Put every vertex on its patches' geometry (qem.h): its plane, the line of
+ * two, the point of three or more, each as far as max_move sigma (no bound
+ * without sigma); else the nearest line, else the nearest plane. */
+static void project_vertices(struct qem *s, double max_move)
+{
+	for (size_t v = 0; v < s->nv; v++) {
+		int32_t ls[8];
+		int n = 0;
+		const uint32_t *l = s->vt.pool + s->vt.st[v];
+		for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
+			int32_t lab = s->tlab[l[i]];
+			int seen = lab < 0;
+			for (int k = 0; k < n && !seen; k++)
+				seen = ls[k] == lab;
+			if (!seen && n < 8)
+				ls[n++] = lab;
+		}
+		if (n == 0)
+			continue;
+		double *p = s->p + 3 * v, x[3], best[3];
+		double bound2 = s->wv && max_move > 0 ? max_move * max_move / s->wv[v] : INFINITY;
+		int done = 0;
+		if (n >= 3 && onto_planes(s, ls, n, p, x) && fct_v3_dist2(x, p) <= bound2) {
+			memcpy(best, x, sizeof x);
+			done = 3;
+		}
+		double bd = INFINITY;
+		for (int i = 0; i < n && !done; i++)
+			for (int j = i + 1; j < n; j++) {
+				int32_t pair[2] = {ls[i], ls[j]};
+				if (!onto_planes(s, pair, 2, p, x))
+					continue;
+				double d2 = fct_v3_dist2(x, p);
+				if (d2 <= bound2 && d2 < bd)
+					bd = d2, memcpy(best, x, sizeof x);
+			}
+		if (!done && bd < INFINITY)
+			done = 2;
+		for (int i = 0; i < n && !done; i++) {
+			double r = fabs(fct_v3_dot(s->planes[ls[i]].n, p) + s->pd[ls[i]]);
+			if (r < bd) {
+				bd = r;
+				onto_planes(s, &ls[i], 1, p, best);
+			}
+		}
+		if (n >= 2)
+			s->st->moved_corner += done == 3, s->st->moved_line += done == 2, s->st->kept_plane += !done;
+		if (best[0] != p[0] || best[1] != p[1] || best[2] != p[2]) {
+			memcpy(p, best, sizeof best);
+			s->flag[v] |= MOVED;
+		}
+	}
+}
+
+/* The planar model's set-up: each triangle's patch, the topology, each
+ * vertex's class and weight, the planes relative to the centre, and the
+ * vertices on their planes. */
+static int planar_setup(struct qem *s, const struct fct_qem_params *p, const size_t *src,
+                        const double ctr[3], struct fct_err *err)
+{
+	size_t nv1 = s->nv ? s->nv : 1;
+	if (!(s->tlab = fct_alloc_array(s->nt ? s->nt : 1, sizeof *s->tlab, err)) ||
+	    !(s->cls = fct_alloc_array(nv1, 1, err)) ||
+	    !(s->pd = fct_alloc_array(p->nplanes ? p->nplanes : 1, sizeof *s->pd, err)))
+		return -1;
+	s->planes = p->planes;
+	s->has_vp = p->use_viewpoint && p->sigma;
+	fct_v3_sub(s->vp, p->viewpoint, ctr);
+	for (size_t l = 0; l < p->nplanes; l++)
+		s->pd[l] = p->planes[l].d + fct_v3_dot(p->planes[l].n, ctr);
+	for (size_t t = 0; t < s->nt; t++) {
+		int32_t l = p->patch[src[t]];
+		s->tlab[t] = l >= 0 && (size_t)l < p->nplanes ? l : -1;
+	}
+	if (p->sigma) {
+		if (!(s->wv = fct_alloc_array(nv1, sizeof *s->wv, err)))
+			return -1;
+		for (size_t v = 0; v < s->nv; v++) {
+			double sg = p->sigma[v];
+			s->wv[v] = sg > 0 && isfinite(sg) ? 1 / (sg * sg) : 1;
+		}
+	}
+	if (find_topology(s, err))
+		return -1;
+	/* Classes from the feature edges at each vertex. */
+	unsigned char *nfeat = s->cls;
+	memset(nfeat, 0, nv1);
+	for (size_t e = 0; e < s->ne; e++) {
+		uint32_t u = s->ev[2 * e], v = s->ev[2 * e + 1];
+		if (is_feature(s, u, v)) {
+			nfeat[u] += nfeat[u] < 3;
+			nfeat[v] += nfeat[v] < 3;
+		}
+	}
+	for (size_t v = 0; v < s->nv; v++) {
+		nfeat[v] = nfeat[v] == 0 ? REGION : nfeat[v] == 2 ? CURVE : CORNER;
+		s->st->corners += nfeat[v] == CORNER;
+	}
+	project_vertices(s, p->max_move);
+	return 0;
 }
 
 void fct_qem_params_default(struct fct_qem_params *p)
@@ -899,6 +1209,14 @@ void fct_qem_params_default(struct fct_qem_params *p)
 	p->max_error = 0;
 	p->border_weight = 1;
 	p->close_holes = 0;
+	p->patch = NULL;
+	p->planes = NULL;
+	p->nplanes = 0;
+	p->sigma = NULL;
+	p->max_move = 4;
+	p->border_tol = 1;
+	p->use_viewpoint = 0;
+	p->viewpoint[0] = p->viewpoint[1] = p->viewpoint[2] = 0;
 }
 
 /* The interpolated vertex properties: scalar float and double columns. */
@@ -1029,6 +1347,7 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 		for (int c = 0; c < 3; c++)
 			ctr[c] = 0.5 * lo[c] + 0.5 * hi[c];
 
+	int planar = p->patch != NULL;
 	if (make_triangles(&s, m, &src, err))
 		goto out;
 	st->faces_in = s.live = s.nt;
@@ -1079,27 +1398,12 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 		}
 	}
 
-	/* Face quadrics, weighted by area. */
-	for (size_t t = 0; t < s.nt; t++) {
-		const uint32_t *tv = s.tri + 3 * t;
-		const double *a = s.p + 3 * (size_t)tv[0], *b = s.p + 3 * (size_t)tv[1];
-		const double *c = s.p + 3 * (size_t)tv[2];
-		double e1[3], e2[3], n[3];
-		fct_v3_sub(e1, b, a);
-		fct_v3_sub(e2, c, a);
-		fct_v3_cross(n, e1, e2);
-		double len = sqrt(fct_v3_dot(n, n));
-		if (!(len > 0) || !isfinite(len))
-			continue;
-		n[0] /= len, n[1] /= len, n[2] /= len;
-		double d = -fct_v3_dot(n, a), area = 0.5 * len;
-		for (int k = 0; k < 3; k++) {
-			quad_add_plane(&s.q[tv[k]], n, d, area);
-			s.q[tv[k]].w += area;
-		}
-	}
-	if (find_topology(&s, p->border_weight, err))
+	if (planar && planar_setup(&s, p, src, ctr, err))
 		goto out;
+	face_quadrics(&s);
+	if (!planar && find_topology(&s, err))
+		goto out;
+	border_planes(&s, p->border_weight, p->border_tol);
 
 	for (;;) {
 		size_t before = st->collapses;

@@ -23,13 +23,13 @@
 
 /* Around a non-manifold edge of more faces, only consecutive ones are paired. */
 #define MAX_ALL_PAIRS 8
-/* Phase 1 clusters: at most this many faces, and a mean square at most
- * CLUSTER_FACTOR^2 times the reference (see cost1). */
+/* Phase 1 clusters: at most this many faces, and a mean squared residual
+ * at most CLUSTER_FIT^2 in units of the points' noise (see cost1). */
 #define CLUSTER_FACES 64
-#define CLUSTER_FACTOR 2.0
-/* The noise of a cluster leans on its faces' local figure with the weight
- * of this many faces. */
-#define PRIOR_FACES 8.0
+#define CLUSTER_FIT 2.0
+/* Faces narrower than this many times their noise are no plane's evidence
+ * (see narrow). */
+#define PEEL_ROUNDS 3
 /* The mean square of a typical pair of adjacent faces on a noisy plane is
  * about 47 times the median of e_f^2 (the least over a face and its
  * neighbours of their least pair): 45 to 49 measured on planes and rooms
@@ -45,11 +45,11 @@
 #define MAX_SWEEPS 64
 
 struct region {
-	double w;        /* total weight */
+	double w;        /* total weight: each point's 1 / sigma^2 */
+	double n;        /* points (corners, or area in mean face areas) */
 	double c[3];     /* weighted centroid */
 	double s[6];     /* central scatter: xx yy zz xy yz xz */
-	double sse;      /* smallest eigenvalue of s: the summed squared residual */
-	double nw2;      /* w nu^2: phase 1, sum of w_f e_f^2; phase 2, the noise */
+	double sse;      /* smallest eigenvalue of s: chi^2, the squared residuals in units of noise */
 };
 
 /* A queued pair is a 64-bit key: its cost as the bits of a non-negative
@@ -89,14 +89,16 @@ struct seg {
 	int32_t *parent;
 	uint32_t (*pair)[2];
 	size_t npairs;
+	uint32_t (*fpair)[2];    /* the adjacent face pairs, for finish */
+	size_t nfpairs;
 	struct rheap q;
-	double prior_w;          /* PRIOR_FACES times the mean face weight */
-	double typ_e2;           /* E^2: the typical pair mean square */
+	double *wv;              /* each vertex's weight, 1 / sigma^2 */
+	double area_unit;        /* area weighting: a third of the mean face area */
+	double typ_e2;           /* E^2: the typical pair mean square (no sigma given) */
 	double floor2;           /* no noise below (1e-7 bounding-box diagonal)^2 */
 	double max_ms, stop;     /* max_rms^2, factor^2 */
+	double fit2;             /* fit^2: the largest mean chi^2 of a patch */
 	size_t patches;
-	uint32_t *core;          /* absorption: each face's patch before it */
-	uint32_t *keep;          /* absorption: the core whose plane a root keeps */
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
 	struct fct_segment_stats st;
 	struct fct_err *err;
@@ -106,6 +108,10 @@ void fct_segment_params_default(struct fct_segment_params *p)
 {
 	p->target = 0;
 	p->factor = FCT_SEGMENT_FACTOR;
+	p->fit = FCT_SEGMENT_FIT;
+	p->max_dev = FCT_SEGMENT_MAX_DEV;
+	p->min_extent = FCT_SEGMENT_MIN_EXTENT;
+	p->sigma = NULL;
 	p->max_rms = HUGE_VAL;
 	p->area_weighted = 0;
 	p->min_faces = FCT_SEGMENT_MIN_FACES;
@@ -234,7 +240,7 @@ static void region_add(struct region *r, const struct region *a, const struct re
 	for (int i = 0; i < 3; i++)
 		r->c[i] = a->c[i] + t * d[i];
 	memcpy(r->s, s, sizeof s);
-	r->nw2 = a->nw2 + b->nw2;
+	r->n = a->n + b->n;
 	r->w = w;
 }
 
@@ -249,9 +255,11 @@ static double union_sse(const struct region *a, const struct region *b, double *
 	return l > 0 ? l : 0;
 }
 
-/* The moments of face f: its corners (weight 1 each), or the area of its
- * fan of triangles from corner 0. */
-static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, int area)
+/* The moments of face f: its corners, each weighted by its vertex's
+ * 1 / sigma^2 (wv), or the area of its fan of triangles from corner 0 in
+ * units of area_unit, weighted by the mean of its corners' weights. */
+static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, int area,
+                         const double *wv, double area_unit)
 {
 	memset(r, 0, sizeof *r);
 	uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
@@ -260,26 +268,35 @@ static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, i
 	const double *o = &m->xyz[3 * (size_t)m->fvert[s]];
 	if (!area || n < 3) {
 		/* Corners relative to the first, for precision. */
-		double c[3] = { 0, 0, 0 };
+		double c[3] = { 0, 0, 0 }, w = 0;
 		for (uint32_t k = 0; k < n; k++) {
-			const double *p = &m->xyz[3 * (size_t)m->fvert[s + k]];
+			uint32_t v = m->fvert[s + k];
+			const double *p = &m->xyz[3 * (size_t)v];
 			for (int i = 0; i < 3; i++)
-				c[i] += p[i] - o[i];
+				c[i] += wv[v] * (p[i] - o[i]);
+			w += wv[v];
 		}
 		for (int i = 0; i < 3; i++)
-			c[i] /= n;
+			c[i] /= w;
 		for (uint32_t k = 0; k < n; k++) {
-			const double *p = &m->xyz[3 * (size_t)m->fvert[s + k]];
+			uint32_t v = m->fvert[s + k];
+			const double *p = &m->xyz[3 * (size_t)v];
 			double d[3] = { p[0] - o[0] - c[0], p[1] - o[1] - c[1], p[2] - o[2] - c[2] };
-			r->s[0] += d[0] * d[0], r->s[1] += d[1] * d[1], r->s[2] += d[2] * d[2];
-			r->s[3] += d[0] * d[1], r->s[4] += d[1] * d[2], r->s[5] += d[0] * d[2];
+			double x = wv[v];
+			r->s[0] += x * d[0] * d[0], r->s[1] += x * d[1] * d[1], r->s[2] += x * d[2] * d[2];
+			r->s[3] += x * d[0] * d[1], r->s[4] += x * d[1] * d[2], r->s[5] += x * d[0] * d[2];
 		}
 		for (int i = 0; i < 3; i++)
 			r->c[i] = o[i] + c[i];
-		r->w = area ? 0 : n;
+		r->w = area ? 0 : w;
+		r->n = area ? 0 : n;
 		r->sse = n > 3 ? fmax(0, fct_sym3_min_eigenvalue(r->s)) : 0;
 		return;
 	}
+	double wmean = 0;
+	for (uint32_t k = 0; k < n; k++)
+		wmean += wv[m->fvert[s + k]];
+	wmean /= n;
 	/* Area: a triangle of area A, centroid g and corners v_k has
 	 * integral (x - g)(x - g)^T dA = A/12 sum_k (v_k - g)(v_k - g)^T. */
 	int first = 1;
@@ -290,8 +307,9 @@ static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, i
 		double v[3] = { p2[0] - o[0], p2[1] - o[1], p2[2] - o[2] };
 		double x[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
 		struct region t;
-		t.w = 0.5 * sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-		t.sse = t.nw2 = 0;
+		t.n = 0.5 * sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / area_unit;
+		t.w = t.n * wmean;
+		t.sse = 0;
 		double g[3] = { (u[0] + v[0]) / 3, (u[1] + v[1]) / 3, (u[2] + v[2]) / 3 };
 		double q[3][3] = {
 			{ -g[0], -g[1], -g[2] },
@@ -353,67 +371,49 @@ static uint32_t merge(struct seg *S, uint32_t a, uint32_t b, double sse)
 
 /* Costs ------------------------------------------------------------------- */
 
-/* Phase 1, clusters: the key of patches a and b is the summed squared
- * residual of their union, which can only grow as a part grows, so a queued
- * key is a lower bound and the order is exactly greedy.  Returns the key, or
- * -1 when the pair is refused for good: a union of more than CLUSTER_FACES
- * faces, of rms above max_rms, or of mean square above CLUSTER_FACTOR^2
- * times the reference: the largest of E^2, the parts' own mean squares, and
- * the lesser of the parts' local noise (mean e_f^2; the lesser, because a
- * face across a crease has a large e_f and must not make a union look
- * noisy). */
+/* Phase 1, clusters: the key of patches a and b is the chi^2 of their
+ * union, which can only grow as a part grows, so a queued key is a lower
+ * bound and the order is exactly greedy.  Returns the key, or -1 when the
+ * pair is refused for good: a union of more than CLUSTER_FACES faces, of
+ * rms above max_rms, or of mean chi^2 above CLUSTER_FIT^2 (its points lie
+ * farther from one plane than their noise allows). */
 static double cost1(struct seg *S, uint32_t a, uint32_t b, double *sse)
 {
 	const struct region *ra = &S->region[a], *rb = &S->region[b];
 	if (-((int64_t)S->parent[a] + S->parent[b]) > CLUSTER_FACES)
 		return -1;
-	double tr, u = union_sse(ra, rb, &tr), w = ra->w + rb->w;
+	double tr, u = union_sse(ra, rb, &tr), w = ra->w + rb->w, n = ra->n + rb->n;
 	S->st.evaluations++;
 	*sse = u;
-	double ms = w > 0 ? u / w : 0;
-	if (ms > S->max_ms)
-		return -1;
-	double ref = S->typ_e2;
-	if (ra->w > 0 && rb->w > 0) {
-		double la = ra->nw2 / ra->w, lb = rb->nw2 / rb->w;
-		double l = la < lb ? la : lb;
-		ref = l > ref ? l : ref;
-	}
-	if (ra->w > 0 && ra->sse / ra->w > ref)
-		ref = ra->sse / ra->w;
-	if (rb->w > 0 && rb->sse / rb->w > ref)
-		ref = rb->sse / rb->w;
-	if (ref < S->floor2)
-		ref = S->floor2;
-	if (ms > CLUSTER_FACTOR * CLUSTER_FACTOR * ref)
+	if (u > S->max_ms * w || u > CLUSTER_FIT * CLUSTER_FIT * n)
 		return -1;
 	return u;
 }
 
-/* Phase 2, patches: the key of patches a and b is how far, in mean square,
- * the smaller one moves from its own plane to the plane of the union,
- * relative to the noise nu_l^2 of the larger one (whose figure is the more
- * reliable):
- *     t = (sse(a u b) - sse(a) - sse(b)) / (w_small nu_l^2).
- * *sse gets sse(a u b), *ms its mean square. */
-static double cost2(struct seg *S, uint32_t a, uint32_t b, double *sse, double *ms)
+/* Does the union of a and b, of chi^2 u, stay a plane: mean chi^2 within
+ * fit^2 and rms within max_rms? */
+static int union_fits(const struct seg *S, const struct region *ra, const struct region *rb,
+                      double u)
+{
+	return u <= S->fit2 * (ra->n + rb->n) && u <= S->max_ms * (ra->w + rb->w);
+}
+
+/* Phase 2, patches: the key of patches a and b is how far, in mean square
+ * and in units of the noise, the points of the smaller one move from its
+ * own plane to the plane of the union:
+ *     t = (chi^2(a u b) - chi^2(a) - chi^2(b)) / n_small.
+ * *sse gets chi^2(a u b). */
+static double cost2(struct seg *S, uint32_t a, uint32_t b, double *sse)
 {
 	const struct region *ra = &S->region[a], *rb = &S->region[b];
-	double tr, u = union_sse(ra, rb, &tr), w = ra->w + rb->w;
+	double tr, u = union_sse(ra, rb, &tr);
 	S->st.evaluations++;
 	*sse = u;
-	*ms = w > 0 ? u / w : 0;
 	double inc = u - ra->sse - rb->sse - ROUNDING * tr;
-	double small = ra->w < rb->w ? ra->w : rb->w;
+	double small = ra->n < rb->n ? ra->n : rb->n;
 	if (!(inc > 0) || !(small > 0))
 		return 0;
-	const struct region *rl = ra->w > rb->w || (ra->w == rb->w && a < b) ? ra : rb;
-	double nu2 = rl->nw2 / rl->w;
-	if (!(nu2 >= S->floor2))
-		nu2 = S->floor2;
-	if (!(nu2 > 0))
-		return HUGE_VAL;
-	return inc / (small * nu2);
+	return inc / small;
 }
 
 /* The queue --------------------------------------------------------------- */
@@ -627,14 +627,14 @@ static long grow(struct seg *S, int phase)
 		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
 		if (a == b)
 			continue;
-		double sse, ms, cost;
+		double sse, cost;
 		if (phase == 1) {
 			if ((cost = cost1(S, a, b, &sse)) < 0)
 				continue;   /* refused for good */
 		} else {
-			cost = cost2(S, a, b, &sse, &ms);
-			if (ms > S->max_ms)
-				continue;   /* never: the union only grows */
+			cost = cost2(S, a, b, &sse);
+			if (!union_fits(S, &S->region[a], &S->region[b], sse))
+				continue;   /* until a or b changes (the sweeps) */
 		}
 		if ((float)cost > key_of(x)) {
 			S->st.repushes++;
@@ -699,8 +699,9 @@ static int refill(struct seg *S, int first)
 		uint32_t a = S->pair[i][0], b = S->pair[i][1];
 		if (!first && !S->dirty[a] && !S->dirty[b])
 			continue;
-		double sse, ms, t = cost2(S, a, b, &sse, &ms);
-		if (ms > S->max_ms || (S->p->target <= 0 && t > S->stop))
+		double sse, t = cost2(S, a, b, &sse);
+		if (!union_fits(S, &S->region[a], &S->region[b], sse) ||
+		    (S->p->target <= 0 && t > S->stop))
 			continue;
 		if (rh_push(S, (float)t, i))
 			return -1;
@@ -710,11 +711,13 @@ static int refill(struct seg *S, int first)
 }
 
 /* Absorb each patch of fewer than min_faces faces into the adjacent patch
- * of at least min_faces faces whose plane fits it best: the least increase
- * of the summed squared residual (ties to the lower root), never past
- * max_rms.  Small patches next to small ones only (a cube's faces) stay.
- * The host keeps its own plane (S->keep), so specks do not tilt it.  best
- * and gain: scratch, F each. */
+ * of at least min_faces faces whose plane fits it best: the least mean
+ * move t (as in phase 2), as long as the union still passes the tests of
+ * phase 2 (t within factor^2, mean chi^2 within fit^2, rms within
+ * max_rms); the host's plane is fitted again to the union.  Rounds until
+ * none is absorbed: a small patch that no neighbour's plane fits stays
+ * apart (finish may then call it free-form).  best and gain: scratch, F
+ * each. */
 static void absorb(struct seg *S, uint32_t *best, double *gain)
 {
 	size_t nf = S->m->nf;
@@ -733,12 +736,14 @@ static void absorb(struct seg *S, uint32_t *best, double *gain)
 				const struct region *rx = &S->region[x], *ry = &S->region[y];
 				double tr, u = union_sse(rx, ry, &tr);
 				S->st.evaluations++;
-				if (u > S->max_ms * (rx->w + ry->w))
+				if (!union_fits(S, rx, ry, u) || !(rx->n > 0))
 					continue;
-				double inc = u - rx->sse - ry->sse;
-				if (best[x] == UINT32_MAX || inc < gain[x] || (inc == gain[x] && y < best[x])) {
+				double t = (u - rx->sse - ry->sse) / rx->n;
+				if (t > S->p->max_dev * S->p->max_dev)
+					continue;
+				if (best[x] == UINT32_MAX || t < gain[x] || (t == gain[x] && y < best[x])) {
 					best[x] = y;
-					gain[x] = inc;
+					gain[x] = t;
 					any = 1;
 				}
 			}
@@ -752,11 +757,10 @@ static void absorb(struct seg *S, uint32_t *best, double *gain)
 			uint32_t a = find(S->parent, (uint32_t)x), b = find(S->parent, best[x]);
 			if (a == b || S->parent[a] <= small)
 				continue;   /* already absorbed, or grown past small */
-			struct region host = S->region[b];
-			uint32_t hc = S->keep[b];
-			uint32_t r = merge(S, a, b, host.sse);
-			S->region[r] = host;
-			S->keep[r] = hc;
+			double tr, u = union_sse(&S->region[a], &S->region[b], &tr);
+			if (!union_fits(S, &S->region[a], &S->region[b], u))
+				continue;   /* the host took others this round */
+			merge(S, a, b, u);
 			S->st.absorbed++;
 			done++;
 		}
@@ -876,40 +880,236 @@ static int ray_fit(struct fct_plane *pl, const double q[9], const double o[3])
 	return 1;
 }
 
-/* Labels in the order of the smallest face index, planes, stats. */
+/* The moments of each patch of label (np patches; -1 faces skipped) from
+ * its faces: R[np], and ray[9 np] for the fit along the rays when ray is
+ * not NULL. */
+static void patch_moments(const struct seg *S, const int32_t *label, size_t np, struct region *R,
+                          double *ray)
+{
+	const struct fct_mesh *m = S->m;
+	memset(R, 0, np * sizeof *R);
+	if (ray)
+		memset(ray, 0, 9 * np * sizeof *ray);
+	const double *vp = S->p->viewpoint;
+	for (size_t f = 0; f < m->nf; f++) {
+		if (label[f] < 0)
+			continue;
+		struct region t;
+		face_moments(&t, m, f, S->p->area_weighted, S->wv, S->area_unit);
+		struct region *r = &R[label[f]];
+		if (r->n == 0 && r->w == 0)
+			*r = t;
+		else
+			region_add(r, r, &t);
+		if (!ray)
+			continue;
+		double *q = &ray[9 * (size_t)label[f]];
+		uint32_t s0 = m->fstart[f], n = m->fstart[f + 1] - s0;
+		double w = S->p->area_weighted && n ? t.n / n : 1;
+		for (uint32_t k = 0; k < n; k++) {
+			const double *p = &m->xyz[3 * (size_t)m->fvert[s0 + k]];
+			double u[3] = { p[0] - vp[0], p[1] - vp[1], p[2] - vp[2] };
+			double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+			if (!(len > 0))
+				continue;
+			u[0] /= len, u[1] /= len, u[2] /= len;
+			q[0] += w * u[0] * u[0], q[1] += w * u[1] * u[1], q[2] += w * u[2] * u[2];
+			q[3] += w * u[0] * u[1], q[4] += w * u[1] * u[2], q[5] += w * u[0] * u[2];
+			q[6] += w * u[0] / len, q[7] += w * u[1] / len, q[8] += w * u[2] / len;
+		}
+	}
+	for (size_t l = 0; l < np; l++)
+		R[l].sse = fmax(0, fct_sym3_min_eigenvalue(R[l].s));
+}
+
+/* The plane of a patch's moments r: the weighted orthogonal fit, or the
+ * fit along the rays (ray not NULL) where it is well posed. */
+static void patch_plane(struct fct_plane *pl, const struct region *r, const double *ray,
+                        const double *viewpoint)
+{
+	fct_plane_fit(pl, r->c, r->s);
+	if (ray)
+		ray_fit(pl, ray, viewpoint);
+}
+
+/* The distance of face f from plane pl in units of its noise: the mean
+ * over its corners of their signed distances over their sigma (the
+ * distance of its centroid, where the corners' noise is alike). */
+static double face_deviation(const struct seg *S, size_t f, const struct fct_plane *pl)
+{
+	const struct fct_mesh *m = S->m;
+	uint32_t c0 = m->fstart[f], n = m->fstart[f + 1] - c0;
+	if (n == 0)
+		return 0;
+	double dev = 0;
+	for (uint32_t c = c0; c < c0 + n; c++) {
+		uint32_t v = m->fvert[c];
+		const double *p = &m->xyz[3 * (size_t)v];
+		double d = pl->n[0] * p[0] + pl->n[1] * p[1] + pl->n[2] * p[2] + pl->d;
+		dev += d * sqrt(S->wv[v]);
+	}
+	return fabs(dev) / n;
+}
+
+/* Is a patch too narrow to be a plane: its lesser width across the plane,
+ * sqrt(12 l2 / w) for the middle eigenvalue l2 of its scatter (the width
+ * of a uniform strip), below min_extent times its noise sqrt(n / w)?  A
+ * strip a few samples wide fits any plane through it, and its fit says
+ * nothing of the surface's shape. */
+static int narrow(const struct region *r, double min_extent)
+{
+	if (!(min_extent > 0) || !(r->w > 0))
+		return 0;
+	double a[3][3] = {
+		{ r->s[0], r->s[3], r->s[5] },
+		{ r->s[3], r->s[1], r->s[4] },
+		{ r->s[5], r->s[4], r->s[2] },
+	}, v[3][3], ev[3];
+	jacobi3(a, v, ev);
+	double lo = fmin(ev[0], fmin(ev[1], ev[2])), hi = fmax(ev[0], fmax(ev[1], ev[2]));
+	double mid = ev[0] + ev[1] + ev[2] - lo - hi;
+	double width2 = 12 * fmax(mid, 0) / r->w, noise2 = r->n / r->w;
+	return width2 < min_extent * min_extent * noise2;
+}
+
+/* Grow the patches into the free-form faces their planes fit: in rounds,
+ * each free-form face next to a patch joins the neighbouring patch whose
+ * plane it is nearest (face_deviation, ties to the lower label) when that
+ * is within max_dev sigma.  Region growing leaves the faces along a
+ * boundary to whichever side got there first, and peeling frees some that
+ * the plane beside them fits; without this, labels along boundaries
+ * alternate and every alternation is a corner of the model.  Stops when a
+ * round takes none. */
+static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane *pl,
+                          struct fct_err *err)
+{
+	size_t nf = S->m->nf;
+	int32_t *best = fct_alloc_array(nf ? nf : 1, sizeof *best, err);
+	double *dev = fct_alloc_array(nf ? nf : 1, sizeof *dev, err);
+	if (!best || !dev) {
+		free(best), free(dev);
+		return -1;
+	}
+	for (;;) {
+		for (size_t f = 0; f < nf; f++)
+			best[f] = -1, dev[f] = S->p->max_dev;
+		for (size_t i = 0; i < S->nfpairs; i++)
+			for (int side = 0; side < 2; side++) {
+				uint32_t f = S->fpair[i][side], g = S->fpair[i][!side];
+				if (patch[f] >= 0 || patch[g] < 0)
+					continue;
+				double d = face_deviation(S, f, &pl[patch[g]]);
+				if (d < dev[f] || (d == dev[f] && best[f] >= 0 && patch[g] < best[f]) ||
+				    (d <= dev[f] && best[f] < 0))
+					best[f] = patch[g], dev[f] = d;
+			}
+		size_t taken = 0;
+		for (size_t f = 0; f < nf; f++)
+			if (best[f] >= 0) {
+				patch[f] = best[f];
+				taken++;
+			}
+		S->st.grown += taken;
+		if (!taken)
+			break;
+	}
+	free(best), free(dev);
+	return 0;
+}
+
+/* Number the labels 0, 1, ... in the order of their smallest face,
+ * dropping the unused; returns the count. */
+static size_t renumber(int32_t *label, size_t nf, int32_t *map)
+{
+	size_t np = 0;
+	for (size_t f = 0; f < nf; f++)
+		map[f] = -1;
+	for (size_t f = 0; f < nf; f++) {
+		if (label[f] < 0)
+			continue;
+		if (map[label[f]] < 0)
+			map[label[f]] = (int32_t)np++;
+		label[f] = map[label[f]];
+	}
+	return np;
+}
+
+/* Labels, free-form faces, planes, stats.  The region growing's patches
+ * are checked against their planes: a face farther than max_dev sigma from
+ * its patch's plane leaves it (free-form, -1) and the plane is fitted again
+ * without it, for PEEL_ROUNDS rounds; a patch too narrow to be a plane
+ * (narrow) is free-form too.  Then the labels in the order of the smallest
+ * face index, and each plane with its orientation, count and rms. */
 static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                   struct fct_err *err)
 {
 	const struct fct_mesh *m = S->m;
-	size_t nf = m->nf, np = 0;
-	for (size_t f = 0; f < nf; f++)
-		patch[f] = -1;
-	for (size_t f = 0; f < nf; f++) {
-		uint32_t r = find(S->parent, (uint32_t)f);
-		if (patch[r] < 0)
-			patch[r] = (int32_t)np++;
-		patch[f] = patch[r];
-	}
-	struct fct_plane *pl = fct_alloc_array(np, sizeof *pl, err);
-	uint32_t *root = fct_alloc_array(np, sizeof *root, err);
-	double *wind = fct_alloc_array(3 * np, sizeof *wind, err);
-	uint32_t *start = fct_alloc_array(np + 1, sizeof *start, err);
-	uint32_t *order = fct_alloc_array(nf, sizeof *order, err);
-	uint32_t *stamp = fct_alloc_array(m->nv, sizeof *stamp, err);
-	if (!pl || !root || !wind || !start || !order || !stamp) {
-		free(pl), free(root), free(wind), free(start), free(order), free(stamp);
+	size_t nf = m->nf;
+	int32_t *map = fct_alloc_array(nf, sizeof *map, err);
+	if (!map)
 		return -1;
+	for (size_t f = 0; f < nf; f++)
+		patch[f] = (int32_t)find(S->parent, (uint32_t)f);
+	size_t np = renumber(patch, nf, map);
+	struct region *R = fct_alloc_array(np ? np : 1, sizeof *R, err);
+	struct fct_plane *pl = fct_alloc_array(np ? np : 1, sizeof *pl, err);
+	double *ray = S->p->use_viewpoint ? fct_alloc_array(9 * (np ? np : 1), sizeof *ray, err) : NULL;
+	uint32_t *stamp = fct_alloc_array(m->nv ? m->nv : 1, sizeof *stamp, err);
+	double *wind = fct_alloc_array(3 * (np ? np : 1), sizeof *wind, err);
+	double *res = fct_alloc_array(2 * (np ? np : 1), sizeof *res, err);
+	if (!R || !pl || (S->p->use_viewpoint && !ray) || !stamp || !wind || !res)
+		goto fail;
+	const double *vp = S->p->viewpoint;
+	double max_dev = S->p->max_dev;
+	for (int round = 0; round <= PEEL_ROUNDS; round++) {
+		patch_moments(S, patch, np, R, ray);
+		for (size_t l = 0; l < np; l++)
+			patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, vp);
+		if (round == PEEL_ROUNDS || !(max_dev > 0))
+			break;
+		size_t peeled = 0;
+		for (size_t f = 0; f < nf; f++)
+			if (patch[f] >= 0 && face_deviation(S, f, &pl[patch[f]]) > max_dev) {
+				patch[f] = -1;
+				peeled++;
+			}
+		S->st.peeled += peeled;
+		if (!peeled)
+			break;
 	}
-	memset(wind, 0, 3 * np * sizeof *wind);
-	memset(start, 0, (np + 1) * sizeof *start);
+	if (max_dev > 0 && grow_into_free(S, patch, pl, err))
+		goto fail;
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0 && narrow(&R[patch[f]], S->p->min_extent)) {
+			patch[f] = -1;
+			S->st.narrow_faces++;
+		}
+	for (size_t f = 0; f < nf; f++)
+		S->st.free_faces += patch[f] < 0;
+	/* The patches that remain, numbered afresh, and their final planes. */
+	np = renumber(patch, nf, map);
+	patch_moments(S, patch, np, R, ray);
+	memset(wind, 0, 3 * (np ? np : 1) * sizeof *wind);
+	memset(res, 0, 2 * (np ? np : 1) * sizeof *res);
+	for (size_t l = 0; l < np; l++)
+		patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, vp);
+	size_t nfaces_in = 0;
 	for (size_t f = 0; f < nf; f++) {
-		uint32_t l = (uint32_t)patch[f];
-		root[l] = find(S->parent, (uint32_t)f);
-		start[l + 1]++;
-		/* Vector area (fan from corner 0), for the orientation. */
+		if (patch[f] < 0)
+			continue;
+		size_t l = (size_t)patch[f];
+		nfaces_in++;
 		uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
+		for (uint32_t k = 0; k < n; k++) {
+			uint32_t v = m->fvert[s + k];
+			const double *p = &m->xyz[3 * (size_t)v];
+			double d = pl[l].n[0] * p[0] + pl[l].n[1] * p[1] + pl[l].n[2] * p[2] + pl[l].d;
+			res[2 * l] += d * d;
+			res[2 * l + 1] += 1;
+		}
 		if (n < 3)
 			continue;
+		/* Vector area (fan from corner 0), for the orientation. */
 		const double *o = &m->xyz[3 * (size_t)m->fvert[s]];
 		for (uint32_t k = 1; k + 1 < n; k++) {
 			const double *p1 = &m->xyz[3 * (size_t)m->fvert[s + k]];
@@ -921,69 +1121,41 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 			wind[3 * l + 2] += u[0] * v[1] - u[1] * v[0];
 		}
 	}
-	for (size_t l = 0; l < np; l++)
-		start[l + 1] += start[l];
-	for (size_t f = 0; f < nf; f++)
-		order[start[patch[f]]++] = (uint32_t)f;
-	for (size_t l = np; l > 0; l--)
-		start[l] = start[l - 1];
-	start[0] = 0;
+	/* count: the distinct vertices of each patch, its faces taken patch by
+	 * patch so that one stamp per vertex tells. */
 	memset(stamp, 0xff, m->nv * sizeof *stamp);
-	/* Ray moments for the fit in inverse distance along the rays. */
-	double *ray = NULL;
-	if (S->p->use_viewpoint) {
-		ray = fct_alloc_array(9 * np, sizeof *ray, err);
-		if (!ray) {
-			free(pl), free(root), free(wind), free(start), free(order), free(stamp);
-			return -1;
+	for (size_t l = 0; l < np; l++)
+		pl[l].count = 0;
+	{
+		uint32_t *start = fct_alloc_array(np + 1, sizeof *start, err);
+		uint32_t *order = fct_alloc_array(nfaces_in ? nfaces_in : 1, sizeof *order, err);
+		if (!start || !order) {
+			free(start), free(order);
+			goto fail;
 		}
-		memset(ray, 0, 9 * np * sizeof *ray);
-		const double *vp = S->p->viewpoint;
-		for (size_t f = 0; f < nf; f++) {
-			if (S->core && S->core[f] != S->keep[find(S->parent, (uint32_t)f)])
-				continue;   /* absorbed: not part of the plane */
-			double *q = &ray[9 * (size_t)patch[f]];
-			uint32_t s0 = m->fstart[f], n = m->fstart[f + 1] - s0;
-			double w = 1;
-			if (S->p->area_weighted) {
-				struct region t;
-				face_moments(&t, m, f, 1);
-				w = n ? t.w / n : 0;
-			}
-			for (uint32_t k = 0; k < n; k++) {
-				const double *p = &m->xyz[3 * (size_t)m->fvert[s0 + k]];
-				double u[3] = { p[0] - vp[0], p[1] - vp[1], p[2] - vp[2] };
-				double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-				if (!(len > 0))
-					continue;
-				u[0] /= len, u[1] /= len, u[2] /= len;
-				q[0] += w * u[0] * u[0], q[1] += w * u[1] * u[1], q[2] += w * u[2] * u[2];
-				q[3] += w * u[0] * u[1], q[4] += w * u[1] * u[2], q[5] += w * u[0] * u[2];
-				q[6] += w * u[0] / len, q[7] += w * u[1] / len, q[8] += w * u[2] / len;
-			}
-		}
+		memset(start, 0, (np + 1) * sizeof *start);
+		for (size_t f = 0; f < nf; f++)
+			if (patch[f] >= 0)
+				start[patch[f] + 1]++;
+		for (size_t l = 0; l < np; l++)
+			start[l + 1] += start[l];
+		for (size_t f = 0; f < nf; f++)
+			if (patch[f] >= 0)
+				order[start[patch[f]]++] = (uint32_t)f;
+		for (size_t l = np; l > 0; l--)
+			start[l] = start[l - 1];
+		start[0] = 0;
+		for (size_t l = 0; l < np; l++)
+			for (uint32_t i = start[l]; i < start[l + 1]; i++)
+				for (uint32_t c = m->fstart[order[i]]; c < m->fstart[order[i] + 1]; c++)
+					if (stamp[m->fvert[c]] != (uint32_t)l) {
+						stamp[m->fvert[c]] = (uint32_t)l;
+						pl[l].count++;
+					}
+		free(start), free(order);
 	}
 	double sum_rms = 0, max_rms = 0;
 	for (size_t l = 0; l < np; l++) {
-		long count = 0;
-		for (uint32_t i = start[l]; i < start[l + 1]; i++) {
-			uint32_t f = order[i];
-			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++)
-				if (stamp[m->fvert[c]] != l) {
-					stamp[m->fvert[c]] = (uint32_t)l;
-					count++;
-				}
-		}
-		const struct region *r = &S->region[root[l]];
-		double lambda = fct_plane_fit(&pl[l], r->c, r->s);
-		if (ray && ray_fit(&pl[l], &ray[9 * l], S->p->viewpoint)) {
-			/* The residual about the ray-fitted plane, from the moments. */
-			const double *n = pl[l].n, *q = r->s;
-			double e = n[0] * n[0] * q[0] + n[1] * n[1] * q[1] + n[2] * n[2] * q[2] +
-			           2 * (n[0] * n[1] * q[3] + n[1] * n[2] * q[4] + n[0] * n[2] * q[5]);
-			double o = n[0] * r->c[0] + n[1] * r->c[1] + n[2] * r->c[2] + pl[l].d;
-			lambda = e + r->w * o * o;
-		}
 		const double *wv = &wind[3 * l];
 		double dot = pl[l].n[0] * wv[0] + pl[l].n[1] * wv[1] + pl[l].n[2] * wv[2];
 		int flip = dot < 0;
@@ -1002,19 +1174,98 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 		for (int i = 0; i < 3; i++)
 			pl[l].n[i] += 0.0;   /* no -0 in the output */
 		pl[l].d += 0.0;
-		pl[l].count = count;
-		pl[l].rms = r->w > 0 ? sqrt(lambda / r->w) : 0;
+		pl[l].rms = res[2 * l + 1] > 0 ? sqrt(res[2 * l] / res[2 * l + 1]) : 0;
 		if (pl[l].rms > max_rms)
 			max_rms = pl[l].rms;
-		sum_rms += pl[l].rms * (start[l + 1] - start[l]);
+		sum_rms += pl[l].rms * res[2 * l + 1];
 	}
-	free(root), free(wind), free(start), free(order), free(stamp);
-	free(ray);
+	double ncorners = 0;
+	for (size_t l = 0; l < np; l++)
+		ncorners += res[2 * l + 1];
+	free(map), free(R), free(ray), free(stamp), free(wind), free(res);
 	S->st.patches = np;
 	S->st.max_rms = max_rms;
-	S->st.mean_rms = nf ? sum_rms / nf : 0;
+	S->st.mean_rms = ncorners > 0 ? sum_rms / ncorners : 0;
+	if (np == 0) {
+		free(pl);
+		pl = NULL;
+	}
 	*planes = pl;
 	*nplanes = np;
+	return 0;
+fail:
+	free(map), free(R), free(pl), free(ray), free(stamp), free(wind), free(res);
+	return -1;
+}
+
+/* E-bar, for a mesh without a noise model: the least mean square of a
+ * face's union with one of its neighbours, then the least of that over the
+ * face and its neighbours (a face across a crease, all of whose pairs fold,
+ * gets the noise of the planes beside it): e_f^2, zero on exact planes.
+ * Times TYPICAL, its median over the faces is E^2, the scale of noise and
+ * curvature; with a viewpoint, at least QUARTILE times the upper quartile
+ * of the pairs' mean squares, since sensors quantise depth and the
+ * plateaus of equal depth make most adjacent pairs exactly coplanar.  Every
+ * vertex then weighs 1 / E^2 and the faces' moments are scaled to match.
+ * Returns 0, or -1 out of memory. */
+static int estimate_noise(struct seg *S)
+{
+	size_t nf = S->m->nf;
+	float *e2f = fct_alloc_array(nf, sizeof *e2f, S->err);
+	float *e2g = fct_alloc_array(nf, sizeof *e2g, S->err);
+	float *pms = fct_alloc_array(S->npairs ? S->npairs : 1, sizeof *pms, S->err);
+	uint32_t *count = fct_alloc_array(65536, sizeof *count, S->err);
+	if (!e2f || !e2g || !pms || !count) {
+		free(e2f), free(e2g), free(pms), free(count);
+		return -1;
+	}
+	for (size_t f = 0; f < nf; f++)
+		e2f[f] = HUGE_VALF;
+	for (size_t i = 0; i < S->npairs; i++) {
+		uint32_t f = S->pair[i][0], g = S->pair[i][1];
+		double tr, u = union_sse(&S->region[f], &S->region[g], &tr);
+		double w = S->region[f].w + S->region[g].w;
+		float x = (float)(w > 0 ? u / w : 0);
+		pms[i] = x;
+		if (x < e2f[f])
+			e2f[f] = x;
+		if (x < e2f[g])
+			e2f[g] = x;
+	}
+	memcpy(e2g, e2f, nf * sizeof *e2g);
+	for (size_t i = 0; i < S->npairs; i++) {
+		uint32_t f = S->pair[i][0], g = S->pair[i][1];
+		if (e2f[g] < e2g[f])
+			e2g[f] = e2f[g];
+		if (e2f[f] < e2g[g])
+			e2g[g] = e2f[f];
+	}
+	size_t nfin = 0;
+	for (size_t f = 0; f < nf; f++)
+		if (e2g[f] < HUGE_VALF)
+			e2f[nfin++] = e2g[f];
+	double e2 = nfin ? TYPICAL * select_float(e2f, nfin, (nfin - 1) / 2, count) : 0;
+	if (S->p->use_viewpoint && S->npairs) {
+		double q = QUARTILE * select_float(pms, S->npairs, S->npairs * 3 / 4, count);
+		if (q > e2)
+			e2 = q;
+	}
+	free(e2f), free(e2g), free(pms), free(count);
+	if (!(e2 >= S->floor2))
+		e2 = S->floor2;
+	if (!(e2 > 0))
+		e2 = DBL_MIN;
+	S->typ_e2 = e2;
+	S->st.noise = sqrt(e2);
+	for (size_t v = 0; v < S->m->nv; v++)
+		S->wv[v] = 1 / e2;
+	for (size_t f = 0; f < nf; f++) {
+		struct region *r = &S->region[f];
+		r->w /= e2;
+		r->sse /= e2;
+		for (int i = 0; i < 6; i++)
+			r->s[i] /= e2;
+	}
 	return 0;
 }
 
@@ -1053,9 +1304,9 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	S.floor2 = 1e-14 * diag2;
 	S.max_ms = p->max_rms < HUGE_VAL ? p->max_rms * p->max_rms : HUGE_VAL;
 	S.stop = p->factor * p->factor;
+	S.fit2 = p->fit * p->fit;
 
 	int rc = -1;
-	float *e2f = NULL, *e2g = NULL, *pms = NULL;
 	qkey *least = NULL;
 	uint32_t *count = NULL, *best = NULL;
 	double *gain = NULL;
@@ -1064,36 +1315,62 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	S.st.adjacencies = S.npairs;
 	S.region = fct_alloc_array(nf, sizeof *S.region, err);
 	S.parent = fct_alloc_array(nf, sizeof *S.parent, err);
-	e2f = fct_alloc_array(nf, sizeof *e2f, err);
-	e2g = fct_alloc_array(nf, sizeof *e2g, err);
-	count = fct_alloc_array(65536, sizeof *count, err);
-	pms = fct_alloc_array(S.npairs, sizeof *pms, err);
+	S.wv = fct_alloc_array(m->nv ? m->nv : 1, sizeof *S.wv, err);
 	least = fct_alloc_array(nf, sizeof *least, err);
-	if (!S.region || !S.parent || !e2f || !e2g || !count || !pms || !least)
+	if (!S.region || !S.parent || !S.wv || !least)
 		goto out;
-	double wsum = 0;
+	if (p->area_weighted) {
+		/* A third of the mean face area, so that a regular mesh's face
+		 * counts as its three corners would. */
+		double area = 0;
+		for (size_t v = 0; v < m->nv; v++)
+			S.wv[v] = 1;
+		for (size_t f = 0; f < nf; f++) {
+			struct region t;
+			face_moments(&t, m, f, 1, S.wv, 1);
+			area += t.n;
+		}
+		S.area_unit = area > 0 ? area / (3.0 * nf) : 1;
+	}
+	/* Each vertex's weight: 1 / sigma^2, from the noise model when there is
+	 * one, else 1 until E-bar is known (below). */
+	if (p->sigma) {
+		float *sv = fct_alloc_array(m->nv ? m->nv : 1, sizeof *sv, err);
+		count = fct_alloc_array(65536, sizeof *count, err);
+		if (!sv || !count) {
+			free(sv);
+			goto out;
+		}
+		double floor = sqrt(S.floor2);
+		for (size_t v = 0; v < m->nv; v++) {
+			double sg = p->sigma[v];
+			if (!(sg >= floor) || !isfinite(sg))
+				sg = isfinite(sg) && sg >= 0 ? floor : HUGE_VAL;
+			S.wv[v] = sg < HUGE_VAL && sg > 0 ? 1 / (sg * sg) : 0;
+			sv[v] = (float)(sg < HUGE_VAL ? sg : 0);
+		}
+		S.st.noise = m->nv ? select_float(sv, m->nv, (m->nv - 1) / 2, count) : 0;
+		free(sv);
+		free(count);
+		count = NULL;
+	} else {
+		for (size_t v = 0; v < m->nv; v++)
+			S.wv[v] = 1;
+	}
 	for (size_t f = 0; f < nf; f++) {
-		face_moments(&S.region[f], m, f, p->area_weighted);
+		face_moments(&S.region[f], m, f, p->area_weighted, S.wv, S.area_unit);
 		S.parent[f] = -1;
-		e2f[f] = HUGE_VALF;
 		least[f] = UINT64_MAX;
-		wsum += S.region[f].w;
 	}
 	S.patches = nf;
+	if (!p->sigma && estimate_noise(&S) < 0)
+		goto out;
 
-	/* Every pair's union: the first phase-1 key, and each face's least
-	 * pair mean square. */
+	/* Every pair's union: the first phase-1 key, and each face's least. */
 	for (size_t i = 0; i < S.npairs; i++) {
 		uint32_t f = S.pair[i][0], g = S.pair[i][1];
 		double tr, u = union_sse(&S.region[f], &S.region[g], &tr);
-		double w = S.region[f].w + S.region[g].w;
 		S.st.evaluations++;
-		float x = (float)(w > 0 ? u / w : 0);
-		pms[i] = x;
-		if (x < e2f[f])
-			e2f[f] = x;
-		if (x < e2f[g])
-			e2f[g] = x;
 		if (rh_push(&S, (float)u, i))
 			goto out;
 		float fu = (float)u;
@@ -1105,46 +1382,6 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		if (key < least[g])
 			least[g] = key;
 	}
-	/* e_f^2: the least over the face and its neighbours, so that a face
-	 * across a crease, all of whose pairs are folds, still gets the noise
-	 * of the planes beside it. */
-	memcpy(e2g, e2f, nf * sizeof *e2g);
-	for (size_t i = 0; i < S.npairs; i++) {
-		uint32_t f = S.pair[i][0], g = S.pair[i][1];
-		if (e2f[g] < e2g[f])
-			e2g[f] = e2f[g];
-		if (e2f[f] < e2g[g])
-			e2g[g] = e2f[f];
-	}
-	/* E^2: TYPICAL times the median e_f^2 of the faces with a neighbour. */
-	size_t nfin = 0;
-	for (size_t f = 0; f < nf; f++)
-		if (e2g[f] < HUGE_VALF) {
-			S.region[f].nw2 = S.region[f].w * TYPICAL * e2g[f];
-			e2f[nfin++] = e2g[f];
-		} else {
-			S.region[f].nw2 = -1;   /* no neighbour: E^2, below */
-		}
-	S.typ_e2 = TYPICAL * select_float(e2f, nfin, (nfin - 1) / 2, count);
-	if (p->use_viewpoint) {
-		/* Depth sensors quantise: plateaus of equal depth make most
-		 * adjacent pairs exactly coplanar (60 to 70% in TUM and 7-Scenes
-		 * frames), and each face's least pair is then no measure of the
-		 * noise.  The upper quartile of the pairs' mean squares sees the
-		 * steps between the plateaus. */
-		double q = QUARTILE * select_float(pms, S.npairs, S.npairs * 3 / 4, count);
-		if (q > S.typ_e2)
-			S.typ_e2 = q;
-	}
-	free(pms);
-	pms = NULL;
-	free(e2f), free(e2g), free(count);
-	e2f = e2g = NULL, count = NULL;
-	S.st.noise = sqrt(S.typ_e2);
-	S.prior_w = PRIOR_FACES * wsum / nf;
-	for (size_t f = 0; f < nf; f++)
-		if (S.region[f].nw2 < 0)
-			S.region[f].nw2 = S.region[f].w * S.typ_e2;
 
 	/* Phase 1: clusters.  A pair that is the least of both its faces' is
 	 * popped before anything touches either face, its cost unchanged: such
@@ -1171,21 +1408,17 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	S.st.merges = (size_t)k + pre;
 	S.st.clusters = S.patches;
 
-	/* Each cluster's noise: its own mean square, leaning on its faces'
-	 * local figure with the weight of PRIOR_FACES faces. */
-	for (size_t f = 0; f < nf; f++)
-		if (S.parent[f] < 0) {
-			struct region *r = &S.region[f];
-			double local = r->w > 0 ? r->nw2 / r->w : S.typ_e2;
-			r->nw2 = r->w * (r->sse + S.prior_w * local) / (r->w + S.prior_w);
-		}
-
 	/* Phase 2: patches, then fresh sweeps until one merges nothing. */
 	S.dirty = calloc(nf, 1);
 	if (!S.dirty) {
 		fct_fail(err, "out of memory");
 		goto out;
 	}
+	/* The face pairs, kept for finish (refill turns them into patch pairs). */
+	S.nfpairs = S.npairs;
+	if (!(S.fpair = fct_alloc_array(S.npairs ? S.npairs : 1, sizeof *S.fpair, err)))
+		goto out;
+	memcpy(S.fpair, S.pair, S.npairs * sizeof *S.pair);
 	for (int first = 1;; first = 0) {
 		if (refill(&S, first) || (k = grow(&S, 2)) < 0)
 			goto out;
@@ -1199,14 +1432,8 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	if (p->min_faces > 1 && p->target <= 0) {
 		best = fct_alloc_array(nf, sizeof *best, err);
 		gain = fct_alloc_array(nf, sizeof *gain, err);
-		S.core = fct_alloc_array(nf, sizeof *S.core, err);
-		S.keep = fct_alloc_array(nf, sizeof *S.keep, err);
-		if (!best || !gain || !S.core || !S.keep)
+		if (!best || !gain)
 			goto out;
-		for (size_t f = 0; f < nf; f++) {
-			S.core[f] = find(S.parent, (uint32_t)f);
-			S.keep[f] = (uint32_t)f;
-		}
 		absorb(&S, best, gain);
 		free(best), free(gain);
 		best = NULL, gain = NULL;
@@ -1217,16 +1444,91 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		goto out;
 	rc = 0;
 out:
-	free(e2f), free(e2g), free(pms), free(count), free(best), free(gain), free(least);
+	free(count), free(best), free(gain), free(least);
 	free(S.region);
 	free(S.parent);
 	free(S.pair);
-	free(S.keep);
-	free(S.core);
+	free(S.fpair);
+	free(S.wv);
 	free(S.dirty);
 	rh_free(&S.q);
 	S.st.seconds = fct_now() - t0;
 	if (stats && rc == 0)
 		*stats = S.st;
 	return rc;
+}
+
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
+                     struct fct_tidy_stats *st, struct fct_err *err)
+{
+	memset(st, 0, sizeof *st);
+	size_t nf = m->nf;
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, m, err))
+		return -1;
+	int32_t *root = fct_alloc_array(nf ? nf : 1, sizeof *root, err);
+	int32_t *host = fct_alloc_array(nf ? nf : 1, sizeof *host, err);
+	uint32_t *count = fct_alloc_array(nf ? nf : 1, sizeof *count, err);
+	if (!root || !host || !count) {
+		free(root), free(host), free(count);
+		fct_adj_free(&adj);
+		return -1;
+	}
+	/* Patches of fewer than min_plane faces are free-form. */
+	memset(count, 0, nf * sizeof *count);
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0 && (size_t)patch[f] < nf)
+			count[patch[f]]++;
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0 && (size_t)patch[f] < nf && count[patch[f]] < min_plane) {
+			patch[f] = -1;
+			st->small_faces++;
+		}
+	/* Pieces of free-form faces (joined across edges), their size and the
+	 * one patch around them (-2: none yet, -3: more than one). */
+	for (size_t f = 0; f < nf; f++)
+		root[f] = -1, host[f] = -2;
+	for (size_t e = 0; e < adj.ne; e++) {
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		for (uint32_t i = 0; i < k; i++)
+			for (uint32_t j = i + 1; j < k; j++)
+				if (patch[fs[i]] < 0 && patch[fs[j]] < 0) {
+					uint32_t a = find(root, fs[i]), b = find(root, fs[j]);
+					if (a != b) {
+						if (root[a] > root[b] || (root[a] == root[b] && a > b)) {
+							uint32_t t = a;
+							a = b, b = t;
+						}
+						root[a] += root[b];
+						root[b] = (int32_t)a;
+					}
+				}
+	}
+	for (size_t e = 0; e < adj.ne; e++) {
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		for (uint32_t i = 0; i < k; i++)
+			for (uint32_t j = 0; j < k; j++) {
+				if (patch[fs[i]] >= 0 || patch[fs[j]] < 0)
+					continue;
+				uint32_t r = find(root, fs[i]);
+				if (host[r] == -2)
+					host[r] = patch[fs[j]];
+				else if (host[r] != patch[fs[j]])
+					host[r] = -3;
+			}
+	}
+	for (size_t f = 0; f < nf; f++) {
+		if (patch[f] >= 0)
+			continue;
+		uint32_t r = find(root, (uint32_t)f);
+		if (host[r] >= 0 && (size_t)(-root[r]) < min_free) {
+			patch[f] = host[r];
+			st->speck_faces++;
+		}
+	}
+	free(root), free(host), free(count);
+	fct_adj_free(&adj);
+	return 0;
 }

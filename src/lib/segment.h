@@ -104,11 +104,18 @@
 
 /* The defaults of factor (the automatic criterion) and min_faces. */
 #define FCT_SEGMENT_FACTOR 3.0
+#define FCT_SEGMENT_FIT 1.5
+#define FCT_SEGMENT_MAX_DEV 3.0
+#define FCT_SEGMENT_MIN_EXTENT 10.0
 #define FCT_SEGMENT_MIN_FACES 8
 
 struct fct_segment_params {
 	long target;          /* T_N: stop at this many patches; 0: automatic */
 	double factor;        /* automatic: merge while t <= factor^2 (see above) */
+	double fit;           /* a patch's mean squared residual stays within fit^2 sigma^2 */
+	double max_dev;       /* no face farther than max_dev sigma from its plane (free-form) */
+	double min_extent;    /* a patch narrower than min_extent sigma is free-form (0: none) */
+	const double *sigma;  /* m->nv noise figures (metres; NULL: estimated E-bar) */
 	double max_rms;       /* never merge beyond this rms (HUGE_VAL: no bound) */
 	int area_weighted;    /* 1: area-weighted surface moments; 0: corners */
 	long min_faces;       /* absorb patches of fewer faces (0 or 1: none) */
@@ -129,6 +136,10 @@ struct fct_segment_stats {
 	double max_rms;       /* largest patch rms */
 	double mean_rms;      /* patch rms averaged over faces */
 	double last_ratio;    /* sqrt(t) of the last merge of phase 2 */
+	size_t peeled;        /* faces that left their patch, farther than max_dev sigma */
+	size_t grown;         /* free-form faces a neighbouring patch's plane took */
+	size_t narrow_faces;  /* faces of patches too narrow to be planes */
+	size_t free_faces;    /* faces of no patch at the end (free-form) */
 	double seconds;       /* wall-clock time of fct_segment */
 };
 
@@ -145,6 +156,20 @@ void fct_segment_params_default(struct fct_segment_params *p);
 int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                 const struct fct_mesh *m, const struct fct_segment_params *p,
                 struct fct_segment_stats *stats, struct fct_err *err);
+
+struct fct_tidy_stats {
+	size_t small_faces;   /* faces of patches too small, made free-form */
+	size_t speck_faces;   /* free-form faces of specks, given to the patch around them */
+};
+
+/* Tidy a segmentation for the planar model: patches of fewer than min_plane
+ * faces become free-form (-1), too small to be worth a plane of their own;
+ * then each piece of free-form faces (joined across edges) of fewer than
+ * min_free faces whose only neighbouring patch is one patch joins it:
+ * specks of outliers inside a plane, which the model puts on the plane.
+ * patch: m->nf labels, changed in place. */
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
+                     struct fct_tidy_stats *st, struct fct_err *err);
 
 /* The plane fitted to the scatter of weighted points: centroid c, central
  * scatter s = {sxx, syy, szz, sxy, syz, sxz}.  Writes the
