@@ -63,7 +63,7 @@ int main(int argc, char **argv)
 	if (fct_scene_render(&s, &cam, pose, &r, &err))
 		die(&err);
 	size_t npx = (size_t)w * (size_t)h;
-	struct fct_noise nz = { 0, kinect, 0, 0, 90, 0, 0 };
+	struct fct_scene_noise nz = { 0, kinect, 0, 0, 90, 0, 0 };
 	double *noisy = malloc(npx * sizeof *noisy);
 	struct fct_image img;
 	if (!noisy || fct_image_alloc(&img, w, h, 1, FCT_PIX_F32, &err))

@@ -64,7 +64,7 @@ struct options {
 	int views, width, height, pano_w, pano_h, png16, points;
 	int have_k, have_fx;
 	double k[4], fx, depth_scale;
-	struct fct_noise noise;
+	struct fct_scene_noise noise;
 	uint64_t seed;
 };
 
@@ -87,7 +87,7 @@ static void parse_size(const char *opt, const char *arg, int *w, int *h)
 	*h = (int)b;
 }
 
-static void parse_noise(const char *arg, struct fct_noise *nz)
+static void parse_noise(const char *arg, struct fct_scene_noise *nz)
 {
 	const char *colon = strchr(arg, ':');
 	if (colon && !strncmp(arg, "gaussian:", 9))
@@ -140,7 +140,7 @@ static void put_num(char *buf, size_t size, double v)
 struct totals {
 	size_t images, pixels, hits, overflow;
 	double render_s;
-	struct fct_noise_stats noise;
+	struct fct_scene_noise_stats noise;
 };
 
 /* The world-frame point cloud of a depth image, with colours, as a mesh
@@ -208,10 +208,10 @@ static void do_view(const struct options *op, const struct fct_scene *s, const c
 	double *noisy = malloc(sizeof *noisy * n);
 	if (!noisy)
 		fct_die(1, "out of memory for %zu pixels", n);
-	struct fct_noise_stats st;
+	struct fct_scene_noise_stats st;
 	fct_depth_noise(&op->noise, op->seed, stream, r.depth, r.cosine, noisy, n, &st);
 	tot->hits += st.valid;
-	struct fct_noise_stats *t = &tot->noise;
+	struct fct_scene_noise_stats *t = &tot->noise;
 	t->valid += st.valid, t->range += st.range, t->grazing += st.grazing;
 	t->missing += st.missing, t->outliers += st.outliers, t->noisy += st.noisy;
 	t->sum += st.sum, t->sum2 += st.sum2;
@@ -486,7 +486,7 @@ int main(int argc, char **argv)
 	}
 	fct_progress_end(&pr);
 
-	const struct fct_noise_stats *ns = &tot.noise;
+	const struct fct_scene_noise_stats *ns = &tot.noise;
 	fct_report("scene", "%s", s.name);
 	fct_report("vertices", "%zu", m->nv);
 	fct_report("faces", "%zu", m->nf);

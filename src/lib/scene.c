@@ -636,11 +636,11 @@ static void stream_seed(struct fct_rng *r, uint64_t seed, uint64_t stream, uint6
 	fct_rng_seed(r, fct_splitmix64(&st));
 }
 
-void fct_depth_noise(const struct fct_noise *nz, uint64_t seed, uint64_t stream,
+void fct_depth_noise(const struct fct_scene_noise *nz, uint64_t seed, uint64_t stream,
                      const double *truth, const double *cosine, double *out, size_t n,
-                     struct fct_noise_stats *stats)
+                     struct fct_scene_noise_stats *stats)
 {
-	struct fct_noise_stats st;
+	struct fct_scene_noise_stats st;
 	memset(&st, 0, sizeof st);
 	struct fct_rng rmiss, rout, rnoise;
 	stream_seed(&rmiss, seed, stream, 0);

@@ -112,7 +112,7 @@ void fct_scene_color(const struct fct_scene *s, size_t f, const double p[3], uin
  * truth (a noisy depth <= 0 is dropped).  Each kind of draw has its own
  * stream, one draw per pixel whatever happens, so one option never changes
  * what another does. */
-struct fct_noise {
+struct fct_scene_noise {
 	double sigma;      /* metres */
 	double kinect;     /* per metre: sigma = kinect z^2 (structured light) */
 	double outliers;   /* fraction in [0, 1] */
@@ -121,7 +121,7 @@ struct fct_noise {
 	double near, far;  /* metres */
 };
 
-struct fct_noise_stats {
+struct fct_scene_noise_stats {
 	size_t valid;              /* truth > 0 */
 	size_t range, grazing;     /* dropped by range, by angle */
 	size_t missing, outliers;  /* dropped at random, replaced */
@@ -132,8 +132,8 @@ struct fct_noise_stats {
 /* Apply nz to truth[0..n) into out (may equal truth), with streams drawn
  * from seed and stream (one stream number per image); cosine (may be NULL
  * when grazing >= 90) as from fct_scene_render.  stats may be NULL. */
-void fct_depth_noise(const struct fct_noise *nz, uint64_t seed, uint64_t stream,
+void fct_depth_noise(const struct fct_scene_noise *nz, uint64_t seed, uint64_t stream,
                      const double *truth, const double *cosine, double *out, size_t n,
-                     struct fct_noise_stats *stats);
+                     struct fct_scene_noise_stats *stats);
 
 #endif

@@ -619,7 +619,7 @@ static void test_room(void)
 	fct_scene_view_pose(&s, 0, 1, pose);
 	struct fct_render r;
 	CHECK_INT(fct_scene_render(&s, &cam, pose, &r, &err), 0);
-	struct fct_noise nz = { 0, 0.0015, 0, 0, 90, 0, 0 };
+	struct fct_scene_noise nz = { 0, 0.0015, 0, 0, 90, 0, 0 };
 	size_t npx = (size_t)cam.width * (size_t)cam.height;
 	struct fct_image img;
 	CHECK_INT(fct_image_alloc(&img, cam.width, cam.height, 1, FCT_PIX_F32, &err), 0);

@@ -395,8 +395,8 @@ static void test_noise(void)
 		truth[i] = i % 100 == 0 ? 0 : 2;   /* 1% without data */
 		cosine[i] = (double)(i % 1000) / 1000;
 	}
-	struct fct_noise nz = {0.01, 0, 0, 0, 90, 0, 0};
-	struct fct_noise_stats st;
+	struct fct_scene_noise nz = {0.01, 0, 0, 0, 90, 0, 0};
+	struct fct_scene_noise_stats st;
 	fct_depth_noise(&nz, 1, 0, truth, cosine, a, n, &st);
 	CHECK_INT(st.valid, 990000);
 	CHECK_INT(st.noisy, 990000);
@@ -425,7 +425,7 @@ static void test_noise(void)
 
 	/* Kinect: sigma = a z^2 = 0.002 * 4 = 0.008; with Gaussian 0.006 too,
 	 * sqrt(0.006^2 + 0.008^2) = 0.01. */
-	struct fct_noise kn = {0, 0.002, 0, 0, 90, 0, 0};
+	struct fct_scene_noise kn = {0, 0.002, 0, 0, 90, 0, 0};
 	fct_depth_noise(&kn, 1, 0, truth, cosine, b, n, &st);
 	CHECK_NEAR(sqrt(st.sum2 / (double)st.noisy), 0.008, 0.008 * 0.02);
 	kn.sigma = 0.006;
@@ -442,7 +442,7 @@ static void test_noise(void)
 	/* Missing 10 %, outliers 5 %: fractions within a percent; outliers in
 	 * [1, 3]; pixels neither missing nor outliers keep the noise they had
 	 * without those options. */
-	struct fct_noise mo = {0.01, 0, 0.05, 0.1, 90, 0, 0};
+	struct fct_scene_noise mo = {0.01, 0, 0.05, 0.1, 90, 0, 0};
 	fct_depth_noise(&mo, 1, 0, truth, cosine, b, n, &st);
 	CHECK_NEAR((double)st.missing / 990000, 0.1, 0.01);
 	CHECK_NEAR((double)st.outliers / (990000 - st.missing), 0.05, 0.01);
@@ -464,10 +464,10 @@ static void test_noise(void)
 
 	/* Range [0, 1.9] drops everything at 2 m; grazing 60 degrees drops the
 	 * pixels with cosine < 0.5: half of them. */
-	struct fct_noise rg = {0, 0, 0, 0, 90, 0, 1.9};
+	struct fct_scene_noise rg = {0, 0, 0, 0, 90, 0, 1.9};
 	fct_depth_noise(&rg, 1, 0, truth, cosine, b, n, &st);
 	CHECK_INT(st.range, 990000);
-	struct fct_noise gz = {0, 0, 0, 0, 60, 0, 0};
+	struct fct_scene_noise gz = {0, 0, 0, 0, 60, 0, 0};
 	fct_depth_noise(&gz, 1, 0, truth, cosine, b, n, &st);
 	CHECK_INT(st.grazing, 495000);
 	CHECK(b[1] == 0 && b[999] == 2);   /* cosine 0.001 dropped, 0.999 kept exactly */
