@@ -124,9 +124,9 @@ sigma_err() {
 	/^end_header/ { f = 1 } END { print m + 0 }'
 }
 run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --noise kinect $D/dm_plane16.png > $TMP/nk.ply"
-run_case 0 "grep -q '^comment noise kinect 585 0.075 0.0625 0.125 unit 0.001\$' $TMP/nk.ply"
+run_case 0 "grep -q '^comment noise kinect 585 0.075 0.051 0.125 unit 0.001\$' $TMP/nk.ply"
 run_case 0 "grep -q '^property float sigma\$' $TMP/nk.ply"
-check_num "kinect sigma of every vertex" "$(sigma_err 43.875 0.0625 0.125 0.001 < $TMP/nk.ply)" "<" 1e-6
+check_num "kinect sigma of every vertex" "$(sigma_err 43.875 0.051 0.125 0.001 < $TMP/nk.ply)" "<" 1e-6
 # Numeric intrinsics imply no model: no sigma, no comment.
 check_true "no model from numeric -K" sh -c "! grep -a -q -e '^comment noise' -e sigma $TMP/plane.ply"
 # A model from a file (mkscene's viewNN.noise), "comment" or not; poly with
@@ -201,8 +201,8 @@ if [ -d "$S" ]; then
 	check_num "7-Scenes frames agree" "$(awk '$1 == "mean" { print $2 }' $TMP/k.out)" "<" 0.05
 	# The dataset's name implies its kinect model, with the PNG's millimetres.
 	run_case 0 "dm2mesh -a -K 7scenes --step 4 -o $TMP/k0n.ply $S/frame-000000.depth.png"
-	run_case 0 "grep -q '^comment noise kinect 585 0.0738 0.0625 0.125 unit 0.001\$' $TMP/k0n.ply"
-	check_num "7-Scenes sigma of every vertex" "$(sigma_err 43.173 0.0625 0.125 0.001 < $TMP/k0n.ply)" "<" 1e-6
+	run_case 0 "grep -q '^comment noise kinect 585 0.0738 0.051 0.125 unit 0.001\$' $TMP/k0n.ply"
+	check_num "7-Scenes sigma of every vertex" "$(sigma_err 43.173 0.051 0.125 0.001 < $TMP/k0n.ply)" "<" 1e-6
 	check_num "7-Scenes median sigma (mm)" "$(meshinfo $TMP/k0n.ply | awk '$1 == "sigma_median:" { print 1000 * $2 }')" ">" 5
 fi
 

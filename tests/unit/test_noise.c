@@ -19,22 +19,23 @@ static struct fct_noise parsed(const char *text)
 	return nz;
 }
 
-/* Hand-computed: kinect with F B = 585 * 0.075 = 43.875 px m, SD 1/16 px,
- * STEP 1/8 px: g = z^2 / (16 * 43.875), q = z^2 / (8 * 43.875),
- * sigma = sqrt(g^2 + q^2 / 12). */
+/* Hand-computed: kinect with F B = 585 * 0.075 = 43.875 px m, SD 0.051 px,
+ * STEP 1/8 px: g = 0.051 z^2 / 43.875, q = z^2 / (8 * 43.875),
+ * sigma = sqrt(g^2 + q^2 / 12), about 1.425e-3 z^2. */
 static void test_sigma(void)
 {
 	struct fct_noise k = parsed("kinect");
 	CHECK_INT(k.model, FCT_NOISE_KINECT);
 	CHECK_NEAR(k.fb, 43.875, 1e-12);
-	CHECK_NEAR(fct_noise_sigma(&k, 1), 0.0016448725617938056, 1e-15);
-	CHECK_NEAR(fct_noise_sigma(&k, 2), 0.0065794902471752225, 1e-15);
-	CHECK_NEAR(fct_noise_sigma(&k, 3), 0.01480385305614425, 1e-15);
-	CHECK_NEAR(fct_noise_sigma_gaussian(&k, 2), 0.005698005698005698, 1e-15);
+	CHECK_NEAR(fct_noise_sigma(&k, 1), 0.0014239239095239274, 1e-15);
+	CHECK_NEAR(fct_noise_sigma(&k, 2), 0.00569569563809571, 1e-15);
+	CHECK_NEAR(fct_noise_sigma(&k, 3), 0.012815315185715347, 1e-15);
+	CHECK_NEAR(fct_noise_sigma_gaussian(&k, 2), 0.004649572649572649, 1e-15);
+	CHECK_NEAR(fct_noise_sigma(&k, 2) / 4, 1.425e-3, 2e-6);
 	/* With the depth's 1 mm encoding: + 1e-6 / 12 under the root. */
-	struct fct_noise ku = parsed("kinect 585 0.075 0.0625 0.125 unit 0.001");
-	CHECK_NEAR(fct_noise_sigma(&ku, 1), 0.0016700116999217253, 1e-15);
-	CHECK_NEAR(fct_noise_sigma(&ku, 2), 0.006585820013180379, 1e-15);
+	struct fct_noise ku = parsed("kinect 585 0.075 0.051 0.125 unit 0.001");
+	CHECK_NEAR(fct_noise_sigma(&ku, 1), 0.0014528911292479004, 1e-15);
+	CHECK_NEAR(fct_noise_sigma(&ku, 2), 0.00570300641198621, 1e-15);
 	/* Without quantisation, the Gaussian part alone: 4 * 0.1 / 43.875. */
 	struct fct_noise kq = parsed("kinect:585,0.075,0.1,0");
 	CHECK_NEAR(fct_noise_sigma(&kq, 2), 0.4 / 43.875, 1e-15);
@@ -163,7 +164,7 @@ static void test_round_trip(void)
 	struct fct_noise k = parsed("kinect:585,0.0738");
 	k.unit = 0.001;
 	fct_noise_format(&k, text, sizeof text);
-	CHECK_STR(text, "kinect 585 0.0738 0.0625 0.125 unit 0.001");
+	CHECK_STR(text, "kinect 585 0.0738 0.051 0.125 unit 0.001");
 	struct fct_noise unknown;
 	memset(&unknown, 0, sizeof unknown);
 	fct_noise_format(&unknown, text, sizeof text);
@@ -177,7 +178,7 @@ static void test_round_trip(void)
 	CHECK_INT(fct_header_noise(&m, &got, &err), 0);
 	CHECK_INT(got.model, FCT_NOISE_UNKNOWN);
 	CHECK_INT(fct_header_set_noise(&m, &k, &err), 0);
-	CHECK_STR(m.comments[0].text, "noise kinect 585 0.0738 0.0625 0.125 unit 0.001");
+	CHECK_STR(m.comments[0].text, "noise kinect 585 0.0738 0.051 0.125 unit 0.001");
 	CHECK_INT(fct_header_noise(&m, &got, &err), 1);
 	CHECK(!memcmp(&got, &k, sizeof k));
 	struct fct_noise t = parsed("tof");
