@@ -10,7 +10,7 @@ PATH=$FCT_BIN:$PATH
 dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-af.XXXXXX")
 trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
-mkscene -q --size 1280x800 --fx 1050 --noise kinect:0.0015 -o "$dir/room"
+mkscene -q --size 1280x800 --fx 1050 --noise kinect-gauss:0.0015 -o "$dir/room"
 dm2mesh -q --camera "$dir/room/view00.camera" --pose "$dir/room/view00.pose" -o "$dir/r.ply" "$dir/room/view00.depth.pfm"
 # figure KEY args...: median over RUNS of an areaflow -v figure.
 figure() {
@@ -23,7 +23,7 @@ figure() {
 	done | median
 }
 nv=$(meshconv -v "$dir/r.ply" 2>&1 >/dev/null | sed -n 's/^meshconv: vertices=//p')
-echo "areaflow: mkscene room 1280x800, kinect:0.0015, $nv vertices; $(nproc) processors; medians of $RUNS runs"
+echo "areaflow: mkscene room 1280x800, kinect-gauss:0.0015, $nv vertices; $(nproc) processors; medians of $RUNS runs"
 a1=$(figure smooth_s --iterations 5 --threads 1)
 a2=$(figure smooth_s --iterations 5 --threads 2)
 an=$(figure smooth_s --iterations 5)

@@ -63,12 +63,12 @@ int main(int argc, char **argv)
 	if (fct_scene_render(&s, &cam, pose, &r, &err))
 		die(&err);
 	size_t npx = (size_t)w * (size_t)h;
-	struct fct_noise nz = { 0, kinect, 0, 0, 90, 0, 0 };
+	struct fct_scene_noise nz = { 0, kinect, 0, 0, 90, 0, 0 , {0}};
 	double *noisy = malloc(npx * sizeof *noisy);
 	struct fct_image img;
 	if (!noisy || fct_image_alloc(&img, w, h, 1, FCT_PIX_F32, &err))
 		return 1;
-	fct_depth_noise(&nz, 1, 0, r.depth, r.cosine, noisy, npx, NULL);
+	fct_depth_noise(&nz, 1, 0, r.depth, NULL, r.cosine, noisy, npx, NULL);
 	for (size_t i = 0; i < npx; i++)
 		((float *)img.data)[i] = (float)noisy[i];
 	free(noisy);

@@ -16,7 +16,7 @@ mean() { meshdist "$@" | awk '$1 == "mean" { printf "%.5f", $2 }'; }
 table1() { meshdist "$1" "$2" | awk '$1 == "mean" { m = $2 } $1 == "stdev" { s = $2 } $1 == "max" { x = $2 } END { printf "%.5f %.5f %.5f", m, s, x }'; }
 faces() { meshinfo "$1" | awk '$1 == "faces:" { print $2 }'; }
 
-mkscene --noise kinect:0.0012 -o "$dir/room" >/dev/null
+mkscene --noise kinect-gauss:0.0012 -o "$dir/room" >/dev/null
 R=$dir/room
 planarize --camera "$R/view00.camera" --pose "$R/view00.pose" --keep "$dir/st" -o "$dir/model.ply" \
 	"$R/view00.depth.pfm" "$R/view00.color.png"

@@ -31,7 +31,7 @@ row() { printf '%-58s %10s %10s\n' "$1" "$2" "$3"; }
 
 "$FCT_BENCH/gen_grid" 708 >"$dir/grid.ply"
 mkscene --size 1000x500 -o "$dir/room" >/dev/null
-mkscene --size 1000x500 --noise kinect:0.0015 -o "$dir/noisy" >/dev/null
+mkscene --size 1000x500 --noise kinect-gauss:0.0015 -o "$dir/noisy" >/dev/null
 for s in room noisy; do
 	dm2mesh --camera "$dir/$s/view00.camera" --pose "$dir/$s/view00.pose" -o "$dir/$s.ply" "$dir/$s/view00.depth.pfm"
 done

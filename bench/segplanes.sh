@@ -32,9 +32,9 @@ peak() {
 }
 row() { printf '%-44s %9s %9s %10s %10s\n' "$1" "$2" "$3" "$4" "$5"; }
 
-mkscene --size 1024x512 --fx 615 --noise kinect:0.0012 -o "$dir/big" >/dev/null
+mkscene --size 1024x512 --fx 615 --noise kinect-gauss:0.0012 -o "$dir/big" >/dev/null
 dm2mesh --camera "$dir/big/view00.camera" --pose "$dir/big/view00.pose" -o "$dir/big.ply" "$dir/big/view00.depth.pfm"
-mkscene --noise kinect:0.0012 -o "$dir/room" >/dev/null
+mkscene --noise kinect-gauss:0.0012 -o "$dir/room" >/dev/null
 dm2mesh --camera "$dir/room/view00.camera" --pose "$dir/room/view00.pose" -o "$dir/room1.ply" "$dir/room/view00.depth.pfm"
 dm2mesh --step 5 --camera "$dir/room/view00.camera" --pose "$dir/room/view00.pose" -o "$dir/room5.ply" "$dir/room/view00.depth.pfm"
 

@@ -17,8 +17,8 @@ static const char usage[] =
 	"usage: meshinfo [file ...]\n"
 	"Describe each mesh (PLY or OBJ; stdin when no file is given or for \"-\"):\n"
 	"format, elements and properties, comments, counts, bounding box, edges,\n"
-	"components, isolated vertices, degenerate and duplicate faces, as\n"
-	"\"key: value\" lines.\n"
+	"components, isolated vertices, degenerate and duplicate faces, the\n"
+	"noise model and the vertices' sigma, as \"key: value\" lines.\n"
 	"  -h, --help    this help\n"
 	"      --version print the version\n";
 
@@ -89,6 +89,18 @@ static void print_comments(const struct fct_mesh *m)
 			for (int c = 0; c < 3; c++)
 				printf(" %.17g", pose[4 * r + c]);
 		printf(" translation %.17g %.17g %.17g\n", pose[3], pose[7], pose[11]);
+	}
+
+	struct fct_noise nz;
+	rc = fct_header_noise(m, &nz, &err);
+	if (rc < 0) {
+		printf("noise: invalid: %s\n", err.msg);
+	} else if (rc == 0) {
+		printf("noise: unknown\n");
+	} else {
+		char text[256];
+		fct_noise_format(&nz, text, sizeof text);
+		printf("noise: %s\n", text);
 	}
 
 	const char *tex;
@@ -166,6 +178,39 @@ static void print_edges(const struct fct_mesh *m, const struct fct_adj *a)
 	       a->nborder, a->nmanifold, a->nnonmanifold);
 }
 
+static int compare_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* The vertex property sigma's finite values: min, median (the lower middle
+ * for an even count), max; nothing when there is no such property.  -1
+ * with err set when out of memory. */
+static int print_sigma(const struct fct_mesh *m, struct fct_err *err)
+{
+	const struct fct_prop *p = fct_elem_find(&m->vertex, "sigma");
+	if (!p || p->count_type != FCT_NONE)
+		return 0;
+	double *v = fct_alloc_array(m->nv, sizeof *v, err);
+	if (!v)
+		return -1;
+	size_t n = 0;
+	for (size_t i = 0; i < m->nv; i++) {
+		double s = fct_prop_get(p, i);
+		if (isfinite(s))
+			v[n++] = s;
+	}
+	if (n) {
+		qsort(v, n, sizeof *v, compare_double);
+		printf("sigma_min: %.9g\nsigma_median: %.9g\nsigma_max: %.9g\n", v[0], v[(n - 1) / 2], v[n - 1]);
+	} else {
+		printf("sigma_min: none\nsigma_median: none\nsigma_max: none\n");
+	}
+	free(v);
+	return 0;
+}
+
 /* Topology and face checks; -1 with err set when out of memory. */
 static int print_topology(const struct fct_mesh *m, double diag2, struct fct_err *err)
 {
@@ -207,6 +252,8 @@ static int describe(const char *path, int *printed, struct fct_err *err)
 	print_counts(&m);
 	double diag2 = print_bbox(&m);
 	int rc = print_topology(&m, diag2, err);
+	if (!rc)
+		rc = print_sigma(&m, err);
 	if (rc)
 		fct_err_prefix(err, "%s", fct_path_display(path));
 	fct_mesh_free(&m);

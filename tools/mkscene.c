@@ -21,15 +21,16 @@
 
 static const char usage[] =
 	"usage: mkscene [-qv] [-K fx,fy,cx,cy] [--depth png16 | pfm] [--depth-scale s]\n"
-	"               [--fx f] [--grazing degrees] [--missing fraction]\n"
-	"               [--noise gaussian:sigma | kinect:a] [--outliers fraction]\n"
+	"               [--fx f] [--grazing degrees] [--jitter px] [--missing fraction]\n"
+	"               [--noise model] [--outliers fraction]\n"
 	"               [--panorama WxH] [--points] [--range near,far] [--scene name]\n"
 	"               [--seed n] [--size WxH] [--views n] -o dir\n"
 	"Synthesise a scene with exact ground truth into the folder dir: scene.ply\n"
 	"(the mesh, with face property patch and its plane element), scene.txt (its\n"
 	"surfaces), and for each view NN: viewNN.depth.pfm (or .png), viewNN.truth.pfm\n"
 	"(without noise), viewNN.color.png, viewNN.patch.png (patch + 1, 0 none),\n"
-	"viewNN.camera, viewNN.pose; pano.* likewise for the panorama.\n"
+	"viewNN.camera, viewNN.pose, viewNN.noise (the noise model, for dm2mesh\n"
+	"--noise); pano.* likewise for the panorama.\n"
 	"  -K fx,fy,cx,cy      pinhole intrinsics in pixels (default from --fx)\n"
 	"  -o dir              the output folder, made if missing\n"
 	"  -q                  quiet\n"
@@ -40,10 +41,17 @@ static const char usage[] =
 	"                      middle of the image (default 525)\n"
 	"      --grazing deg   drop pixels seen more than deg from their surface's\n"
 	"                      normal (default 90: none)\n"
+	"      --jitter px     sample each pixel's depth this far off its centre (a\n"
+	"                      normal deviate per axis; default 0.5 with --noise\n"
+	"                      kinect, else 0)\n"
 	"      --missing f     drop this fraction of the pixels at random (default 0)\n"
-	"      --noise m:v     depth noise along the rays: gaussian:sigma (metres) or\n"
-	"                      kinect:a (sigma = a z^2, Kinect v1 about 0.0012 to\n"
-	"                      0.0029); both may be given (default none)\n"
+	"      --noise model   depth noise: a sensor model (as dm2mesh --noise: none,\n"
+	"                      kinect[:F,B[,SD[,STEP]]], tof[:A,B], poly:A,B,C,\n"
+	"                      stereo:FB,SD[,DOFFS]; kinect = disparity noise in\n"
+	"                      1/8-pixel steps, as ICL-NUIM), or Gaussian along the\n"
+	"                      rays: gaussian:sigma (metres) and kinect-gauss:a\n"
+	"                      (sigma = a z^2), which may be given together\n"
+	"                      (default none)\n"
 	"      --outliers f    replace this fraction of the pixels by depths uniform\n"
 	"                      in [0.5, 1.5] times the truth (default 0)\n"
 	"      --panorama WxH  also render a cylindrical panorama of that size\n"
@@ -63,8 +71,9 @@ struct options {
 	const char *dir, *scene;
 	int views, width, height, pano_w, pano_h, png16, points;
 	int have_k, have_fx;
-	double k[4], fx, depth_scale;
-	struct fct_noise noise;
+	double k[4], fx, depth_scale, jitter;
+	struct fct_scene_noise noise;
+	struct fct_noise model;   /* what viewNN.noise says; unknown: no file */
 	uint64_t seed;
 };
 
@@ -87,15 +96,56 @@ static void parse_size(const char *opt, const char *arg, int *w, int *h)
 	*h = (int)b;
 }
 
-static void parse_noise(const char *arg, struct fct_noise *nz)
+/* One --noise: a Gaussian along the rays (gaussian:S, kinect-gauss:A, which
+ * add up) or a sensor model of noise.h, not both. */
+static void parse_noise(const char *arg, struct fct_scene_noise *nz)
 {
-	const char *colon = strchr(arg, ':');
-	if (colon && !strncmp(arg, "gaussian:", 9))
-		nz->sigma = fct_opt_double("--noise gaussian", colon + 1, 0, 10);
-	else if (colon && !strncmp(arg, "kinect:", 7))
-		nz->kinect = fct_opt_double("--noise kinect", colon + 1, 0, 1);
-	else
-		fct_usage_error("--noise: \"%s\" is not gaussian:sigma or kinect:a", arg);
+	int sensor = nz->sensor.model != FCT_NOISE_UNKNOWN, gauss = nz->sigma > 0 || nz->kinect_gauss > 0;
+	size_t name = strcspn(arg, ":, \t");
+	if (!strncmp(arg, "gaussian:", 9) || !strncmp(arg, "kinect-gauss:", 13)) {
+		if (sensor)
+			fct_usage_error("--noise: %s and a sensor model exclude each other", arg);
+		if (arg[0] == 'k')
+			nz->kinect_gauss = fct_opt_double("--noise kinect-gauss", arg + 13, 0, 1);
+		else
+			nz->sigma = fct_opt_double("--noise gaussian", arg + 9, 0, 10);
+		return;
+	}
+	struct fct_err err;
+	if (fct_noise_parse(&nz->sensor, arg, &err)) {
+		if (!strncmp(err.msg, "noise: \"", 8))
+			fct_usage_error("--noise: \"%s\" is not gaussian:sigma, kinect-gauss:a or a sensor model (%s)",
+			                arg, fct_noise_models());
+		fct_usage_error("--%s", err.msg);
+	}
+	/* kinect:a was sigma = a z^2 before the structured model took the name. */
+	const char *p = arg + name;
+	if (!strncmp(arg, "kinect", name) && *p == ':' && !strpbrk(p + 1, ":, \t"))
+		fct_usage_error("--noise: %s: sigma = a z^2 is kinect-gauss:a; kinect takes F,B[,SD[,STEP]]", arg);
+	if (sensor || gauss)
+		fct_usage_error("--noise: %s: one sensor model, without gaussian: or kinect-gauss:", arg);
+}
+
+/* The model viewNN.noise gives: the sensor's, or the Gaussian one as poly
+ * (gaussian:S is poly S 0 0, kinect-gauss:A poly 0 0 A; both together are
+ * no poly, and no file is written), or none; with png16 depth, its unit. */
+static void describe_noise(struct options *op)
+{
+	const struct fct_scene_noise *nz = &op->noise;
+	struct fct_noise *m = &op->model;
+	memset(m, 0, sizeof *m);
+	if (nz->sensor.model != FCT_NOISE_UNKNOWN) {
+		*m = nz->sensor;
+	} else if (nz->sigma > 0 && nz->kinect_gauss > 0) {
+		return;
+	} else if (nz->sigma > 0 || nz->kinect_gauss > 0) {
+		m->model = FCT_NOISE_POLY;
+		m->coef[0] = nz->sigma, m->coef[2] = nz->kinect_gauss;
+	} else {
+		m->model = FCT_NOISE_NONE;
+	}
+	if (op->png16)
+		m->unit = 1 / op->depth_scale;
 }
 
 /* dir/name, malloc'd; exits on failure. */
@@ -139,8 +189,8 @@ static void put_num(char *buf, size_t size, double v)
 /* The figures summed over all views for -v. */
 struct totals {
 	size_t images, pixels, hits, overflow;
-	double render_s;
-	struct fct_noise_stats noise;
+	double render_s, jitter_s;
+	struct fct_scene_noise_stats noise;
 };
 
 /* The world-frame point cloud of a depth image, with colours, as a mesh
@@ -208,13 +258,23 @@ static void do_view(const struct options *op, const struct fct_scene *s, const c
 	double *noisy = malloc(sizeof *noisy * n);
 	if (!noisy)
 		fct_die(1, "out of memory for %zu pixels", n);
-	struct fct_noise_stats st;
-	fct_depth_noise(&op->noise, op->seed, stream, r.depth, r.cosine, noisy, n, &st);
+	double *sampled = NULL;
+	if (op->jitter > 0) {
+		t0 = fct_now();
+		if (!(sampled = malloc(sizeof *sampled * n)))
+			fct_die(1, "out of memory for %zu pixels", n);
+		if (fct_scene_render_jitter(s, cam, pose, op->jitter, op->seed, stream, sampled, &err))
+			fct_die_err(&err);
+		tot->jitter_s += fct_now() - t0;
+	}
+	struct fct_scene_noise_stats st;
+	fct_depth_noise(&op->noise, op->seed, stream, r.depth, sampled, r.cosine, noisy, n, &st);
+	free(sampled);
 	tot->hits += st.valid;
-	struct fct_noise_stats *t = &tot->noise;
+	struct fct_scene_noise_stats *t = &tot->noise;
 	t->valid += st.valid, t->range += st.range, t->grazing += st.grazing;
-	t->missing += st.missing, t->outliers += st.outliers, t->noisy += st.noisy;
-	t->sum += st.sum, t->sum2 += st.sum2;
+	t->missing += st.missing, t->outliers += st.outliers, t->noisy += st.noisy, t->lost += st.lost;
+	t->sum += st.sum, t->sum2 += st.sum2, t->model2 += st.model2;
 
 	char name[64], text[1024], num[40];
 	struct fct_image img;
@@ -283,6 +343,13 @@ static void do_view(const struct options *op, const struct fct_scene *s, const c
 	}
 	snprintf(name, sizeof name, "%s.pose", base);
 	write_text(op->dir, name, text);
+	if (op->model.model != FCT_NOISE_UNKNOWN) {
+		char model[256];
+		fct_noise_format(&op->model, model, sizeof model);
+		snprintf(line, sizeof line, "noise %s\n", model);
+		snprintf(name, sizeof name, "%s.noise", base);
+		write_text(op->dir, name, line);
+	}
 
 	if (op->points) {
 		snprintf(name, sizeof name, "%s.points.ply", base);
@@ -337,7 +404,7 @@ static void write_description(const char *dir, const struct fct_scene *s)
 
 int main(int argc, char **argv)
 {
-	enum { O_DEPTH = 256, O_SCALE, O_FX, O_GRAZING, O_MISSING, O_NOISE, O_OUTLIERS, O_PANO,
+	enum { O_DEPTH = 256, O_SCALE, O_FX, O_GRAZING, O_JITTER, O_MISSING, O_NOISE, O_OUTLIERS, O_PANO,
 	       O_POINTS, O_RANGE, O_SCENE, O_SEED, O_SIZE, O_VIEWS, O_VERSION };
 	static const struct option longopts[] = {
 		{"depth", required_argument, NULL, O_DEPTH},
@@ -345,6 +412,7 @@ int main(int argc, char **argv)
 		{"fx", required_argument, NULL, O_FX},
 		{"grazing", required_argument, NULL, O_GRAZING},
 		{"help", no_argument, NULL, 'h'},
+		{"jitter", required_argument, NULL, O_JITTER},
 		{"missing", required_argument, NULL, O_MISSING},
 		{"noise", required_argument, NULL, O_NOISE},
 		{"outliers", required_argument, NULL, O_OUTLIERS},
@@ -368,6 +436,7 @@ int main(int argc, char **argv)
 	op.depth_scale = 1000;
 	op.noise.grazing = 90;
 	op.seed = 1;
+	op.jitter = -1;
 	static const char optstring[] = "hK:o:qv";
 	int c;
 	double range[2];
@@ -397,6 +466,7 @@ int main(int argc, char **argv)
 			op.have_fx = 1;
 			break;
 		case O_GRAZING: op.noise.grazing = fct_opt_double("--grazing", optarg, 0, 90); break;
+		case O_JITTER: op.jitter = fct_opt_double("--jitter", optarg, 0, 10); break;
 		case O_MISSING: op.noise.missing = fct_opt_double("--missing", optarg, 0, 1); break;
 		case O_NOISE: parse_noise(optarg, &op.noise); break;
 		case O_OUTLIERS: op.noise.outliers = fct_opt_double("--outliers", optarg, 0, 1); break;
@@ -423,6 +493,9 @@ int main(int argc, char **argv)
 		fct_usage_error("-o dir is needed");
 	if (op.have_k && op.have_fx)
 		fct_usage_error("-K and --fx exclude each other");
+	if (op.jitter < 0)
+		op.jitter = op.noise.sensor.model == FCT_NOISE_KINECT ? 0.5 : 0;
+	describe_noise(&op);
 
 	struct fct_err err;
 	struct fct_scene s;
@@ -486,7 +559,7 @@ int main(int argc, char **argv)
 	}
 	fct_progress_end(&pr);
 
-	const struct fct_noise_stats *ns = &tot.noise;
+	const struct fct_scene_noise_stats *ns = &tot.noise;
 	fct_report("scene", "%s", s.name);
 	fct_report("vertices", "%zu", m->nv);
 	fct_report("faces", "%zu", m->nf);
@@ -504,10 +577,13 @@ int main(int argc, char **argv)
 	fct_report("missing", "%zu", ns->missing);
 	fct_report("outliers", "%zu", ns->outliers);
 	fct_report("noisy", "%zu", ns->noisy);
+	fct_report("lost", "%zu", ns->lost);
 	double mean = ns->noisy ? ns->sum / (double)ns->noisy : 0;
 	double var = ns->noisy ? ns->sum2 / (double)ns->noisy - mean * mean : 0;
 	fct_report("noise_mean", "%.9g", mean);
 	fct_report("noise_stdev", "%.9g", sqrt(var > 0 ? var : 0));
+	fct_report("noise_model_rms", "%.9g", ns->noisy ? sqrt(ns->model2 / (double)ns->noisy) : 0);
+	fct_report("jitter_s", "%.3f", tot.jitter_s);
 	if (op.png16)
 		fct_report("png16_overflow", "%zu", tot.overflow);
 	fct_scene_free(&s);

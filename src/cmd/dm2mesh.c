@@ -23,8 +23,8 @@ static const char usage[] =
 	"usage: dm2mesh [-aqv] [-o file] [-K fx,fy,cx,cy | name] [--camera file]\n"
 	"               [--cylindrical f,cy,theta0] [--depth-scale s] [--baseline b]\n"
 	"               [--focal f] [--range min,max] [--step n] [-j jump]\n"
-	"               [--max-angle deg] [--min-faces n] [--pose file] [--image file]\n"
-	"               [depth-image]\n"
+	"               [--max-angle deg] [--min-faces n] [--noise model | file]\n"
+	"               [--pose file] [--image file] [depth-image]\n"
 	"       dm2mesh --points [-aqv] [-o file] [camera options] [--max-edge l]\n"
 	"               [-j jump] [--pose file] [--image file] [points]\n"
 	"Mesh a depth image (16- or 8-bit PNG, PFM) by its pixel grid, or sparse points\n"
@@ -53,6 +53,11 @@ static const char usage[] =
 	"      --max-angle deg\n"
 	"                     the same as a grazing angle: jump = tan(deg)\n"
 	"      --min-faces n  drop connected pieces of fewer faces (default 8)\n"
+	"      --noise model  the sensor's noise: none, kinect[:F,B[,SD[,STEP]]],\n"
+	"                     tof[:A,B], poly:A,B,C, stereo:FB,SD[,DOFFS], or a file\n"
+	"                     holding a line \"noise ...\" (mkscene's viewNN.noise);\n"
+	"                     writes vertex property sigma and the noise comment\n"
+	"                     (default: kinect for a dataset's camera name, else none)\n"
 	"      --points       input is sparse points: lines \"u v x y z\", or PLY with\n"
 	"                     vertex properties u v x y z\n"
 	"      --max-edge l   drop Delaunay faces with a 3-D edge longer than l\n"
@@ -68,12 +73,12 @@ static const char usage[] =
 
 enum {
 	OPT_CAMERA = 256, OPT_CYL, OPT_SCALE, OPT_BASELINE, OPT_FOCAL, OPT_RANGE, OPT_STEP,
-	OPT_ANGLE, OPT_MINFACES, OPT_POINTS, OPT_MAXEDGE, OPT_POSE, OPT_IMAGE, OPT_VERSION
+	OPT_ANGLE, OPT_MINFACES, OPT_NOISE, OPT_POINTS, OPT_MAXEDGE, OPT_POSE, OPT_IMAGE, OPT_VERSION
 };
 
 struct options {
 	const char *out, *camera_file, *pose_file, *image_file, *input;
-	const char *K, *cylindrical;
+	const char *K, *cylindrical, *noise;
 	int ascii, points, scale_given;
 	double focal, max_edge;
 	struct fct_depth_params depth;
@@ -115,6 +120,35 @@ static void resolve_camera(struct options *o, struct fct_camera *cam, int w, int
 		cam->width = w, cam->height = h;
 }
 
+/* Does arg start with the name of a noise model (rather than name a file)? */
+static int names_model(const char *arg)
+{
+	size_t n = strcspn(arg, ":, \t");
+	const char *m = fct_noise_models();
+	while (*m) {
+		size_t k = strcspn(m, " ");
+		if (k == n && !strncmp(arg, m, n))
+			return 1;
+		m += k + (m[k] == ' ');
+	}
+	return 0;
+}
+
+/* The noise model: --noise's (a model parsed with the options, or a file),
+ * else the one a dataset's camera name implies; the unit of the image's
+ * depth encoding when the model gives none. */
+static void resolve_noise(struct options *o, const struct fct_image *img)
+{
+	struct fct_noise *nz = &o->depth.noise;
+	struct fct_err err;
+	if (o->noise && !names_model(o->noise) && fct_noise_read_file(o->noise, nz, &err))
+		fct_die_err(&err);
+	if (!o->noise && o->K)
+		fct_noise_named(o->K, nz);
+	if (nz->model != FCT_NOISE_UNKNOWN && nz->unit == 0)
+		nz->unit = fct_depth_unit(img, &o->depth);
+}
+
 static void parse_options(int argc, char **argv, struct options *o)
 {
 	static const struct option longopts[] = {
@@ -129,6 +163,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"step", required_argument, NULL, OPT_STEP},
 		{"max-angle", required_argument, NULL, OPT_ANGLE},
 		{"min-faces", required_argument, NULL, OPT_MINFACES},
+		{"noise", required_argument, NULL, OPT_NOISE},
 		{"points", no_argument, NULL, OPT_POINTS},
 		{"max-edge", required_argument, NULL, OPT_MAXEDGE},
 		{"pose", required_argument, NULL, OPT_POSE},
@@ -170,6 +205,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 			o->depth.grid.max_jump = tan(fct_opt_double("--max-angle", optarg, 0, 89.999) * M_PI / 180);
 			break;
 		case OPT_MINFACES: o->depth.grid.min_faces = (size_t)fct_opt_long("--min-faces", optarg, 0, 1L << 40); break;
+		case OPT_NOISE: o->noise = optarg; break;
 		case OPT_POINTS: o->points = 1; break;
 		case OPT_MAXEDGE: o->max_edge = fct_opt_double("--max-edge", optarg, 0, HUGE_VAL); break;
 		case OPT_POSE: o->pose_file = optarg; break;
@@ -184,6 +220,13 @@ static void parse_options(int argc, char **argv, struct options *o)
 		fct_usage_error("--points takes no --baseline or --step");
 	if (!o->points && o->max_edge < HUGE_VAL)
 		fct_usage_error("--max-edge is for --points");
+	if (o->points && o->noise)
+		fct_usage_error("--noise is for depth images");
+	if (o->noise && names_model(o->noise)) {
+		struct fct_err err;
+		if (fct_noise_parse(&o->depth.noise, o->noise, &err))
+			fct_usage_error("--%s", err.msg);
+	}
 }
 
 static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
@@ -196,6 +239,7 @@ static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
 	if (o->depth.baseline > 0)
 		o->depth.focal = o->focal > 0 ? o->focal
 		               : cam->kind == FCT_CAMERA_CYLINDRICAL ? cam->f : cam->fx;
+	resolve_noise(o, &img);
 	struct fct_mesh m;
 	fct_report("pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	struct fct_grid_stats st;
@@ -259,7 +303,11 @@ int main(int argc, char **argv)
 	if (o.pose_file)
 		for (size_t v = 0; v < m.nv; v++)
 			fct_pose_apply(pose, &m.xyz[3 * v], &m.xyz[3 * v]);
+	char noise[256];
+	fct_noise_format(&o.depth.noise, noise, sizeof noise);
+	fct_report("noise", "%s", *noise ? noise : "unknown");
 	if (fct_header_set_camera(&m, &cam, &err) ||
+	    fct_header_set_noise(&m, &o.depth.noise, &err) ||
 	    (o.pose_file && fct_header_set_pose(&m, pose, &err)) ||
 	    (o.image_file && fct_header_set_texture(&m, 0, o.image_file, &err)) ||
 	    fct_header_add_provenance(&m, "dm2mesh", argc - 1, argv + 1, &err) ||

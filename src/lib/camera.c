@@ -188,8 +188,7 @@ const char *fct_camera_names(void)
 	return "tum tum1 tum2 tum3 redwood primesense kinect icl-nuim 7scenes";
 }
 
-/* The whole of a small text file, NUL-terminated, malloc'd. */
-static char *read_small_file(const char *path, struct fct_err *err)
+char *fct_read_small_text(const char *path, struct fct_err *err)
 {
 	enum { MAX = 1 << 16 };
 	FILE *f = fopen(path, "rb");
@@ -284,7 +283,7 @@ static const char *after_keyword(const char *text, const char *key)
 
 int fct_camera_read_file(const char *path, struct fct_camera *cam, struct fct_err *err)
 {
-	char *text = read_small_file(path, err);
+	char *text = fct_read_small_text(path, err);
 	if (!text)
 		return -1;
 	/* One trailing line end is part of a text file, not of the camera line. */
@@ -330,7 +329,7 @@ int fct_pose_check(const double pose[12], double tol, struct fct_err *err)
 
 int fct_pose_read_file(const char *path, double pose[12], struct fct_err *err)
 {
-	char *text = read_small_file(path, err);
+	char *text = fct_read_small_text(path, err);
 	if (!text)
 		return -1;
 	const char *s = after_keyword(text, "pose"), *end;

@@ -61,6 +61,11 @@ const char *fct_camera_names(void);
  * header comment (with or without "comment camera" before it).  0 or -1. */
 int fct_camera_read_file(const char *path, struct fct_camera *cam, struct fct_err *err);
 
+/* The whole of a small text file (at most 64 KB: a camera, pose or noise
+ * file), NUL-terminated, malloc'd; NULL with a message naming path when it
+ * cannot be read, is larger or holds a NUL byte. */
+char *fct_read_small_text(const char *path, struct fct_err *err);
+
 /* Poses: camera-to-world as a row-major 3x4 matrix [R | t]. */
 
 /* Read a pose file: a 4x4 or 3x4 matrix as text (12 or 16 numbers, as the

@@ -39,6 +39,30 @@ double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_
 	return v > 0 && v >= p->min_depth && v <= p->max_depth && isfinite(v) ? v : 0;
 }
 
+double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params *p)
+{
+	int integer = img->type == FCT_PIX_U8 || img->type == FCT_PIX_U16;
+	return integer && !(p->baseline > 0) ? 1 / p->depth_scale : 0;
+}
+
+/* The float vertex property sigma: each vertex's depth deviation under nz
+ * times its ray's length (the rays factor as in fct_depth_mesh_kept). */
+static int add_sigma(struct fct_mesh *m, const struct fct_noise *nz, const uint32_t *cell_of, int gw,
+                     const double *depth, const double *col, const double *row, struct fct_err *err)
+{
+	struct fct_prop *ps = fct_elem_add_scalar(&m->vertex, "sigma", FCT_FLOAT32, err);
+	if (!ps)
+		return -1;
+	float *sigma = ps->data;
+	for (size_t v = 0; v < m->nv; v++) {
+		size_t c = cell_of[v], i = c % (size_t)gw, j = c / (size_t)gw;
+		const double *r = &col[3 * i];
+		double len = sqrt(r[0] * r[0] + row[j] * row[j] + r[2] * r[2]);
+		sigma[v] = (float)(fct_noise_sigma(nz, depth[c]) * len);
+	}
+	return 0;
+}
+
 int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
                    const struct fct_depth_params *p, struct fct_grid_stats *stats,
                    struct fct_err *err)
@@ -101,6 +125,8 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 			t[v] = (float)(1 - (r + 0.5) / img->height);
 		}
 	}
+	if (p->noise.model != FCT_NOISE_UNKNOWN && add_sigma(m, &p->noise, cell_of, gw, depth, col, row, err))
+		goto out;
 	if (kept) {
 		size_t w = (size_t)img->width;
 		if (!(*kept = calloc(w * (size_t)img->height, sizeof **kept))) {

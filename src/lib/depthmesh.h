@@ -11,7 +11,11 @@
  * Every step-th pixel of every step-th row (from pixel 0) is a grid cell of
  * gridmesh.h; s = (u + 0.5) / W and t = 1 - (v + 0.5) / H place the vertex
  * of pixel (u, v) on any image of the same field of view, whatever its
- * resolution. */
+ * resolution.
+ *
+ * With a noise model (noise.h) each vertex gets the float property sigma:
+ * the expected standard deviation (metres) of its position along its ray,
+ * fct_noise_sigma of its depth times the ray's length per unit depth. */
 #ifndef FCT_DEPTHMESH_H
 #define FCT_DEPTHMESH_H
 
@@ -19,6 +23,7 @@
 #include "gridmesh.h"
 #include "image.h"
 #include "mesh.h"
+#include "noise.h"
 
 struct fct_depth_params {
 	double depth_scale;       /* units per metre; default 1000 */
@@ -28,10 +33,12 @@ struct fct_depth_params {
 	int step;                 /* sample every step-th pixel (>= 1) */
 	struct fct_grid_params grid;
 	int texcoords;            /* add float vertex properties s, t */
+	struct fct_noise noise;   /* FCT_NOISE_UNKNOWN: no sigma property */
 };
 
 /* The defaults: scale 1000, no disparity, depths in (0, inf), step 1,
- * max_jump FCT_DEFAULT_MAX_JUMP, min_faces FCT_DEFAULT_MIN_FACES, s t on. */
+ * max_jump FCT_DEFAULT_MAX_JUMP, min_faces FCT_DEFAULT_MIN_FACES, s t on,
+ * no noise model. */
 void fct_depth_params_default(struct fct_depth_params *p);
 
 /* Largest depth change per lateral step that is still one surface: 10 is
@@ -44,6 +51,10 @@ void fct_depth_params_default(struct fct_depth_params *p);
 /* Depth in metres of sample (x, y) of a one-channel depth image, 0 for no
  * data. */
 double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_depth_params *p);
+
+/* The step of img's depth encoding in metres: 1 / depth_scale for integer
+ * (PNG) depth, 0 for floats and for disparities (whose depth steps vary). */
+double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params *p);
 
 /* Mesh the depth image seen by cam (whose size must be the image's) into m,
  * which is initialised here.  stats may be NULL.  0 or -1. */

@@ -110,6 +110,32 @@ int fct_header_set_pose(struct fct_mesh *m, const double pose[12], struct fct_er
 	return put_comment(m, i, buf, err);
 }
 
+int fct_header_noise(const struct fct_mesh *m, struct fct_noise *nz, struct fct_err *err)
+{
+	memset(nz, 0, sizeof *nz);
+	long i = find_comment(m, "noise", 0);
+	if (i < 0)
+		return 0;
+	if (fct_noise_parse(nz, m->comments[i].text + 5, err)) {
+		fct_err_prefix(err, "comment");
+		return -1;
+	}
+	return 1;
+}
+
+int fct_header_set_noise(struct fct_mesh *m, const struct fct_noise *nz, struct fct_err *err)
+{
+	long i = find_comment(m, "noise", 0);
+	if (nz->model == FCT_NOISE_UNKNOWN) {
+		if (i >= 0)
+			remove_comment(m, (size_t)i);
+		return 0;
+	}
+	char buf[300] = "noise ";
+	fct_noise_format(nz, buf + 6, sizeof buf - 6);
+	return put_comment(m, i, buf, err);
+}
+
 /* Index of the i-th TextureFile comment, or -1. */
 static long texture_comment(const struct fct_mesh *m, size_t i)
 {

@@ -4,6 +4,7 @@
  *   comment camera cylindrical W H f cy theta0
  *   comment pose r11 r12 r13 t1 r21 r22 r23 t2 r31 r32 r33 t3   (camera-to-world)
  *   comment TextureFile image.png
+ *   comment noise <model> <numbers...>   (the sensor's noise model, noise.h)
  *   comment facet <program> <arguments...>
  *
  * Numbers are written with %.17g so they survive any number of stages. */
@@ -12,6 +13,7 @@
 
 #include "camera.h"
 #include "mesh.h"
+#include "noise.h"
 
 /* The camera comment of m: 1 found, 0 none, -1 malformed (message set). */
 int fct_header_camera(const struct fct_mesh *m, struct fct_camera *cam, struct fct_err *err);
@@ -22,6 +24,12 @@ int fct_header_set_camera(struct fct_mesh *m, const struct fct_camera *cam, stru
 int fct_header_pose(const struct fct_mesh *m, double pose[12], struct fct_err *err);
 /* Replace any pose comment (pose NULL removes it). */
 int fct_header_set_pose(struct fct_mesh *m, const double pose[12], struct fct_err *err);
+
+/* The noise model of m's noise comment: 1 found, 0 none (nz's model is then
+ * FCT_NOISE_UNKNOWN), -1 malformed (message set). */
+int fct_header_noise(const struct fct_mesh *m, struct fct_noise *nz, struct fct_err *err);
+/* Replace any noise comment of m with nz (FCT_NOISE_UNKNOWN removes it). */
+int fct_header_set_noise(struct fct_mesh *m, const struct fct_noise *nz, struct fct_err *err);
 
 /* The path of a TextureFile comment, or NULL for any other comment. */
 const char *fct_comment_texture(const struct fct_comment *c);

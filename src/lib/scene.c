@@ -8,8 +8,9 @@
  * noise models are those of depth sensors: Gaussian, the quadratic growth
  * with depth of structured light (Khoshelham and Elberink, "Accuracy and
  * Resolution of Kinect Depth Data for Indoor Mapping Applications",
- * Sensors 12(2), 2012: sigma_z ~ 1.4e-3 z^2 per metre), outliers and
- * dropouts. */
+ * Sensors 12(2), 2012: sigma_z ~ 1.4e-3 z^2 per metre), the structured
+ * noise of ICL-NUIM's simulation (jittered sampling, disparity noise and
+ * 1/8-pixel disparity steps), outliers and dropouts. */
 #include "scene.h"
 
 #include <math.h>
@@ -571,6 +572,13 @@ void fct_render_free(struct fct_render *r)
 	memset(r, 0, sizeof *r);
 }
 
+/* The camera-frame direction ray turned into the world by pose. */
+static void world_direction(const double pose[12], const double ray[3], double dir[3])
+{
+	for (int k = 0; k < 3; k++)
+		dir[k] = pose[4 * k] * ray[0] + pose[4 * k + 1] * ray[1] + pose[4 * k + 2] * ray[2];
+}
+
 int fct_scene_render(const struct fct_scene *s, const struct fct_camera *cam,
                      const double pose[12], struct fct_render *out, struct fct_err *err)
 {
@@ -599,8 +607,7 @@ int fct_scene_render(const struct fct_scene *s, const struct fct_camera *cam,
 			size_t i = y * w + x;
 			double ray[3], dir[3];
 			fct_camera_ray(cam, (double)x, (double)y, ray);
-			for (int k = 0; k < 3; k++)
-				dir[k] = pose[4 * k] * ray[0] + pose[4 * k + 1] * ray[1] + pose[4 * k + 2] * ray[2];
+			world_direction(pose, ray, dir);
 			struct fct_bvh_ray_hit hit;
 			if (!fct_bvh_raycast(&s->bvh, org, dir, 0, INFINITY, &hit)) {
 				out->depth[i] = 0;
@@ -636,17 +643,39 @@ static void stream_seed(struct fct_rng *r, uint64_t seed, uint64_t stream, uint6
 	fct_rng_seed(r, fct_splitmix64(&st));
 }
 
-void fct_depth_noise(const struct fct_noise *nz, uint64_t seed, uint64_t stream,
-                     const double *truth, const double *cosine, double *out, size_t n,
-                     struct fct_noise_stats *stats)
+/* The depth the sensor model nz measures for a sampled depth z, with the
+ * normal deviate g; 0 when it measures none. */
+static double sensor_measure(const struct fct_noise *nz, double z, double g)
 {
-	struct fct_noise_stats st;
+	double d;
+	switch (nz->model) {
+	case FCT_NOISE_KINECT:
+	case FCT_NOISE_STEREO:
+		d = nz->fb / z + nz->sd * g;
+		if (nz->model == FCT_NOISE_KINECT && nz->step > 0)
+			d = nz->step * floor(d / nz->step + 0.5);
+		return d > 0 ? nz->fb / d : 0;
+	case FCT_NOISE_TOF:
+	case FCT_NOISE_POLY:
+		return z + fct_noise_sigma_gaussian(nz, z) * g;
+	default:
+		return z;
+	}
+}
+
+void fct_depth_noise(const struct fct_scene_noise *nz, uint64_t seed, uint64_t stream,
+                     const double *truth, const double *sampled, const double *cosine, double *out,
+                     size_t n, struct fct_scene_noise_stats *stats)
+{
+	struct fct_scene_noise_stats st;
 	memset(&st, 0, sizeof st);
 	struct fct_rng rmiss, rout, rnoise;
 	stream_seed(&rmiss, seed, stream, 0);
 	stream_seed(&rout, seed, stream, 1);
 	stream_seed(&rnoise, seed, stream, 2);
 	double cos_max = nz->grazing < 90 ? cos(nz->grazing * M_PI / 180) : -1;
+	const struct fct_noise *sensor = &nz->sensor;
+	int model = sensor->model != FCT_NOISE_UNKNOWN;
 	for (size_t i = 0; i < n; i++) {
 		double z = truth[i];
 		double u_miss = fct_rng_uniform(&rmiss);
@@ -657,6 +686,7 @@ void fct_depth_noise(const struct fct_noise *nz, uint64_t seed, uint64_t stream,
 			continue;
 		}
 		st.valid++;
+		double zs = sampled ? sampled[i] : z;
 		if (z < nz->near || (nz->far > 0 && z > nz->far)) {
 			st.range++;
 			out[i] = 0;
@@ -669,18 +699,50 @@ void fct_depth_noise(const struct fct_noise *nz, uint64_t seed, uint64_t stream,
 		} else if (u_out < nz->outliers) {
 			st.outliers++;
 			out[i] = z * (0.5 + u_val);
+		} else if (!(zs > 0)) {
+			st.lost++;
+			out[i] = 0;
 		} else {
-			double k = nz->kinect * z * z;
-			double sd = sqrt(nz->sigma * nz->sigma + k * k);
-			double v = z + sd * g;
+			double v, sd;
+			if (model) {
+				v = sensor_measure(sensor, zs, g);
+				sd = sensor->model == FCT_NOISE_NONE ? 0 : fct_noise_sigma(sensor, z);
+			} else {
+				double k = nz->kinect_gauss * z * z;
+				sd = sqrt(nz->sigma * nz->sigma + k * k);
+				v = z + sd * g;
+			}
 			if (sd > 0) {
 				st.noisy++;
 				st.sum += v - z;
 				st.sum2 += (v - z) * (v - z);
+				st.model2 += sd * sd;
 			}
 			out[i] = v > 0 ? v : 0;
 		}
 	}
 	if (stats)
 		*stats = st;
+}
+
+int fct_scene_render_jitter(const struct fct_scene *s, const struct fct_camera *cam,
+                            const double pose[12], double jitter, uint64_t seed, uint64_t stream,
+                            double *depth, struct fct_err *err)
+{
+	if (cam->width < 1 || cam->height < 1)
+		return fct_fail(err, "render: the camera has no image size");
+	size_t w = (size_t)cam->width, h = (size_t)cam->height;
+	struct fct_rng r;
+	stream_seed(&r, seed, stream, 3);
+	const double org[3] = {pose[3], pose[7], pose[11]};
+	for (size_t y = 0; y < h; y++)
+		for (size_t x = 0; x < w; x++) {
+			double du = jitter * fct_rng_normal(&r), dv = jitter * fct_rng_normal(&r);
+			double ray[3], dir[3];
+			fct_camera_ray(cam, (double)x + du, (double)y + dv, ray);
+			world_direction(pose, ray, dir);
+			struct fct_bvh_ray_hit hit;
+			depth[y * w + x] = fct_bvh_raycast(&s->bvh, org, dir, 0, INFINITY, &hit) ? hit.t : 0;
+		}
+	return 0;
 }

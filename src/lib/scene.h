@@ -8,8 +8,8 @@
  * ground truth of every depth pixel.  Colours are procedural textures in
  * each surface's own coordinates times a fixed Lambert shading, the same
  * from every viewpoint.  Noise is applied afterwards to the depth along each
- * pixel's ray, from seeded streams (rng.h), so the same options give the
- * same bytes.
+ * pixel's ray (and, for structured light, to where each pixel samples), from
+ * seeded streams (rng.h), so the same options give the same bytes.
  *
  * Plane normals point to the free side of their surface: into the room for
  * its floor, ceiling and walls, out of boxes and objects; every camera that
@@ -25,6 +25,7 @@
 #include "camera.h"
 #include "err.h"
 #include "mesh.h"
+#include "noise.h"
 
 enum fct_surface_kind { FCT_SURF_PLANE, FCT_SURF_SPHERE, FCT_SURF_CYLINDER };
 
@@ -107,33 +108,59 @@ void fct_scene_color(const struct fct_scene *s, size_t f, const double p[3], uin
  * in this order: dropped (0) when its truth is outside [near, far] (far 0:
  * no limit) or it is seen more than `grazing` degrees from its normal;
  * dropped with probability `missing`; replaced with probability `outliers`
- * by a depth uniform in [0.5, 1.5] times its truth; otherwise moved by a
- * normal deviate of standard deviation sqrt(sigma^2 + (kinect z^2)^2), z its
- * truth (a noisy depth <= 0 is dropped).  Each kind of draw has its own
- * stream, one draw per pixel whatever happens, so one option never changes
- * what another does. */
-struct fct_noise {
-	double sigma;      /* metres */
-	double kinect;     /* per metre: sigma = kinect z^2 (structured light) */
-	double outliers;   /* fraction in [0, 1] */
-	double missing;    /* fraction in [0, 1] */
-	double grazing;    /* degrees; >= 90: off */
-	double near, far;  /* metres */
+ * by a depth uniform in [0.5, 1.5] times its truth; otherwise measured:
+ *
+ * - without a sensor model, moved by a normal deviate of standard deviation
+ *   sqrt(sigma^2 + (kinect_gauss z^2)^2), z its truth;
+ * - with one (noise.h), the depth the sensor samples there (`sampled`, the
+ *   truth along a jittered ray, fct_scene_render_jitter; the truth when
+ *   NULL) goes through it: kinect and stereo turn it into the disparity
+ *   F B / z, add SD times a normal deviate and (kinect) round to a multiple
+ *   of STEP, then back to depth -- the structured-light simulation of
+ *   ICL-NUIM (Handa et al., "A Benchmark for RGB-D Visual Odometry, 3D
+ *   Reconstruction and SLAM", ICRA 2014, after Barron and Malik 2013), with
+ *   rounding to the nearest level; tof and poly add their sigma(z) times a
+ *   normal deviate; none keeps it.
+ *
+ * A measured depth <= 0 is dropped.  Each kind of draw has its own stream,
+ * one draw per pixel whatever happens, so one option never changes what
+ * another does. */
+struct fct_scene_noise {
+	double sigma;          /* metres */
+	double kinect_gauss;   /* per metre: sigma = kinect_gauss z^2 */
+	double outliers;       /* fraction in [0, 1] */
+	double missing;        /* fraction in [0, 1] */
+	double grazing;        /* degrees; >= 90: off */
+	double near, far;      /* metres */
+	struct fct_noise sensor;   /* FCT_NOISE_UNKNOWN: sigma and kinect_gauss */
 };
 
-struct fct_noise_stats {
+struct fct_scene_noise_stats {
 	size_t valid;              /* truth > 0 */
 	size_t range, grazing;     /* dropped by range, by angle */
 	size_t missing, outliers;  /* dropped at random, replaced */
-	size_t noisy;              /* moved by the normal noise */
+	size_t lost;               /* the sampled depth (jittered ray) is 0 */
+	size_t noisy;              /* measured with noise */
 	double sum, sum2;          /* of (noisy - truth) over the noisy ones */
+	double model2;             /* sum of the model's sigma(truth)^2 over them */
 };
 
 /* Apply nz to truth[0..n) into out (may equal truth), with streams drawn
- * from seed and stream (one stream number per image); cosine (may be NULL
- * when grazing >= 90) as from fct_scene_render.  stats may be NULL. */
-void fct_depth_noise(const struct fct_noise *nz, uint64_t seed, uint64_t stream,
-                     const double *truth, const double *cosine, double *out, size_t n,
-                     struct fct_noise_stats *stats);
+ * from seed and stream (one stream number per image); sampled (may be
+ * NULL) as above; cosine (may be NULL when grazing >= 90) as from
+ * fct_scene_render.  stats may be NULL. */
+void fct_depth_noise(const struct fct_scene_noise *nz, uint64_t seed, uint64_t stream,
+                     const double *truth, const double *sampled, const double *cosine, double *out,
+                     size_t n, struct fct_scene_noise_stats *stats);
+
+/* The depths a sensor records when the point it samples for pixel (u, v)
+ * is (u + du, v + dv), du and dv normal deviates of `jitter` pixels (the
+ * lateral noise of Handa et al. 2014), drawn from their own stream of seed
+ * and stream: the depth of that jittered ray's first hit (0 for none),
+ * into depth[0 .. width * height).  The same camera, pose and streams as
+ * fct_scene_render and fct_depth_noise.  0 or -1. */
+int fct_scene_render_jitter(const struct fct_scene *s, const struct fct_camera *cam,
+                            const double pose[12], double jitter, uint64_t seed, uint64_t stream,
+                            double *depth, struct fct_err *err);
 
 #endif

@@ -57,13 +57,13 @@ check_true "no NaN" sh -c "! meshconv -a $TMP/s1.ply | grep -qi nan"
 
 # mkscene's room, Kinect-class noise (sigma = 0.0015 z^2), meshed at every
 # 4th pixel: the mean distance of the vertices to the exact scene.
-mkscene -q --noise kinect:0.0015 -o "$TMP/room"
+mkscene -q --noise kinect-gauss:0.0015 -o "$TMP/room"
 dm2mesh -q --step 4 --camera "$TMP/room/view00.camera" --pose "$TMP/room/view00.pose" -o "$TMP/r.ply" "$TMP/room/view00.depth.pfm"
 meshdist "$TMP/r.ply" "$TMP/room/scene.ply" >"$TMP/d0"
 raw=$(value mean "$TMP/d0")
 for m in "" "--no-crease"; do
 	areaflow $m --iterations 5 "$TMP/r.ply" | meshdist - "$TMP/room/scene.ply" >"$TMP/d1"
-	echo "room, kinect:0.0015, step 4: raw $raw, areaflow $m x5 $(value mean "$TMP/d1")" >&2
+	echo "room, kinect-gauss:0.0015, step 4: raw $raw, areaflow $m x5 $(value mean "$TMP/d1")" >&2
 	check_num "room: areaflow $m lowers the distance" "$(value mean "$TMP/d1")" "<" "$raw"
 done
 areaflow --no-crease --iterations 5 "$TMP/r.ply" | meshdist - "$TMP/room/scene.ply" >"$TMP/d1"
@@ -88,7 +88,7 @@ done
 echo "room, step 4, x5, crease angle error (degrees): --passes 5 $(value mean_error "$TMP/cp"), laplacian $(value mean_error "$TMP/cl"), taubin $(value mean_error "$TMP/ct")" >&2
 check_num "room: --passes 5 creases sharper than laplacian's" "$(value mean_error "$TMP/cp")" "<" "$(value mean_error "$TMP/cl")"
 
-# Issue 6, item 4, with the defaults: the full 640x480 room at kinect:0.0015
+# Issue 6, item 4, with the defaults: the full 640x480 room at kinect-gauss:0.0015
 # (noise up to 5 sample spacings at the far walls), 5 iterations.  The
 # guide turns on by itself (edge_ratio about 0.53); areaflow beats Laplacian
 # and Taubin on the distance to the true surface and on the angles at the

@@ -110,6 +110,49 @@ run_case 1 "dm2mesh -K tum $D/nonexistent.png" "" "dm2mesh: $D/nonexistent.png: 
 run_case 1 "dm2mesh -K 10,10,3.5,2.5 $D/img_rgb8.png" "" "dm2mesh: $D/img_rgb8.png: depth image has 3 channels"
 run_case 1 "dm2mesh -K 10,10,3.5,2.5 $D/dm_points.txt" "" "dm2mesh: $D/dm_points.txt: "
 
+# Noise models (noise.h).  Each vertex's sigma is its depth's deviation under
+# the model times the length of its ray, worked out here from the vertex's
+# own position: kinect F B SD STEP with unit U gives
+# sqrt((z^2 SD / FB)^2 + (z^2 STEP / FB)^2 / 12 + U^2 / 12) |p| / z.
+# sigma_err FB SD STEP U < ascii PLY (x y z first, sigma last): the largest
+# relative error over the vertices.
+sigma_err() {
+	awk -v fb="$1" -v sd="$2" -v st="$3" -v u="$4" '/^element vertex/ { n = $3 }
+	f && n-- > 0 { z = $3; g = z * z * sd / fb; q = z * z * st / fb
+		s = sqrt(g * g + q * q / 12 + u * u / 12) * sqrt($1 * $1 + $2 * $2 + z * z) / z
+		e = ($NF - s) / s; if (e < 0) e = -e; if (e > m) m = e }
+	/^end_header/ { f = 1 } END { print m + 0 }'
+}
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --noise kinect $D/dm_plane16.png > $TMP/nk.ply"
+run_case 0 "grep -q '^comment noise kinect 585 0.075 0.051 0.125 unit 0.001\$' $TMP/nk.ply"
+run_case 0 "grep -q '^property float sigma\$' $TMP/nk.ply"
+check_num "kinect sigma of every vertex" "$(sigma_err 43.875 0.051 0.125 0.001 < $TMP/nk.ply)" "<" 1e-6
+# Numeric intrinsics imply no model: no sigma, no comment.
+check_true "no model from numeric -K" sh -c "! grep -a -q -e '^comment noise' -e sigma $TMP/plane.ply"
+# A model from a file (mkscene's viewNN.noise), "comment" or not; poly with
+# its own unit.
+printf 'comment noise poly 0.01 0 0.001 unit 0.0005\n' > $TMP/poly.noise
+run_case 0 "dm2mesh -a -K 10,10,3.5,2.5 --noise $TMP/poly.noise $D/dm_plane16.png > $TMP/np.ply"
+run_case 0 "grep -q '^comment noise poly 0.01 0 0.001 unit 0.0005\$' $TMP/np.ply"
+check_num "poly sigma of every vertex" "$(verts < $TMP/np.ply | awk '{ z = $3; a = 0.01 + 0.001 * z * z
+	s = sqrt(a * a + 0.0005 ^ 2 / 12) * sqrt($1 * $1 + $2 * $2 + z * z) / z
+	e = ($NF - s) / s; if (e < 0) e = -e; if (e > m) m = e } END { print m + 0 }')" "<" 1e-6
+# PFM depth is not quantised: none has no unit, sigma = 1e-6 z |p| / z.
+run_case 0 "dm2mesh -a -K 100,100,3.5,2.5 --baseline 0.1 --noise none $D/dm_disp.pfm > $TMP/nn.ply"
+run_case 0 "grep -q '^comment noise none\$' $TMP/nn.ply"
+check_num "none sigma" "$(verts < $TMP/nn.ply | awk '{ s = 1e-6 * sqrt($1 * $1 + $2 * $2 + $3 * $3)
+	e = ($NF - s) / s; if (e < 0) e = -e; if (e > m) m = e } END { print m + 0 }')" "<" 1e-6
+run_case 2 "dm2mesh -K tum --noise poly:1 $D/dm_plane16.png" "" "dm2mesh: --noise: expected poly:A,B,C"
+run_case 2 "dm2mesh -K tum --noise kinect:0,1 $D/dm_plane16.png" "" "dm2mesh: --noise kinect: F and B must be positive"
+run_case 2 "dm2mesh --points --noise none $D/dm_points.txt" "" "dm2mesh: --noise is for depth images"
+run_case 1 "dm2mesh -K tum --noise $TMP/nonexistent $D/dm_plane16.png" "" "dm2mesh: $TMP/nonexistent: "
+printf 'noise tof\nnoise none\n' > $TMP/two.noise
+run_case 1 "dm2mesh -K tum --noise $TMP/two.noise $D/dm_plane16.png" "" "dm2mesh: $TMP/two.noise: expected one line"
+printf 'camera pinhole 8 6 10 10 3.5 2.5\n' > $TMP/cam.noise
+run_case 1 "dm2mesh -K tum --noise $TMP/cam.noise $D/dm_plane16.png" "" "dm2mesh: $TMP/cam.noise: expected \"noise MODEL ...\""
+printf 'noise poly 1 2\n' > $TMP/short.noise
+run_case 1 "dm2mesh -K tum --noise $TMP/short.noise $D/dm_plane16.png" "" "dm2mesh: $TMP/short.noise: noise: expected poly:A,B,C"
+
 # Sparse points: a 5x4 lattice of 20 distinct image positions, 14 of them on
 # the hull, gives 2n - 2 - h = 24 triangles; a repeated position is left
 # unused; all faces toward the camera; s t from the image coordinates in an
@@ -156,6 +199,11 @@ if [ -d "$S" ]; then
 	run_case 0 "dm2mesh -K 7scenes --step 2 --pose $S/frame-000050.pose.txt -o $TMP/k50.ply $S/frame-000050.depth.png"
 	run_case 0 "meshdist $TMP/k50.ply $TMP/k0.ply > $TMP/k.out"
 	check_num "7-Scenes frames agree" "$(awk '$1 == "mean" { print $2 }' $TMP/k.out)" "<" 0.05
+	# The dataset's name implies its kinect model, with the PNG's millimetres.
+	run_case 0 "dm2mesh -a -K 7scenes --step 4 -o $TMP/k0n.ply $S/frame-000000.depth.png"
+	run_case 0 "grep -q '^comment noise kinect 585 0.0738 0.051 0.125 unit 0.001\$' $TMP/k0n.ply"
+	check_num "7-Scenes sigma of every vertex" "$(sigma_err 43.173 0.051 0.125 0.001 < $TMP/k0n.ply)" "<" 1e-6
+	check_num "7-Scenes median sigma (mm)" "$(meshinfo $TMP/k0n.ply | awk '$1 == "sigma_median:" { print 1000 * $2 }')" ">" 5
 fi
 
 finish

@@ -45,7 +45,7 @@ run_case 0 "meshdist -s 100000 $TMP/bridge.ply $P/scene.ply > $TMP/bridge.dist"
 check_num "steps without the jump test bridge the gap" "$(figure max $TMP/bridge.dist)" ">" 0.4
 # Kinect-class noise (sigma = 0.0012 z^2): the jump is still cut (sampled
 # points within noise of the surface, far from 0.5 m) and noise cuts few faces.
-run_case 0 "mkscene --scene steps --size 320x240 --fx 262.5 --noise kinect:0.0012 -o $P/n"
+run_case 0 "mkscene --scene steps --size 320x240 --fx 262.5 --noise kinect-gauss:0.0012 -o $P/n"
 run_case 0 "dm2mesh -v --camera $P/n/view00.camera --pose $P/n/view00.pose -o $TMP/noisy.ply $P/n/view00.depth.pfm 2> $TMP/noisy.err"
 run_case 0 "meshdist -s 100000 $TMP/noisy.ply $P/scene.ply > $TMP/noisy.dist"
 check_num "noisy steps: no face across the jump" "$(figure max $TMP/noisy.dist)" "<" 0.1

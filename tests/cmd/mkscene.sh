@@ -173,7 +173,7 @@ check_num "gaussian truth" "$(img mean $S/view00.truth.pfm)" == 3
 cp "$S/view00.depth.pfm" "$TMP/g1.pfm"
 # Kinect 0.002: sigma = 0.002 z^2, half the pixels at 2.5 m, half at 3.5 m:
 # rms = 0.002 sqrt((2.5^4 + 3.5^4) / 2).
-run_case 0 "mkscene --scene steps --noise kinect:0.002 --points -o $S"
+run_case 0 "mkscene --scene steps --noise kinect-gauss:0.002 --points -o $S"
 run_case 0 "meshdist $S/view00.points.ply $S/scene.ply >$TMP/d"
 near "kinect rms distance" "$(figure rms $TMP/d)" 0.019448650338776981 0.02
 # The same seed gives the same bytes; another seed other noise on the same truth.
@@ -181,6 +181,44 @@ run_case 0 "mkscene --scene steps --noise gaussian:0.01 --points -o $S"
 check_true "same seed, same depth" cmp -s "$S/view00.depth.pfm" "$TMP/g1.pfm"
 run_case 0 "mkscene --scene steps --noise gaussian:0.01 --seed 2 -o $S"
 check_true "another seed, other depths" sh -c "! cmp -s $S/view00.depth.pfm $TMP/g1.pfm"
+# Structured light (kinect: ICL-NUIM's simulation, jitter of half a pixel) on
+# the plane, 2.5 m ahead and turned 35 degrees: every depth as written is a
+# disparity level 43.875 / (k / 8) (the PFM's floats read back with od), the
+# levels about 2.5 m are 2.5^2 / 351 m apart, the rms against the truth is
+# the model's (the rms of fct_noise_sigma over the same pixels) within 15%,
+# and viewNN.noise says the model for dm2mesh.
+run_case 0 "mkscene --scene plane --size 320x240 --fx 262.5 --noise kinect -v -o $TMP/sk 2>$TMP/v"
+near "kinect: rms against the truth is the model's" "$(figure noise_stdev $TMP/v)" "$(figure noise_model_rms $TMP/v)" 0.15
+check_num "kinect: every pixel measured" "$(figure noisy $TMP/v)" == 76800
+pfm_values() { od -A n -v -t f4 -j "$(head -n 3 "$1" | wc -c)" "$1" | tr -s ' ' '\n' | awk 'NF'; }
+check_num "kinect: depths off the disparity levels" "$(pfm_values $TMP/sk/view00.depth.pfm |
+	awk '$1 > 0 { k = 351 / $1; e = k - int(k + 0.5); if (e < 0) e = -e; if (e > m) m = e } END { print m + 0 }')" "<" 0.001
+# Neighbouring levels z1 < z2 are z1 z2 / 351 apart (1 / z1 - 1 / z2 = 1 / 351):
+# the median ratio of the gaps to that, between 2 and 3 m.
+near "kinect: levels z^2 / 351 apart" "$(pfm_values $TMP/sk/view00.depth.pfm | sort -g -u |
+	awk '$1 > 2 && $1 < 3 { if (p) print ($1 - p) / (p * $1 / 351); p = $1 }' | sort -g |
+	awk '{ r[NR] = $1 } END { print r[int((NR + 1) / 2)] }')" 1 0.01
+check_true "kinect: view00.noise" test "$(cat $TMP/sk/view00.noise)" = "noise kinect 585 0.075 0.051 0.125"
+run_case 0 "dm2mesh --camera $TMP/sk/view00.camera --noise $TMP/sk/view00.noise $TMP/sk/view00.depth.pfm | meshinfo - | grep -qx 'noise: kinect 585 0.075 0.051 0.125'"
+cp "$TMP/sk/view00.depth.pfm" "$TMP/k1.pfm"
+run_case 0 "mkscene --scene plane --size 320x240 --fx 262.5 --noise kinect -o $TMP/sk"
+check_true "kinect: same seed, same depth" cmp -s "$TMP/sk/view00.depth.pfm" "$TMP/k1.pfm"
+run_case 0 "mkscene --scene plane --size 320x240 --fx 262.5 --noise kinect --jitter 0 -v -o $TMP/sk 2>$TMP/v0"
+check_num "kinect: jitter adds to the error on the slant" "$(figure noise_stdev $TMP/v0)" "<" "$(figure noise_stdev $TMP/v)"
+check_true "kinect: jitter moves the depths" sh -c "! cmp -s $TMP/sk/view00.depth.pfm $TMP/k1.pfm"
+# The other models' files: Gaussian as poly, png16's millimetres as unit;
+# none by default; both Gaussian kinds together: no file.
+run_case 0 "mkscene --scene cube --size 64x48 --noise gaussian:0.01 -o $TMP/g && cat $TMP/g/view00.noise" ""
+check_true "gaussian: view00.noise" test "$(cat $TMP/out)" = "noise poly 0.01 0 0"
+run_case 0 "mkscene --scene cube --size 64x48 --noise kinect-gauss:0.0015 --depth png16 -o $TMP/g && cat $TMP/g/view00.noise" ""
+check_true "kinect-gauss: view00.noise" test "$(cat $TMP/out)" = "noise poly 0 0 0.0015 unit 0.001"
+run_case 0 "mkscene --scene cube --size 64x48 -o $TMP/g0 && cat $TMP/g0/view00.noise" ""
+check_true "no noise: view00.noise" test "$(cat $TMP/out)" = "noise none"
+run_case 0 "mkscene --scene cube --size 64x48 --noise gaussian:0.01 --noise kinect-gauss:0.001 -o $TMP/g2"
+check_true "both Gaussian kinds: no view00.noise" test ! -e "$TMP/g2/view00.noise"
+run_case 0 "mkscene --scene cube --size 64x48 --noise stereo:40,0.1 -v -o $TMP/g3 2>$TMP/v3"
+near "stereo: rms against the truth is the model's" "$(figure noise_stdev $TMP/v3)" "$(figure noise_model_rms $TMP/v3)" 0.1
+
 # Missing 10 percent: zeros within a percent of 30720.  Outliers 5 percent:
 # depths up to 1.5 times the truth.
 run_case 0 "mkscene --scene steps --missing 0.1 --outliers 0.05 -v -o $S 2>$TMP/v"
@@ -201,12 +239,18 @@ near "grazing kept" "$((307200 - $(img zero $S/view00.depth.pfm)))" "$kept" 0.00
 
 # The whole output is deterministic: a second run into the same folder
 # writes the same bytes.
-run_case 0 "mkscene --views 2 --panorama 256x64 --noise kinect:0.0015 --missing 0.05 --points -o $TMP/det1"
+run_case 0 "mkscene --views 2 --panorama 256x64 --noise kinect-gauss:0.0015 --missing 0.05 --points -o $TMP/det1"
 mkdir "$TMP/det2"
 cp "$TMP"/det1/* "$TMP/det2/"
-run_case 0 "mkscene --views 2 --panorama 256x64 --noise kinect:0.0015 --missing 0.05 --points -o $TMP/det1"
+run_case 0 "mkscene --views 2 --panorama 256x64 --noise kinect-gauss:0.0015 --missing 0.05 --points -o $TMP/det1"
 check_true "same options, same bytes" sh -c "for f in $TMP/det1/*; do cmp -s \$f $TMP/det2/\${f##*/} || exit 1; done"
-check_num "files of a run" "$(ls $TMP/det1 | wc -l)" == 23
+check_num "files of a run" "$(ls $TMP/det1 | wc -l)" == 26
+run_case 0 "mkscene --views 2 --panorama 256x64 --noise kinect --missing 0.05 --points -o $TMP/det3"
+mkdir "$TMP/det4"
+cp "$TMP"/det3/* "$TMP/det4/"
+run_case 0 "mkscene --views 2 --panorama 256x64 --noise kinect --missing 0.05 --points -o $TMP/det3"
+check_true "same options, same bytes (kinect)" sh -c "for f in $TMP/det3/*; do cmp -s \$f $TMP/det4/\${f##*/} || exit 1; done"
+check_num "files of a kinect run" "$(ls $TMP/det3 | wc -l)" == 26
 
 # -K sets the intrinsics; the camera file says so.
 run_case 0 "mkscene --scene cube --size 100x80 -K 90,95,49,41.5 -o $TMP/k"
@@ -226,7 +270,12 @@ run_case 2 "mkscene --size 100000x100000 -o $TMP/x" "" "mkscene: --size: "
 run_case 2 "mkscene --panorama -5x5 -o $TMP/x" "" "mkscene: --panorama: "
 run_case 2 "mkscene --views -1 -o $TMP/x" "" "mkscene: --views: -1 must be in [0, 1000]"
 run_case 2 "mkscene --views many -o $TMP/x" "" "mkscene: --views: \"many\" is not an integer"
-run_case 2 "mkscene --noise perlin:1 -o $TMP/x" "" "mkscene: --noise: \"perlin:1\" is not gaussian:sigma or kinect:a"
+run_case 2 "mkscene --noise perlin:1 -o $TMP/x" "" "mkscene: --noise: \"perlin:1\" is not gaussian:sigma, kinect-gauss:a or a sensor model (none kinect tof poly stereo)"
+run_case 2 "mkscene --noise kinect:0.0012 -o $TMP/x" "" "mkscene: --noise: kinect:0.0012: sigma = a z^2 is kinect-gauss:a; kinect takes F,B[,SD[,STEP]]"
+run_case 2 "mkscene --noise kinect:0,1 -o $TMP/x" "" "mkscene: --noise kinect: F and B must be positive"
+run_case 2 "mkscene --noise kinect --noise gaussian:0.01 -o $TMP/x" "" "mkscene: --noise: gaussian:0.01 and a sensor model exclude each other"
+run_case 2 "mkscene --noise gaussian:0.01 --noise tof -o $TMP/x" "" "mkscene: --noise: tof: one sensor model, without gaussian: or kinect-gauss:"
+run_case 2 "mkscene --jitter -1 -o $TMP/x" "" "mkscene: --jitter: -1 must be in [0, 10]"
 run_case 2 "mkscene --noise gaussian:x -o $TMP/x" "" "mkscene: --noise gaussian: \"x\" is not a number"
 run_case 2 "mkscene --noise gaussian:-1 -o $TMP/x" "" "mkscene: --noise gaussian: -1 must be in"
 run_case 2 "mkscene --missing 2 -o $TMP/x" "" "mkscene: --missing: 2 must be in [0, 1]"

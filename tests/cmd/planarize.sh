@@ -8,7 +8,7 @@ figure() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 info() { meshinfo "$2" | awk -v k="$1:" '$1 == k { print $2 }'; }
 
 S=$TMP/room K=$TMP/stages
-run_case 0 "mkscene --noise kinect:0.0012 -o $S"
+run_case 0 "mkscene --noise kinect-gauss:0.0012 -o $S"
 run_case 0 "planarize -v --camera $S/view00.camera --pose $S/view00.pose --keep $K -o $TMP/room.obj $S/view00.depth.pfm $S/view00.color.png 2> $TMP/room.err"
 run_case 0 "test -s $TMP/room.obj && test -s $TMP/room.mtl && grep -q '^map_Kd ' $TMP/room.mtl"
 in=$(info faces $K/1-mesh.ply) out=$(info faces $K/5-model.ply)

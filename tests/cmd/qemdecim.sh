@@ -52,7 +52,7 @@ check_num "steps: on the true surface" "$(figure max "$TMP/out")" "<" 1e-5
 # of it.  Every output is manifold where the input was, with the same
 # components, and has exactly 1% of the faces.
 mkscene --size 320x240 --fx 262.5 --views 2 -o "$TMP/r" >/dev/null
-mkscene --size 320x240 --fx 262.5 --views 2 --noise kinect:0.0015 -o "$TMP/n" >/dev/null
+mkscene --size 320x240 --fx 262.5 --views 2 --noise kinect-gauss:0.0015 -o "$TMP/n" >/dev/null
 for v in 00 01; do
 	for s in r n; do
 		dm2mesh --camera "$TMP/$s/view$v.camera" --pose "$TMP/$s/view$v.pose" -o "$TMP/$s$v.ply" "$TMP/$s/view$v.depth.pfm"

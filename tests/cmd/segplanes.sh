@@ -187,12 +187,12 @@ recovered() {
 # to the true faces of box2_+x at step 5, 178 of them, is off by 2.6).
 # Patches are about 40 (the sphere and the cylinder make several), not tens
 # of thousands.
-scene rk --size 320x240 --fx 262.5 --noise kinect:0.0012
+scene rk --size 320x240 --fx 262.5 --noise kinect-gauss:0.0012
 view rk 1 0.005 rk-1
 recovered rk-1 1 9
 check_num "rk-1: patches" "$(report patches "$TMP/rk-1.err")" "<" 100
 check_num "rk-1: noise figure" "$(report noise "$TMP/rk-1.err")" ">" 0.0005
-scene rk6 --noise kinect:0.0012
+scene rk6 --noise kinect-gauss:0.0012
 view rk6 5 0.01 rk6-5
 recovered rk6-5 1 7
 check_num "rk6-5: patches" "$(report patches "$TMP/rk6-5.err")" "<" 60
@@ -224,6 +224,6 @@ run_case 0 "segplanes <$TMP/rk6-5.ply >$TMP/again.ply"
 run_case 0 "segplanes <$TMP/rk6-5.ply >$TMP/again2.ply"
 check_true "the same bytes twice" cmp -s "$TMP/again.ply" "$TMP/again2.ply"
 # The man page example.
-run_case 0 "mkscene --size 160x120 --fx 131.25 --noise kinect:0.0012 -o $TMP/ex && dm2mesh --camera $TMP/ex/view00.camera --pose $TMP/ex/view00.pose $TMP/ex/view00.depth.pfm | segplanes -v -o $TMP/ex.ply 2>$TMP/ex.err"
+run_case 0 "mkscene --size 160x120 --fx 131.25 --noise kinect-gauss:0.0012 -o $TMP/ex && dm2mesh --camera $TMP/ex/view00.camera --pose $TMP/ex/view00.pose $TMP/ex/view00.depth.pfm | segplanes -v -o $TMP/ex.ply 2>$TMP/ex.err"
 check_num "man page example: patches" "$(report patches "$TMP/ex.err")" ">" 5
 finish

@@ -121,7 +121,7 @@ check_num "one patch: only border edges" "$(awk '/^end_header/ { b = 1; next } b
 # faces; loops within the tolerance are dropped (holes filled), and no edge
 # is left bounding them, unless --keep-small-loops.
 L=$TMP/loops
-run_case 0 "mkscene --size 320x240 --fx 262.5 --noise kinect:0.0029 -o $L"
+run_case 0 "mkscene --size 320x240 --fx 262.5 --noise kinect-gauss:0.0029 -o $L"
 run_case 0 "dm2mesh --camera $L/view00.camera $L/view00.depth.pfm | segplanes -o $L/seg.ply"
 run_case 0 "simpchain -v -o $L/drop.ply $L/seg.ply 2> $L/drop.err"
 run_case 0 "simpchain -v --keep-small-loops -o $L/keep.ply $L/seg.ply 2> $L/keep.err"

@@ -619,12 +619,12 @@ static void test_room(void)
 	fct_scene_view_pose(&s, 0, 1, pose);
 	struct fct_render r;
 	CHECK_INT(fct_scene_render(&s, &cam, pose, &r, &err), 0);
-	struct fct_noise nz = { 0, 0.0015, 0, 0, 90, 0, 0 };
+	struct fct_scene_noise nz = { 0, 0.0015, 0, 0, 90, 0, 0 , {0}};
 	size_t npx = (size_t)cam.width * (size_t)cam.height;
 	struct fct_image img;
 	CHECK_INT(fct_image_alloc(&img, cam.width, cam.height, 1, FCT_PIX_F32, &err), 0);
 	double *noisy = malloc(npx * sizeof *noisy);
-	fct_depth_noise(&nz, 1, 0, r.depth, r.cosine, noisy, npx, NULL);
+	fct_depth_noise(&nz, 1, 0, r.depth, NULL, r.cosine, noisy, npx, NULL);
 	for (size_t i = 0; i < npx; i++)
 		((float *)img.data)[i] = (float)noisy[i];
 	free(noisy);

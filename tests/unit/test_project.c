@@ -712,9 +712,9 @@ static void labelled_view(const struct fct_scene *s, const struct fct_camera *tr
 	fct_scene_view_pose(s, 0, 1, pose);
 	struct fct_render r;
 	CHECK_INT(fct_scene_render(s, truth, pose, &r, &err), 0);
-	struct fct_noise nz = { 0, 0.0025, 0, 0, 90, 0, 0 };
+	struct fct_scene_noise nz = { 0, 0.0025, 0, 0, 90, 0, 0 , {0}};
 	double *noisy = malloc((size_t)r.width * r.height * sizeof *noisy);
-	fct_depth_noise(&nz, 5, 0, r.depth, r.cosine, noisy, (size_t)r.width * r.height, NULL);
+	fct_depth_noise(&nz, 5, 0, r.depth, NULL, r.cosine, noisy, (size_t)r.width * r.height, NULL);
 	struct fct_image img;
 	CHECK_INT(fct_image_alloc(&img, r.width, r.height, 1, FCT_PIX_F32, &err), 0);
 	for (int i = 0; i < r.width * r.height; i++)

@@ -395,9 +395,9 @@ static void test_noise(void)
 		truth[i] = i % 100 == 0 ? 0 : 2;   /* 1% without data */
 		cosine[i] = (double)(i % 1000) / 1000;
 	}
-	struct fct_noise nz = {0.01, 0, 0, 0, 90, 0, 0};
-	struct fct_noise_stats st;
-	fct_depth_noise(&nz, 1, 0, truth, cosine, a, n, &st);
+	struct fct_scene_noise nz = {0.01, 0, 0, 0, 90, 0, 0, {0}};
+	struct fct_scene_noise_stats st;
+	fct_depth_noise(&nz, 1, 0, truth, NULL, cosine, a, n, &st);
 	CHECK_INT(st.valid, 990000);
 	CHECK_INT(st.noisy, 990000);
 	double s1 = 0, s2 = 0;
@@ -416,20 +416,20 @@ static void test_noise(void)
 	CHECK_NEAR(sd, 0.01, 0.0002);     /* 2 percent; sd of the estimate 0.07 percent */
 	CHECK_NEAR(sqrt(st.sum2 / (double)st.noisy), sd, 1e-6);
 	/* Same seed, same stream: same bytes; another seed or stream: others. */
-	fct_depth_noise(&nz, 1, 0, truth, cosine, b, n, NULL);
+	fct_depth_noise(&nz, 1, 0, truth, NULL, cosine, b, n, NULL);
 	CHECK(!memcmp(a, b, sizeof *a * n));
-	fct_depth_noise(&nz, 2, 0, truth, cosine, b, n, NULL);
+	fct_depth_noise(&nz, 2, 0, truth, NULL, cosine, b, n, NULL);
 	CHECK(memcmp(a, b, sizeof *a * n) != 0);
-	fct_depth_noise(&nz, 1, 1, truth, cosine, b, n, NULL);
+	fct_depth_noise(&nz, 1, 1, truth, NULL, cosine, b, n, NULL);
 	CHECK(memcmp(a, b, sizeof *a * n) != 0);
 
 	/* Kinect: sigma = a z^2 = 0.002 * 4 = 0.008; with Gaussian 0.006 too,
 	 * sqrt(0.006^2 + 0.008^2) = 0.01. */
-	struct fct_noise kn = {0, 0.002, 0, 0, 90, 0, 0};
-	fct_depth_noise(&kn, 1, 0, truth, cosine, b, n, &st);
+	struct fct_scene_noise kn = {0, 0.002, 0, 0, 90, 0, 0, {0}};
+	fct_depth_noise(&kn, 1, 0, truth, NULL, cosine, b, n, &st);
 	CHECK_NEAR(sqrt(st.sum2 / (double)st.noisy), 0.008, 0.008 * 0.02);
 	kn.sigma = 0.006;
-	fct_depth_noise(&kn, 1, 0, truth, cosine, b, n, &st);
+	fct_depth_noise(&kn, 1, 0, truth, NULL, cosine, b, n, &st);
 	CHECK_NEAR(sqrt(st.sum2 / (double)st.noisy), 0.01, 0.01 * 0.02);
 	/* The same normal draws, scaled: noise at a pixel is (sd / 0.01) times
 	 * the Gaussian-only noise there. */
@@ -442,8 +442,8 @@ static void test_noise(void)
 	/* Missing 10 %, outliers 5 %: fractions within a percent; outliers in
 	 * [1, 3]; pixels neither missing nor outliers keep the noise they had
 	 * without those options. */
-	struct fct_noise mo = {0.01, 0, 0.05, 0.1, 90, 0, 0};
-	fct_depth_noise(&mo, 1, 0, truth, cosine, b, n, &st);
+	struct fct_scene_noise mo = {0.01, 0, 0.05, 0.1, 90, 0, 0, {0}};
+	fct_depth_noise(&mo, 1, 0, truth, NULL, cosine, b, n, &st);
 	CHECK_NEAR((double)st.missing / 990000, 0.1, 0.01);
 	CHECK_NEAR((double)st.outliers / (990000 - st.missing), 0.05, 0.01);
 	size_t zeros = 0, in_range = 0, same = 0, kept = 0;
@@ -464,17 +464,131 @@ static void test_noise(void)
 
 	/* Range [0, 1.9] drops everything at 2 m; grazing 60 degrees drops the
 	 * pixels with cosine < 0.5: half of them. */
-	struct fct_noise rg = {0, 0, 0, 0, 90, 0, 1.9};
-	fct_depth_noise(&rg, 1, 0, truth, cosine, b, n, &st);
+	struct fct_scene_noise rg = {0, 0, 0, 0, 90, 0, 1.9, {0}};
+	fct_depth_noise(&rg, 1, 0, truth, NULL, cosine, b, n, &st);
 	CHECK_INT(st.range, 990000);
-	struct fct_noise gz = {0, 0, 0, 0, 60, 0, 0};
-	fct_depth_noise(&gz, 1, 0, truth, cosine, b, n, &st);
+	struct fct_scene_noise gz = {0, 0, 0, 0, 60, 0, 0, {0}};
+	fct_depth_noise(&gz, 1, 0, truth, NULL, cosine, b, n, &st);
 	CHECK_INT(st.grazing, 495000);
 	CHECK(b[1] == 0 && b[999] == 2);   /* cosine 0.001 dropped, 0.999 kept exactly */
 	free(truth);
 	free(a);
 	free(b);
 	free(cosine);
+}
+
+/* The structured-light simulation (kinect, ICL-NUIM's): every measured
+ * depth is a level F B / (k STEP) for an integer k, neighbouring levels are
+ * fct_noise_step apart (11.4 mm at 2 m), and the rms error against the
+ * truth is fct_noise_sigma's within 15% at 1, 2 and 3 m, on truths spread
+ * evenly over each step; without rounding or Gaussian part, the parts
+ * alone.  Then the plane scene with lateral jitter, through the same calls
+ * as mkscene. */
+static void test_structured(void)
+{
+	struct fct_scene_noise nz = {0, 0, 0, 0, 90, 0, 0, {0}};
+	fct_noise_kinect(&nz.sensor);
+	const struct fct_noise *k = &nz.sensor;
+	size_t n = 200000;
+	double *truth = malloc(sizeof *truth * n), *out = malloc(sizeof *out * n);
+	if (!truth || !out)
+		abort();
+	for (int z = 1; z <= 3; z++) {
+		double step = fct_noise_step(k, z);
+		for (size_t i = 0; i < n; i++)
+			truth[i] = z + 4 * step * ((double)i / (double)n - 0.5);   /* four steps about z */
+		struct fct_scene_noise_stats st;
+		fct_depth_noise(&nz, 3, (uint64_t)z, truth, NULL, NULL, out, n, &st);
+		CHECK_INT(st.noisy, n);
+		int on_levels = 1;
+		double gap = HUGE_VAL;   /* the smallest gap between distinct levels near z */
+		for (size_t i = 0; i < n; i++) {
+			double kk = k->fb / out[i] / k->step;
+			on_levels &= fabs(kk - floor(kk + 0.5)) < 1e-6;
+			double next = k->fb / (floor(kk + 0.5) - 1) / k->step;   /* the level beyond */
+			if (fabs(out[i] - z) < step)
+				gap = fmin(gap, next - out[i]);
+		}
+		CHECK_MSG(on_levels, "z %d: a depth off the disparity levels", z);
+		CHECK_MSG(fabs(gap / step - 1) < 0.02, "z %d: levels %g apart, step %g", z, gap, step);
+		double rms = sqrt(st.sum2 / (double)st.noisy), model = fct_noise_sigma(k, z);
+		CHECK_MSG(fabs(rms / model - 1) < 0.15, "z %d: rms %g, model %g", z, rms, model);
+		CHECK_NEAR(sqrt(st.model2 / (double)st.noisy), model, 0.02 * model);
+	}
+	/* 2 m exactly: steps of z^2 / (8 F B) = 4 / 351 m. */
+	CHECK_NEAR(fct_noise_step(k, 2), 4.0 / 351, 1e-5);
+
+	/* The rounding alone: uniform within a step, rms step / sqrt(12); the
+	 * Gaussian alone: SD's depth equivalent. */
+	struct fct_scene_noise q = nz;
+	q.sensor.sd = 0;
+	for (size_t i = 0; i < n; i++)
+		truth[i] = 2 + 0.2 * ((double)i / (double)n - 0.5);
+	struct fct_scene_noise_stats st;
+	fct_depth_noise(&q, 3, 9, truth, NULL, NULL, out, n, &st);
+	double step2 = fct_noise_step(k, 2);
+	CHECK_NEAR(sqrt(st.sum2 / (double)st.noisy), step2 / sqrt(12), 0.05 * step2 / sqrt(12));
+	q.sensor.sd = k->sd, q.sensor.step = 0;
+	fct_depth_noise(&q, 3, 9, truth, NULL, NULL, out, n, &st);
+	double g2 = fct_noise_sigma_gaussian(k, 2);
+	CHECK_NEAR(sqrt(st.sum2 / (double)st.noisy), g2, 0.03 * g2);
+
+	/* The plane scene (2.5 m, turned 35 degrees) with half a pixel of
+	 * jitter: the sampled depths are the truth's at nearby points, the
+	 * error against the truth is the model's within 15% (the jitter on the
+	 * slant adds about 2%), and the same calls give the same bytes. */
+	struct fct_scene sc;
+	struct fct_err err;
+	CHECK_INT(fct_scene_build(&sc, "plane", &err), 0);
+	struct fct_camera cam = pinhole(320, 240, 262.5);
+	double pose[12];
+	fct_scene_view_pose(&sc, 0, 1, pose);
+	struct fct_render r;
+	CHECK_INT(fct_scene_render(&sc, &cam, pose, &r, &err), 0);
+	size_t np = (size_t)cam.width * (size_t)cam.height;
+	double *jit = malloc(sizeof *jit * np), *noisy = malloc(sizeof *noisy * np);
+	double *again = malloc(sizeof *again * np);
+	if (!jit || !noisy || !again)
+		abort();
+	CHECK_INT(fct_scene_render_jitter(&sc, &cam, pose, 0.5, 1, 0, jit, &err), 0);
+	/* Each sampled depth is the truth's one pixel or so away: on this slant
+	 * the depth changes by at most z tan(incidence) / f per pixel, under
+	 * 3.5 * 2.3 / 262.5 = 0.031 m, so the change is within five deviations
+	 * of the jitter, and half a pixel's worth in the rms. */
+	double jmax = 0, j2 = 0, slope2 = 0;
+	size_t moved = 0, m2 = 0;
+	for (size_t i = 0; i < np; i++) {
+		if (!(r.depth[i] > 0 && jit[i] > 0))
+			continue;
+		jmax = fmax(jmax, fabs(jit[i] - r.depth[i]));
+		j2 += (jit[i] - r.depth[i]) * (jit[i] - r.depth[i]);
+		moved += jit[i] != r.depth[i];
+		m2++;
+		if (i % (size_t)cam.width + 1 < (size_t)cam.width && i + (size_t)cam.width < np &&
+		    r.depth[i + 1] > 0 && r.depth[i + (size_t)cam.width] > 0) {
+			double gx = r.depth[i + 1] - r.depth[i], gy = r.depth[i + (size_t)cam.width] - r.depth[i];
+			slope2 += gx * gx + gy * gy;
+		}
+	}
+	CHECK(m2 > np / 2 && moved > 0.99 * (double)m2);
+	CHECK_MSG(jmax < 5 * 0.5 * 0.031, "jitter moved a depth by %g", jmax);
+	double jrms = sqrt(j2 / (double)m2), expect = 0.5 * sqrt(slope2 / (double)m2);
+	CHECK_MSG(fabs(jrms / expect - 1) < 0.1, "jitter rms %g, half a pixel's slope %g", jrms, expect);
+	fct_depth_noise(&nz, 1, 0, r.depth, jit, r.cosine, noisy, np, &st);
+	double rms = sqrt(st.sum2 / (double)st.noisy), model = sqrt(st.model2 / (double)st.noisy);
+	CHECK_MSG(fabs(rms / model - 1) < 0.15, "plane: rms %g, model %g", rms, model);
+	CHECK(rms > model);
+	CHECK_INT(fct_scene_render_jitter(&sc, &cam, pose, 0.5, 1, 0, again, &err), 0);
+	CHECK(!memcmp(jit, again, sizeof *jit * np));
+	fct_depth_noise(&nz, 1, 0, r.depth, again, r.cosine, again, np, NULL);
+	CHECK(!memcmp(noisy, again, sizeof *noisy * np));
+	fct_render_free(&r);
+	fct_scene_free(&sc);
+	free(jit);
+	free(noisy);
+	free(again);
+	free(truth);
+	free(out);
 }
 
 int main(void)
@@ -484,5 +598,6 @@ int main(void)
 	test_small();
 	test_color();
 	test_noise();
+	test_structured();
 	CHECK_DONE();
 }

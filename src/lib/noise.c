@@ -1,0 +1,259 @@
+/* noise.c - sensor noise models (see noise.h). */
+#include "noise.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "camera.h"
+#include "numparse.h"
+
+static const char *const model_names[] = {
+	[FCT_NOISE_NONE] = "none", [FCT_NOISE_KINECT] = "kinect", [FCT_NOISE_TOF] = "tof",
+	[FCT_NOISE_POLY] = "poly", [FCT_NOISE_STEREO] = "stereo",
+};
+
+const char *fct_noise_models(void)
+{
+	return "none kinect tof poly stereo";
+}
+
+void fct_noise_kinect(struct fct_noise *nz)
+{
+	memset(nz, 0, sizeof *nz);
+	nz->model = FCT_NOISE_KINECT;
+	nz->focal = FCT_KINECT_FOCAL;
+	nz->baseline = FCT_KINECT_BASELINE;
+	nz->fb = FCT_KINECT_FOCAL * FCT_KINECT_BASELINE;
+	nz->sd = FCT_KINECT_SD;
+	nz->step = FCT_KINECT_STEP;
+}
+
+int fct_noise_named(const char *camera_name, struct fct_noise *nz)
+{
+	static const struct {
+		const char *name;
+		double baseline;
+	} named[] = {
+		{"tum", 0.0731}, {"tum1", 0.0731}, {"tum2", 0.0731}, {"tum3", 0.0731},
+		{"redwood", FCT_KINECT_BASELINE}, {"primesense", FCT_KINECT_BASELINE},
+		{"kinect", FCT_KINECT_BASELINE}, {"icl-nuim", 0.07506}, {"7scenes", 0.0738},
+	};
+	for (size_t i = 0; i < sizeof named / sizeof *named; i++)
+		if (!strcmp(camera_name, named[i].name)) {
+			fct_noise_kinect(nz);
+			nz->baseline = named[i].baseline;
+			nz->fb = nz->focal * nz->baseline;
+			return 0;
+		}
+	return -1;
+}
+
+static int is_separator(char c)
+{
+	return c == ' ' || c == '\t' || c == ':' || c == ',';
+}
+
+static const char *skip_separators(const char *s)
+{
+	while (is_separator(*s))
+		s++;
+	return s;
+}
+
+/* Up to max numbers after s, each followed by a separator or the end; stops
+ * before the first word that is not a number.  Returns how many (or -1 for
+ * something that starts like a number and is not one, or more than max),
+ * *end at what follows. */
+static int scan_numbers(const char *s, double *v, int max, const char **end)
+{
+	int n = 0;
+	for (;;) {
+		s = skip_separators(s);
+		double x;
+		const char *e = fct_parse_double(s, &x);
+		if (!e) {
+			*end = s;
+			return *s && (*s == '-' || *s == '+' || *s == '.' || (*s >= '0' && *s <= '9')) ? -1 : n;
+		}
+		if ((*e && !is_separator(*e)) || !isfinite(x) || n == max)
+			return -1;
+		v[n++] = x;
+		s = e;
+	}
+}
+
+/* The number of parameters each model takes: at least, at most. */
+static const struct {
+	int min, max;
+	const char *form;
+} arity[] = {
+	[FCT_NOISE_NONE] = {0, 0, "none"},
+	[FCT_NOISE_KINECT] = {0, 4, "kinect[:F,B[,SD[,STEP]]]"},
+	[FCT_NOISE_TOF] = {0, 2, "tof[:A,B]"},
+	[FCT_NOISE_POLY] = {3, 3, "poly:A,B,C"},
+	[FCT_NOISE_STEREO] = {2, 3, "stereo:FB,SD[,DOFFS]"},
+};
+
+int fct_noise_parse(struct fct_noise *nz, const char *text, struct fct_err *err)
+{
+	memset(nz, 0, sizeof *nz);
+	const char *s = skip_separators(text);
+	size_t len = 0;
+	while (s[len] && !is_separator(s[len]))
+		len++;
+	enum fct_noise_model model = FCT_NOISE_UNKNOWN;
+	for (int k = FCT_NOISE_NONE; k <= FCT_NOISE_STEREO; k++)
+		if (strlen(model_names[k]) == len && !strncmp(s, model_names[k], len))
+			model = (enum fct_noise_model)k;
+	if (len == 5 && !strncmp(s, "exact", 5))
+		model = FCT_NOISE_NONE;
+	if (model == FCT_NOISE_UNKNOWN)
+		return fct_fail(err, "noise: \"%.*s\" is not a model (%s)", (int)(len < 64 ? len : 64), s,
+		                fct_noise_models());
+	const char *form = arity[model].form;
+	double v[4];
+	const char *rest;
+	int n = scan_numbers(s + len, v, arity[model].max, &rest);
+	if (n < arity[model].min)
+		return fct_fail(err, "noise: expected %s", form);
+	if (*rest) {
+		double u;
+		if (strncmp(rest, "unit", 4) || !is_separator(rest[4]) ||
+		    scan_numbers(rest + 4, &u, 1, &rest) != 1 || *rest)
+			return fct_fail(err, "noise: expected %s, then optionally \"unit U\"", form);
+		if (!(u >= 0 && u < 1e3))
+			return fct_fail(err, "noise: unit must be in [0, 1000) metres");
+		nz->unit = u;
+	}
+	nz->model = model;
+	switch (model) {
+	case FCT_NOISE_KINECT: {
+		double def[4] = {FCT_KINECT_FOCAL, FCT_KINECT_BASELINE, FCT_KINECT_SD, FCT_KINECT_STEP};
+		for (int k = 0; k < n; k++)
+			def[k] = v[k];
+		nz->focal = def[0], nz->baseline = def[1], nz->sd = def[2], nz->step = def[3];
+		nz->fb = nz->focal * nz->baseline;
+		if (!(nz->focal > 0 && nz->baseline > 0 && nz->fb < 1e12))
+			return fct_fail(err, "noise kinect: F and B must be positive");
+		if (!(nz->sd >= 0 && nz->step >= 0 && nz->sd < 1e6 && nz->step < 1e6))
+			return fct_fail(err, "noise kinect: SD and STEP must be at least 0");
+		break;
+	}
+	case FCT_NOISE_TOF:
+		nz->coef[0] = n > 0 ? v[0] : FCT_TOF_A;
+		nz->coef[1] = n > 1 ? v[1] : FCT_TOF_B;
+		if (!(nz->coef[0] >= 0 && nz->coef[1] >= 0 && nz->coef[0] + nz->coef[1] > 0))
+			return fct_fail(err, "noise tof: A and B must be at least 0, not both 0");
+		break;
+	case FCT_NOISE_POLY:
+		memcpy(nz->coef, v, 3 * sizeof *v);
+		if (!(v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] + v[1] + v[2] > 0))
+			return fct_fail(err, "noise poly: A, B and C must be at least 0, not all 0");
+		break;
+	case FCT_NOISE_STEREO:
+		nz->fb = v[0], nz->sd = v[1], nz->doffs = n > 2 ? v[2] : 0;
+		if (!(nz->fb > 0 && nz->fb < 1e12 && nz->sd > 0 && nz->sd < 1e6))
+			return fct_fail(err, "noise stereo: FB and SD must be positive");
+		break;
+	default:
+		break;
+	}
+	return 0;
+}
+
+int fct_noise_read_file(const char *path, struct fct_noise *nz, struct fct_err *err)
+{
+	memset(nz, 0, sizeof *nz);
+	char *text = fct_read_small_text(path, err);
+	if (!text)
+		return -1;
+	/* One line, its line end not part of the model. */
+	size_t n = strcspn(text, "\r\n");
+	int rc = text[n + strspn(text + n, "\r\n")] != 0 ? fct_fail(err, "expected one line \"noise MODEL ...\"") : 0;
+	text[n] = 0;
+	const char *s = text + strspn(text, " \t");
+	if (!rc && !strncmp(s, "comment", 7) && (s[7] == ' ' || s[7] == '\t'))
+		s += 7 + strspn(s + 7, " \t");
+	if (!rc && (strncmp(s, "noise", 5) || (s[5] != ' ' && s[5] != '\t')))
+		rc = fct_fail(err, "expected \"noise MODEL ...\"");
+	if (!rc)
+		rc = fct_noise_parse(nz, s + 5, err);
+	free(text);
+	if (rc)
+		fct_err_prefix(err, "%s", path);
+	return rc;
+}
+
+void fct_noise_format(const struct fct_noise *nz, char *buf, size_t size)
+{
+	if (size == 0)
+		return;
+	buf[0] = 0;
+	if (nz->model <= FCT_NOISE_UNKNOWN || nz->model > FCT_NOISE_STEREO)
+		return;
+	double v[5];
+	int n = 0;
+	switch (nz->model) {
+	case FCT_NOISE_KINECT:
+		v[0] = nz->focal, v[1] = nz->baseline, v[2] = nz->sd, v[3] = nz->step, n = 4;
+		break;
+	case FCT_NOISE_TOF:
+		v[0] = nz->coef[0], v[1] = nz->coef[1], n = 2;
+		break;
+	case FCT_NOISE_POLY:
+		v[0] = nz->coef[0], v[1] = nz->coef[1], v[2] = nz->coef[2], n = 3;
+		break;
+	case FCT_NOISE_STEREO:
+		v[0] = nz->fb, v[1] = nz->sd, v[2] = nz->doffs, n = 3;
+		break;
+	default:
+		break;
+	}
+	if (nz->unit > 0)
+		v[n++] = nz->unit;
+	size_t len = (size_t)snprintf(buf, size, "%s", model_names[nz->model]);
+	for (int k = 0; k < n && len < size; k++) {
+		char num[40];
+		fct_format_double(num, sizeof num, v[k] + 0.0);
+		len += (size_t)snprintf(buf + len, size - len, " %s%s", nz->unit > 0 && k == n - 1 ? "unit " : "", num);
+	}
+}
+
+double fct_noise_sigma_gaussian(const struct fct_noise *nz, double z)
+{
+	switch (nz->model) {
+	case FCT_NOISE_NONE:
+		return FCT_NOISE_FLOOR * z;
+	case FCT_NOISE_KINECT:
+	case FCT_NOISE_STEREO:
+		return z * z * nz->sd / nz->fb;
+	case FCT_NOISE_TOF:
+		return nz->coef[0] + nz->coef[1] * z;
+	case FCT_NOISE_POLY:
+		return nz->coef[0] + (nz->coef[1] + nz->coef[2] * z) * z;
+	default:
+		return 0;
+	}
+}
+
+/* The disparity step of the kinect model as a depth step at z. */
+static double disparity_step(const struct fct_noise *nz, double z)
+{
+	return nz->model == FCT_NOISE_KINECT ? z * z * nz->step / nz->fb : 0;
+}
+
+double fct_noise_sigma(const struct fct_noise *nz, double z)
+{
+	if (nz->model == FCT_NOISE_UNKNOWN)
+		return 0;
+	double g = fct_noise_sigma_gaussian(nz, z), q = disparity_step(nz, z);
+	return sqrt(g * g + (q * q + nz->unit * nz->unit) / 12);
+}
+
+double fct_noise_step(const struct fct_noise *nz, double z)
+{
+	double q = disparity_step(nz, z);
+	return q > nz->unit ? q : nz->unit;
+}
