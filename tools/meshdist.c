@@ -20,7 +20,7 @@
 #include "rng.h"
 
 static const char usage[] =
-	"usage: meshdist [-aHqv] [-o file] [-s samples] [--seed n] A B\n"
+	"usage: meshdist [-aHpqv] [-o file] [-s samples] [--seed n] A B\n"
 	"Distances from mesh A to the nearest point on the faces of mesh B (PLY or\n"
 	"OBJ; polygons are fanned into triangles): count, mean, stdev, rms and max\n"
 	"in the units of the coordinates, one \"key value\" line each.\n"
@@ -29,6 +29,7 @@ static const char usage[] =
 	"                distance, the larger of the two maxima\n"
 	"  -o file       write A with a float vertex property \"distance\" (the\n"
 	"                distance of each vertex to B); .obj names lose it\n"
+	"  -p            also the 50th, 90th, 95th and 99th percentiles (p50 ...)\n"
 	"  -q            quiet\n"
 	"  -s samples    measure from this many random points spread uniformly by\n"
 	"                area over the faces of A (and of B with -H), not from the\n"
@@ -43,10 +44,23 @@ static const char usage[] =
 struct stats {
 	size_t count;
 	double mean, m2, max;
+	float *all;          /* -p: every distance, for the percentiles */
+	size_t cap;
 };
+
+/* -p: keep every distance. */
+static int keep_all;
 
 static void stats_add(struct stats *s, double d)
 {
+	if (keep_all) {
+		if (s->count == s->cap) {
+			struct fct_err err;
+			if (fct_grow((void **)&s->all, &s->cap, s->count + 1, sizeof *s->all, &err))
+				fct_die_err(&err);
+		}
+		s->all[s->count] = (float)d;
+	}
 	s->count++;
 	double delta = d - s->mean;
 	s->mean += delta / (double)s->count;
@@ -55,7 +69,15 @@ static void stats_add(struct stats *s, double d)
 		s->max = d;
 }
 
-/* Population standard deviation and RMS (rms^2 = mean^2 + stdev^2). */
+static int cmp_float(const void *x, const void *y)
+{
+	float a = *(const float *)x, b = *(const float *)y;
+	return a < b ? -1 : a > b;
+}
+
+/* Population standard deviation and RMS (rms^2 = mean^2 + stdev^2), and
+ * with -p the 50th, 90th, 95th and 99th percentiles (nearest rank, to float
+ * precision). */
 static void stats_print(const struct stats *s, const char *prefix)
 {
 	double var = s->count ? s->m2 / (double)s->count : 0;
@@ -64,6 +86,15 @@ static void stats_print(const struct stats *s, const char *prefix)
 	printf("%sstdev %.17g\n", prefix, sqrt(var));
 	printf("%srms %.17g\n", prefix, sqrt(s->mean * s->mean + var));
 	printf("%smax %.17g\n", prefix, s->max);
+	if (!keep_all || s->count == 0)
+		return;
+	qsort(s->all, s->count, sizeof *s->all, cmp_float);
+	static const int pct[] = {50, 90, 95, 99};
+	for (size_t i = 0; i < sizeof pct / sizeof *pct; i++) {
+		/* The nearest rank: the smallest distance with pct% of them at or below it. */
+		size_t rank = (size_t)ceil(pct[i] / 100.0 * (double)s->count);
+		printf("%sp%d %.9g\n", prefix, pct[i], (double)s->all[rank ? rank - 1 : 0]);
+	}
 }
 
 /* Area-uniform random points on the faces of a mesh: a triangle chosen with
@@ -256,9 +287,11 @@ static void measure(const struct fct_mesh *from, const char *from_path, const st
 	}
 	measure_samples(&s, fct_path_display(from_path), r, (size_t)samples, tree, dir);
 	sampler_free(&s);
-	if (per_vertex)
-		measure_vertices(from, fct_path_display(from_path), tree, per_vertex,
-		                 &(struct direction){{0, 0, 0, 0}, 0, 0});
+	if (per_vertex) {
+		struct direction tmp = {0};
+		measure_vertices(from, fct_path_display(from_path), tree, per_vertex, &tmp);
+		free(tmp.st.all);
+	}
 }
 
 int main(int argc, char **argv)
@@ -274,13 +307,14 @@ int main(int argc, char **argv)
 	int ascii = 0, sym = 0, c;
 	long samples = 0;
 	uint64_t seed = 1;
-	static const char optstring[] = "aHho:qs:v";
+	static const char optstring[] = "aHho:pqs:v";
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
 		case 'a': ascii = 1; break;
 		case 'H': sym = 1; break;
 		case 'h': fputs(usage, stdout); return 0;
 		case 'o': out = optarg; break;
+		case 'p': keep_all = 1; break;
 		case 'q': fct_quiet = 1; break;
 		case 's': samples = fct_opt_long("-s", optarg, 0, 1000000000000L); break;
 		case 'S': seed = (uint64_t)fct_opt_long("--seed", optarg, 0, 0x7fffffffffffffffL); break;
@@ -326,7 +360,7 @@ int main(int argc, char **argv)
 	fct_rng_seed(&rng_ab, seed);
 	rng_ba = rng_ab;
 	fct_rng_jump(&rng_ba);
-	struct direction ab = {{0, 0, 0, 0}, 0, 0}, ba = {{0, 0, 0, 0}, 0, 0};
+	struct direction ab = {0}, ba = {0};
 	measure(&a, pa, &tree_b, samples, &rng_ab, per_vertex, &ab);
 	if (sym)
 		measure(&b, pb, &tree_a, samples, &rng_ba, NULL, &ba);
@@ -370,6 +404,8 @@ int main(int argc, char **argv)
 	free(per_vertex);
 	fct_bvh_free(&tree_a);
 	fct_bvh_free(&tree_b);
+	free(ab.st.all);
+	free(ba.st.all);
 	fct_mesh_free(&a);
 	fct_mesh_free(&b);
 	return 0;

@@ -19,8 +19,8 @@
 #include "path.h"
 #include "planes.h"
 #include "project.h"
+#include "planemodel.h"
 #include "qem.h"
-#include "segment.h"
 
 static const char usage[] =
 	"usage: planedecim [-aqv] [-e error] [-n faces] [-o file] [--max-move k]\n"
@@ -47,7 +47,7 @@ static const char usage[] =
 	"  -h, --help     this help\n"
 	"      --version  print the version\n";
 
-enum { OPT_MAXMOVE = 256, OPT_MINFREE, OPT_MINPLANE, OPT_BORDER, OPT_VERSION };
+enum { OPT_MAXMOVE = 256, OPT_MINFREE, OPT_MINPLANE, OPT_BORDER, OPT_MAXHOLE, OPT_VERSION };
 
 /* Each vertex's sigma: the property, or the planes' median rms for all. */
 static double *vertex_sigma(const struct fct_mesh *m, const struct fct_plane *pl, size_t np,
@@ -89,6 +89,7 @@ int main(int argc, char **argv)
 		{"max-move", required_argument, NULL, OPT_MAXMOVE},
 		{"min-free", required_argument, NULL, OPT_MINFREE},
 		{"border", required_argument, NULL, OPT_BORDER},
+		{"max-hole", required_argument, NULL, OPT_MAXHOLE},
 		{"min-plane", required_argument, NULL, OPT_MINPLANE},
 		{NULL, 0, NULL, 0},
 	};
@@ -99,7 +100,7 @@ int main(int argc, char **argv)
 	par.max_error = 1;
 	const char *out = NULL;
 	int ascii = 0, c;
-	long min_free = 64, min_plane = 64;
+	long min_free = 64, min_plane = 64, max_hole = 64;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		switch (c) {
 		case 'a': ascii = 1; break;
@@ -110,6 +111,7 @@ int main(int argc, char **argv)
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_MAXMOVE: par.max_move = fct_opt_double("--max-move", optarg, 0, INFINITY); break;
+		case OPT_MAXHOLE: max_hole = fct_opt_long("--max-hole", optarg, 0, 0x7fffffffL); break;
 		case OPT_BORDER: par.border_tol = fct_opt_double("--border", optarg, 0, INFINITY); break;
 		case OPT_MINFREE: min_free = fct_opt_long("--min-free", optarg, 0, 0x7fffffffL); break;
 		case OPT_MINPLANE: min_plane = fct_opt_long("--min-plane", optarg, 0, 0x7fffffffL); break;
@@ -138,7 +140,10 @@ int main(int argc, char **argv)
 		fct_die(1, "%s: no face property patch: segment it first (segplanes)", name);
 	double *sigma = vertex_sigma(&m, pl, np, name);
 	struct fct_tidy_stats ts;
-	if (fct_patches_tidy(patch, &m, (size_t)min_plane, (size_t)min_free, &ts, &err)) {
+	size_t holes = 0;
+	if (fct_patches_tidy(patch, &m, (size_t)min_plane, (size_t)min_free, &ts, &err) ||
+	    (max_hole >= 3 && fct_fill_plane_holes(&m, &patch, pl, np, (size_t)max_hole, &holes, &err)) ||
+	    fct_patches_set(&m, patch, &err)) {
 		fct_err_prefix(&err, "%s", name);
 		fct_die_err(&err);
 	}
@@ -182,6 +187,7 @@ int main(int argc, char **argv)
 	fct_report("planes", "%zu", np);
 	fct_report("small_faces", "%zu", ts.small_faces);
 	fct_report("speck_faces", "%zu", ts.speck_faces);
+	fct_report("holes_filled", "%zu", holes);
 	fct_report("corners", "%zu", st.corners);
 	fct_report("moved_line", "%zu", st.moved_line);
 	fct_report("moved_corner", "%zu", st.moved_corner);

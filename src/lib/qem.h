@@ -149,6 +149,7 @@ struct fct_qem_stats {
 	size_t corners;                 /* planar model: vertices kept where 3+ patches meet */
 	size_t moved_line, moved_corner;/* vertices put on two planes' line, on 3 planes' point */
 	size_t kept_plane;              /* ... that stayed on one plane (bound or parallel planes) */
+	size_t thinned;                 /* collapses inside patches before the heap */
 	double max_error;               /* largest quadric distance of a collapse done */
 	double max_cost;                /* largest Q(x) of a collapse done (area x length^2) */
 };

@@ -1079,8 +1079,10 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	}
 	if (max_dev > 0 && grow_into_free(S, patch, pl, err))
 		goto fail;
+	for (size_t l = 0; l < np; l++)
+		map[l] = narrow(&R[l], S->p->min_extent);
 	for (size_t f = 0; f < nf; f++)
-		if (patch[f] >= 0 && narrow(&R[patch[f]], S->p->min_extent)) {
+		if (patch[f] >= 0 && map[patch[f]]) {
 			patch[f] = -1;
 			S->st.narrow_faces++;
 		}
@@ -1456,79 +1458,4 @@ out:
 	if (stats && rc == 0)
 		*stats = S.st;
 	return rc;
-}
-
-int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
-                     struct fct_tidy_stats *st, struct fct_err *err)
-{
-	memset(st, 0, sizeof *st);
-	size_t nf = m->nf;
-	struct fct_adj adj;
-	if (fct_adj_build(&adj, m, err))
-		return -1;
-	int32_t *root = fct_alloc_array(nf ? nf : 1, sizeof *root, err);
-	int32_t *host = fct_alloc_array(nf ? nf : 1, sizeof *host, err);
-	uint32_t *count = fct_alloc_array(nf ? nf : 1, sizeof *count, err);
-	if (!root || !host || !count) {
-		free(root), free(host), free(count);
-		fct_adj_free(&adj);
-		return -1;
-	}
-	/* Patches of fewer than min_plane faces are free-form. */
-	memset(count, 0, nf * sizeof *count);
-	for (size_t f = 0; f < nf; f++)
-		if (patch[f] >= 0 && (size_t)patch[f] < nf)
-			count[patch[f]]++;
-	for (size_t f = 0; f < nf; f++)
-		if (patch[f] >= 0 && (size_t)patch[f] < nf && count[patch[f]] < min_plane) {
-			patch[f] = -1;
-			st->small_faces++;
-		}
-	/* Pieces of free-form faces (joined across edges), their size and the
-	 * one patch around them (-2: none yet, -3: more than one). */
-	for (size_t f = 0; f < nf; f++)
-		root[f] = -1, host[f] = -2;
-	for (size_t e = 0; e < adj.ne; e++) {
-		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
-		uint32_t k = fct_adj_edge_nfaces(&adj, e);
-		for (uint32_t i = 0; i < k; i++)
-			for (uint32_t j = i + 1; j < k; j++)
-				if (patch[fs[i]] < 0 && patch[fs[j]] < 0) {
-					uint32_t a = find(root, fs[i]), b = find(root, fs[j]);
-					if (a != b) {
-						if (root[a] > root[b] || (root[a] == root[b] && a > b)) {
-							uint32_t t = a;
-							a = b, b = t;
-						}
-						root[a] += root[b];
-						root[b] = (int32_t)a;
-					}
-				}
-	}
-	for (size_t e = 0; e < adj.ne; e++) {
-		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
-		uint32_t k = fct_adj_edge_nfaces(&adj, e);
-		for (uint32_t i = 0; i < k; i++)
-			for (uint32_t j = 0; j < k; j++) {
-				if (patch[fs[i]] >= 0 || patch[fs[j]] < 0)
-					continue;
-				uint32_t r = find(root, fs[i]);
-				if (host[r] == -2)
-					host[r] = patch[fs[j]];
-				else if (host[r] != patch[fs[j]])
-					host[r] = -3;
-			}
-	}
-	for (size_t f = 0; f < nf; f++) {
-		if (patch[f] >= 0)
-			continue;
-		uint32_t r = find(root, (uint32_t)f);
-		if (host[r] >= 0 && (size_t)(-root[r]) < min_free) {
-			patch[f] = host[r];
-			st->speck_faces++;
-		}
-	}
-	free(root), free(host), free(count);
-	fct_adj_free(&adj);
-	return 0;
 }

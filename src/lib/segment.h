@@ -157,20 +157,6 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                 const struct fct_mesh *m, const struct fct_segment_params *p,
                 struct fct_segment_stats *stats, struct fct_err *err);
 
-struct fct_tidy_stats {
-	size_t small_faces;   /* faces of patches too small, made free-form */
-	size_t speck_faces;   /* free-form faces of specks, given to the patch around them */
-};
-
-/* Tidy a segmentation for the planar model: patches of fewer than min_plane
- * faces become free-form (-1), too small to be worth a plane of their own;
- * then each piece of free-form faces (joined across edges) of fewer than
- * min_free faces whose only neighbouring patch is one patch joins it:
- * specks of outliers inside a plane, which the model puts on the plane.
- * patch: m->nf labels, changed in place. */
-int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
-                     struct fct_tidy_stats *st, struct fct_err *err);
-
 /* The plane fitted to the scatter of weighted points: centroid c, central
  * scatter s = {sxx, syy, szz, sxy, syz, sxz}.  Writes the
  * unit normal (eigenvector of the smallest eigenvalue, by Jacobi rotations)

@@ -84,6 +84,17 @@ run_case 0 "meshdist -v -H $D/dist_sq.ply $D/dist_rect.obj 2>$TMP/v" $D/dist_sq_
 check_true "-v queries" grep -q '^meshdist: queries=8$' "$TMP/v"
 check_true "-v queries_per_s" grep -q '^meshdist: queries_per_s=[0-9]' "$TMP/v"
 
+# -p: percentiles by nearest rank, by hand: five points 1..5 above a
+# triangle in z = 0 are 1..5 away; p50 is the 3rd (ceil(2.5)), p90, p95
+# and p99 the 5th.
+printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 1\n0 0 2\n0 0 3\n0 0 4\n0 0 5\n' >"$TMP/five.ply"
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n-10 -10 0\n10 -10 0\n0 10 0\n3 0 1 2\n' >"$TMP/tri.ply"
+meshdist -p "$TMP/five.ply" "$TMP/tri.ply" >"$TMP/pct" 2>&1
+check_num "-p p50" "$(sed -n 's/^p50 //p' "$TMP/pct")" == 3
+check_num "-p p90" "$(sed -n 's/^p90 //p' "$TMP/pct")" == 5
+check_num "-p p99" "$(sed -n 's/^p99 //p' "$TMP/pct")" == 5
+check_true "no percentiles without -p" sh -c "! meshdist $TMP/five.ply $TMP/tri.ply | grep -q '^p50'"
+
 # Usage.
 run_case 2 "meshdist $D/dist_sq.ply" "" "meshdist: two meshes A and B are needed"
 run_case 2 "meshdist a b c" "" "meshdist: too many operands"
