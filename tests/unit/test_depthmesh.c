@@ -11,6 +11,7 @@
 #include "check.h"
 #include "depthmesh.h"
 #include "geom.h"
+#include "noisy_view.h"
 #include "scene.h"
 
 /* What a mesh of a view makes of the scene. */
@@ -87,34 +88,6 @@ static struct figures measure(const struct fct_mesh *m, const struct fct_scene *
 	return f;
 }
 
-/* The depth image of a view of s with the structured noise of `sensor`
- * (jitter 0.5 px), as mkscene writes it (float), and the depths sampled
- * before the noise; both allocated here. */
-static void noisy_view(const struct fct_scene *s, const struct fct_camera *cam, const double pose[12],
-                       const struct fct_noise *sensor, double **sampled, struct fct_image *img)
-{
-	struct fct_err err;
-	struct fct_render r;
-	if (fct_scene_render(s, cam, pose, &r, &err))
-		abort();
-	size_t n = (size_t)cam->width * (size_t)cam->height;
-	double *jit = malloc(n * sizeof *jit), *noisy = malloc(n * sizeof *noisy);
-	if (!jit || !noisy || fct_scene_render_jitter(s, cam, pose, 0.5, 1, 0, jit, &err))
-		abort();
-	struct fct_scene_noise nz;
-	memset(&nz, 0, sizeof nz);
-	nz.grazing = 90;
-	nz.sensor = *sensor;
-	fct_depth_noise(&nz, 1, 0, r.depth, jit, r.cosine, noisy, n, NULL);
-	if (fct_image_alloc(img, cam->width, cam->height, 1, FCT_PIX_F32, &err))
-		abort();
-	for (size_t i = 0; i < n; i++)
-		((float *)img->data)[i] = (float)noisy[i];
-	*sampled = jit;
-	fct_render_free(&r);
-	free(noisy);
-}
-
 static struct figures mesh_and_measure(const struct fct_scene *s, const struct fct_camera *cam,
                                        const double pose[12], const double *sampled,
                                        const struct fct_image *img, const struct fct_noise *model,
@@ -174,8 +147,8 @@ static void test_jump_allowance(void)
 		double pose[12], *sampled, *exact;
 		struct fct_image img, clean;
 		fct_scene_view_pose(&s, view, 4, pose);
-		noisy_view(&s, &cam, pose, &kinect, &sampled, &img);
-		noisy_view(&s, &cam, pose, &none, &exact, &clean);
+		noisy_view(&s, &cam, pose, &kinect, 0.5, &sampled, &img);
+		noisy_view(&s, &cam, pose, &none, 0.5, &exact, &clean);
 		struct figures before = mesh_and_measure(&s, &cam, pose, sampled, &img, NULL, 0);
 		struct figures after = mesh_and_measure(&s, &cam, pose, sampled, &img, &kinect, 0);
 		struct figures j40 = mesh_and_measure(&s, &cam, pose, sampled, &img, NULL, 40);
