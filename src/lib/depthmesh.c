@@ -14,6 +14,7 @@ void fct_depth_params_default(struct fct_depth_params *p)
 	p->grid.max_jump = FCT_DEFAULT_MAX_JUMP;
 	p->grid.min_faces = FCT_DEFAULT_MIN_FACES;
 	p->texcoords = 1;
+	p->noise_jump = FCT_DEFAULT_NOISE_JUMP;
 }
 
 double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_depth_params *p)
@@ -92,6 +93,7 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 	double *col = fct_alloc_array((size_t)gw, 3 * sizeof *col, err);
 	double *row = fct_alloc_array((size_t)gh, sizeof *row, err);
 	uint32_t *cell_of = NULL;
+	float *allow = NULL;
 	int rc = -1;
 	if (!depth || !col || !row)
 		goto out;
@@ -107,8 +109,15 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 		for (int i = 0; i < gw; i++)
 			depth[(size_t)j * gw + i] = fct_depth_at(img, i * step, j * step, p);
 	}
+	if (p->noise.model != FCT_NOISE_UNKNOWN && p->noise_jump > 0) {
+		if (!(allow = fct_alloc_array(ncells, sizeof *allow, err)))
+			goto out;
+		double k = M_SQRT2 * p->noise_jump;
+		for (size_t c = 0; c < ncells; c++)
+			allow[c] = depth[c] > 0 ? (float)(k * fct_noise_sigma(&p->noise, depth[c])) : 0;
+	}
 	struct fct_range_grid g = { gw, gh, NULL, col, row, depth, step * fct_camera_pixel_angle(cam),
-	                            cam->kind == FCT_CAMERA_CYLINDRICAL };
+	                            cam->kind == FCT_CAMERA_CYLINDRICAL, allow };
 	if (fct_grid_mesh(m, &g, &p->grid, &cell_of, stats, err))
 		goto out;
 
@@ -142,6 +151,7 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 	rc = 0;
 out:
 	free(depth);
+	free(allow);
 	free(col);
 	free(row);
 	free(cell_of);

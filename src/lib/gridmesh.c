@@ -42,7 +42,9 @@ static inline long cell_at(const struct grid *G, long i, long j)
  * apart, is within the limit. */
 static inline int joined(const struct grid *G, size_t a, size_t b, double steps)
 {
-	return fct_depth_joined(G->g->depth[a], G->g->depth[b], G->limit, steps);
+	const float *al = G->g->allow;
+	double allow = al ? (al[a] > al[b] ? al[a] : al[b]) : 0;
+	return fct_depth_joined(G->g->depth[a], G->g->depth[b], G->limit, steps, allow);
 }
 
 /* The position of cell c, which is (i, j). */
