@@ -153,6 +153,7 @@ int main(int argc, char **argv)
 	fct_report("absorbed", "%zu", st.absorbed);
 	fct_report("peeled", "%zu", st.peeled);
 	fct_report("grown", "%zu", st.grown);
+	fct_report("settled", "%zu", st.settled);
 	fct_report("narrow_faces", "%zu", st.narrow_faces);
 	fct_report("free_faces", "%zu", st.free_faces);
 	fct_report("sweeps", "%zu", st.sweeps);

@@ -18,6 +18,10 @@ void fct_chain_params_default(struct fct_chain_params *p)
 {
 	p->threshold = 3;
 	p->keep_topology = 1;
+	p->keep_small_loops = 0;
+	p->scale = NULL;
+	p->scale_factor = 3;
+	p->fix_unlabelled = 0;
 }
 
 void fct_chains_free(struct fct_chains *c)
@@ -1351,6 +1355,18 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 		st = &local;
 	memset(st, 0, sizeof *st);
 	st->tolerance = p->threshold * c->mean_edge;
+	if (p->scale && c->start[c->n] > 0) {
+		/* The checks' tolerance: the chains' median point's. */
+		size_t np = c->start[c->n];
+		double *sv = fct_alloc_array(np, sizeof *sv, err);
+		if (!sv)
+			return -1;
+		for (size_t q = 0; q < np; q++)
+			sv[q] = p->scale[c->vert[q]];
+		qsort(sv, np, sizeof *sv, fct_cmp_double);
+		st->tolerance = p->scale_factor * sv[np / 2];
+		free(sv);
+	}
 	double tol2 = st->tolerance * st->tolerance;
 	size_t maxlen = 0;
 	for (size_t i = 0; i < c->n; i++)
@@ -1359,11 +1375,22 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 	size_t *stack = fct_alloc_array(2 * maxlen + 2, sizeof *stack, err);
 	if (!stack)
 		return -1;
-	for (size_t i = 0; i < c->n; i++)
-		if (simplify_chain(m, c, i, tol2, stack, st, err)) {
+	for (size_t i = 0; i < c->n; i++) {
+		if (p->fix_unlabelled && c->right[i] == -1)
+			continue;   /* every point kept, as extracted */
+		double t2 = tol2;
+		if (p->scale) {
+			double sum = 0;
+			for (size_t q = c->start[i]; q < c->start[i + 1]; q++)
+				sum += p->scale[c->vert[q]];
+			double t = p->scale_factor * sum / (double)(c->start[i + 1] - c->start[i]);
+			t2 = t * t;
+		}
+		if (simplify_chain(m, c, i, t2, stack, st, err)) {
 			free(stack);
 			return -1;
 		}
+	}
 	if (p->keep_topology && keep_topology(c, m, patch, planes, nplanes, tol2, stack, st, err)) {
 		free(stack);
 		return -1;

@@ -121,6 +121,13 @@ struct fct_chain_params {
 	int keep_small_loops;  /* 0 (default): a loop without junction that lies within
 	                          the tolerance of its centroid is dropped, filling the
 	                          hole or absorbing the island it bounds */
+	const double *scale;   /* NULL (default), or a length for each vertex (its
+	                          sample spacing, say): a chain's tolerance is then
+	                          scale_factor times its points' mean scale, instead
+	                          of threshold mean edges of the whole mesh */
+	double scale_factor;
+	int fix_unlabelled;    /* 1: chains against unlabelled faces (-1) keep every
+	                          point (their other side is not rebuilt from them) */
 };
 
 void fct_chain_params_default(struct fct_chain_params *p);

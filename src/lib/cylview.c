@@ -3,6 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom.h"
+
 #include "cylview.h"
 #include "header.h"
 
@@ -207,12 +209,6 @@ int fct_cylview_render(const struct fct_image *img, const struct fct_camera *pan
 	return 0;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
-
 int fct_cylview_check_panorama(const struct fct_image *img, const struct fct_camera *pano,
                                int check_seam, double *seam_ratio, struct fct_err *err)
 {
@@ -248,7 +244,7 @@ int fct_cylview_check_panorama(const struct fct_image *img, const struct fct_cam
 		d[x] = s / ((double)H * ncol);
 	}
 	double seam = d[W - 1];
-	qsort(d, (size_t)W - 1, sizeof *d, cmp_double);
+	qsort(d, (size_t)W - 1, sizeof *d, fct_cmp_double);
 	double p99 = d[(size_t)floor(0.99 * (W - 2))];
 	free(d);
 	double range = img->type == FCT_PIX_U8 ? 255 : img->type == FCT_PIX_U16 ? 65535

@@ -54,3 +54,9 @@ double fct_triangle_area2(const double a[3], const double b[3], const double c[3
 	fct_v3_cross(n, ab, ac);
 	return sqrt(fct_v3_dot(n, n));
 }
+
+int fct_cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}

@@ -179,4 +179,7 @@ done:
 /* Twice the area of triangle abc (|(b - a) x (c - a)|). */
 double fct_triangle_area2(const double a[3], const double b[3], const double c[3]);
 
+/* qsort's comparison of doubles, ascending (NaN not expected). */
+int fct_cmp_double(const void *a, const void *b);
+
 #endif

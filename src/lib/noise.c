@@ -299,16 +299,10 @@ static int depth_of(const struct viewpoint *vp, const double p[3], double *z, do
 	return 1;
 }
 
-static int compare_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
-
 /* The median of v[0..n) (sorted in place; the lower middle for even n). */
 static double median(double *v, size_t n)
 {
-	qsort(v, n, sizeof *v, compare_double);
+	qsort(v, n, sizeof *v, fct_cmp_double);
 	return v[(n - 1) / 2];
 }
 

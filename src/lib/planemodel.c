@@ -7,8 +7,13 @@
 #include <string.h>
 
 #include "adj.h"
+#include "camera.h"
+#include "header.h"
+#include "noise.h"
+#include "project.h"
 #include "geom.h"
 #include "polytri.h"
+#include "segment.h"
 
 /* Union-find root of x (negative entries: roots, minus their size). */
 static uint32_t uf_find(int32_t *parent, uint32_t x)
@@ -48,8 +53,8 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 			patch[f] = -1;
 			st->small_faces++;
 		}
-	/* Pieces of free-form faces (joined across edges), their size and the
-	 * one patch around them (-2: none yet, -3: more than one). */
+	/* Pieces of faces of one label (joined across edges), their size and
+	 * the one other label around them (-2: none yet, -3: more than one). */
 	for (size_t f = 0; f < nf; f++)
 		root[f] = -1, host[f] = -2;
 	for (size_t e = 0; e < adj.ne; e++) {
@@ -57,7 +62,7 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 		uint32_t k = fct_adj_edge_nfaces(&adj, e);
 		for (uint32_t i = 0; i < k; i++)
 			for (uint32_t j = i + 1; j < k; j++)
-				if (patch[fs[i]] < 0 && patch[fs[j]] < 0) {
+				if (patch[fs[i]] == patch[fs[j]]) {
 					uint32_t a = uf_find(root, fs[i]), b = uf_find(root, fs[j]);
 					if (a != b) {
 						if (root[a] > root[b] || (root[a] == root[b] && a > b)) {
@@ -74,7 +79,7 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 		uint32_t k = fct_adj_edge_nfaces(&adj, e);
 		for (uint32_t i = 0; i < k; i++)
 			for (uint32_t j = 0; j < k; j++) {
-				if (patch[fs[i]] >= 0 || patch[fs[j]] < 0)
+				if (patch[fs[i]] == patch[fs[j]])
 					continue;
 				uint32_t r = uf_find(root, fs[i]);
 				if (host[r] == -2)
@@ -84,10 +89,8 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 			}
 	}
 	for (size_t f = 0; f < nf; f++) {
-		if (patch[f] >= 0)
-			continue;
 		uint32_t r = uf_find(root, (uint32_t)f);
-		if (host[r] >= 0 && (size_t)(-root[r]) < min_free) {
+		if (host[r] >= -1 && (size_t)(-root[r]) < min_free) {
 			patch[f] = host[r];
 			st->speck_faces++;
 		}
@@ -220,5 +223,522 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 out:
 	free(next), free(face), free(outdeg), free(loop);
 	fct_adj_free(&adj);
+	return rc;
+}
+
+/* Drop the vertices no face uses, keeping the others in order. */
+static int drop_unused_vertices(struct fct_mesh *m, struct fct_err *err)
+{
+	unsigned char *used = calloc(m->nv ? m->nv : 1, 1);
+	size_t *keep = fct_alloc_array(m->nv ? m->nv : 1, sizeof *keep, err);
+	if (!used || !keep) {
+		free(used), free(keep);
+		return used ? -1 : fct_fail(err, "out of memory");
+	}
+	for (size_t c = 0; c < (m->nf ? m->fstart[m->nf] : 0); c++)
+		used[m->fvert[c]] = 1;
+	size_t n = 0;
+	for (size_t v = 0; v < m->nv; v++)
+		if (used[v])
+			keep[n++] = v;
+	int rc = n == m->nv ? 0 : fct_mesh_gather_vertices(m, keep, n, err);
+	free(used), free(keep);
+	return rc;
+}
+
+int fct_planes_retriangulate(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
+                             size_t nplanes, const double *spacing, double tolerance,
+                             struct fct_retri_stats *st, struct fct_err *err)
+{
+	memset(st, 0, sizeof *st);
+	struct fct_chains c;
+	memset(&c, 0, sizeof c);
+	struct fct_chain_params cp;
+	fct_chain_params_default(&cp);
+	cp.scale = spacing;
+	cp.scale_factor = tolerance;
+	cp.fix_unlabelled = 1;
+	struct fct_mesh w;
+	fct_mesh_init(&w);
+	struct fct_wire *wires = NULL;
+	int rc = -1;
+	if (fct_chains_extract(&c, m, *patch, err) ||
+	    fct_chains_simplify(&c, m, *patch, planes, nplanes, &cp, &st->chains, err))
+		goto out;
+	size_t ne = 0;
+	for (size_t i = 0; i < c.n; i++)
+		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++)
+			ne += c.keep[q];
+	if (!(wires = fct_alloc_array(ne ? ne : 1, sizeof *wires, err)))
+		goto out;
+	size_t row = 0;
+	for (size_t i = 0; i < c.n; i++) {
+		size_t last = c.start[i];
+		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++) {
+			if (!c.keep[q])
+				continue;
+			wires[row++] = (struct fct_wire){ c.vert[last], c.vert[q], c.left[i],
+			                                  c.right[i] >= 0 ? c.right[i] : -1 };
+			last = q;
+		}
+	}
+	/* The planes' triangles from their outlines (tripatch), on a copy of
+	 * the vertices; then the free-form faces as they were. */
+	if (fct_mesh_copy(&w, m, err) || fct_mesh_gather_faces(&w, NULL, 0, err))
+		goto out;
+	w.has_faces = 0;
+	while (w.face.nprops)
+		fct_elem_remove(&w.face, w.face.props[0].name);
+	struct fct_tripatch_params tp;
+	fct_tripatch_params_default(&tp);
+	if (fct_wires_set(&w, wires, ne, err) || fct_tripatch(&w, &tp, &st->tri, err))
+		goto out;
+	size_t nplanar = w.nf, nfree = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		nfree += (*patch)[f] < 0;
+	int32_t *np = fct_alloc_array(nplanar + nfree ? nplanar + nfree : 1, sizeof *np, err);
+	if (!np)
+		goto out;
+	const struct fct_prop *wp = fct_elem_find(&w.face, "patch");
+	for (size_t f = 0; f < nplanar; f++)
+		np[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
+	for (size_t f = 0; f < m->nf; f++) {
+		if ((*patch)[f] >= 0)
+			continue;
+		long k = fct_mesh_add_face(&w, m->fvert + m->fstart[f], fct_face_size(m, f), err);
+		if (k < 0) {
+			free(np);
+			goto out;
+		}
+		np[k] = -1;
+	}
+	if (fct_patches_set(&w, np, err) || drop_unused_vertices(&w, err)) {
+		free(np);
+		goto out;
+	}
+	free(*patch);
+	*patch = np;
+	st->planar_triangles = nplanar;
+	st->free_faces = nfree;
+	fct_mesh_free(m);
+	*m = w;
+	fct_mesh_init(&w);
+	rc = 0;
+out:
+	fct_chains_free(&c);
+	free(wires);
+	fct_mesh_free(&w);
+	return rc;
+}
+
+/* Planes closer than this to parallel (the sine of their angle, squared)
+ * have no line worth moving a vertex to: 10 degrees. */
+#define MIN_SIN2 0.0301536896
+/* Three or more planes whose normals' scatter has a least eigenvalue below
+ * this meet at no point worth moving a vertex to. */
+#define MIN_SPREAD 0.1
+/* A move may not leave a triangle thinner than this (twice its area over
+ * its longest edge squared) and thinner than it was: next to nothing. */
+#define MIN_QUALITY 1e-6
+
+/* The distinct patches (>= 0) of the faces fs[0..n), up to 8, into ls. */
+static int face_labels(const int32_t *patch, const uint32_t *fs, size_t n, int32_t ls[8])
+{
+	int k = 0;
+	for (size_t i = 0; i < n; i++) {
+		int32_t lab = patch[fs[i]];
+		int seen = lab < 0;
+		for (int j = 0; j < k && !seen; j++)
+			seen = ls[j] == lab;
+		if (!seen && k < 8)
+			ls[k++] = lab;
+	}
+	return k;
+}
+
+/* The point nearest p on the planes ls[0..n): x = p - N^T (N N^T)^-1
+ * (N p + d) for one or two, the least-squares point of three or more.
+ * 0 when they meet nowhere useful (MIN_SIN2, MIN_SPREAD). */
+static int onto_planes(const struct fct_plane *P, const int32_t *ls, int n, const double p[3],
+                       double x[3])
+{
+	if (n == 1) {
+		double r = fct_v3_dot(P[ls[0]].n, p) + P[ls[0]].d;
+		fct_v3_axpy(x, p, -r, P[ls[0]].n);
+		return 1;
+	}
+	if (n == 2) {
+		const double *n1 = P[ls[0]].n, *n2 = P[ls[1]].n;
+		double c = fct_v3_dot(n1, n2), det = 1 - c * c;
+		if (!(det >= MIN_SIN2))
+			return 0;
+		double r1 = fct_v3_dot(n1, p) + P[ls[0]].d, r2 = fct_v3_dot(n2, p) + P[ls[1]].d;
+		double l1 = (r1 - c * r2) / det, l2 = (r2 - c * r1) / det;
+		for (int i = 0; i < 3; i++)
+			x[i] = p[i] - l1 * n1[i] - l2 * n2[i];
+		return 1;
+	}
+	/* Least squares relative to p, for precision: A y = -sum r n, x = p + y. */
+	double a[3][3] = {{0}}, b[3] = {0, 0, 0};
+	for (int k = 0; k < n; k++) {
+		const double *m = P[ls[k]].n;
+		double r = fct_v3_dot(m, p) + P[ls[k]].d;
+		for (int i = 0; i < 3; i++) {
+			b[i] -= r * m[i];
+			for (int j = 0; j < 3; j++)
+				a[i][j] += m[i] * m[j];
+		}
+	}
+	double s6[6] = {a[0][0], a[1][1], a[2][2], a[0][1], a[1][2], a[0][2]};
+	if (!(fct_sym3_min_eigenvalue(s6) >= MIN_SPREAD))
+		return 0;
+	double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+	             a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+	             a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+	double y[3];
+	for (int c = 0; c < 3; c++) {
+		double m[3][3];
+		memcpy(m, a, sizeof m);
+		for (int i = 0; i < 3; i++)
+			m[i][c] = b[i];
+		y[c] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+		        m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+		        m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) / det;
+	}
+	for (int i = 0; i < 3; i++)
+		x[i] = p[i] + y[i];
+	return isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]);
+}
+
+/* With a viewpoint vp: the point where the ray through p meets the plane
+ * (n == 1), or the point of the two planes' line nearest that ray (n == 2,
+ * x holding onto_planes' point of the line); 0 (x kept) when the ray runs
+ * within a milliradian of the plane or the line, or meets the plane behind
+ * vp.  A sensor measures along its rays: this keeps a vertex on the ray of
+ * its pixel. */
+static int along_ray(const struct fct_plane *P, const int32_t *ls, int n, const double vp[3],
+                     const double p[3], double x[3])
+{
+	double r[3];
+	fct_v3_sub(r, p, vp);
+	double rl = sqrt(fct_v3_dot(r, r));
+	if (!(rl > 0))
+		return 0;
+	if (n == 1) {
+		const double *m = P[ls[0]].n;
+		double nr = fct_v3_dot(m, r);
+		if (!(fabs(nr) > 1e-3 * rl))
+			return 0;
+		double t = -(fct_v3_dot(m, vp) + P[ls[0]].d) / nr;
+		if (!(t > 0))
+			return 0;
+		fct_v3_axpy(x, vp, t, r);
+		return 1;
+	}
+	double u[3];
+	fct_v3_cross(u, P[ls[0]].n, P[ls[1]].n);
+	double ul = sqrt(fct_v3_dot(u, u));
+	if (!(ul > 0))
+		return 0;
+	u[0] /= ul, u[1] /= ul, u[2] /= ul;
+	r[0] /= rl, r[1] /= rl, r[2] /= rl;
+	double w[3];
+	fct_v3_sub(w, x, vp);
+	double c = fct_v3_dot(u, r), den = 1 - c * c;
+	if (!(den > 1e-6))
+		return 0;
+	fct_v3_axpy(x, x, (c * fct_v3_dot(w, r) - fct_v3_dot(w, u)) / den, u);
+	return 1;
+}
+
+int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                       const double *viewpoint, size_t *moved, struct fct_err *err)
+{
+	*moved = 0;
+	uint32_t *vstart, *vf;
+	if (fct_vertex_faces(m, &vstart, &vf, err))
+		return -1;
+	for (size_t v = 0; v < m->nv; v++) {
+		int32_t ls[8];
+		int n = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		double *p = m->xyz + 3 * v, best[3], x[3], bd = INFINITY;
+		for (int i = 0; i < n; i++) {
+			double r = fabs(fct_v3_dot(planes[ls[i]].n, p) + planes[ls[i]].d);
+			if (!(r < bd))
+				continue;
+			bd = r;
+			onto_planes(planes, &ls[i], 1, p, best);
+			/* Along the ray, unless that is far longer than across. */
+			if (viewpoint && along_ray(planes, &ls[i], 1, viewpoint, p, x) &&
+			    fct_v3_dist2(x, p) <= 16 * fct_v3_dist2(best, p))
+				memcpy(best, x, sizeof x);
+		}
+		if (n && (best[0] != p[0] || best[1] != p[1] || best[2] != p[2])) {
+			memcpy(p, best, sizeof best);
+			++*moved;
+		}
+	}
+	free(vstart), free(vf);
+	return 0;
+}
+
+/* Is face f turned over or thinned (positions m->xyz against before)?
+ * Turned: against its patch's plane normal, or its own normal before when
+ * free-form; thinned: below MIN_QUALITY and below what it was.  Faces are
+ * taken as fans from their first corner. */
+static int spoilt(const struct fct_mesh *m, size_t f, int32_t lab, const struct fct_plane *planes,
+                  const double *before)
+{
+	uint32_t s = m->fstart[f], k = m->fstart[f + 1] - s;
+	for (uint32_t i = 1; i + 1 < k; i++) {
+		uint32_t tv[3] = {m->fvert[s], m->fvert[s + i], m->fvert[s + i + 1]};
+		double n0[3], n1[3], q[2];
+		for (int pass = 0; pass < 2; pass++) {
+			const double *P = pass ? m->xyz : before;
+			const double *a = P + 3 * (size_t)tv[0], *b = P + 3 * (size_t)tv[1];
+			const double *c = P + 3 * (size_t)tv[2];
+			double e1[3], e2[3], e3[3], *n = pass ? n1 : n0;
+			fct_v3_sub(e1, b, a);
+			fct_v3_sub(e2, c, a);
+			fct_v3_sub(e3, c, b);
+			fct_v3_cross(n, e1, e2);
+			double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
+			l2 = m2 > l2 ? m2 : l2;
+			l2 = k2 > l2 ? k2 : l2;
+			q[pass] = l2 > 0 ? sqrt(fct_v3_dot(n, n)) / l2 : 0;
+		}
+		const double *ref = lab >= 0 ? planes[lab].n : n0;
+		if (fct_v3_dot(ref, n1) <= 0 || (q[1] < MIN_QUALITY && q[1] < q[0]))
+			return 1;
+	}
+	return 0;
+}
+
+int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                    const double *sigma, double max_move, const double *viewpoint,
+                    struct fct_meet_stats *st, struct fct_err *err)
+{
+	memset(st, 0, sizeof *st);
+	uint32_t *vstart = NULL, *vf = NULL;
+	size_t nv1 = m->nv ? m->nv : 1;
+	double *before = fct_alloc_array(3 * nv1, sizeof *before, err);
+	unsigned char *kind = fct_alloc_array(nv1, 1, err);
+	int rc = -1;
+	if (!before || !kind || fct_vertex_faces(m, &vstart, &vf, err))
+		goto out;
+	memcpy(before, m->xyz, 3 * m->nv * sizeof *before);
+	for (size_t v = 0; v < m->nv; v++) {
+		int32_t ls[8];
+		int n = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		kind[v] = 0;
+		if (n < 2)
+			continue;
+		const double *p = before + 3 * v;
+		double bound2 = sigma && max_move > 0 ? max_move * max_move * sigma[v] * sigma[v] : INFINITY;
+		double x[3], best[3], bd = INFINITY;
+		if (n >= 3 && onto_planes(planes, ls, n, p, x) && fct_v3_dist2(x, p) <= bound2) {
+			memcpy(best, x, sizeof x);
+			kind[v] = 3;
+		}
+		for (int i = 0; i < n && !kind[v]; i++)
+			for (int j = i + 1; j < n; j++) {
+				int32_t pair[2] = {ls[i], ls[j]};
+				if (!onto_planes(planes, pair, 2, p, x))
+					continue;
+				if (viewpoint)
+					along_ray(planes, pair, 2, viewpoint, p, x);
+				double d2 = fct_v3_dist2(x, p);
+				if (d2 <= bound2 && d2 < bd)
+					bd = d2, memcpy(best, x, sizeof x);
+			}
+		if (!kind[v] && bd < INFINITY)
+			kind[v] = 2;
+		if (kind[v])
+			memcpy(m->xyz + 3 * v, best, sizeof best);
+		else
+			st->stayed++;
+	}
+	/* Moves that spoil a face are taken back, in rounds. */
+	for (int round = 0; round < 16; round++) {
+		size_t undone = 0;
+		for (size_t f = 0; f < m->nf; f++) {
+			if (!spoilt(m, f, patch[f], planes, before))
+				continue;
+			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+				uint32_t v = m->fvert[c];
+				if (kind[v]) {
+					memcpy(m->xyz + 3 * (size_t)v, before + 3 * (size_t)v, sizeof(double[3]));
+					kind[v] = 0;
+					undone++;
+				}
+			}
+		}
+		st->undone += undone;
+		if (!undone)
+			break;
+	}
+	for (size_t v = 0; v < m->nv; v++) {
+		st->lines += kind[v] == 2;
+		st->corners += kind[v] == 3;
+	}
+	rc = 0;
+out:
+	free(before), free(kind), free(vstart), free(vf);
+	return rc;
+}
+
+void fct_planar_params_default(struct fct_planar_params *p)
+{
+	p->max_error = 1;
+	p->target_faces = 0;
+	p->border_tol = 1;
+	p->outline_tol = 3;
+	p->max_move = 4;
+	p->min_free = 64;
+	p->min_plane = 64;
+	p->max_hole = 64;
+}
+
+/* Each vertex's sigma: the property, else the noise the data show, else
+ * the planes' median rms for all (too few vertices to tell). */
+static int vertex_sigma(const struct fct_mesh *m, const struct fct_plane *pl, size_t np,
+                        double **out, int *estimated, struct fct_err *err)
+{
+	double *sg = fct_alloc_array(m->nv ? m->nv : 1, sizeof *sg, err);
+	if (!sg)
+		return -1;
+	*out = sg;
+	*estimated = 0;
+	const struct fct_prop *p = fct_elem_find(&m->vertex, "sigma");
+	if (p && p->count_type == FCT_NONE) {
+		for (size_t v = 0; v < m->nv; v++)
+			sg[v] = fct_prop_get(p, v);
+		return 0;
+	}
+	float *f = fct_alloc_array(m->nv ? m->nv : 1, sizeof *f, err);
+	if (!f)
+		return -1;
+	struct fct_err ignored;
+	if (!fct_noise_estimate_vertices(f, m, &ignored)) {
+		for (size_t v = 0; v < m->nv; v++)
+			sg[v] = f[v];
+		*estimated = 1;
+		free(f);
+		return 0;
+	}
+	free(f);
+	double *r = fct_alloc_array(np ? np : 1, sizeof *r, err);
+	if (!r)
+		return -1;
+	size_t n = 0;
+	for (size_t l = 0; l < np; l++)
+		if (pl[l].rms > 0)
+			r[n++] = pl[l].rms;
+	qsort(r, n, sizeof *r, fct_cmp_double);
+	double s = n ? r[n / 2] : 0;
+	free(r);
+	for (size_t v = 0; v < m->nv; v++)
+		sg[v] = s;
+	return 0;
+}
+
+/* The mean length of the faces' edges (shared ones counted twice). */
+static double mean_edge(const struct fct_mesh *m)
+{
+	double sum = 0;
+	size_t n = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t s = m->fstart[f], k = m->fstart[f + 1] - s;
+		for (uint32_t i = 0; i < k; i++) {
+			const double *a = m->xyz + 3 * (size_t)m->fvert[s + i];
+			const double *b = m->xyz + 3 * (size_t)m->fvert[s + (i + 1) % k];
+			sum += sqrt(fct_v3_dist2(a, b));
+			n++;
+		}
+	}
+	return n ? sum / (double)n : 0;
+}
+
+/* Each vertex's sample spacing: what one pixel of the camera spans at its
+ * distance from centre c, or without a camera the input's mean edge. */
+static double *sample_spacing(const struct fct_mesh *m, const struct fct_camera *cam,
+                              const double c[3], double fallback, struct fct_err *err)
+{
+	double *s = fct_alloc_array(m->nv ? m->nv : 1, sizeof *s, err);
+	if (!s)
+		return NULL;
+	double angle = cam ? fct_camera_pixel_angle(cam) : 0;
+	for (size_t v = 0; v < m->nv; v++)
+		s[v] = angle > 0 ? angle * sqrt(fct_v3_dist2(m->xyz + 3 * v, c)) : fallback;
+	return s;
+}
+
+int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
+                     struct fct_planar_stats *st, struct fct_err *err)
+{
+	memset(st, 0, sizeof *st);
+	struct fct_plane *pl = NULL;
+	size_t np = 0;
+	int32_t *patch = NULL;
+	double *sigma = NULL, *spacing = NULL;
+	int present = 0, rc = -1;
+	st->vertices_in = m->nv, st->faces_in = m->nf;
+	if (fct_planes_get(m, &pl, &np, err) || fct_patches_get(m, &patch, &present, (long)np, err))
+		goto out;
+	if (!present) {
+		fct_fail(err, "no face property patch: segment it first (segplanes)");
+		goto out;
+	}
+	st->planes = np;
+	struct fct_camera cam;
+	double pose[12], inv[12], vp[3] = {0, 0, 0};
+	int have_cam = fct_header_camera(m, &cam, err), have_pose = 0;
+	if (have_cam < 0 || (have_cam > 0 && (have_pose = fct_header_pose(m, pose, err)) < 0))
+		goto out;
+	if (have_pose) {
+		fct_pose_invert(pose, inv);
+		vp[0] = pose[3], vp[1] = pose[7], vp[2] = pose[11];
+	}
+	if (vertex_sigma(m, pl, np, &sigma, &st->sigma_estimated, err) ||
+	    fct_patches_tidy(patch, m, p->min_plane, p->min_free, &st->tidy, err) ||
+	    (p->max_hole >= 3 &&
+	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
+	    fct_patches_set(m, patch, err) ||
+	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err))
+		goto out;
+	double input_spacing = mean_edge(m);
+	struct fct_qem_params qp;
+	fct_qem_params_default(&qp);
+	qp.max_error = p->max_error;
+	qp.target_faces = p->target_faces;
+	qp.border_tol = p->border_tol;
+	qp.patch = patch, qp.planes = pl, qp.nplanes = np, qp.sigma = sigma;
+	if (have_cam) {
+		qp.use_viewpoint = 1;
+		memcpy(qp.viewpoint, vp, sizeof vp);
+	}
+	/* Holes filled add no vertex, so sigma still matches m's vertices. */
+	if (fct_qem_decimate(m, &qp, &st->qem, err))
+		goto out;
+	free(patch), free(sigma);
+	patch = NULL, sigma = NULL;
+	if (fct_patches_get(m, &patch, &present, (long)np, err))
+		goto out;
+	if (p->outline_tol > 0) {
+		if (!(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing, err)) ||
+		    fct_planes_retriangulate(m, &patch, pl, np, spacing, p->outline_tol, &st->outline, err))
+			goto out;
+	}
+	int estimated;
+	if (vertex_sigma(m, pl, np, &sigma, &estimated, err) ||
+	    fct_planes_meet(m, patch, pl, sigma, p->max_move, have_cam ? vp : NULL, &st->meet, err))
+		goto out;
+	if (have_cam && fct_elem_find(&m->vertex, "s") && fct_elem_find(&m->vertex, "t") &&
+	    fct_camera_texcoords(m, &cam, have_pose ? inv : NULL, &st->no_pixel, err))
+		goto out;
+	st->vertices_out = m->nv, st->faces_out = m->nf;
+	rc = 0;
+out:
+	free(pl), free(patch), free(sigma), free(spacing);
 	return rc;
 }

@@ -12,7 +12,6 @@
 
 #include "adj.h"
 #include "geom.h"
-#include "segment.h"
 
 #define DEAD UINT32_MAX
 #define MAX_PASSES 64
@@ -25,12 +24,10 @@
 enum { ALIVE = 1, BORDER = 2, LOCKED = 4, MOVED = 8 };
 /* Planar model: a vertex inside a region, on a curve, at a corner (qem.h). */
 enum { REGION = 0, CURVE = 1, CORNER = 2 };
-/* Planes closer than this to parallel (sine of the angle, squared) have no
- * line worth moving a vertex to: 10 degrees. */
-#define MIN_SIN2 0.0301536896
-/* Three planes whose normals' determinant is below this meet at no point
- * worth moving a vertex to. */
-#define MIN_DET3 0.1
+/* The planar model makes no triangle thinner than this (twice the area over
+ * the longest edge squared: 0.01 is a height of a hundredth of its length)
+ * unless it was already. */
+#define MIN_QUALITY 0.01
 
 /* A quadric x^T A x + 2 b.x + c: a[0..5] = A00 A01 A02 A11 A12 A22,
  * a[6..8] = b, a[9] = c; w is the face area it carries. */
@@ -62,6 +59,7 @@ struct qem {
 	size_t nv, nt, ne;
 	double *p;              /* positions, relative to the centre */
 	struct quad *q;         /* face planes */
+	struct quad *qf;        /* planar model: the free-form faces' planes alone */
 	uint32_t *bq;           /* border planes of v: bquad[bq[v]], or NOBQ */
 	struct quad *bquad;     /* w: the border weight they carry */
 	size_t nbquad;
@@ -90,7 +88,7 @@ struct qem {
 	const struct fct_plane *planes;
 	double *pd;             /* planar model: each plane's d, relative to the centre */
 	double *wv;             /* with sigma: each vertex's 1 / sigma^2 */
-	int has_vp;             /* with sigma: the viewpoint, relative to the centre */
+	int has_vp;             /* the viewpoint, relative to the centre */
 	double vp[3];
 
 	size_t target;
@@ -244,6 +242,12 @@ static double edge_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3]
 	if (e < best - quad_noise(q, y))
 		best = e, memcpy(x, y, sizeof y);
 	return best;
+}
+
+/* Does triangle t (three corners) hold v? */
+static int tri_has(const uint32_t *t, uint32_t v)
+{
+	return t[0] == v || t[1] == v || t[2] == v;
 }
 
 /* Planar model --------------------------------------------------------- */
@@ -551,11 +555,6 @@ static void lists_free(struct lists *l)
 
 /* Collapse ---------------------------------------------------------------- */
 
-static int tri_has(const uint32_t *t, uint32_t v)
-{
-	return t[0] == v || t[1] == v || t[2] == v;
-}
-
 /* Number of live triangles around v that hold the edge (v, u). */
 static int edge_faces(const struct qem *s, uint32_t v, uint32_t u)
 {
@@ -665,7 +664,13 @@ static int link_ok(struct qem *s, uint32_t a, uint32_t b, int *dying, uint32_t *
 	return 1;
 }
 
-/* Would moving a and b to x turn or flatten a surviving triangle? */
+/* Would moving a and b to x turn or flatten a surviving triangle?  Turned:
+ * its normal at 90 degrees or more from what it was (in the planar model,
+ * from its patch's plane normal, which slivers cannot blur); flattened: no
+ * area (|n| <= 1e-12 of its longest edge squared).  In the planar model
+ * also refused: a triangle left thinner than MIN_QUALITY (twice its area
+ * over its longest edge squared) and thinner than it was, since slivers
+ * block later collapses (their normals turn at a touch). */
 static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 {
 	for (int side = 0; side < 2; side++) {
@@ -684,22 +689,67 @@ static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 			fct_v3_sub(e1, c[1], c[0]);
 			fct_v3_sub(e2, c[2], c[0]);
 			fct_v3_cross(n0, e1, e2);
+			double m0 = fct_v3_dot(e1, e1), m1 = fct_v3_dot(e2, e2);
+			fct_v3_sub(e3, c[2], c[1]);
+			double m2 = fct_v3_dot(e3, e3), l0 = m0 > m1 ? m0 : m1;
+			l0 = m2 > l0 ? m2 : l0;
 			fct_v3_sub(e1, n[1], n[0]);
 			fct_v3_sub(e2, n[2], n[0]);
 			fct_v3_sub(e3, n[2], n[1]);
 			fct_v3_cross(n1, e1, e2);
-			double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
-			if (m2 > l2)
-				l2 = m2;
+			double l2 = fct_v3_dot(e1, e1), k1 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
+			if (k1 > l2)
+				l2 = k1;
 			if (k2 > l2)
 				l2 = k2;
-			if (!(fct_v3_dot(n1, n1) > 1e-24 * l2 * l2))
+			double a1 = fct_v3_dot(n1, n1);
+			if (!(a1 > 1e-24 * l2 * l2))
 				return 1;
+			if (s->tlab && s->tlab[l[i]] >= 0) {
+				if (fct_v3_dot(s->planes[s->tlab[l[i]]].n, n1) <= 0)
+					return 1;
+				double q1 = sqrt(a1) / l2, q0 = l0 > 0 ? sqrt(fct_v3_dot(n0, n0)) / l0 : 0;
+				if (q1 < MIN_QUALITY && q1 < q0)
+					return 1;
+				continue;
+			}
 			if (fct_v3_dot(n0, n1) <= 0 && (n0[0] != 0 || n0[1] != 0 || n0[2] != 0))
 				return 1;
 		}
 	}
 	return 0;
+}
+
+/* The least quality (twice the area over the longest edge squared) of the
+ * triangles around a and b once they move to x, those of the edge left
+ * out. */
+static double least_quality(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
+{
+	double least = INFINITY;
+	for (int side = 0; side < 2; side++) {
+		uint32_t v = side ? b : a, o = side ? a : b;
+		const uint32_t *l = s->vt.pool + s->vt.st[v];
+		for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
+			const uint32_t *t = s->tri + 3 * (size_t)l[i];
+			if (t[0] == DEAD || tri_has(t, o))
+				continue;
+			const double *c[3];
+			for (int k = 0; k < 3; k++)
+				c[k] = t[k] == v ? x : s->p + 3 * (size_t)t[k];
+			double e1[3], e2[3], e3[3], n[3];
+			fct_v3_sub(e1, c[1], c[0]);
+			fct_v3_sub(e2, c[2], c[0]);
+			fct_v3_sub(e3, c[2], c[1]);
+			fct_v3_cross(n, e1, e2);
+			double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
+			l2 = m2 > l2 ? m2 : l2;
+			l2 = k2 > l2 ? k2 : l2;
+			double q = l2 > 0 ? sqrt(fct_v3_dot(n, n)) / l2 : 0;
+			if (q < least)
+				least = q;
+		}
+	}
+	return least;
 }
 
 /* Collapse edge e = (a, b) into x. */
@@ -742,6 +792,11 @@ static int collapse(struct qem *s, uint32_t e, const double x[3], uint32_t hole,
 	for (int k = 0; k < 10; k++)
 		s->q[keep].a[k] += s->q[gone].a[k];
 	s->q[keep].w += s->q[gone].w;
+	if (s->qf) {
+		for (int k = 0; k < 10; k++)
+			s->qf[keep].a[k] += s->qf[gone].a[k];
+		s->qf[keep].w += s->qf[gone].w;
+	}
 	if (s->bq[gone] != NOBQ) {
 		if (s->bq[keep] == NOBQ) {
 			s->bq[keep] = s->bq[gone];
@@ -846,9 +901,10 @@ static int thin_planes(struct qem *s, struct fct_err *err)
 			    busy[v] || region_label(s, v) < 0)
 				continue;
 			tried++;
-			/* Its edges, shortest first (ties to the lower neighbour). */
+			/* Into the neighbour that leaves the best triangles (the
+			 * greatest least quality; ties to the first edge). */
 			uint32_t best_e = DEAD;
-			double best_l = INFINITY;
+			double best_q = -1;
 			const uint32_t *l = s->ve.pool + s->ve.st[v];
 			for (uint32_t i = 0; i < s->ve.cnt[v]; i++) {
 				const uint32_t *ev = s->ev + 2 * (size_t)l[i];
@@ -857,14 +913,14 @@ static int thin_planes(struct qem *s, struct fct_err *err)
 				uint32_t u = ev[0] == v ? ev[1] : ev[0];
 				if (s->flag[u] & LOCKED || s->vt.cnt[u] + s->vt.cnt[v] > MAX_FAN)
 					continue;
-				double len = fct_v3_dist2(s->p + 3 * (size_t)u, s->p + 3 * (size_t)v);
+				double q = least_quality(s, v, u, s->p + 3 * (size_t)u);
 				int dying;
 				uint32_t hole;
-				if (len > best_l || !link_ok(s, v, u, &dying, &hole) || hole != NOHOLE ||
+				if (q <= best_q || !link_ok(s, v, u, &dying, &hole) || hole != NOHOLE ||
 				    s->live - (size_t)dying < s->target ||
 				    flips(s, v, u, s->p + 3 * (size_t)u))
 					continue;
-				best_e = l[i], best_l = len;
+				best_e = l[i], best_q = q;
 			}
 			if (best_e == DEAD)
 				continue;
@@ -895,6 +951,54 @@ static int thin_planes(struct qem *s, struct fct_err *err)
 	return 0;
 }
 
+/* The distinct patches of v's triangles (free-form left out), up to 8. */
+static int vertex_labels(const struct qem *s, uint32_t v, int32_t ls[8])
+{
+	int n = 0;
+	const uint32_t *l = s->vt.pool + s->vt.st[v];
+	for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
+		int32_t lab = s->tlab[l[i]];
+		int seen = lab < 0;
+		for (int k = 0; k < n && !seen; k++)
+			seen = ls[k] == lab;
+		if (!seen && n < 8)
+			ls[n++] = lab;
+	}
+	return n;
+}
+
+/* The planar model's squared error of collapsing a and b into x: the
+ * larger of its distance from each plane of their patches, in units of
+ * their noise (the lesser sigma of the two), and the free-form faces'
+ * quadric distance.  Not one mean over all the faces they stand for: the
+ * area of a plane, where every collapse costs nothing, would dilute the
+ * error of the few faces of another plane or of the free-form surface
+ * beside it until anything passed. */
+static double planar_error2(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
+{
+	double e2 = 0, wv = 1;
+	if (s->wv)
+		wv = s->wv[a] > s->wv[b] ? s->wv[a] : s->wv[b];
+	for (int side = 0; side < 2; side++) {
+		int32_t ls[8];
+		int n = vertex_labels(s, side ? b : a, ls);
+		for (int i = 0; i < n; i++) {
+			double d = fct_v3_dot(s->planes[ls[i]].n, x) + s->pd[ls[i]];
+			if (d * d * wv > e2)
+				e2 = d * d * wv;
+		}
+	}
+	double q[10], w = s->qf[a].w + s->qf[b].w;
+	for (int k = 0; k < 10; k++)
+		q[k] = s->qf[a].a[k] + s->qf[b].a[k];
+	if (w > 0) {
+		double f = quad_eval(q, x) / w;
+		if (f > e2)
+			e2 = f;
+	}
+	return e2;
+}
+
 /* One pass: collapse from the top of the heap until it is empty or the
  * target is reached.  A refused edge leaves the heap until one of its ends
  * changes (or the next pass). */
@@ -910,7 +1014,7 @@ static int run_pass(struct qem *s, struct fct_err *err)
 		edge_quadric(s, a, b, FACES, fq, &w);
 		edge_quadric(s, a, b, BORDERS, bqd, &wb);
 		double fcost = quad_eval(fq, x), bcost = quad_eval(bqd, x);
-		double d2 = w > 0 ? fcost / w : fcost > 0 ? INFINITY : 0;
+		double d2 = s->qf ? planar_error2(s, a, b, x) : w > 0 ? fcost / w : fcost > 0 ? INFINITY : 0;
 		if (wb > 0 && bcost / wb > d2)
 			d2 = bcost / wb;
 		if (d2 > s->max_err2) {
@@ -941,6 +1045,22 @@ static int run_pass(struct qem *s, struct fct_err *err)
 			return -1;
 	}
 	return 0;
+}
+
+/* Passes until the target, or until one collapses nothing. */
+static int decimate(struct qem *s, struct fct_err *err)
+{
+	size_t passes = 0;
+	for (;;) {
+		size_t before = s->st->collapses;
+		heap_build(s);
+		s->st->passes++;
+		passes++;
+		if (run_pass(s, err))
+			return -1;
+		if (s->live <= s->target || s->st->collapses == before || passes >= MAX_PASSES)
+			return 0;
+	}
 }
 
 /* Set-up ------------------------------------------------------------------ */
@@ -1033,8 +1153,11 @@ static int find_topology(struct qem *s, struct fct_err *err)
 			s->flag[u] |= BORDER, s->flag[v] |= BORDER;
 		}
 	}
-	if (!(s->bq = fct_alloc_array(s->nv, sizeof *s->bq, err)) ||
-	    !(s->bquad = fct_alloc_array(nborder, sizeof *s->bquad, err)))
+	/* The planar model's curves get border quadrics too (curve_lines). */
+	if (s->tlab)
+		nborder = s->nv;
+	if (!(s->bq = fct_alloc_array(s->nv ? s->nv : 1, sizeof *s->bq, err)) ||
+	    !(s->bquad = fct_alloc_array(nborder ? nborder : 1, sizeof *s->bquad, err)))
 		goto out;
 	for (size_t v = 0; v < s->nv; v++)
 		s->bq[v] = NOBQ;
@@ -1066,6 +1189,7 @@ static void qem_free(struct qem *s)
 {
 	free(s->p);
 	free(s->q);
+	free(s->qf);
 	free(s->bq);
 	free(s->bquad);
 	free(s->flag);
@@ -1133,99 +1257,10 @@ static void face_quadrics(struct qem *s)
 		for (int k = 0; k < 3; k++) {
 			quad_add_plane(&s->q[tv[k]], n, d, wq);
 			s->q[tv[k]].w += area;
-		}
-	}
-}
-
-/* The point nearest p on the planes ls[0..n) (unit normals, offsets pd):
- * x = p - N^T (N N^T)^-1 (N p + d) for n = 1 or 2, the least-squares point
- * of all of them for n >= 3.  Returns 0 when they meet nowhere useful
- * (MIN_SIN2, MIN_DET3). */
-static int onto_planes(const struct qem *s, const int32_t *ls, int n, const double p[3],
-                       double x[3])
-{
-	const struct fct_plane *P = s->planes;
-	if (n == 1) {
-		double r = fct_v3_dot(P[ls[0]].n, p) + s->pd[ls[0]];
-		fct_v3_axpy(x, p, -r, P[ls[0]].n);
-		return 1;
-	}
-	if (n == 2) {
-		const double *n1 = P[ls[0]].n, *n2 = P[ls[1]].n;
-		double c = fct_v3_dot(n1, n2), det = 1 - c * c;
-		if (!(det >= MIN_SIN2))
-			return 0;
-		double r1 = fct_v3_dot(n1, p) + s->pd[ls[0]], r2 = fct_v3_dot(n2, p) + s->pd[ls[1]];
-		double l1 = (r1 - c * r2) / det, l2 = (r2 - c * r1) / det;
-		for (int i = 0; i < 3; i++)
-			x[i] = p[i] - l1 * n1[i] - l2 * n2[i];
-		return 1;
-	}
-	double a[6] = {0, 0, 0, 0, 0, 0}, b[3] = {0, 0, 0};
-	for (int k = 0; k < n; k++) {
-		const double *m = P[ls[k]].n, d = s->pd[ls[k]];
-		a[0] += m[0] * m[0], a[1] += m[1] * m[1], a[2] += m[2] * m[2];
-		a[3] += m[0] * m[1], a[4] += m[1] * m[2], a[5] += m[0] * m[2];
-		for (int i = 0; i < 3; i++)
-			b[i] -= d * m[i];
-	}
-	if (!(fct_sym3_min_eigenvalue(a) >= MIN_DET3))
-		return 0;
-	/* Solve by the adjugate, as quad_solve does (here A is well posed). */
-	double q[10] = {a[0], a[3], a[5], a[1], a[4], a[2], -b[0], -b[1], -b[2], 0};
-	return quad_solve(q, x);
-}
-
-/* Put every vertex on its patches' geometry (qem.h): its plane, the line of
- * two, the point of three or more, each as far as max_move sigma (no bound
- * without sigma); else the nearest line, else the nearest plane. */
-static void project_vertices(struct qem *s, double max_move)
-{
-	for (size_t v = 0; v < s->nv; v++) {
-		int32_t ls[8];
-		int n = 0;
-		const uint32_t *l = s->vt.pool + s->vt.st[v];
-		for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
-			int32_t lab = s->tlab[l[i]];
-			int seen = lab < 0;
-			for (int k = 0; k < n && !seen; k++)
-				seen = ls[k] == lab;
-			if (!seen && n < 8)
-				ls[n++] = lab;
-		}
-		if (n == 0)
-			continue;
-		double *p = s->p + 3 * v, x[3], best[3];
-		double bound2 = s->wv && max_move > 0 ? max_move * max_move / s->wv[v] : INFINITY;
-		int done = 0;
-		if (n >= 3 && onto_planes(s, ls, n, p, x) && fct_v3_dist2(x, p) <= bound2) {
-			memcpy(best, x, sizeof x);
-			done = 3;
-		}
-		double bd = INFINITY;
-		for (int i = 0; i < n && !done; i++)
-			for (int j = i + 1; j < n; j++) {
-				int32_t pair[2] = {ls[i], ls[j]};
-				if (!onto_planes(s, pair, 2, p, x))
-					continue;
-				double d2 = fct_v3_dist2(x, p);
-				if (d2 <= bound2 && d2 < bd)
-					bd = d2, memcpy(best, x, sizeof x);
+			if (s->qf && s->tlab[t] < 0) {
+				quad_add_plane(&s->qf[tv[k]], n, d, wq);
+				s->qf[tv[k]].w += area;
 			}
-		if (!done && bd < INFINITY)
-			done = 2;
-		for (int i = 0; i < n && !done; i++) {
-			double r = fabs(fct_v3_dot(s->planes[ls[i]].n, p) + s->pd[ls[i]]);
-			if (r < bd) {
-				bd = r;
-				onto_planes(s, &ls[i], 1, p, best);
-			}
-		}
-		if (n >= 2)
-			s->st->moved_corner += done == 3, s->st->moved_line += done == 2, s->st->kept_plane += !done;
-		if (best[0] != p[0] || best[1] != p[1] || best[2] != p[2]) {
-			memcpy(p, best, sizeof best);
-			s->flag[v] |= MOVED;
 		}
 	}
 }
@@ -1237,12 +1272,15 @@ static int planar_setup(struct qem *s, const struct fct_qem_params *p, const siz
                         const double ctr[3], struct fct_err *err)
 {
 	size_t nv1 = s->nv ? s->nv : 1;
+	if (!(s->qf = fct_alloc_array(nv1, sizeof *s->qf, err)))
+		return -1;
+	memset(s->qf, 0, nv1 * sizeof *s->qf);
 	if (!(s->tlab = fct_alloc_array(s->nt ? s->nt : 1, sizeof *s->tlab, err)) ||
 	    !(s->cls = fct_alloc_array(nv1, 1, err)) ||
 	    !(s->pd = fct_alloc_array(p->nplanes ? p->nplanes : 1, sizeof *s->pd, err)))
 		return -1;
 	s->planes = p->planes;
-	s->has_vp = p->use_viewpoint && p->sigma;
+	s->has_vp = p->use_viewpoint;
 	fct_v3_sub(s->vp, p->viewpoint, ctr);
 	for (size_t l = 0; l < p->nplanes; l++)
 		s->pd[l] = p->planes[l].d + fct_v3_dot(p->planes[l].n, ctr);
@@ -1274,7 +1312,6 @@ static int planar_setup(struct qem *s, const struct fct_qem_params *p, const siz
 		nfeat[v] = nfeat[v] == 0 ? REGION : nfeat[v] == 2 ? CURVE : CORNER;
 		s->st->corners += nfeat[v] == CORNER;
 	}
-	project_vertices(s, p->max_move);
 	return 0;
 }
 
@@ -1288,7 +1325,6 @@ void fct_qem_params_default(struct fct_qem_params *p)
 	p->planes = NULL;
 	p->nplanes = 0;
 	p->sigma = NULL;
-	p->max_move = 4;
 	p->border_tol = 1;
 	p->use_viewpoint = 0;
 	p->viewpoint[0] = p->viewpoint[1] = p->viewpoint[2] = 0;
@@ -1481,20 +1517,14 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 	border_planes(&s, p->border_weight, p->border_tol);
 
 	if (planar) {
+		/* The insides of the planes first, without the heap. */
 		for (size_t e = 0; e < s.ne; e++)
 			s.hpos[e] = NOPOS;
 		if (thin_planes(&s, err))
 			goto out;
 	}
-	for (;;) {
-		size_t before = st->collapses;
-		heap_build(&s);
-		st->passes++;
-		if (run_pass(&s, err))
-			goto out;
-		if (s.live <= s.target || st->collapses == before || st->passes >= MAX_PASSES)
-			break;
-	}
+	if (decimate(&s, err))
+		goto out;
 	st->max_error = sqrt(st->max_error);
 	if (write_back(&s, m, src, ctr, err))
 		goto out;

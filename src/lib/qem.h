@@ -127,8 +127,6 @@ struct fct_qem_params {
 	const struct fct_plane *planes;   /* the patches' planes */
 	size_t nplanes;
 	const double *sigma;    /* each vertex's noise: distances in units of it */
-	double max_move;        /* a vertex moves to its planes' line or corner by at
-	                           most max_move sigma (else onto one plane) */
 	double border_tol;      /* planar model: border distances in units of this many
 	                           edge lengths (default 1) */
 	int use_viewpoint;      /* with sigma: the samples were measured along rays ... */
@@ -147,8 +145,6 @@ struct fct_qem_stats {
 	size_t passes;                  /* heap builds */
 	size_t holes_closed;
 	size_t corners;                 /* planar model: vertices kept where 3+ patches meet */
-	size_t moved_line, moved_corner;/* vertices put on two planes' line, on 3 planes' point */
-	size_t kept_plane;              /* ... that stayed on one plane (bound or parallel planes) */
 	size_t thinned;                 /* collapses inside patches before the heap */
 	double max_error;               /* largest quadric distance of a collapse done */
 	double max_cost;                /* largest Q(x) of a collapse done (area x length^2) */

@@ -132,12 +132,6 @@ static long obj_info_long(const struct fct_mesh *m, const char *name)
 	return -1;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
-
 /* Depth along the scanner's ray is D0 - z: an offset large against the scan
  * so that the relative jump test of gridmesh.h becomes an absolute one in z
  * with footprint step / D0. */
@@ -207,7 +201,7 @@ int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
 		fct_fail(err, "range_grid: no two neighbouring cells with data");
 		goto done;
 	}
-	qsort(gaps, ng, sizeof *gaps, cmp_double);
+	qsort(gaps, ng, sizeof *gaps, fct_cmp_double);
 	double st = gaps[ng / 2];
 	if (step)
 		*step = st;

@@ -20,6 +20,7 @@
 
 #include "adj.h"
 #include "clock.h"
+#include "noise.h"
 
 /* Around a non-manifold edge of more faces, only consecutive ones are paired. */
 #define MAX_ALL_PAIRS 8
@@ -30,14 +31,6 @@
 /* Faces narrower than this many times their noise are no plane's evidence
  * (see narrow). */
 #define PEEL_ROUNDS 3
-/* The mean square of a typical pair of adjacent faces on a noisy plane is
- * about 47 times the median of e_f^2 (the least over a face and its
- * neighbours of their least pair): 45 to 49 measured on planes and rooms
- * with Gaussian and Kinect noise. */
-#define TYPICAL 47.0
-/* With a viewpoint, E^2 is at least this times the upper quartile of the
- * pairs' mean squares (0.2 to 0.33 of it on noisy planes and rooms). */
-#define QUARTILE 0.3
 /* Rounding in the moments is of the order of 1e-16 times the scatter's
  * trace: an increase of the residual below 64 times that is no increase. */
 #define ROUNDING 1.4e-14
@@ -94,7 +87,6 @@ struct seg {
 	struct rheap q;
 	double *wv;              /* each vertex's weight, 1 / sigma^2 */
 	double area_unit;        /* area weighting: a third of the mean face area */
-	double typ_e2;           /* E^2: the typical pair mean square (no sigma given) */
 	double floor2;           /* no noise below (1e-7 bounding-box diagonal)^2 */
 	double max_ms, stop;     /* max_rms^2, factor^2 */
 	double fit2;             /* fit^2: the largest mean chi^2 of a patch */
@@ -395,7 +387,9 @@ static double cost1(struct seg *S, uint32_t a, uint32_t b, double *sse)
 static int union_fits(const struct seg *S, const struct region *ra, const struct region *rb,
                       double u)
 {
-	return u <= S->fit2 * (ra->n + rb->n) && u <= S->max_ms * (ra->w + rb->w);
+	if (u > S->max_ms * (ra->w + rb->w))
+		return 0;
+	return S->p->target > 0 || u <= S->fit2 * (ra->n + rb->n);
 }
 
 /* Phase 2, patches: the key of patches a and b is how far, in mean square
@@ -1017,6 +1011,55 @@ static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane 
 	return 0;
 }
 
+/* Move each face on a boundary between patches to the neighbouring patch
+ * whose plane it is nearer (face_deviation, ties to the lower label), in
+ * rounds until none moves (at most 64): region growing gives the faces
+ * along a crease to whichever side reached them first, so that the
+ * boundary runs in teeth on either side of the planes' line, which no
+ * model of straight edges can follow; nearer-plane labels put it on the
+ * line, to the noise.  A face only moves nearer a plane, so none ends
+ * farther from its plane than max_dev. */
+static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_plane *pl,
+                             struct fct_err *err)
+{
+	size_t nf = S->m->nf;
+	int32_t *best = fct_alloc_array(nf ? nf : 1, sizeof *best, err);
+	double *dev = fct_alloc_array(nf ? nf : 1, sizeof *dev, err);
+	if (!best || !dev) {
+		free(best), free(dev);
+		return -1;
+	}
+	for (int round = 0; round < 64; round++) {
+		for (size_t f = 0; f < nf; f++)
+			best[f] = -1;
+		for (size_t i = 0; i < S->nfpairs; i++)
+			for (int side = 0; side < 2; side++) {
+				uint32_t f = S->fpair[i][side], g = S->fpair[i][!side];
+				int32_t a = patch[f], b = patch[g];
+				if (a < 0 || b < 0 || a == b)
+					continue;
+				if (best[f] < 0) {
+					best[f] = a;
+					dev[f] = face_deviation(S, f, &pl[a]);
+				}
+				double d = face_deviation(S, f, &pl[b]);
+				if (d < dev[f] || (d == dev[f] && b < best[f]))
+					best[f] = b, dev[f] = d;
+			}
+		size_t moved = 0;
+		for (size_t f = 0; f < nf; f++)
+			if (best[f] >= 0 && best[f] != patch[f]) {
+				patch[f] = best[f];
+				moved++;
+			}
+		S->st.settled += moved;
+		if (!moved)
+			break;
+	}
+	free(best), free(dev);
+	return 0;
+}
+
 /* Number the labels 0, 1, ... in the order of their smallest face,
  * dropping the unused; returns the count. */
 static size_t renumber(int32_t *label, size_t nf, int32_t *map)
@@ -1054,7 +1097,7 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	struct region *R = fct_alloc_array(np ? np : 1, sizeof *R, err);
 	struct fct_plane *pl = fct_alloc_array(np ? np : 1, sizeof *pl, err);
 	double *ray = S->p->use_viewpoint ? fct_alloc_array(9 * (np ? np : 1), sizeof *ray, err) : NULL;
-	uint32_t *stamp = fct_alloc_array(m->nv ? m->nv : 1, sizeof *stamp, err);
+	uint32_t *stamp = fct_alloc_array(m->nv > np ? m->nv : (np ? np : 1), sizeof *stamp, err);
 	double *wind = fct_alloc_array(3 * (np ? np : 1), sizeof *wind, err);
 	double *res = fct_alloc_array(2 * (np ? np : 1), sizeof *res, err);
 	if (!R || !pl || (S->p->use_viewpoint && !ray) || !stamp || !wind || !res)
@@ -1079,8 +1122,22 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	}
 	if (max_dev > 0 && grow_into_free(S, patch, pl, err))
 		goto fail;
+	if (settle_boundaries(S, patch, pl, err))
+		goto fail;
+	/* Patches still smaller than min_faces are free-form too (a curved
+	 * surface cut into facets), unless no patch reaches it (a cube of
+	 * twelve triangles). */
+	int32_t *nfaces = (int32_t *)stamp;
+	memset(nfaces, 0, np * sizeof *nfaces);
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0)
+			nfaces[patch[f]]++;
+	int any_big = 0;
 	for (size_t l = 0; l < np; l++)
-		map[l] = narrow(&R[l], S->p->min_extent);
+		any_big |= nfaces[l] >= S->p->min_faces;
+	for (size_t l = 0; l < np; l++)
+		map[l] = narrow(&R[l], S->p->min_extent) ||
+		         (any_big && S->p->target <= 0 && nfaces[l] < S->p->min_faces);
 	for (size_t f = 0; f < nf; f++)
 		if (patch[f] >= 0 && map[patch[f]]) {
 			patch[f] = -1;
@@ -1200,77 +1257,6 @@ fail:
 	return -1;
 }
 
-/* E-bar, for a mesh without a noise model: the least mean square of a
- * face's union with one of its neighbours, then the least of that over the
- * face and its neighbours (a face across a crease, all of whose pairs fold,
- * gets the noise of the planes beside it): e_f^2, zero on exact planes.
- * Times TYPICAL, its median over the faces is E^2, the scale of noise and
- * curvature; with a viewpoint, at least QUARTILE times the upper quartile
- * of the pairs' mean squares, since sensors quantise depth and the
- * plateaus of equal depth make most adjacent pairs exactly coplanar.  Every
- * vertex then weighs 1 / E^2 and the faces' moments are scaled to match.
- * Returns 0, or -1 out of memory. */
-static int estimate_noise(struct seg *S)
-{
-	size_t nf = S->m->nf;
-	float *e2f = fct_alloc_array(nf, sizeof *e2f, S->err);
-	float *e2g = fct_alloc_array(nf, sizeof *e2g, S->err);
-	float *pms = fct_alloc_array(S->npairs ? S->npairs : 1, sizeof *pms, S->err);
-	uint32_t *count = fct_alloc_array(65536, sizeof *count, S->err);
-	if (!e2f || !e2g || !pms || !count) {
-		free(e2f), free(e2g), free(pms), free(count);
-		return -1;
-	}
-	for (size_t f = 0; f < nf; f++)
-		e2f[f] = HUGE_VALF;
-	for (size_t i = 0; i < S->npairs; i++) {
-		uint32_t f = S->pair[i][0], g = S->pair[i][1];
-		double tr, u = union_sse(&S->region[f], &S->region[g], &tr);
-		double w = S->region[f].w + S->region[g].w;
-		float x = (float)(w > 0 ? u / w : 0);
-		pms[i] = x;
-		if (x < e2f[f])
-			e2f[f] = x;
-		if (x < e2f[g])
-			e2f[g] = x;
-	}
-	memcpy(e2g, e2f, nf * sizeof *e2g);
-	for (size_t i = 0; i < S->npairs; i++) {
-		uint32_t f = S->pair[i][0], g = S->pair[i][1];
-		if (e2f[g] < e2g[f])
-			e2g[f] = e2f[g];
-		if (e2f[f] < e2g[g])
-			e2g[g] = e2f[f];
-	}
-	size_t nfin = 0;
-	for (size_t f = 0; f < nf; f++)
-		if (e2g[f] < HUGE_VALF)
-			e2f[nfin++] = e2g[f];
-	double e2 = nfin ? TYPICAL * select_float(e2f, nfin, (nfin - 1) / 2, count) : 0;
-	if (S->p->use_viewpoint && S->npairs) {
-		double q = QUARTILE * select_float(pms, S->npairs, S->npairs * 3 / 4, count);
-		if (q > e2)
-			e2 = q;
-	}
-	free(e2f), free(e2g), free(pms), free(count);
-	if (!(e2 >= S->floor2))
-		e2 = S->floor2;
-	if (!(e2 > 0))
-		e2 = DBL_MIN;
-	S->typ_e2 = e2;
-	S->st.noise = sqrt(e2);
-	for (size_t v = 0; v < S->m->nv; v++)
-		S->wv[v] = 1 / e2;
-	for (size_t f = 0; f < nf; f++) {
-		struct region *r = &S->region[f];
-		r->w /= e2;
-		r->sse /= e2;
-		for (int i = 0; i < 6; i++)
-			r->s[i] /= e2;
-	}
-	return 0;
-}
-
 int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                 const struct fct_mesh *m, const struct fct_segment_params *p,
                 struct fct_segment_stats *stats, struct fct_err *err)
@@ -1334,18 +1320,29 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		}
 		S.area_unit = area > 0 ? area / (3.0 * nf) : 1;
 	}
-	/* Each vertex's weight: 1 / sigma^2, from the noise model when there is
-	 * one, else 1 until E-bar is known (below). */
-	if (p->sigma) {
+	/* Each vertex's weight: 1 / sigma^2, from the noise model, or else
+	 * from the noise the data show (noise.h), or else (too few vertices to
+	 * tell) the floor of exact data. */
+	{
 		float *sv = fct_alloc_array(m->nv ? m->nv : 1, sizeof *sv, err);
 		count = fct_alloc_array(65536, sizeof *count, err);
 		if (!sv || !count) {
 			free(sv);
 			goto out;
 		}
+		struct fct_err ignored;
+		int have = 1;
+		if (p->sigma) {
+			for (size_t v = 0; v < m->nv; v++)
+				sv[v] = (float)p->sigma[v];
+		} else if (fct_noise_estimate_vertices(sv, m, &ignored)) {
+			have = 0;
+		} else {
+			S.st.noise_estimated = 1;
+		}
 		double floor = sqrt(S.floor2);
 		for (size_t v = 0; v < m->nv; v++) {
-			double sg = p->sigma[v];
+			double sg = have ? sv[v] : floor;
 			if (!(sg >= floor) || !isfinite(sg))
 				sg = isfinite(sg) && sg >= 0 ? floor : HUGE_VAL;
 			S.wv[v] = sg < HUGE_VAL && sg > 0 ? 1 / (sg * sg) : 0;
@@ -1355,9 +1352,6 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		free(sv);
 		free(count);
 		count = NULL;
-	} else {
-		for (size_t v = 0; v < m->nv; v++)
-			S.wv[v] = 1;
 	}
 	for (size_t f = 0; f < nf; f++) {
 		face_moments(&S.region[f], m, f, p->area_weighted, S.wv, S.area_unit);
@@ -1365,8 +1359,6 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		least[f] = UINT64_MAX;
 	}
 	S.patches = nf;
-	if (!p->sigma && estimate_noise(&S) < 0)
-		goto out;
 
 	/* Every pair's union: the first phase-1 key, and each face's least. */
 	for (size_t i = 0; i < S.npairs; i++) {

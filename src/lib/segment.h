@@ -136,8 +136,10 @@ struct fct_segment_stats {
 	double max_rms;       /* largest patch rms */
 	double mean_rms;      /* patch rms averaged over faces */
 	double last_ratio;    /* sqrt(t) of the last merge of phase 2 */
+	int noise_estimated;  /* sigma was estimated from the data (noise.h) */
 	size_t peeled;        /* faces that left their patch, farther than max_dev sigma */
 	size_t grown;         /* free-form faces a neighbouring patch's plane took */
+	size_t settled;       /* boundary faces moved to the nearer plane beside them */
 	size_t narrow_faces;  /* faces of patches too narrow to be planes */
 	size_t free_faces;    /* faces of no patch at the end (free-form) */
 	double seconds;       /* wall-clock time of fct_segment */

@@ -82,7 +82,7 @@ run_case 0 "meshconv -a $TMP/cube.bin | sed -n '/^end_header/,\$p'" "$TMP/cube.b
 check_num "cube -v patches" "$(report patches "$TMP/cube.err")" == 6
 check_num "cube -v merges" "$(report merges "$TMP/cube.err")" == 6
 check_num "cube -v max_rms" "$(report max_rms "$TMP/cube.err")" == 0
-check_num "cube -v noise" "$(report noise "$TMP/cube.err")" == 0
+check_num "cube -v noise (too few vertices to tell: exact data)" "$(report noise "$TMP/cube.err")" "<" 1e-6
 
 # Bad input: no faces (empty, or points), unreadable; bad usage.
 printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n' >"$TMP/empty.ply"
@@ -166,7 +166,7 @@ view() {
 	shift 4
 	d=$TMP/$name
 	[ -f "$d-$step.ply" ] ||
-		run_case 0 "dm2mesh --step $step --camera $d/view00.camera --pose $d/view00.pose -o $d-$step.ply $d/view00.depth.pfm"
+		run_case 0 "dm2mesh --step $step --camera $d/view00.camera --pose $d/view00.pose --noise $d/view00.noise -o $d-$step.ply $d/view00.depth.pfm"
 	run_case 0 "segplanes -a -v $* -o $TMP/$tag.seg.ply $d-$step.ply 2>$TMP/$tag.err"
 	evaluate "$d.lab.ply" "$TMP/$tag.seg.ply" "$d.scene.ply" "$frac" >"$TMP/$tag.eval"
 }
