@@ -49,7 +49,8 @@ static const char usage[] =
 	"                  legend; implies -m scalar\n"
 	"      --smooth    smooth shading from vertex normals (default flat)\n"
 	"      --target x,y,z   the point looked at (default the bounding box centre)\n"
-	"      --texture file   the texture image (default the TextureFile comment)\n"
+	"      --texture file   the texture image (default the TextureFile comment;\n"
+	"                  PNG, JPEG or PFM, at most 2^26 pixels)\n"
 	"      --title text     a caption in the top-left corner\n"
 	"      --up x,y,z  the direction that points up in the picture (default the\n"
 	"                  camera's up, -y of its frame)\n"
@@ -58,6 +59,10 @@ static const char usage[] =
 	"                  the mesh\n"
 	"  -h, --help      this help\n"
 	"      --version   print the version\n";
+
+/* The largest texture drawn: 2^26 pixels (8192x8192, 200 MB as RGB),
+ * refused from its header before it is decoded. */
+#define TEXTURE_MAX_PIXELS ((size_t)1 << 26)
 
 enum mode { M_AUTO, M_SHADED, M_PATCH, M_TEXTURE, M_COLOR, M_SCALAR };
 
@@ -599,7 +604,7 @@ int main(int argc, char **argv)
 		if (!texpath)
 			fct_die(1, "%s: -m texture: no TextureFile comment; name the image with --texture", name);
 		struct fct_image raw;
-		if (fct_image_read_file(&raw, texpath, NULL, &err) ||
+		if (fct_image_read_file_max(&raw, texpath, TEXTURE_MAX_PIXELS, NULL, &err) ||
 		    fct_image_to_rgb8(&raw, o.bg, &sc.tex, &err))
 			fct_die_err(&err);
 		fct_image_free(&raw);
