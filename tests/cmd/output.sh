@@ -54,6 +54,27 @@ for sig in TERM HUP; do
 	rm -f "$TMP/k/out.ply"
 done
 
+# TextureFile paths are kept as given on the pipes, and written relative to
+# the output's folder, absolute ones too (PLY comment, OBJ comment and
+# map_Kd): a model moved with its image, opened from another folder, is
+# still textured (an absolute path broke once the folder moved).
+mkdir -p "$TMP/m/a"
+cp samples/tum/TUM_color.png "$TMP/m/a/rgb.png"
+abs=$(cd "$TMP/m/a" && pwd)/rgb.png
+run_case 0 "dm2mesh -K tum --step 8 --image $abs -o $TMP/m/a/desk.ply samples/tum/TUM_depth.png"
+check_true "PLY: TextureFile relative" grep -a -q "^comment TextureFile rgb.png\$" "$TMP/m/a/desk.ply"
+run_case 0 "dm2mesh -K tum --step 8 --image $abs samples/tum/TUM_depth.png | tee $TMP/m/pipe.ply | meshconv -o $TMP/m/a/desk.obj"
+check_true "on the pipe: TextureFile as given" grep -a -q "^comment TextureFile $abs\$" "$TMP/m/pipe.ply"
+check_true "OBJ: map_Kd relative" grep -q "^map_Kd rgb.png\$" "$TMP/m/a/desk.mtl"
+check_true "OBJ: TextureFile comment relative" grep -q "^# comment TextureFile rgb.png\$" "$TMP/m/a/desk.obj"
+run_case 0 "meshconv -o $TMP/m/up.ply $TMP/m/a/desk.obj"
+check_true "written one folder up: a/rgb.png" grep -a -q "^comment TextureFile a/rgb.png\$" "$TMP/m/up.ply"
+mv "$TMP/m/a" "$TMP/m/b"
+for f in desk.ply desk.obj; do
+	run_case 0 "cd / && meshshot -v -o $TMP/m/shot.png $TMP/m/b/$f"
+	check_true "moved $f: drawn textured, no warning" sh -c "grep -q 'mode=texture' $TMP/err && ! grep -q warning $TMP/err"
+done
+
 # Names of 252 and 255 bytes, a PLY and an OBJ with its .mtl.
 long=$(printf 'n%.0s' $(seq 248))
 run_case 0 "meshconv -o $TMP/k/$long.ply $D/info_cube.ply"
