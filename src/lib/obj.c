@@ -1133,8 +1133,10 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 	w->f = f, w->len = 0;
 	w_str(w, "# facet\n");
 	for (size_t i = 0; i < m->ncomments; i++) {
-		w_str(w, m->comments[i].obj_info ? "# obj_info " : "# comment ");
-		w_str(w, m->comments[i].text);
+		const char *key = m->comments[i].obj_info ? "# obj_info " : "# comment ";
+		char line[FCT_HEADER_LINE_MAX + 64];
+		w_str(w, key);
+		w_str(w, fct_comment_line(&m->comments[i], FCT_HEADER_LINE_MAX - strlen(key), line));
 		w_str(w, "\n");
 	}
 	if (textured && mtl_name) {
