@@ -26,17 +26,16 @@
 #include "fuse.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
 #include "adj.h"
 #include "geom.h"
+#include "par.h"
 
 /* Minima and maxima as comparisons, without a libm call: b unless a is
  * strictly smaller (larger), so equal operands and a NaN give b. */
@@ -215,60 +214,6 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	return s->last = *rc = b;
 }
 
-/* Threads: fn(ctx, lo, hi) over [0, n) in chunks taken in turn; whatever
- * runs where, every item writes only its own results. -------------------- */
-
-enum { MAX_THREADS = 64, NCHUNK = 256 };
-
-typedef void chunk_fn(void *ctx, size_t lo, size_t hi);
-
-struct job {
-	chunk_fn *fn;
-	void *ctx;
-	size_t n;
-	int nchunk;
-	atomic_int next;
-};
-
-static void *job_worker(void *arg)
-{
-	struct job *j = arg;
-	for (;;) {
-		int c = atomic_fetch_add(&j->next, 1);
-		if (c >= j->nchunk)
-			break;
-		size_t lo = j->n * (size_t)c / (size_t)j->nchunk, hi = j->n * (size_t)(c + 1) / (size_t)j->nchunk;
-		if (lo < hi)
-			j->fn(j->ctx, lo, hi);
-	}
-	return NULL;
-}
-
-/* nchunk chunks (0: NCHUNK). */
-static void run(int nthreads, chunk_fn *fn, void *ctx, size_t n, int nchunk)
-{
-	struct job j = { fn, ctx, n, nchunk > 0 ? nchunk : NCHUNK, 0 };
-	pthread_t th[MAX_THREADS];
-	int started = 0;
-	for (int t = 1; t < nthreads && n > 1; t++) {
-		if (pthread_create(&th[t], NULL, job_worker, &j))
-			break;   /* fewer threads: the rest is done by those running */
-		started = t;
-	}
-	job_worker(&j);
-	for (int t = 1; t <= started; t++)
-		pthread_join(th[t], NULL);
-}
-
-static int thread_count(int want)
-{
-	if (want <= 0) {
-		long n = sysconf(_SC_NPROCESSORS_ONLN);
-		want = n > 0 ? (int)(n < MAX_THREADS ? n : MAX_THREADS) : 1;
-	}
-	return want < MAX_THREADS ? want : MAX_THREADS;
-}
-
 /* The view's triangles with what the search needs. ----------------------- */
 
 /* A range image's mesh in its own camera: every vertex on a pixel centre
@@ -315,8 +260,9 @@ static void geo_free(struct geo *G)
 
 /* Unit normal and offset of each triangle (NaN: degenerate), and the count
  * of the proper ones. */
-static void normals_chunk(void *ctx, size_t lo, size_t hi)
+static void normals_chunk(void *ctx, size_t lo, size_t hi, int worker)
 {
+	(void)worker;
 	struct geo *G = ctx;
 	const double *xyz = G->xyz;
 	const uint32_t *tv = G->tv;
@@ -403,7 +349,7 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthr
 	if (!G->tn)
 		goto fail;
 	G->nondegen = degenerate_bound(G);
-	run(nthreads, normals_chunk, G, nt, 0);
+	fct_par_run(nthreads, nt, 0, normals_chunk, G);
 	return 0;
 fail:
 	geo_free(G);
@@ -743,24 +689,24 @@ static inline long sample_index(const struct raster *R, double x, double y)
 }
 
 /* The projection of G's vertices into R's sensor: R->sp in sensor
- * coordinates (u, v, depth; NaN: not seen) and the box of those seen. */
+ * coordinates (u, v, depth; NaN: not seen) and the box of those seen, per
+ * worker (merged after: minima and maxima, the same in any order). */
 struct projection {
 	struct raster *R;
-	pthread_mutex_t lock;    /* over lo and hi */
-	double lo[2], hi[2];
+	double lo[FCT_PAR_MAX][2], hi[FCT_PAR_MAX][2];
 };
 
-static void project_chunk(void *ctx, size_t lo, size_t hi)
+static void project_chunk(void *ctx, size_t lo, size_t hi, int worker)
 {
 	struct projection *P = ctx;
 	const struct raster *R = P->R;
 	const double *xyz = R->G->xyz;
 	double *restrict sp = R->sp;   /* no store to it changes R's matrix */
 	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
-	/* The chunk's box, merged into the view's: minima and maxima, the
+	/* The chunk's box, merged into the worker's: minima and maxima, the
 	 * same in any order (but for the sign of a zero, which the frame
 	 * does not see: floor(-0) - 1 = floor(0) - 1). */
-	double blo[2] = { HUGE_VAL, HUGE_VAL }, bhi[2] = { -HUGE_VAL, -HUGE_VAL };
+	double *blo = P->lo[worker], *bhi = P->hi[worker];
 	for (size_t i = lo; i < hi; i++) {
 		double u, v, d;
 		double *o = &sp[3 * i];
@@ -775,10 +721,6 @@ static void project_chunk(void *ctx, size_t lo, size_t hi)
 			o[0] = o[1] = o[2] = NAN;
 		}
 	}
-	pthread_mutex_lock(&P->lock);
-	for (int k = 0; k < 2; k++)
-		P->lo[k] = dmin(blo[k], P->lo[k]), P->hi[k] = dmax(bhi[k], P->hi[k]);
-	pthread_mutex_unlock(&P->lock);
 }
 
 /* The depth the raster keeps for vertex i (sp: sample coordinates). */
@@ -791,8 +733,9 @@ static inline float vertex_depth(const struct raster *R, size_t i)
 /* Vertices from sensor to sample coordinates (x, y, depth or 1/depth for
  * pinholes; NaN: not seen), in place; with R->at, the sample each lies on,
  * and with R->zv its depth. */
-static void samples_chunk(void *ctx, size_t lo, size_t hi)
+static void samples_chunk(void *ctx, size_t lo, size_t hi, int worker)
 {
+	(void)worker;
 	struct raster *R = ctx;
 	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE;
 	for (size_t i = lo; i < hi; i++) {
@@ -813,8 +756,9 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi)
 }
 
 /* The depths of R's vertices, when its frame was made without them. */
-static void depths_chunk(void *ctx, size_t lo, size_t hi)
+static void depths_chunk(void *ctx, size_t lo, size_t hi, int worker)
 {
+	(void)worker;
 	struct raster *R = ctx;
 	for (size_t i = lo; i < hi; i++)
 		R->zv[i] = vertex_depth(R, i);
@@ -922,8 +866,9 @@ done:
 
 /* Rows lo..hi of the raster: every triangle (with at: those of gen),
  * clipped to them. */
-static void raster_rows(void *ctx, size_t lo, size_t hi)
+static void raster_rows(void *ctx, size_t lo, size_t hi, int worker)
 {
+	(void)worker;
 	struct raster *R = ctx;
 	const struct geo *G = R->G;
 	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE, cyl = R->v->cam.kind == FCT_CAMERA_CYLINDRICAL,
@@ -994,12 +939,18 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 	R->sp = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->sp, err);
 	if (!R->sp)
 		return -1;
-	struct projection P = { R, .lo = { HUGE_VAL, HUGE_VAL }, .hi = { -HUGE_VAL, -HUGE_VAL } };
-	if (pthread_mutex_init(&P.lock, NULL))
-		return fct_fail(err, "cannot make a lock");
-	run(nthreads, project_chunk, &P, G->nv, 0);
-	pthread_mutex_destroy(&P.lock);
-	double lo[2] = { P.lo[0], P.lo[1] }, hi[2] = { P.hi[0], P.hi[1] };
+	struct projection *P = malloc(sizeof *P);
+	if (!P)
+		return fct_fail(err, "out of memory");
+	P->R = R;
+	for (int t = 0; t < FCT_PAR_MAX; t++)
+		P->lo[t][0] = P->lo[t][1] = HUGE_VAL, P->hi[t][0] = P->hi[t][1] = -HUGE_VAL;
+	fct_par_run(nthreads, G->nv, 0, project_chunk, P);
+	double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
+	for (int t = 0; t < FCT_PAR_MAX; t++)
+		for (int k = 0; k < 2; k++)
+			lo[k] = dmin(P->lo[t][k], lo[k]), hi[k] = dmax(P->hi[t][k], hi[k]);
+	free(P);
 	if (!(lo[0] <= hi[0] && lo[1] <= hi[1])) {
 		R->w = R->h = 0;
 		return 0;   /* nothing seen */
@@ -1038,7 +989,7 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 		if (!R->at || (!proper && !(R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err))))
 			return -1;
 	}
-	run(nthreads, samples_chunk, R, G->nv, 0);
+	fct_par_run(nthreads, G->nv, 0, samples_chunk, R);
 	return 0;
 }
 
@@ -1069,12 +1020,12 @@ static int raster_fill(struct raster *R, struct fct_err *err)
 	if (R->at && !R->zv) {
 		if (!(R->zv = fct_alloc_array(R->G->nv ? R->G->nv : 1, sizeof *R->zv, err)))
 			return -1;
-		run(R->nthreads, depths_chunk, R, R->G->nv, 0);
+		fct_par_run(R->nthreads, R->G->nv, 0, depths_chunk, R);
 	}
 	if (R->at && raster_grid(R, err))
 		return -1;
 	/* Each thread its own rows: the same raster for any thread count. */
-	run(R->nthreads, raster_rows, R, (size_t)R->h, R->nthreads);
+	fct_par_run(R->nthreads, (size_t)R->h, (size_t)R->nthreads, raster_rows, R);
 	return 0;
 }
 
@@ -2306,8 +2257,9 @@ static void put_true(const struct fctx *F, struct sblock *b, int l, const double
 	put(b, l, (float)d, (float)view_weight(F->v, F->p, h->q, n));
 }
 
-static void true_chunk(void *ctx, size_t lo, size_t hi)
+static void true_chunk(void *ctx, size_t lo, size_t hi, int worker)
 {
+	(void)worker;
 	const struct fctx *F = ctx;
 	const struct raster *R = F->R;
 	const struct geo *G = F->G;
@@ -2442,8 +2394,9 @@ static inline void pin_row(const struct pin_step *P, const double c0[3], int fir
  * voxels in camera coordinates (pin_row where there is SSE2).  A block's
  * constants are in locals: its int8_t box would be loaded again after
  * every store of a float. */
-static void projective_chunk(void *ctx, size_t lo, size_t hi)
+static void projective_chunk(void *ctx, size_t lo, size_t hi, int worker)
 {
+	(void)worker;
 	const struct fctx *F = ctx;
 	const struct raster *R = F->R;
 	const struct fct_fuse_params *p = F->p;
@@ -2526,7 +2479,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 {
 	struct fct_fuse_stats dummy = { 0 };
 	struct fct_fuse_stats *st = stats ? stats : &dummy;
-	int nthreads = thread_count(p->threads);
+	int nthreads = fct_par_threads(p->threads);
 	double vox = fct_voxgrid_voxel(g), band = p->band;
 	int proj = p->projective;
 	struct geo G;
@@ -2552,7 +2505,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		if (candidates(&s, g, &G, img, vox, band, proj, err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox) };
-		run(nthreads, proj ? projective_chunk : true_chunk, &F, s.n, 0);
+		fct_par_run(nthreads, s.n, 0, proj ? projective_chunk : true_chunk, &F);
 		if (commit(g, from, &s, st, err))
 			goto done;
 	}
