@@ -1,34 +1,11 @@
-/* fuse.c - multi-view fusion by true signed distance, space carving and
- * level-set curvature flow: Sun, Paik, Koschan and Abidi, sec. 3 (see
- * fuse.h).
- *
- * Nearest points.  Hilton finds each band voxel's nearest point on the
- * view's mesh with a k-D tree.  A range-image mesh is organised by its own
- * sensor, so here the search starts in the view's image.  Each candidate
- * voxel (within the band of its block's box and slab of surface points) is
- * projected, goes to the foot of the perpendicular on the plane of the
- * triangle seen there, and again from the triangle seen at the foot until
- * it stays (on a grid the foot is then the nearest point), then walks
- * downhill on the mesh (across the edge or around the vertex where its
- * closest point lies) to the local minimum.  Voxels in front of the
- * surface they see but out of its band also try the surfaces a band's
- * width away in the image (around silhouettes and in concave corners).
- * The triangle seen at a point of the image: for a range image's grid
- * (every vertex on a pixel centre) that of its pixel cell, which also
- * gives the triangles around a vertex; for other meshes a raster at two
- * samples per pixel (the nearest and the farthest triangle of each
- * sample).  Cost: a few lookups and closest-point tests per candidate
- * voxel, nothing per triangle but the cells or the raster.  The lookups
- * wait on memory more than they compute, so a block's voxels are
- * projected and their triangles looked up for all of them before any is
- * searched.  Blocks are shared out among threads and each writes only its
- * own results, so the volume is the same for any thread count. */
-#include "fuse.h"
+/* fuse.c - one view fused into the volume (fct_fuse_view): its triangles,
+ * its raster (fuseraster.c), its candidate voxels (fusecand.c), then their
+ * true signed distance (fusetrue.c) or projective depth difference
+ * (fuseproj.c) on the threads.  Sun, Paik, Koschan and Abidi, sec. 3 (see
+ * fuse.h); carving is carve.c, the curvature flow levelset.c. */
+#include "fusepriv.h"
 
-#include <math.h>
-#include <stdatomic.h>
 #include <stdlib.h>
-#include <string.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -36,83 +13,6 @@
 #include "adj.h"
 #include "geom.h"
 #include "par.h"
-
-/* Minima and maxima as comparisons, without a libm call: b unless a is
- * strictly smaller (larger), so equal operands and a NaN give b. */
-static inline double dmin(double a, double b)
-{
-	return a < b ? a : b;
-}
-
-static inline double dmax(double a, double b)
-{
-	return a > b ? a : b;
-}
-
-static inline double dmin3(double a, double b, double c)
-{
-	return dmin(dmin(a, b), c);
-}
-
-static inline double dmax3(double a, double b, double c)
-{
-	return dmax(dmax(a, b), c);
-}
-
-/* The box pl..ph (a point: pl = ph) into the box lo..hi. */
-static inline void box_add(double lo[3], double hi[3], const double pl[3], const double ph[3])
-{
-	lo[0] = dmin(pl[0], lo[0]), lo[1] = dmin(pl[1], lo[1]), lo[2] = dmin(pl[2], lo[2]);
-	hi[0] = dmax(ph[0], hi[0]), hi[1] = dmax(ph[1], hi[1]), hi[2] = dmax(ph[2], hi[2]);
-}
-
-/* Per-view scratch: a hash of 8^3 blocks, the candidate voxels of a view
- * (lo..hi, local coordinates) and their results. ------------------------- */
-
-struct sblock {
-	int32_t bx, by, bz;
-	int8_t lo[3], hi[3];     /* box of voxels that may be in the band (lo > hi: none) */
-	size_t nvox, nborder;    /* voxels with a value, voxels skipped on a border */
-	struct fct_voxblock *vb; /* the volume's block, updated in place (each block is one thread's) */
-	int fresh;               /* vb was created for this view: dropped again if nothing is put */
-	double plo[3], phi[3];   /* candidates' surface blocks: box of their points, voxel units */
-	double sn[3], slo, shi;  /* and the slab of their points: sn . p in [slo, shi] (sn 0: none) */
-	uint8_t row[FCT_VOXBLOCK * FCT_VOXBLOCK];   /* true distance: the candidates of row y + 8 z,
-	                                              * bit x */
-};
-
-/* Voxel l of vb gets distance d with weight w: the weighted average.  A
- * fresh block holds 0 with weight 0 and each voxel is put once per view, so
- * the average is 0 + d (d w / w is exact in double); a weight that is
- * not positive leaves such a voxel unobserved. */
-static inline void put_value(struct fct_voxblock *vb, int fresh, int l, float d, float w)
-{
-	if (fresh && w < INFINITY) {
-		if (w > 0)
-			vb->sdf[l] = d + 0.0f, vb->weight[l] = w;   /* + 0: as 0 + d, -0 is 0 */
-		return;
-	}
-	double W = (double)vb->weight[l] + w;
-	vb->sdf[l] = (float)(vb->sdf[l] + ((double)d - vb->sdf[l]) * w / W);
-	vb->weight[l] = (float)W;
-}
-
-/* put_value into voxel l of b's block, counted. */
-static inline void put(struct sblock *b, int l, float d, float w)
-{
-	b->nvox++;
-	put_value(b->vb, b->fresh, l, d, w);
-}
-
-struct scratch {
-	uint64_t *keys;          /* UINT64_MAX: empty slot */
-	uint32_t *slot;          /* block index of a key */
-	size_t cap, n;           /* hash capacity (power of two), blocks */
-	struct sblock **blk;
-	size_t blkcap;
-	struct sblock *last;     /* the block found last (most lookups repeat it) */
-	struct sblock *recent[16];   /* and blocks found lately, by recent_slot */
-};
 
 static inline unsigned recent_slot(int32_t bx, int32_t by, int32_t bz)
 {
@@ -135,7 +35,7 @@ static size_t key_hash(uint64_t k, size_t cap)
 	return (size_t)(k ^ k >> 32) & (cap - 1);
 }
 
-static void scratch_free(struct scratch *s)
+void fuse_scratch_free(struct scratch *s)
 {
 	for (size_t i = 0; i < s->n; i++)
 		free(s->blk[i]);
@@ -214,40 +114,7 @@ static struct sblock *scratch_block(struct scratch *s, int32_t bx, int32_t by, i
 	return s->last = *rc = b;
 }
 
-/* The view's triangles with what the search needs. ----------------------- */
-
-/* A range image's mesh in its own camera: every vertex on a pixel centre
- * and every triangle half of a pixel cell (the square between four pixel
- * centres), at most one on each half.  Such a mesh needs no raster: the
- * triangle under an image point is read off its cell, and the triangles
- * around a vertex are in the four cells around its pixel. */
-struct pixgrid {
-	int32_t *cell;           /* 2 per cell (x, y) at x + y w: the halves; -1: none */
-	uint8_t *diag;           /* per cell: DIAG_DOWN or DIAG_UP, the diagonal that splits it */
-	const int32_t *at;       /* per vertex: its pixel x, y (-1: none) */
-	size_t w, h;             /* pixels; cells (x, y) for x < w - 1, y < h - 1 */
-	double xend, yend;       /* w - 1 and h - 1: the cells' extent, for the lookups */
-};
-
-enum { DIAG_NONE, DIAG_DOWN, DIAG_UP };   /* DOWN: corners (0, 0)-(1, 1); UP: (1, 0)-(0, 1) */
-
-struct geo {
-	size_t nt, nv;
-	const double *xyz;
-	const uint32_t *tv;      /* 3 per triangle */
-	uint32_t *tvown;
-	float *tn;               /* unit normal n and n . a, 4 per triangle; NaN: degenerate
-	                          * (float: half the memory the search has to bring in) */
-	uint32_t *vfs, *vf;      /* faces of vertex v: vf[vfs[v] .. vfs[v + 1]), in face order */
-	const struct pixgrid *grid;   /* instead of vfs and vf when the mesh is a grid */
-	const struct fct_mesh *m;    /* the triangles as a mesh: the input or tris */
-	struct fct_mesh tris;    /* the triangulated mesh when the input has polygons */
-	atomic_size_t nproper;   /* triangles with a normal */
-	double nondegen;         /* a cross product squared above it: not degenerate */
-	int own;
-};
-
-static void geo_free(struct geo *G)
+void fuse_geo_free(struct geo *G)
 {
 	free(G->tvown);
 	free(G->tn);
@@ -308,7 +175,7 @@ static double degenerate_bound(const struct geo *G)
 
 /* Triangles of m (polygons fan-triangulated); with topo, their unit
  * normals too (the faces around each vertex come from geo_rings). */
-static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthreads,
+int fuse_geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthreads,
                      struct fct_err *err)
 {
 	memset(G, 0, sizeof *G);
@@ -352,7 +219,7 @@ static int geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthr
 	fct_par_run(nthreads, nt, 0, normals_chunk, G);
 	return 0;
 fail:
-	geo_free(G);
+	fuse_geo_free(G);
 	return -1;
 }
 
@@ -549,24 +416,6 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], double ba
 	return t;
 }
 
-/* Sensor geometry. ------------------------------------------------------- */
-
-void fct_range_image_free(struct fct_range_image *r)
-{
-	if (r) {
-		free(r->range);
-		r->range = NULL;
-	}
-}
-
-/* Fusion. ---------------------------------------------------------------- */
-
-static inline int in_clip(const struct fct_fuse_params *p, int32_t i, int32_t j, int32_t k)
-{
-	return !p->has_clip || (i >= p->clip_lo[0] && i <= p->clip_hi[0] && j >= p->clip_lo[1] &&
-	                        j <= p->clip_hi[1] && k >= p->clip_lo[2] && k <= p->clip_hi[2]);
-}
-
 /* Voxel coordinates of world points must keep blocks within the 21-bit keys. */
 #define MAX_INDEX (1 << 23)
 
@@ -597,673 +446,10 @@ static double view_weight(const struct fct_fuse_view *v, const struct fct_fuse_p
 	return depth > 1e-3 ? 1 / (depth * depth) : 1e6;
 }
 
-/* A view's raster of triangle ids: the triangle seen at each sample of the
- * sensor image, S samples per sensor pixel, nearest first (ties: the lower
- * triangle).  Sample (x, y) is sensor pixel (u0 + x / S, v0 + y / S). ---- */
-
-struct raster {
-	const struct fct_fuse_view *v;
-	double inv[12];          /* world-to-sensor */
-	double S, u0, v0;
-	int w, h;
-	float *z;                /* depth; INFINITY: nothing */
-	const float *depth;      /* what projective fusion reads: z, or the view's depth
-	                          * image (raster_image; nothing where not > 0) */
-	int32_t *id;             /* -1: nothing; only with proper (the searches start from
-	                          * the triangles; projective fusion and range images
-	                          * need the depths alone) */
-	float *zf;               /* true distance: the farthest triangle too */
-	int32_t *idf;
-	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes);
-	                          * sensor u, v, depth until the raster's extent is known */
-	int32_t *at;             /* one sample per pixel: per vertex, x and y of the sample
-	                          * it lies on (within 1e-3), or -1 and -1 */
-	float *zv;               /* and the depth a triangle gives there */
-	uint32_t *gen;           /* with at: the triangles that are not grid triangles */
-	size_t ngen, gencap;
-	struct pixgrid grid;     /* instead of z, id, zf and idf when grid.cell is set */
-	const struct geo *G;
-	int proper;              /* only triangles with a normal */
-	int nthreads;
-};
-
-static void raster_free(struct raster *R)
-{
-	free(R->z);
-	free(R->id);
-	free(R->zf);
-	free(R->idf);
-	free(R->sp);
-	free(R->at);
-	free(R->zv);
-	free(R->gen);
-	free(R->grid.cell);
-	free(R->grid.diag);
-	memset(R, 0, sizeof *R);
-}
-
-/* Sensor pixel (u, v) and depth of world point p; 0 when it has none. */
-static inline int sensor_project(const struct raster *R, const double p[3], double *u, double *v,
-                                 double *depth)
-{
-	const double *M = R->inv;
-	double c[3] = { M[0] * p[0] + M[1] * p[1] + M[2] * p[2] + M[3],
-	                M[4] * p[0] + M[5] * p[1] + M[6] * p[2] + M[7],
-	                M[8] * p[0] + M[9] * p[1] + M[10] * p[2] + M[11] };
-	const struct fct_camera *cam = &R->v->cam;
-	if (cam->kind == FCT_CAMERA_PINHOLE) {
-		if (!(c[2] > 0))
-			return 0;
-		*u = cam->fx * c[0] / c[2] + cam->cx;
-		*v = cam->fy * c[1] / c[2] + cam->cy;
-		*depth = c[2];
-		return 1;
-	}
-	if (cam->kind == FCT_CAMERA_NONE) {
-		*u = c[0] / R->v->ortho_step;
-		*v = c[1] / R->v->ortho_step;
-		*depth = -c[2];
-		return 1;
-	}
-	return fct_camera_project(cam, c, u, v, depth);
-}
-
-/* Sample coordinates of p (continuous) and its depth; 0 when none. */
-static inline int sample_of(const struct raster *R, const double p[3], double *x, double *y,
-                            double *depth)
-{
-	double u, v;
-	if (!sensor_project(R, p, &u, &v, depth))
-		return 0;
-	*x = (u - R->u0) * R->S;
-	*y = (v - R->v0) * R->S;
-	return 1;
-}
-
-/* The sample nearest (x, y), or -1 outside. */
-static inline long sample_index(const struct raster *R, double x, double y)
-{
-	if (!(x > -0.5 && y > -0.5 && x < R->w - 0.5 && y < R->h - 0.5))
-		return -1;
-	return (long)(y + 0.5) * R->w + (long)(x + 0.5);
-}
-
-/* The projection of G's vertices into R's sensor: R->sp in sensor
- * coordinates (u, v, depth; NaN: not seen) and the box of those seen, per
- * worker (merged after: minima and maxima, the same in any order). */
-struct projection {
-	struct raster *R;
-	double lo[FCT_PAR_MAX][2], hi[FCT_PAR_MAX][2];
-};
-
-static void project_chunk(void *ctx, size_t lo, size_t hi, int worker)
-{
-	struct projection *P = ctx;
-	const struct raster *R = P->R;
-	const double *xyz = R->G->xyz;
-	double *restrict sp = R->sp;   /* no store to it changes R's matrix */
-	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
-	/* The chunk's box, merged into the worker's: minima and maxima, the
-	 * same in any order (but for the sign of a zero, which the frame
-	 * does not see: floor(-0) - 1 = floor(0) - 1). */
-	double *blo = P->lo[worker], *bhi = P->hi[worker];
-	for (size_t i = lo; i < hi; i++) {
-		double u, v, d;
-		double *o = &sp[3 * i];
-		/* In double: a range image's vertices lie on pixel centres, and
-		 * a border vertex rounded off its centre would lose its pixel. */
-		if (sensor_project(R, &xyz[3 * i], &u, &v, &d) && (d > 0 || ortho) && isfinite(u) &&
-		    isfinite(v) && isfinite(d)) {
-			o[0] = u, o[1] = v, o[2] = d;
-			blo[0] = dmin(u, blo[0]), bhi[0] = dmax(u, bhi[0]);
-			blo[1] = dmin(v, blo[1]), bhi[1] = dmax(v, bhi[1]);
-		} else {
-			o[0] = o[1] = o[2] = NAN;
-		}
-	}
-}
-
-/* The depth the raster keeps for vertex i (sp: sample coordinates). */
-static inline float vertex_depth(const struct raster *R, size_t i)
-{
-	double d = R->sp[3 * i + 2];
-	return (float)(R->v->cam.kind == FCT_CAMERA_PINHOLE ? 1 / d : d);
-}
-
-/* Vertices from sensor to sample coordinates (x, y, depth or 1/depth for
- * pinholes; NaN: not seen), in place; with R->at, the sample each lies on,
- * and with R->zv its depth. */
-static void samples_chunk(void *ctx, size_t lo, size_t hi, int worker)
-{
-	(void)worker;
-	struct raster *R = ctx;
-	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE;
-	for (size_t i = lo; i < hi; i++) {
-		double *sp = &R->sp[3 * i];
-		sp[0] = (sp[0] - R->u0) * R->S;
-		sp[1] = (sp[1] - R->v0) * R->S;
-		sp[2] = pin ? 1 / sp[2] : sp[2];
-		if (R->at) {
-			double x = floor(sp[0] + 0.5), y = floor(sp[1] + 0.5);
-			int on = fabs(sp[0] - x) < 1e-3 && fabs(sp[1] - y) < 1e-3 && x >= 0 && y >= 0 &&
-			         x < R->w && y < R->h;
-			R->at[2 * i] = on ? (int32_t)x : -1;
-			R->at[2 * i + 1] = on ? (int32_t)y : -1;
-		}
-		if (R->zv)
-			R->zv[i] = vertex_depth(R, i);
-	}
-}
-
-/* The depths of R's vertices, when its frame was made without them. */
-static void depths_chunk(void *ctx, size_t lo, size_t hi, int worker)
-{
-	(void)worker;
-	struct raster *R = ctx;
-	for (size_t i = lo; i < hi; i++)
-		R->zv[i] = vertex_depth(R, i);
-}
-
-/* The corners of a pixel cell that triangle tv takes, as bits x + 2 y of
- * the cell (cx, cy) (at: per vertex, its sample's x and y, or -1), when its
- * vertices lie on three distinct corners of one cell: 7, 11, 13 or 14.
- * 0 when they do not (a vertex off the samples, a triangle larger than a
- * cell or degenerate in the image).  Tested without branches, as the
- * diagonals of a range image follow its data. */
-static inline unsigned cell_corners(const int32_t *at, const uint32_t tv[3], int32_t *cx, int32_t *cy)
-{
-	const int32_t *a = &at[2 * tv[0]], *b = &at[2 * tv[1]], *d = &at[2 * tv[2]];
-	if ((a[0] | b[0] | d[0]) < 0)
-		return 0;
-	int32_t x = a[0] < b[0] ? a[0] : b[0], y = a[1] < b[1] ? a[1] : b[1];
-	x = d[0] < x ? d[0] : x, y = d[1] < y ? d[1] : y;
-	int32_t ax = a[0] - x, ay = a[1] - y, bx = b[0] - x, by = b[1] - y, dx = d[0] - x, dy = d[1] - y;
-	if ((ax | ay | bx | by | dx | dy) > 1)
-		return 0;   /* not within one cell */
-	unsigned corners = 1u << (ax + 2 * ay) | 1u << (bx + 2 * by) | 1u << (dx + 2 * dy);
-	*cx = x, *cy = y;
-	return 0x6880u >> corners & 1 ? corners : 0;
-}
-
-/* A triangle of a range image's grid (its vertices on three corners of a
- * pixel cell, one sample per pixel) covers no sample but its vertices: the
- * raster's depth is the vertex's there (barycentric weights 1, 0, 0). */
-static inline int grid_triangle(const struct raster *R, const uint32_t tv[3])
-{
-	int32_t cx, cy;
-	return cell_corners(R->at, tv, &cx, &cy) != 0;
-}
-
-/* Triangle f at depth zf on sample s.  Every sample takes the nearest
- * triangle's depth and id (at equal depth the lower id), and the farthest's
- * with idf: a minimum, so the order in which triangles come does not
- * matter.  Without ids, the nearest depth alone (a minimum without a
- * branch: the depths of a range image come in no order a branch could
- * guess). */
-static inline void raster_put(struct raster *R, size_t s, float zf, int32_t f)
-{
-	if (!R->id) {
-		R->z[s] = zf < R->z[s] ? zf : R->z[s];
-		return;
-	}
-	if (zf < R->z[s] || (zf == R->z[s] && f < R->id[s])) {
-		R->z[s] = zf;
-		R->id[s] = f;
-	}
-	if (R->idf && (zf > R->zf[s] || (zf == R->zf[s] && f < R->idf[s]))) {
-		R->zf[s] = zf;
-		R->idf[s] = f;
-	}
-}
-
-/* Vertex v on its sample (with at) at its depth, as triangle f's corner. */
-static inline void vertex_splat(struct raster *R, uint32_t v, int32_t f, int ortho)
-{
-	size_t s = (size_t)R->at[2 * v + 1] * (size_t)R->w + (size_t)R->at[2 * v];
-	float zf = R->zv[v];
-	if (zf > 0 || ortho)
-		raster_put(R, s, zf, f);
-}
-
-/* With at: the grid triangles, each a splat of its corners' depths on
- * their samples, in one pass; the others go to the list gen.  Without ids
- * a sample takes the nearest depth whichever triangle brings it, so the
- * pass only marks the corners and each is splatted once after it (a
- * third of the splats).  0 or -1. */
-static int raster_grid(struct raster *R, struct fct_err *err)
-{
-	const struct geo *G = R->G;
-	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
-	uint8_t *corner = NULL;   /* without ids: per vertex, 1 when a grid triangle's corner */
-	if (!R->id && !(corner = calloc(G->nv ? G->nv : 1, 1)))
-		return fct_fail(err, "out of memory");
-	int rc = -1;
-	for (size_t f = 0; f < G->nt; f++) {
-		const uint32_t *tv = &G->tv[3 * f];
-		if (!grid_triangle(R, tv)) {
-			if (fct_grow((void **)&R->gen, &R->gencap, R->ngen + 1, sizeof *R->gen, err))
-				goto done;
-			R->gen[R->ngen++] = (uint32_t)f;
-			continue;
-		}
-		if (R->proper && isnan(G->tn[4 * f]))
-			continue;
-		for (int k = 0; k < 3; k++) {
-			if (corner)
-				corner[tv[k]] = 1;
-			else
-				vertex_splat(R, tv[k], (int32_t)f, ortho);
-		}
-	}
-	for (size_t v = 0; corner && v < G->nv; v++)
-		if (corner[v])
-			vertex_splat(R, (uint32_t)v, -1, ortho);
-	rc = 0;
-done:
-	free(corner);
-	return rc;
-}
-
-/* Rows lo..hi of the raster: every triangle (with at: those of gen),
- * clipped to them. */
-static void raster_rows(void *ctx, size_t lo, size_t hi, int worker)
-{
-	(void)worker;
-	struct raster *R = ctx;
-	const struct geo *G = R->G;
-	int pin = R->v->cam.kind == FCT_CAMERA_PINHOLE, cyl = R->v->cam.kind == FCT_CAMERA_CYLINDRICAL,
-	    ortho = R->v->cam.kind == FCT_CAMERA_NONE;
-	double ylo = (double)lo, yhi = (double)hi - 1, seam = R->S * R->v->cam.width / 2.0;
-	const double *sp = R->sp;
-	size_t nt = R->at ? R->ngen : G->nt;
-	for (size_t i = 0; i < nt; i++) {
-		size_t f = R->at ? R->gen[i] : i;
-		const uint32_t *tv = &G->tv[3 * f];
-		const double *a = &sp[3 * tv[0]], *b = &sp[3 * tv[1]], *c = &sp[3 * tv[2]];
-		double vmin = dmin3(a[1], b[1], c[1]), vmax = dmax3(a[1], b[1], c[1]);
-		if (!(vmax >= ylo - 1e-9 && vmin <= yhi + 1e-9))
-			continue;   /* also NaN: not seen */
-		if (R->proper && isnan(G->tn[4 * f]))
-			continue;
-		double umin = dmin3(a[0], b[0], c[0]), umax = dmax3(a[0], b[0], c[0]);
-		if (cyl && umax - umin > seam)
-			continue;   /* across the seam */
-		double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-		if (!(fabs(area) > 1e-12) || !(umax >= -1 && umin <= R->w))
-			continue;   /* also NaN */
-		double fu0 = ceil(umin - 1e-9), fu1 = floor(umax + 1e-9);
-		double fv0 = ceil(vmin - 1e-9), fv1 = floor(vmax + 1e-9);
-		int u0 = fu0 > 0 ? (int)fu0 : 0, u1 = fu1 < R->w - 1 ? (int)fu1 : R->w - 1;
-		int v0 = fv0 > ylo ? (int)fv0 : (int)lo, v1 = fv1 < yhi ? (int)fv1 : (int)hi - 1;
-		double ia = 1 / area;
-		/* Barycentric weights of b and c, affine in the sample. */
-		double bx = (c[1] - a[1]) * ia, by = -(c[0] - a[0]) * ia;
-		double cx = -(b[1] - a[1]) * ia, cy = (b[0] - a[0]) * ia;
-		/* Depth is affine in the image for orthographic views; for
-		 * perspective ones 1/depth is (sp holds it). */
-		double za = a[2], zb = b[2], zc = c[2];
-		for (int y = v0; y <= v1; y++)
-			for (int x = u0; x <= u1; x++) {
-				double wb = (x - a[0]) * bx + (y - a[1]) * by;
-				double wc = (x - a[0]) * cx + (y - a[1]) * cy;
-				double wa = 1 - wb - wc;
-				if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9)
-					continue;
-				double z = wa * za + wb * zb + wc * zc;
-				if (pin)
-					z = 1 / z;
-				size_t s = (size_t)y * (size_t)R->w + (size_t)x;
-				float zf = (float)z;
-				if (!(zf > 0 || ortho))
-					continue;
-				raster_put(R, s, zf, (int32_t)f);
-			}
-	}
-}
-
-/* G's vertices in the sample coordinates of v with S samples per sensor
- * pixel (fewer when more than max_samples would be needed): R's extent and
- * sp, and at S = 1 at (and zv unless proper).  0 or -1; R->w is 0 when
- * nothing is seen. */
-static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
-                        double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
-{
-	memset(R, 0, sizeof *R);
-	R->v = v;
-	R->G = G;
-	R->proper = proper;
-	R->nthreads = nthreads;
-	fct_pose_invert(v->pose, R->inv);
-	if (v->cam.kind == FCT_CAMERA_NONE && !(v->ortho_step > 0))
-		return fct_fail(err, "orthographic view without a pixel size");
-	R->sp = fct_alloc_array(G->nv ? G->nv : 1, 3 * sizeof *R->sp, err);
-	if (!R->sp)
-		return -1;
-	struct projection *P = malloc(sizeof *P);
-	if (!P)
-		return fct_fail(err, "out of memory");
-	P->R = R;
-	for (int t = 0; t < FCT_PAR_MAX; t++)
-		P->lo[t][0] = P->lo[t][1] = HUGE_VAL, P->hi[t][0] = P->hi[t][1] = -HUGE_VAL;
-	fct_par_run(nthreads, G->nv, 0, project_chunk, P);
-	double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
-	for (int t = 0; t < FCT_PAR_MAX; t++)
-		for (int k = 0; k < 2; k++)
-			lo[k] = dmin(P->lo[t][k], lo[k]), hi[k] = dmax(P->hi[t][k], hi[k]);
-	free(P);
-	if (!(lo[0] <= hi[0] && lo[1] <= hi[1])) {
-		R->w = R->h = 0;
-		return 0;   /* nothing seen */
-	}
-	if (v->cam.kind != FCT_CAMERA_NONE) {
-		/* Keep to the image, with one image of margin around it. */
-		double W = v->cam.width, H = v->cam.height;
-		lo[0] = fmax(lo[0], -W), hi[0] = fmin(hi[0], 2 * W);
-		lo[1] = fmax(lo[1], -H), hi[1] = fmin(hi[1], 2 * H);
-		if (v->cam.kind == FCT_CAMERA_CYLINDRICAL)
-			lo[0] = -0.5, hi[0] = W - 0.5;
-		if (!(lo[0] <= hi[0] && lo[1] <= hi[1])) {
-			R->w = R->h = 0;
-			return 0;
-		}
-	}
-	for (;;) {
-		/* Offsets keep the samples off a pixel grid's vertices and
-		 * diagonals, so that every triangle of it owns a sample. */
-		R->u0 = floor(lo[0]) - 1 + (S > 1 ? 0.25 : 0);
-		R->v0 = floor(lo[1]) - 1 + (S > 1 ? 0.125 : 0);
-		double w = ceil((hi[0] - R->u0) * S) + 2, h = ceil((hi[1] - R->v0) * S) + 2;
-		if (w * h <= (double)max_samples) {
-			R->w = (int)w, R->h = (int)h;
-			break;
-		}
-		if (S < 1e-3)
-			return fct_fail(err, "range image of %.0f x %.0f pixels is too large", w, h);
-		S /= 2;
-	}
-	R->S = S;
-	if (S == 1) {
-		/* A true-distance frame is for a pixel grid first, which needs
-		 * no depths: raster_fill makes them if it comes to a raster. */
-		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
-		if (!R->at || (!proper && !(R->zv = fct_alloc_array(G->nv ? G->nv : 1, sizeof *R->zv, err))))
-			return -1;
-	}
-	fct_par_run(nthreads, G->nv, 0, samples_chunk, R);
-	return 0;
-}
-
-/* The raster of R's frame: nearest depths; with R->proper the nearest
- * and farthest triangles too.  0 or -1. */
-static int raster_fill(struct raster *R, struct fct_err *err)
-{
-	size_t n = (size_t)R->w * (size_t)R->h;
-	R->z = fct_alloc_array(n, sizeof *R->z, err);
-	if (!R->z)
-		return -1;
-	for (size_t i = 0; i < n; i++)
-		R->z[i] = INFINITY;
-	R->depth = R->z;
-	if (R->proper) {
-		R->id = fct_alloc_array(n, sizeof *R->id, err);
-		if (!R->id)
-			return -1;
-		memset(R->id, 0xff, n * sizeof *R->id);
-		R->zf = fct_alloc_array(n, sizeof *R->zf, err);
-		R->idf = fct_alloc_array(n, sizeof *R->idf, err);
-		if (!R->zf || !R->idf)
-			return -1;
-		for (size_t i = 0; i < n; i++)
-			R->zf[i] = -INFINITY;
-		memset(R->idf, 0xff, n * sizeof *R->idf);
-	}
-	if (R->at && !R->zv) {
-		if (!(R->zv = fct_alloc_array(R->G->nv ? R->G->nv : 1, sizeof *R->zv, err)))
-			return -1;
-		fct_par_run(R->nthreads, R->G->nv, 0, depths_chunk, R);
-	}
-	if (R->at && raster_grid(R, err))
-		return -1;
-	/* Each thread its own rows: the same raster for any thread count. */
-	fct_par_run(R->nthreads, (size_t)R->h, (size_t)R->nthreads, raster_rows, R);
-	return 0;
-}
-
-/* The raster of G seen by v with S samples per sensor pixel (fewer when
- * more than max_samples would be needed).  0 or -1. */
-static int raster_build(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
-                        double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
-{
-	if (raster_frame(R, v, G, S, proper, max_samples, nthreads, err))
-		return -1;
-	return R->w > 0 ? raster_fill(R, err) : 0;
-}
-
-/* For projective fusion of a view given as a depth image: the image is
- * the raster, one sample per pixel, sample (x, y) on pixel (x, y); no
- * projection of the mesh and no raster to fill.  0 or -1. */
-static int raster_image(struct raster *R, const struct fct_fuse_view *v, struct fct_err *err)
-{
-	memset(R, 0, sizeof *R);
-	if (v->cam.kind == FCT_CAMERA_NONE || v->cam.width < 1 || v->cam.height < 1)
-		return fct_fail(err, "a depth image needs a camera with its size");
-	R->v = v;
-	fct_pose_invert(v->pose, R->inv);
-	R->S = 1;
-	R->w = v->cam.width, R->h = v->cam.height;
-	R->depth = v->depth;
-	return 0;
-}
-
-/* R's proper triangles as a pixel grid, when they are one (R's frame at
- * one sample per pixel): 1; 0 when they are not; -1 out of memory. */
-static int grid_cells(struct raster *R, struct fct_err *err)
-{
-	const struct geo *G = R->G;
-	struct pixgrid *P = &R->grid;
-	P->w = (size_t)R->w, P->h = (size_t)R->h, P->at = R->at;
-	P->xend = (double)(P->w - 1), P->yend = (double)(P->h - 1);
-	size_t n = P->w * P->h;
-	P->cell = fct_alloc_array(n, 2 * sizeof *P->cell, err);
-	P->diag = calloc(n, 1);
-	if (!P->cell || !P->diag) {
-		if (P->cell)
-			fct_fail(err, "out of memory");
-		return -1;
-	}
-	memset(P->cell, 0xff, 2 * n * sizeof *P->cell);
-	/* The half a triangle takes, by the corner of its cell it leaves out
-	 * (x + 2 y): its diagonal, and its slot (DOWN: x >= y first; UP:
-	 * x + y <= 1 first). */
-	static const uint8_t diag[4] = { DIAG_UP, DIAG_DOWN, DIAG_DOWN, DIAG_UP };
-	static const uint8_t slot[4] = { 1, 1, 0, 0 };
-	/* In locals: the stores to cd (bytes) would have the compiler load
-	 * every pointer and size again for each triangle. */
-	const float *tn = G->tn;
-	const uint32_t *tvs = G->tv;
-	const int32_t *at = R->at;
-	int32_t *cell = P->cell;
-	uint8_t *cd = P->diag;
-	size_t nt = G->nt, w = P->w, h = P->h;
-	/* The normals are read only when some triangle has none: a range
-	 * image's mesh mostly has them all, and the test would bring in 16
-	 * bytes per triangle to fail every time. */
-	int some_degenerate = G->nproper < nt;
-	for (size_t f = 0; f < nt; f++) {
-		if (some_degenerate && isnan(tn[4 * f]))
-			continue;
-		int32_t cx, cy;
-		unsigned corners = cell_corners(at, &tvs[3 * f], &cx, &cy);
-		if (!corners || (size_t)cx + 1 >= w || (size_t)cy + 1 >= h)
-			goto not_grid;
-		int out = __builtin_ctz(~corners & 15);
-		size_t c = (size_t)cy * w + (size_t)cx;
-		/* Not on a cell split the other way (DIAG_DOWN and DIAG_UP are
-		 * bits), nor on a half taken. */
-		if ((cd[c] & ~diag[out]) | (cell[2 * c + slot[out]] >= 0))
-			goto not_grid;
-		cd[c] = diag[out];
-		cell[2 * c + slot[out]] = (int32_t)f;
-	}
-	return 1;
-not_grid:
-	free(P->cell);
-	free(P->diag);
-	memset(P, 0, sizeof *P);
-	return 0;
-}
-
-/* The cell of the grid under sample point (x, y), or -1. */
-static inline long grid_cell_at(const struct pixgrid *P, double x, double y)
-{
-	if (!(x >= 0 && y >= 0 && x < P->xend && y < P->yend))
-		return -1;
-	return (long)y * (long)P->w + (long)x;
-}
-
-/* The triangle of the grid under sample point (x, y), or -1.  The half is
- * chosen without a branch: the diagonals and the points' sides of them
- * come in no order a branch could guess (a quarter of the mispredicted
- * branches of a view's fusion, by cachegrind). */
-static inline int32_t grid_seen(const struct pixgrid *P, double x, double y)
-{
-	long c = grid_cell_at(P, x, y);
-	if (c < 0)
-		return -1;
-	double fx = x - (double)(long)x, fy = y - (double)(long)y;
-	int up = P->diag[c] == DIAG_UP;
-	int half = (up & (fx + fy > 1)) | (!up & (fy > fx));
-	return P->cell[2 * c + half];
-}
-
-/* Ask for the memory that tells the triangle seen at sample point (x, y). */
-static inline void prefetch_seen(const struct raster *R, double x, double y)
-{
-	if (R->grid.cell) {
-		long c = grid_cell_at(&R->grid, x, y);
-		if (c >= 0) {
-			__builtin_prefetch(&R->grid.cell[2 * c]);
-			__builtin_prefetch(&R->grid.diag[c]);
-		}
-		return;
-	}
-	long si = sample_index(R, x, y);
-	if (si >= 0) {
-		__builtin_prefetch(&R->id[si]);
-		__builtin_prefetch(&R->idf[si]);
-	}
-}
-
-/* The triangle seen at sample point (x, y) in layer id (the grid's, when
- * there is one), or -1. */
-static inline int32_t seen(const struct raster *R, const int32_t *id, double x, double y)
-{
-	if (R->grid.cell)
-		return grid_seen(&R->grid, x, y);
-	long i = sample_index(R, x, y);
-	return i >= 0 ? id[i] : -1;
-}
-
-/* For true distance: the grid of G seen by v when it is one, else the
- * raster at two samples per pixel along each axis, so that every triangle
- * of a range image's grid owns one.  0 or -1. */
-static int raster_true(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
-                       size_t max_samples, int nthreads, struct fct_err *err)
-{
-	if (raster_frame(R, v, G, 1, 1, max_samples, nthreads, err))
-		return -1;
-	if (R->w == 0)
-		return 0;
-	int grid = R->S == 1 ? grid_cells(R, err) : 0;
-	if (grid)
-		return grid > 0 ? 0 : -1;
-	if (v->cam.kind == FCT_CAMERA_NONE)
-		return raster_fill(R, err);
-	raster_free(R);
-	return raster_build(R, v, G, 2, 1, max_samples, nthreads, err);
-}
-
-/* The range image is the raster of one sample per pixel, kept to the
- * camera's image (orthographic views: to the mesh, as the raster is). */
-int fct_range_image_make(struct fct_range_image *r, const struct fct_fuse_view *v,
-                         size_t max_pixels, struct fct_err *err)
-{
-	memset(r, 0, sizeof *r);
-	r->view = *v;
-	fct_pose_invert(v->pose, r->inv);
-	int ortho = v->cam.kind == FCT_CAMERA_NONE;
-	if (!ortho) {
-		r->width = v->cam.width;
-		r->height = v->cam.height;
-		if (r->width < 1 || r->height < 1 ||
-		    (double)r->width * (double)r->height > (double)max_pixels)
-			return fct_fail(err, "camera of %d x %d pixels: no range image", r->width, r->height);
-	}
-	struct geo G;
-	struct raster R;
-	memset(&R, 0, sizeof R);
-	if (geo_build(&G, v->mesh, 0, 1, err))
-		return -1;
-	int rc = -1;
-	if (raster_build(&R, v, &G, 1, 0, max_pixels, 1, err))
-		goto done;
-	if (R.w > 0 && R.S != 1) {
-		fct_fail(err, "range image of more than %zu pixels: too large", max_pixels);
-		goto done;
-	}
-	if (ortho) {
-		if (R.w == 0) {
-			fct_fail(err, "empty view");
-			goto done;
-		}
-		r->u0 = R.u0, r->v0 = R.v0;
-		r->width = R.w, r->height = R.h;
-	}
-	size_t np = (size_t)r->width * (size_t)r->height;
-	r->range = calloc(np, sizeof *r->range);
-	if (!r->range) {
-		fct_fail(err, "out of memory");
-		goto done;
-	}
-	/* Pixel (x, y) is raster sample (x - u0, y - v0), u0 and v0 whole
-	 * numbers at one sample per pixel (orthographic: the same pixel). */
-	int ox = ortho ? 0 : (int)R.u0, oy = ortho ? 0 : (int)R.v0;
-	for (int y = 0; y < r->height; y++) {
-		int ry = y - oy;
-		if (ry < 0 || ry >= R.h)
-			continue;
-		for (int x = 0; x < r->width; x++) {
-			int rx = x - ox;
-			if (rx < 0 || rx >= R.w)
-				continue;
-			float z = R.z[(size_t)ry * (size_t)R.w + (size_t)rx];
-			if (z > 0 && z < INFINITY)
-				r->range[(size_t)y * (size_t)r->width + (size_t)x] = z;
-		}
-	}
-	rc = 0;
-done:
-	raster_free(&R);
-	geo_free(&G);
-	if (rc)
-		fct_range_image_free(r);
-	return rc;
-}
-
-/* The band that true distance keeps: a thousandth of a voxel over the
- * band, so that a layer of voxels at the band's distance (a wall on a
- * voxel plane, as the floor at z = 0) is kept whole rather than half, as
- * the rounding of float depths and planes would fall. */
-static inline double band_kept(double band, double vox)
-{
-	return band + 1e-3 * vox;
-}
-
 /* Candidate voxels: the box of the surface's points (vertices, and points
  * at most half a voxel apart on larger triangles) per block of their cells,
  * grown by the band; for true distance also the slab of those points
- * across the block's mean normal, grown by the band. -------------------- */
-
+ * across the block's mean normal, grown by the band. */
 struct cand {
 	struct scratch cells;    /* blocks with the box of their surface points (plo, phi) */
 	double inv;
@@ -1271,7 +457,7 @@ struct cand {
 };
 
 /* Point p in voxel units.  The axes written out, as all the helpers of
- * the candidates' passes: a loop over them is not unrolled at -O2 and
+ * the fuse_candidates' passes: a loop over them is not unrolled at -O2 and
  * goes through the stack, in loops over every vertex. */
 static inline void to_voxels(const struct cand *c, const double p[3], double s[3])
 {
@@ -1471,6 +657,7 @@ static void vertex_slabs(struct cand *c, const struct geo *G, struct sblock **vb
  * more than the row.  By block from base (NULL: not looked up yet); those
  * farther out (bands of many voxels) are looked up each time. */
 enum { NEAR = 4 };
+
 struct near {
 	int32_t base[3];
 	struct sblock *b[NEAR][NEAR][NEAR];
@@ -1531,7 +718,7 @@ static int add_rows(struct scratch *s, const struct sblock *cb, const int32_t lo
 	return 0;
 }
 
-/* True distance: the box of b's candidates (lo..hi) from its rows, once
+/* True distance: the box of b's fuse_candidates (lo..hi) from its rows, once
  * they are all in (add_rows keeps to the bits: a byte store there had the
  * compiler load everything again for each row). */
 static void rows_box(struct sblock *b)
@@ -1642,7 +829,7 @@ static inline int has_data(float d)
  * thousandth of a pixel (as samples_chunk finds a vertex's sample) and
  * a hundred-thousandth of the depth.  Without a division: the camera's
  * x fx is the pixel's (u - cx) z on its ray. */
-static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
+int fuse_image_grid(const struct fct_fuse_view *v, const struct geo *G)
 {
 	if (!v->depth || v->cam.kind != FCT_CAMERA_PINHOLE)
 		return 0;
@@ -1667,7 +854,7 @@ static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
 	return k == G->nv;
 }
 
-/* Projective candidates of a view given as a depth image (image_grid), in
+/* Projective fuse_candidates of a view given as a depth image (fuse_image_grid), in
  * place of the triangle pass over its mesh: a pass over the image's pixel
  * cells (the square between four pixel centres), each standing for the
  * triangles of the mesh it holds, whichever they are (a triangle joins
@@ -1677,7 +864,7 @@ static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
  * BOX_TRIANGLE voxels across; a larger cell adds each three of its corners
  * whose box is so.  A triangle's box is within its cell's box or is one of
  * the threes, over the same blocks or more (and a box within one block
- * along an axis is within that block's extent there), so the candidates
+ * along an axis is within that block's extent there), so the fuse_candidates
  * hold the triangle pass's, and the voxels written hold those it would
  * have written (put_depth's test is the voxel's own), but for one kind:
  * the samples the triangle pass takes inside a triangle over BOX_TRIANGLE
@@ -1685,7 +872,7 @@ static int image_grid(const struct fct_fuse_view *v, const struct geo *G)
  * four voxels apart (a depth jump the mesher bridged, or a surface seen
  * edge-on): its inside is the mesher's interpolation, which no pixel
  * measured; a voxel by it reads its distance from a corner's pixel all
- * the same, and those near the corners stay candidates through the
+ * the same, and those near the corners stay fuse_candidates through the
  * vertices' boxes (vertex_boxes, as for any mesh).  The gain: each pixel's
  * point is scaled once, not once per triangle corner, and a run of cells
  * over the same blocks goes into them once (on the room at 1 cm about two
@@ -1772,7 +959,7 @@ done:
  * grown by half a voxel (each of its points is that close to a sample in
  * every axis) to their blocks.  img: a projective view given as a depth
  * image whose pixel cells stand for the triangles (image_cells), or NULL. */
-static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
+int fuse_candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo *G,
                       const struct fct_fuse_view *img, double vox, double band, int proj,
                       struct fct_err *err)
 {
@@ -1889,7 +1076,7 @@ static int candidates(struct scratch *s, struct fct_voxgrid *g, const struct geo
 	rc = 0;
 done:
 	free(vb);
-	scratch_free(&c.cells);
+	fuse_scratch_free(&c.cells);
 	return rc;
 }
 
@@ -1914,17 +1101,6 @@ static int commit(struct fct_voxgrid *g, size_t from, const struct scratch *s,
 	free(keep);
 	return 0;
 }
-
-/* Fusion of one view, block by block on the threads. */
-struct fctx {
-	const struct geo *G;
-	const struct raster *R;
-	const struct fct_fuse_view *v;
-	const struct fct_fuse_params *p;
-	const struct scratch *s;
-	double vox;
-	double band;             /* band_kept */
-};
 
 /* The triangle seen at sample (x, y), or at one of its 8 neighbours. */
 static int32_t seen_at(const struct raster *R, const int32_t *id, double x, double y)
@@ -2257,7 +1433,7 @@ static void put_true(const struct fctx *F, struct sblock *b, int l, const double
 	put(b, l, (float)d, (float)view_weight(F->v, F->p, h->q, n));
 }
 
-static void true_chunk(void *ctx, size_t lo, size_t hi, int worker)
+void fuse_true_blocks(void *ctx, size_t lo, size_t hi, int worker)
 {
 	(void)worker;
 	const struct fctx *F = ctx;
@@ -2268,7 +1444,7 @@ static void true_chunk(void *ctx, size_t lo, size_t hi, int worker)
 	for (size_t bi = lo; bi < hi; bi++) {
 		struct sblock *b = F->s->blk[bi];
 		int n = 0;
-		/* The candidates, by the bits of their rows (all in the box). */
+		/* The fuse_candidates, by the bits of their rows (all in the box). */
 		for (int z = b->lo[2]; z <= b->hi[2]; z++)
 			for (int y = b->lo[1]; y <= b->hi[1]; y++)
 				for (unsigned row = b->row[y + FCT_VOXBLOCK * z]; row; row &= row - 1) {
@@ -2340,8 +1516,9 @@ static inline int put_depth(struct fct_voxblock *vb, int fresh, int l, float r, 
 }
 
 #if defined(__SSE2__)
+
 /* A row of voxels seen by a pinhole, two at a time (SSE2: the division
- * and the projection were half of projective_chunk's time): the
+ * and the projection were half of fuse_projective_blocks's time): the
  * operations of the scalar code below, in its order, so the same numbers
  * and samples.  Camera coordinates c0 + n step for n = first .. first +
  * cnt - 1; for each voxel its sample (sample_index; -1 outside the raster
@@ -2394,7 +1571,7 @@ static inline void pin_row(const struct pin_step *P, const double c0[3], int fir
  * voxels in camera coordinates (pin_row where there is SSE2).  A block's
  * constants are in locals: its int8_t box would be loaded again after
  * every store of a float. */
-static void projective_chunk(void *ctx, size_t lo, size_t hi, int worker)
+void fuse_projective_blocks(void *ctx, size_t lo, size_t hi, int worker)
 {
 	(void)worker;
 	const struct fctx *F = ctx;
@@ -2483,7 +1660,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	double vox = fct_voxgrid_voxel(g), band = p->band;
 	int proj = p->projective;
 	struct geo G;
-	if (geo_build(&G, v->mesh, !proj, nthreads, err))
+	if (fuse_geo_build(&G, v->mesh, !proj, nthreads, err))
 		return -1;
 	struct raster R;
 	struct scratch s = { 0 };
@@ -2492,20 +1669,20 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	size_t max_samples = (size_t)1 << 26;
 	int failed;
 	if (!proj)
-		failed = raster_true(&R, v, &G, max_samples, nthreads, err) ||
+		failed = fuse_raster_true(&R, v, &G, max_samples, nthreads, err) ||
 		         geo_rings(&G, R.grid.cell ? &R.grid : NULL, err);
 	else if (v->depth)
-		failed = raster_image(&R, v, err);
+		failed = fuse_raster_image(&R, v, err);
 	else
-		failed = raster_build(&R, v, &G, 1, 0, max_samples, nthreads, err);
+		failed = fuse_raster_build(&R, v, &G, 1, 0, max_samples, nthreads, err);
 	if (failed)
 		goto done;
 	if (R.w > 0) {
-		const struct fct_fuse_view *img = proj && image_grid(v, &G) ? v : NULL;
-		if (candidates(&s, g, &G, img, vox, band, proj, err))
+		const struct fct_fuse_view *img = proj && fuse_image_grid(v, &G) ? v : NULL;
+		if (fuse_candidates(&s, g, &G, img, vox, band, proj, err))
 			goto done;
 		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox) };
-		fct_par_run(nthreads, s.n, 0, proj ? projective_chunk : true_chunk, &F);
+		fct_par_run(nthreads, s.n, 0, proj ? fuse_projective_blocks : fuse_true_blocks, &F);
 		if (commit(g, from, &s, st, err))
 			goto done;
 	}
@@ -2518,8 +1695,8 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 done:
 	if (rc)   /* no half-made blocks left behind */
 		fct_voxgrid_drop(g, from, NULL);
-	scratch_free(&s);
-	raster_free(&R);
-	geo_free(&G);
+	fuse_scratch_free(&s);
+	fuse_raster_free(&R);
+	fuse_geo_free(&G);
 	return rc;
 }
