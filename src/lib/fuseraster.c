@@ -58,8 +58,9 @@ static void project_chunk(void *ctx, size_t lo, size_t hi, int worker)
 	int ortho = R->v->cam.kind == FCT_CAMERA_NONE;
 	/* The chunk's box, merged into the worker's: minima and maxima, the
 	 * same in any order (but for the sign of a zero, which the frame
-	 * does not see: floor(-0) - 1 = floor(0) - 1). */
-	double *blo = P->lo[worker], *bhi = P->hi[worker];
+	 * does not see: floor(-0) - 1 = floor(0) - 1); in locals, as stores
+	 * through the worker's slot would go to memory for every vertex. */
+	double blo[2] = { P->lo[worker][0], P->lo[worker][1] }, bhi[2] = { P->hi[worker][0], P->hi[worker][1] };
 	for (size_t i = lo; i < hi; i++) {
 		double u, v, d;
 		double *o = &sp[3 * i];
@@ -74,6 +75,8 @@ static void project_chunk(void *ctx, size_t lo, size_t hi, int worker)
 			o[0] = o[1] = o[2] = NAN;
 		}
 	}
+	P->lo[worker][0] = blo[0], P->lo[worker][1] = blo[1];
+	P->hi[worker][0] = bhi[0], P->hi[worker][1] = bhi[1];
 }
 
 /* The depth the raster keeps for vertex i (sp: sample coordinates). */
