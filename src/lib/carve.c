@@ -127,28 +127,22 @@ static size_t carve_bubbles(const struct fct_voxgrid *g, const int32_t lo[3], ui
 	return filled;
 }
 
-/* The carving box's extent in voxels and 64-bit words: a box of nx x ny
- * x nz voxels, rows of nw words. */
-struct carve_box {
-	int32_t lo[3];
-	size_t nx, ny, nz, nw, words;
-};
-
-static int carve_box(struct carve_box *b, const int32_t lo[3], const int32_t hi[3], struct fct_err *err)
+/* The box lo..hi in c: its extent in voxels and words. */
+static int carve_box(struct fct_carving *c, const int32_t lo[3], const int32_t hi[3], struct fct_err *err)
 {
 	if (hi[0] < lo[0] || hi[1] < lo[1] || hi[2] < lo[2])
 		return fct_fail(err, "carving box is empty");
-	memcpy(b->lo, lo, sizeof b->lo);
-	b->nx = (size_t)(hi[0] - lo[0] + 1), b->ny = (size_t)(hi[1] - lo[1] + 1), b->nz = (size_t)(hi[2] - lo[2] + 1);
-	b->nw = (b->nx + 63) / 64;
+	memcpy(c->lo, lo, sizeof c->lo);
+	c->nx = (size_t)(hi[0] - lo[0] + 1), c->ny = (size_t)(hi[1] - lo[1] + 1), c->nz = (size_t)(hi[2] - lo[2] + 1);
+	c->nw = (c->nx + 63) / 64;
 	size_t rows;
-	if (fct_mul_size(b->ny, b->nz, &rows) || fct_mul_size(rows, b->nw, &b->words))
+	if (fct_mul_size(c->ny, c->nz, &rows) || fct_mul_size(rows, c->nw, &c->words))
 		return fct_fail(err, "carving box too large");
 	return 0;
 }
 
 /* K: the observed voxels of g (weight above 0) in the box. */
-static void observed_bits(const struct fct_voxgrid *g, const struct carve_box *x, uint64_t *K)
+static void observed_bits(const struct fct_voxgrid *g, const struct fct_carving *x, uint64_t *K)
 {
 	const int32_t *lo = x->lo;
 	for (size_t bi = 0; bi < fct_voxgrid_count(g); bi++) {
@@ -167,7 +161,7 @@ static void observed_bits(const struct fct_voxgrid *g, const struct carve_box *x
 
 /* C: the voxels of the box that range image r saw through (depth below
  * the range its pixel holds), the outermost layer never. */
-static void seen_through(const struct fct_range_image *r, double vox, const struct carve_box *x, uint64_t *C)
+static void seen_through(const struct fct_range_image *r, double vox, const struct fct_carving *x, uint64_t *C)
 {
 	const struct fct_camera *cam = &r->view.cam;
 	const double *M = r->inv;
@@ -211,7 +205,7 @@ static void seen_through(const struct fct_range_image *r, double vox, const stru
 /* Mark the empty and unknown voxels next to a change of state: sdf +band
  * (empty, C) or -band (unknown) with weight mark_weight.  A and B: 3 nw
  * words each of scratch.  0 or -1. */
-static int mark_changes(struct fct_voxgrid *g, const struct carve_box *x, const uint64_t *C,
+static int mark_changes(struct fct_voxgrid *g, const struct fct_carving *x, const uint64_t *C,
                         const uint64_t *K, uint64_t *A, uint64_t *B, double band, float mark_weight,
                         struct fct_err *err)
 {
@@ -263,38 +257,68 @@ static int mark_changes(struct fct_voxgrid *g, const struct carve_box *x, const 
 	return 0;
 }
 
-int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t nviews,
-              const int32_t lo[3], const int32_t hi[3], double band, float mark_weight,
-              size_t *carved, struct fct_err *err)
+int fct_carving_init(struct fct_carving *c, const int32_t lo[3], const int32_t hi[3], double vox,
+                      struct fct_err *err)
 {
-	struct carve_box x;
-	if (carve_box(&x, lo, hi, err))
+	memset(c, 0, sizeof *c);
+	if (carve_box(c, lo, hi, err))
 		return -1;
-	size_t nw = x.nw, words = x.words;
-	uint64_t *K = calloc(words, 8), *C = calloc(words, 8), *V = calloc(words, 8),
-	         *A = calloc(3 * nw, 8), *B = calloc(3 * nw, 8);
+	c->vox = vox;
+	if (!(c->seen = calloc(c->words, 8)))
+		return fct_fail(err, "out of memory for the carving bitsets (%zu MB)", 3 * c->words * 8 >> 20);
+	return 0;
+}
+
+void fct_carving_add(struct fct_carving *c, const struct fct_range_image *r)
+{
+	seen_through(r, c->vox, c, c->seen);
+}
+
+int fct_carving_finish(struct fct_carving *c, struct fct_voxgrid *g, double band, float mark_weight,
+                       size_t *carved, struct fct_err *err)
+{
+	size_t nw = c->nw, words = c->words;
+	uint64_t *C = c->seen;
+	uint64_t *K = calloc(words, 8), *V = calloc(words, 8), *A = calloc(3 * nw, 8), *B = calloc(3 * nw, 8);
 	int rc = -1;
-	if (!K || !C || !V || !A || !B) {
+	if (!K || !V || !A || !B) {
 		fct_fail(err, "out of memory for the carving bitsets (%zu MB)", 3 * words * 8 >> 20);
 		goto done;
 	}
-	observed_bits(g, &x, K);
-	for (size_t vi = 0; vi < nviews; vi++)
-		seen_through(&views[vi], fct_voxgrid_voxel(g), &x, C);
+	observed_bits(g, c, K);
 	size_t ncarved = 0;
 	for (size_t w = 0; w < words; w++) {
 		C[w] &= ~K[w];
 		ncarved += (size_t)__builtin_popcountll(C[w]);
 	}
-	ncarved += carve_bubbles(g, lo, C, K, V, x.nx, x.ny, x.nz, nw);
+	ncarved += carve_bubbles(g, c->lo, C, K, V, c->nx, c->ny, c->nz, nw);
 	if (carved)
 		*carved = ncarved;
-	rc = mark_changes(g, &x, C, K, A, B, band, mark_weight, err);
+	rc = mark_changes(g, c, C, K, A, B, band, mark_weight, err);
 done:
 	free(K);
-	free(C);
 	free(V);
 	free(A);
 	free(B);
+	return rc;
+}
+
+void fct_carving_free(struct fct_carving *c)
+{
+	free(c->seen);
+	memset(c, 0, sizeof *c);
+}
+
+int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t nviews,
+              const int32_t lo[3], const int32_t hi[3], double band, float mark_weight,
+              size_t *carved, struct fct_err *err)
+{
+	struct fct_carving c;
+	if (fct_carving_init(&c, lo, hi, fct_voxgrid_voxel(g), err))
+		return -1;
+	for (size_t vi = 0; vi < nviews; vi++)
+		fct_carving_add(&c, &views[vi]);
+	int rc = fct_carving_finish(&c, g, band, mark_weight, carved, err);
+	fct_carving_free(&c);
 	return rc;
 }
