@@ -598,22 +598,18 @@ static void fuse_views(struct views *vs, struct fct_voxgrid *g, struct fct_carvi
 }
 
 #ifdef __GLIBC__
-/* Keep freed memory for reuse instead of faulting fresh pages in (on the
- * 2-vCPU VM, about 1.4 us per 4 KB page):
- * - each view allocates and frees arrays of several MB (normals,
+/* Keep freed memory for reuse instead of faulting fresh pages in:
+ * - each view allocates and frees arrays of several MB (its mesh, normals,
  *   projections, cells); glibc would give them back to the kernel and
  *   fault them in afresh, zeroed, for the next view;
- * - marching cubes' output (85 MB for the room at 1 cm) fits in the views'
- *   memory, freed before it, only if that memory is one free run.  The
- *   small allocations made while a view is read (header strings, element
- *   tables) come from the top of the heap when no free chunk is below,
- *   between one view's arrays and the next, and once freed they stay in
- *   glibc's per-thread cache, which never coalesces: the four freed views
- *   were seven pieces of 10 MB and one of 35, room for one of the output's
- *   two 26 MB arrays, and the extraction faulted in 6,050 pages.  A block
+ * - marching cubes' output can reuse the last view's memory only if that
+ *   memory is one free run.  The small allocations made while a view is
+ *   read (header strings, element tables) come from the top of the heap
+ *   when no free chunk is below, between a view's arrays, and once freed
+ *   they stay in glibc's per-thread cache, which never coalesces.  A block
  *   freed now, below everything else, serves those small allocations
- *   instead: one free run of 103 MB, 23 faults, mcubes_s 0.070 -> 0.059 s
- *   (one thread, medians of 3). */
+ *   instead.
+ * The measurements are in bench/NOTES.md. */
 static void *volatile heap_pin;         /* holds the pool out of the top chunk */
 
 static void keep_freed_memory(void)
