@@ -35,8 +35,8 @@ endif
 build/config.mk: tools/install-deps
 	@mkdir -p build
 	@tools/install-deps --quiet
-	@{ echo "DEP_CFLAGS = $$(pkg-config --cflags libpng zlib lapack blas)"; \
-	   echo "DEP_LIBS = $$(pkg-config --libs libpng zlib lapack blas)"; } > $@.tmp && mv $@.tmp $@
+	@{ echo "DEP_CFLAGS = $$(pkg-config --cflags libpng libjpeg zlib lapack blas)"; \
+	   echo "DEP_LIBS = $$(pkg-config --libs libpng libjpeg zlib lapack blas)"; } > $@.tmp && mv $@.tmp $@
 
 LIB_SRC = $(sort $(wildcard src/lib/*.c))
 CMD_SRC = $(sort $(wildcard src/cmd/*.c))

@@ -103,6 +103,30 @@ row "marching cubes M voxels/s, all threads (wall)" "$(mvox "$blocks" "$mc")"
 echo "marching cubes alone, ms per phase (wall, median): $(sed -n 's/^phase_ms=//p' "$dir/mc" |
 	awk '{ printf "pass 0 %s, pass 1 %s, pass 2 %s, allocation %s, vertices %s, triangles %s", $1, $2, $3, $4, $5, $6 }')"
 
+# Memory: the views are read one at a time, so 72 views of the room cost
+# about what 24 do (issue 25: at most 1.25 times), carving and colour on,
+# depth images with their colour images, at 0.02 m; tsdfuse's own peak RSS.
+mkscene -q --views 72 -o "$dir/room72" >/dev/null 2>&1
+views() {
+	a="-K $K" i=0
+	while [ $i -lt 72 ]; do
+		n=$(printf %02d $i)
+		a="$a --poses $dir/room72/view$n.pose --image $dir/room72/view$n.color.png"
+		i=$((i + $1))
+	done
+	i=0
+	while [ $i -lt 72 ]; do
+		a="$a $dir/room72/view$(printf %02d $i).depth.pfm"
+		i=$((i + $1))
+	done
+	echo "$a"
+}
+m24=$(tsdfuse -v --carve --voxel 0.02 $(views 3) 2>&1 >/dev/null | sed -n 's/^tsdfuse: peak_rss_mb=//p')
+m72=$(tsdfuse -v --carve --voxel 0.02 $(views 1) 2>&1 >/dev/null | sed -n 's/^tsdfuse: peak_rss_mb=//p')
+row "peak memory MB, 24 views, --carve --color, 0.02 m" "$m24"
+row "peak memory MB, 72 views, --carve --color, 0.02 m" "$m72"
+row "peak memory, 72 views over 24 (goal <= 1.25)" "$(awk -v a="$m72" -v b="$m24" 'BEGIN { printf "%.3f", a / b }')"
+
 B=/work/shared/data/stanford_bunny
 if [ -r "$B/data/bun.conf" ]; then
 	t=$(figure total_s --voxel 0.0005 --conf "$B/data/bun.conf")

@@ -20,6 +20,7 @@
 #include "path.h"
 #include "planes.h"
 #include "raster.h"
+#include "texcoord.h"
 
 static const char usage[] =
 	"usage: meshshot [-ehqvw] [-m mode] [-o file] [-s WxH] [--bg r,g,b] [--cmap name]\n"
@@ -29,8 +30,9 @@ static const char usage[] =
 	"Render a mesh (PLY or OBJ) to a PNG picture with a software rasteriser.\n"
 	"  -e              draw the edge element (vertex1 vertex2, simpchain's\n"
 	"                  wireframe) as red lines\n"
-	"  -m mode         auto (default: texture when the mesh has s t and a\n"
-	"                  TextureFile, shaded otherwise), shaded, patch (face\n"
+	"  -m mode         auto (default: texture when the mesh has texture\n"
+	"                  coordinates, s t or face texcoord, and a TextureFile;\n"
+	"                  shaded otherwise), shaded, patch (face\n"
 	"                  patch coloured), texture, color (vertex red green blue),\n"
 	"                  scalar (see --scalar)\n"
 	"  -o file         the PNG (default standard output)\n"
@@ -49,7 +51,8 @@ static const char usage[] =
 	"                  legend; implies -m scalar\n"
 	"      --smooth    smooth shading from vertex normals (default flat)\n"
 	"      --target x,y,z   the point looked at (default the bounding box centre)\n"
-	"      --texture file   the texture image (default the TextureFile comment)\n"
+	"      --texture file   the texture image (default the TextureFile comment;\n"
+	"                  PNG, JPEG or PFM; textures at most 2^26 pixels in all)\n"
 	"      --title text     a caption in the top-left corner\n"
 	"      --up x,y,z  the direction that points up in the picture (default the\n"
 	"                  camera's up, -y of its frame)\n"
@@ -58,6 +61,11 @@ static const char usage[] =
 	"                  the mesh\n"
 	"  -h, --help      this help\n"
 	"      --version   print the version\n";
+
+/* The texture pixels drawn, all textures together: 2^26 (8192x8192, 200
+ * MB as RGB); a texture past them is refused from its header before it is
+ * decoded. */
+#define TEXTURE_MAX_PIXELS ((size_t)1 << 26)
 
 enum mode { M_AUTO, M_SHADED, M_PATCH, M_TEXTURE, M_COLOR, M_SCALAR };
 
@@ -350,14 +358,80 @@ struct scene {
 	const uint32_t *tri, *tface;
 	const double *q;          /* camera-frame vertices */
 	double *vn;               /* smooth: camera-frame vertex normals */
-	double *s, *t;            /* texture coordinates */
-	struct fct_image tex;     /* RGB U8 */
+	float *uv;                /* texture coordinates at each triangle's 3 corners */
+	int32_t *ttex;            /* each triangle's texture, -1 none */
+	struct fct_image *tex;    /* RGB U8, one per TextureFile */
+	size_t ntex;
 	int32_t *patch;
 	double *rgb[3];           /* vertex colours */
 	double *val;              /* scalar per vertex, or per face when val_face */
 	int val_face;
 	double lo, hi;
 };
+
+/* The texture coordinates at the corners of each triangle (fct_mesh_fan's:
+ * a face's triangles are consecutive, fanned from its first corner), from
+ * the face corners (a texcoord list) or the vertices (s t or another name
+ * of texcoord.h), NaN where a face has none; and each triangle's texture,
+ * its face's texnumber (0 without one; -1 when out of range).  0, or -1
+ * when the mesh has no texture coordinates. */
+static int corner_texcoords(struct scene *sc, size_t ntri, size_t ntex, struct fct_err *err)
+{
+	const struct fct_mesh *m = sc->m;
+	const struct fct_prop *ps, *pt, *corner = fct_texcoord_face(m);
+	if (!corner && !fct_texcoord_vertex(m, &ps, &pt))
+		return -1;
+	const struct fct_prop *tn = fct_elem_find(&m->face, "texnumber");
+	if (tn && tn->count_type != FCT_NONE)
+		tn = NULL;
+	if (!(sc->uv = fct_alloc_array(6 * ntri, sizeof *sc->uv, err)) ||
+	    !(sc->ttex = fct_alloc_array(ntri, sizeof *sc->ttex, err)))
+		fct_die_err(err);
+	uint32_t j = 0;       /* the triangle's place in its face's fan */
+	for (size_t k = 0; k < ntri; k++) {
+		size_t f = sc->tface[k];
+		j = k && sc->tface[k - 1] == f ? j + 1 : 1;
+		double tex = tn ? fct_prop_get(tn, f) : 0;
+		sc->ttex[k] = tex >= 0 && tex < (double)ntex ? (int32_t)tex : -1;
+		uint32_t size = fct_face_size(m, f);
+		uint32_t c[3] = { 0, size < 3 ? size - 1 : j, size < 3 ? size - 1 : j + 1 };
+		for (int i = 0; i < 3; i++) {
+			float *uv = sc->uv + 6 * k + 2 * (size_t)i;
+			if (!corner) {
+				uv[0] = (float)fct_prop_get(ps, sc->tri[3 * k + (size_t)i]);
+				uv[1] = (float)fct_prop_get(pt, sc->tri[3 * k + (size_t)i]);
+			} else if (corner->off[f + 1] > corner->off[f]) {
+				uv[0] = (float)fct_prop_get(corner, corner->off[f] + 2 * (size_t)c[i]);
+				uv[1] = (float)fct_prop_get(corner, corner->off[f] + 2 * (size_t)c[i] + 1);
+			} else {
+				uv[0] = uv[1] = NAN;
+			}
+		}
+	}
+	return 0;
+}
+
+/* Read the textures (tex[0] from --texture when given, else every
+ * TextureFile) as RGB over bg, within TEXTURE_MAX_PIXELS in all. */
+static void read_textures(struct scene *sc, const struct opts *o, struct fct_err *err)
+{
+	size_t n = fct_header_texture_count(sc->m), budget = TEXTURE_MAX_PIXELS;
+	if (!n)
+		n = 1;       /* --texture alone */
+	if (!(sc->tex = fct_alloc_array(n, sizeof *sc->tex, err)))
+		fct_die_err(err);
+	memset(sc->tex, 0, n * sizeof *sc->tex);
+	for (size_t i = 0; i < n; i++) {
+		const char *path = i == 0 && o->texture ? o->texture : fct_header_texture(sc->m, i);
+		struct fct_image raw;
+		if (fct_image_read_file_max(&raw, path, budget, NULL, err) ||
+		    fct_image_to_rgb8(&raw, o->bg, &sc->tex[i], err))
+			fct_die_err(err);
+		budget -= (size_t)raw.width * (size_t)raw.height;
+		fct_image_free(&raw);
+		sc->ntex = i + 1;
+	}
+}
 
 /* Towards the light, in the camera frame: from above left of the eye. */
 static const double light[3] = { -0.22965760608731267, -0.32152064852223772, -0.91863042434925068 };
@@ -410,10 +484,11 @@ static void shade(const struct opts *o, const struct scene *sc, const struct fct
 			break;
 		}
 		case M_TEXTURE: {
-			double s = b0 * sc->s[t[0]] + b1 * sc->s[t[1]] + b2 * sc->s[t[2]];
-			double tt = b0 * sc->t[t[0]] + b1 * sc->t[t[1]] + b2 * sc->t[t[2]];
-			if (isfinite(s) && isfinite(tt))
-				fct_texture_sample(&sc->tex, s, tt, c);
+			const float *uv = sc->uv + 6 * (size_t)k;
+			double s = b0 * uv[0] + b1 * uv[2] + b2 * uv[4];
+			double tt = b0 * uv[1] + b1 * uv[3] + b2 * uv[5];
+			if (isfinite(s) && isfinite(tt) && sc->ttex[k] >= 0)
+				fct_texture_sample(&sc->tex[sc->ttex[k]], s, tt, c);
 			else
 				c[0] = c[1] = c[2] = 128;
 			break;
@@ -580,29 +655,29 @@ int main(int argc, char **argv)
 
 	/* What the mode needs, before any drawing, so bad data fails early. */
 	enum mode mode = o.mode;
-	sc.s = vertex_column(&m, "s");
-	sc.t = vertex_column(&m, "t");
-	const char *texpath = o.texture ? o.texture : fct_header_texture(&m, 0);
+	size_t ntex = fct_header_texture_count(&m);
+	int has_uv = mode == M_AUTO || mode == M_TEXTURE ?
+	             !corner_texcoords(&sc, ntri, ntex ? ntex : 1, &err) : 0;
 	if (mode == M_AUTO) {
-		mode = (sc.s && sc.t && texpath && ntri) ? M_TEXTURE : M_SHADED;
-		FILE *f;
-		if (mode == M_TEXTURE && !o.texture && !(f = fopen(texpath, "rb"))) {
-			fct_warn("%s: TextureFile %s cannot be opened; drawing shaded", name, texpath);
-			mode = M_SHADED;
-		} else if (mode == M_TEXTURE && !o.texture) {
-			fclose(f);
+		mode = (has_uv && (ntex || o.texture) && ntri) ? M_TEXTURE : M_SHADED;
+		for (size_t i = o.texture ? 1 : 0; mode == M_TEXTURE && i < ntex; i++) {
+			const char *path = fct_header_texture(&m, i);
+			FILE *f = fopen(path, "rb");
+			if (!f) {
+				fct_warn("%s: TextureFile %s cannot be opened; drawing shaded", name, path);
+				mode = M_SHADED;
+			} else {
+				fclose(f);
+			}
 		}
 	}
 	if (mode == M_TEXTURE) {
-		if (!sc.s || !sc.t)
-			fct_die(1, "%s: -m texture: the vertices have no s t", name);
-		if (!texpath)
+		if (!has_uv)
+			fct_die(1, "%s: -m texture: no texture coordinates (vertex s t, texture_u "
+			        "texture_v, u v, or face texcoord)", name);
+		if (!ntex && !o.texture)
 			fct_die(1, "%s: -m texture: no TextureFile comment; name the image with --texture", name);
-		struct fct_image raw;
-		if (fct_image_read_file(&raw, texpath, NULL, &err) ||
-		    fct_image_to_rgb8(&raw, o.bg, &sc.tex, &err))
-			fct_die_err(&err);
-		fct_image_free(&raw);
+		read_textures(&sc, &o, &err);
 	}
 	if (mode == M_PATCH) {
 		int present;
@@ -756,12 +831,14 @@ int main(int argc, char **argv)
 	fct_report("write_s", "%.3f", write_s);
 
 	fct_image_free(&img);
-	fct_image_free(&sc.tex);
+	for (size_t i = 0; i < sc.ntex; i++)
+		fct_image_free(&sc.tex[i]);
+	free(sc.tex);
 	fct_raster_free(&r);
 	free(q);
 	free(sc.vn);
-	free(sc.s);
-	free(sc.t);
+	free(sc.uv);
+	free(sc.ttex);
 	free(sc.patch);
 	free(sc.val);
 	for (int j = 0; j < 3; j++)

@@ -19,8 +19,9 @@ static const char usage[] =
 	"usage: pngsheet [-qv] [-b pixels] [-c columns] [-o file] [--bg r,g,b]\n"
 	"                [--title text] image[=caption] ...\n"
 	"       pngsheet -d tolerance A B\n"
-	"Put PNG (or PFM) pictures side by side on one PNG contact sheet, in rows\n"
-	"of equal cells, each with its caption (default the file name) below it.\n"
+	"Put PNG, JPEG or PFM pictures side by side on one PNG contact sheet, in\n"
+	"rows of equal cells, each with its caption (default the file name) below it.\n"
+	"The sheet may have at most 32768 pixels a side and 2^28 in all.\n"
 	"  -b pixels       border between cells and around them (default 8)\n"
 	"  -c columns      pictures per row (default: as square a sheet as may be)\n"
 	"  -d tolerance    compare pictures A and B instead: exit 0 when every\n"
@@ -33,17 +34,26 @@ static const char usage[] =
 	"  -h, --help      this help\n"
 	"      --version   print the version\n";
 
+/* The largest sheet, and so the largest picture: 2^28 pixels (768 MB of
+ * RGB), no side over 32768. */
+#define SHEET_MAX_SIDE 32768
+#define SHEET_MAX_PIXELS ((size_t)1 << 28)
+
 struct cell {
 	char *path;
 	const char *caption;
-	struct fct_image img;    /* RGB U8 */
+	struct fct_image img;    /* RGB U8; before decoding, only the shape */
 };
 
-static int read_rgb(const char *path, const unsigned char bg[3], struct fct_image *img)
+/* Read the picture at path as 8-bit RGB over bg, refusing before decoding
+ * one of more than max_pixels pixels. */
+static int read_rgb(const char *path, const unsigned char bg[3], size_t max_pixels,
+                    struct fct_image *img)
 {
 	struct fct_err err;
 	struct fct_image raw;
-	if (fct_image_read_file(&raw, path, NULL, &err) || fct_image_to_rgb8(&raw, bg, img, &err)) {
+	if (fct_image_read_file_max(&raw, path, max_pixels, NULL, &err) ||
+	    fct_image_to_rgb8(&raw, bg, img, &err)) {
 		fct_image_free(&raw);
 		fct_die_err(&err);
 	}
@@ -56,8 +66,8 @@ static int compare(const char *a, const char *b, double tol)
 {
 	static const unsigned char white[3] = { 255, 255, 255 };
 	struct fct_image ia, ib;
-	read_rgb(a, white, &ia);
-	read_rgb(b, white, &ib);
+	read_rgb(a, white, SHEET_MAX_PIXELS, &ia);
+	read_rgb(b, white, SHEET_MAX_PIXELS, &ib);
 	if (ia.width != ib.width || ia.height != ib.height)
 		fct_die(1, "%s %s: sizes differ (%dx%d and %dx%d)", fct_path_display(a),
 		        fct_path_display(b), ia.width, ia.height, ib.width, ib.height);
@@ -152,7 +162,10 @@ int main(int argc, char **argv)
 		}
 		if (fct_path_is_std(cells[i].path))
 			fct_usage_error("the pictures must be files");
-		read_rgb(cells[i].path, bg, &cells[i].img);
+		/* The shapes first: the sheet's size is checked before any picture
+		 * is decoded. */
+		if (fct_image_probe_file(&cells[i].img, cells[i].path, NULL, &err))
+			fct_die_err(&err);
 		cw = cells[i].img.width > cw ? cells[i].img.width : cw;
 		ch = cells[i].img.height > ch ? cells[i].img.height : ch;
 	}
@@ -166,8 +179,12 @@ int main(int argc, char **argv)
 		fct_text_size(title, 2 * scale, &tw, &th);
 	double W = (double)cols * (cw + border) + border;
 	double H = (double)rows * (ch + caph + border) + border + (title ? th + border : 0);
-	if (W > 32768 || H > 32768 || W * H > (double)(1L << 28))
-		fct_die(1, "the sheet would be %.0fx%.0f pixels; use smaller pictures or -c", W, H);
+	if (W > SHEET_MAX_SIDE || H > SHEET_MAX_SIDE || W * H > (double)SHEET_MAX_PIXELS)
+		fct_die(1, "the sheet would be %.0fx%.0f pixels, over %d a side or 2^28 in all; "
+		        "use smaller pictures or -c", W, H, SHEET_MAX_SIDE);
+	for (int i = 0; i < n; i++)
+		read_rgb(cells[i].path, bg, (size_t)cells[i].img.width * (size_t)cells[i].img.height,
+		         &cells[i].img);
 	struct fct_image sheet;
 	if (fct_image_alloc(&sheet, (int)W, (int)H, 3, FCT_PIX_U8, &err))
 		fct_die_err(&err);

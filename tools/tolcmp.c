@@ -17,6 +17,7 @@
 
 #include "cli.h"
 #include "numparse.h"
+#include "reader.h"
 
 static const char usage[] =
 	"usage: tolcmp [-s] [-a abs] [-r rel] file1 file2\n"
@@ -99,23 +100,29 @@ static int tokens_match(const char *a, const char *b, double *diff)
 struct input {
 	const char *name;
 	FILE *f;
+	struct fct_reader r;
 	char *line;
-	size_t cap;
 	ssize_t len;
 	long lineno;
 };
 
-/* Next line of in; 0 at end of file; exits 2 on a read error. */
+/* Next line of in (at most the reader's 16 MB, without its line end); 0 at
+ * end of file; exits 2 on a read error, an overlong line or a NUL byte
+ * (binary input: /dev/zero would otherwise be read until memory ran out). */
 static int next_line(struct input *in)
 {
-	errno = 0;
-	in->len = getline(&in->line, &in->cap, in->f);
-	if (in->len < 0) {
-		if (ferror(in->f) || errno == ENOMEM)
-			fct_die(2, "%s: %s", in->name, strerror(errno ? errno : EIO));
+	struct fct_err err;
+	size_t n;
+	in->line = fct_reader_line(&in->r, &n, &err);
+	if (!in->line) {
+		if (err.msg[0])
+			fct_die(2, "%s", err.msg);
 		return 0;
 	}
 	in->lineno++;
+	if (memchr(in->line, 0, n))
+		fct_die(2, "%s:%ld: NUL byte: not a text file", in->name, in->lineno);
+	in->len = (ssize_t)n;
 	return 1;
 }
 
@@ -179,17 +186,26 @@ static int compare_lines(struct input *a, struct input *b)
 	return 1;
 }
 
+static void start_input(struct input *in)
+{
+	struct fct_err err;
+	if (fct_reader_init(&in->r, in->f, in->name, &err))
+		fct_die(2, "%s", err.msg);
+}
+
 static void open_input(struct input *in, const char *path)
 {
 	memset(in, 0, sizeof *in);
 	if (!strcmp(path, "-")) {
 		in->name = "<stdin>";
 		in->f = stdin;
+		start_input(in);
 		return;
 	}
 	in->name = path;
 	if (!(in->f = fopen(path, "r")))
 		fct_die(2, "%s: %s", path, strerror(errno));
+	start_input(in);
 }
 
 int main(int argc, char **argv)
@@ -240,8 +256,8 @@ int main(int argc, char **argv)
 			break;
 		}
 	}
-	free(a.line);
-	free(b.line);
+	fct_reader_free(&a.r);
+	fct_reader_free(&b.r);
 	if (a.f != stdin)
 		fclose(a.f);
 	if (b.f != stdin)

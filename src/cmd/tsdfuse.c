@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -399,55 +400,148 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 	L->view.mesh = &L->mesh;
 }
 
-/* --color, before the view meshes are freed: the range image of each view
- * that has a colour image (carving's, when it made them).  Returns the
- * number of such views. */
-static size_t color_ranges(struct loaded *L, struct fct_range_image *ri, size_t nv)
+/* The views, read one at a time: each is loaded, used and freed before
+ * the next (memory bounded by the volume, not the number of views), in as
+ * many passes as the options need: the box carving needs first, the
+ * fusion, and with --color the colour after extraction. */
+struct views {
+	struct options *o;
+	const struct fct_conf *conf;
+	const struct traj *tr;
+	const struct fct_camera *dcam;
+	const struct fct_depth_params *dp;
+	size_t n;
+	size_t *image;           /* per view: 1 + its --image, 0 for none */
+	double read_s;           /* time spent reading them */
+};
+
+/* The depth images among the operands get the --image files in order. */
+static void views_init(struct views *vs, struct options *o, const struct fct_conf *conf)
 {
+	vs->o = o, vs->conf = conf;
+	vs->n = o->nviews + conf->n;
+	vs->image = calloc(vs->n ? vs->n : 1, sizeof *vs->image);
+	if (!vs->image)
+		fct_die(1, "out of memory");
+	size_t nimage = 0;
+	for (size_t i = 0; i < o->nviews; i++)
+		if (is_image(o->views[i]))
+			vs->image[i] = nimage < o->nimages ? ++nimage : (nimage++, 0);
+	if (o->nimages && o->nimages != nimage)
+		fct_usage_error("%zu depth views but %zu --image files", nimage, o->nimages);
+}
+
+static void view_open(struct views *vs, size_t i, struct loaded *L)
+{
+	double t = fct_now();
 	struct fct_err err;
-	size_t n = 0;
-	for (size_t i = 0; i < nv; i++) {
-		if (!L[i].image || L[i].view.cam.kind == FCT_CAMERA_NONE)
-			continue;
-		n++;
-		if (!ri[i].range && fct_range_image_make(&ri[i], &L[i].view, (size_t)1 << 26, &err)) {
-			fct_err_prefix(&err, "%s", L[i].name);
-			fct_die_err(&err);
+	memset(L, 0, sizeof *L);
+	load_view(vs->o, i, vs->conf, vs->tr, vs->dcam, vs->dp, L);
+	if (L->depth_image && vs->image[i] && !(L->image = fct_strdup(vs->o->images[vs->image[i] - 1], &err)))
+		fct_die_err(&err);
+	vs->read_s += fct_now() - t;
+}
+
+static void view_close(struct loaded *L)
+{
+	fct_mesh_free(&L->mesh);
+	free(L->depth);
+	free(L->image);
+	memset(L, 0, sizeof *L);
+}
+
+/* The views' extent: the box of their vertices and their area. */
+struct extent {
+	double lo[3], hi[3], area;
+	size_t n;
+};
+
+static void extent_add(struct extent *e, const struct fct_mesh *m)
+{
+	e->n++;
+	e->area += mesh_area(m);
+	for (size_t v = 0; v < m->nv; v++)
+		for (int k = 0; k < 3; k++) {
+			double x = m->xyz[3 * v + k];
+			e->lo[k] = x < e->lo[k] ? x : e->lo[k];
+			e->hi[k] = x > e->hi[k] ? x : e->hi[k];
+		}
+}
+
+/* The voxels the views reach (within --bbox), clo..chi, and the memory
+ * the volume needs for them: the band around their surface in blocks (at
+ * most their box's), and the carving bitsets.  Dies when that is more
+ * than the machine has, or the voxels overflow the indices. */
+static double volume_box(const struct options *o, const struct extent *e, int32_t clo[3], int32_t chi[3])
+{
+	double vox = o->voxel, band = o->fp.band, lo[3], hi[3];
+	for (int k = 0; k < 3; k++) {
+		lo[k] = e->lo[k], hi[k] = e->hi[k];
+		if (o->has_bbox) {
+			lo[k] = fmax(lo[k], o->bbox[k] - 3 * vox);
+			hi[k] = fmin(hi[k], o->bbox[k + 3] + 3 * vox);
 		}
 	}
-	if (!n)
-		fct_warn("--color: no view has a colour image (TextureFile comment or --image): "
-		         "every vertex gets the fallback grey");
-	return n;
+	double bs = 8 * vox, bbox_blocks = 1;
+	for (int k = 0; k < 3; k++)
+		bbox_blocks *= fmax(hi[k] - lo[k], 0) / bs + 3;
+	double band_blocks = 2 * e->area / (bs * bs) * (1 + 2 * band / bs) + 27.0 * (double)e->n;
+	double est = fmin(band_blocks, bbox_blocks) * (double)fct_voxgrid_block_bytes(0);
+	for (int k = 0; k < 3; k++) {
+		double a = floor((lo[k] - band) / vox) - 2, b = ceil((hi[k] + band) / vox) + 2;
+		if (!(fabs(a) < (1 << 23) && fabs(b) < (1 << 23)))
+			fct_die(1, "--voxel %g: the views span %g m, %.3g voxels: too many for 32-bit indices",
+			        vox, hi[k] - lo[k], (hi[k] - lo[k]) / vox);
+		clo[k] = (int32_t)a, chi[k] = (int32_t)b;
+	}
+	if (o->carve)
+		est += (double)fct_carve_bytes(clo, chi);
+	double have = machine_bytes();
+	if (est > 0.8 * have)
+		fct_die(1, "--voxel %g: needs about %.1f GB, the machine has %.1f GB", vox, est / 1e9, have / 1e9);
+	return est;
 }
 
 /* --color: each vertex of out gets the weighted average colour of the
- * views that see it (viewcolor.h), grey 128 when none does.  One image in
- * memory at a time. */
-static void color_vertices(const struct options *o, const struct loaded *L,
-                           const struct fct_range_image *ri, size_t nv, struct fct_mesh *out)
+ * views that see it (viewcolor.h), grey 128 when none does.  The views
+ * are read again, one with its range image and colour image at a time. */
+static void color_vertices(struct views *vs, struct fct_mesh *out, size_t *ncolor)
 {
 	struct fct_err err;
 	struct fct_viewcolor acc;
 	if (fct_viewcolor_init(&acc, out->nv, &err))
 		fct_die_err(&err);
-	struct fct_viewcolor_params cp = { o->fp.band, o->fp.weight, 4 };
-	for (size_t i = 0; i < nv; i++) {
-		if (!L[i].image || !ri[i].range)
-			continue;
-		struct fct_image img;
-		size_t seen;
-		if (fct_image_read_file(&img, L[i].image, NULL, &err))
-			fct_die_err(&err);
-		int rc = fct_viewcolor_add(&acc, out, &ri[i], &img, &cp, &seen, &err);
-		fct_image_free(&img);
-		if (rc) {
-			fct_err_prefix(&err, "%s", L[i].name);
-			fct_die_err(&err);
+	struct fct_viewcolor_params cp = { vs->o->fp.band, vs->o->fp.weight, 4 };
+	*ncolor = 0;
+	for (size_t i = 0; i < vs->n; i++) {
+		struct loaded L;
+		view_open(vs, i, &L);
+		if (L.image && L.view.cam.kind != FCT_CAMERA_NONE) {
+			++*ncolor;
+			struct fct_range_image ri;
+			struct fct_image img;
+			size_t seen;
+			if (fct_range_image_make(&ri, &L.view, (size_t)1 << 26, &err)) {
+				fct_err_prefix(&err, "%s", L.name);
+				fct_die_err(&err);
+			}
+			if (fct_image_read_file(&img, L.image, NULL, &err))
+				fct_die_err(&err);
+			int rc = fct_viewcolor_add(&acc, out, &ri, &img, &cp, &seen, &err);
+			fct_image_free(&img);
+			fct_range_image_free(&ri);
+			if (rc) {
+				fct_err_prefix(&err, "%s", L.name);
+				fct_die_err(&err);
+			}
+			if (fct_verbose)
+				fprintf(stderr, "tsdfuse: colour from %s: %zu vertices seen\n", L.name, seen);
 		}
-		if (fct_verbose)
-			fprintf(stderr, "tsdfuse: colour from %s: %zu vertices seen\n", L[i].name, seen);
+		view_close(&L);
 	}
+	if (!*ncolor)
+		fct_warn("--color: no view has a colour image (TextureFile comment or --image): "
+		         "every vertex gets the fallback grey");
 	static const uint8_t grey[3] = { 128, 128, 128 };
 	struct fct_viewcolor_stats st;
 	if (fct_viewcolor_write(&acc, out, grey, &st, &err))
@@ -458,23 +552,64 @@ static void color_vertices(const struct options *o, const struct loaded *L,
 	fct_report("views_per_vertex", "%.2f", st.views_per_vertex);
 }
 
+/* Fuse the views into g, one at a time; with carving, each view's range
+ * image goes into it as soon as the view is fused.  Without it, the
+ * views' extent is gathered here (carving needs it before: pre, or NULL)
+ * and the memory checked as it grows. */
+static void fuse_views(struct views *vs, struct fct_voxgrid *g, struct fct_carving *carving,
+                       struct extent *e, int pre, struct fct_fuse_stats *st, double *fuse_s, double *carve_s)
+{
+	struct options *o = vs->o;
+	struct fct_err err;
+	for (size_t i = 0; i < vs->n; i++) {
+		struct loaded L;
+		view_open(vs, i, &L);
+		if (!pre) {
+			int32_t clo[3], chi[3];
+			extent_add(e, &L.mesh);
+			volume_box(o, e, clo, chi);
+		}
+		double tv = fct_now();
+		if (fct_fuse_view(g, &L.view, &o->fp, st, &err)) {
+			fct_err_prefix(&err, "%s", L.name);
+			fct_die_err(&err);
+		}
+		double dt = fct_now() - tv;
+		*fuse_s += dt;
+		if (fct_verbose)
+			fprintf(stderr, "tsdfuse: view %zu/%zu %s: %zu faces, %.1f ms\n", i + 1, vs->n, L.name,
+			        L.mesh.nf, 1e3 * dt);
+		if (carving) {
+			double tc = fct_now();
+			struct fct_range_image ri;
+			double vox = o->voxel;
+			if (L.view.cam.kind == FCT_CAMERA_NONE && L.view.ortho_step < vox / 2)
+				L.view.ortho_step = vox / 2;
+			if (fct_range_image_make(&ri, &L.view, (size_t)1 << 26, &err)) {
+				fct_err_prefix(&err, "%s", L.name);
+				fct_die_err(&err);
+			}
+			fct_carving_add(carving, &ri);
+			fct_range_image_free(&ri);
+			*carve_s += fct_now() - tc;
+		}
+		view_close(&L);
+	}
+}
+
 #ifdef __GLIBC__
-/* Keep freed memory for reuse instead of faulting fresh pages in (on the
- * 2-vCPU VM, about 1.4 us per 4 KB page):
- * - each view allocates and frees arrays of several MB (normals,
+/* Keep freed memory for reuse instead of faulting fresh pages in:
+ * - each view allocates and frees arrays of several MB (its mesh, normals,
  *   projections, cells); glibc would give them back to the kernel and
  *   fault them in afresh, zeroed, for the next view;
- * - marching cubes' output (85 MB for the room at 1 cm) fits in the views'
- *   memory, freed before it, only if that memory is one free run.  The
- *   small allocations made while a view is read (header strings, element
- *   tables) come from the top of the heap when no free chunk is below,
- *   between one view's arrays and the next, and once freed they stay in
- *   glibc's per-thread cache, which never coalesces: the four freed views
- *   were seven pieces of 10 MB and one of 35, room for one of the output's
- *   two 26 MB arrays, and the extraction faulted in 6,050 pages.  A block
+ * - marching cubes' output can reuse the last view's memory only if that
+ *   memory is one free run.  The small allocations made while a view is
+ *   read (header strings, element tables) come from the top of the heap
+ *   when no free chunk is below, between a view's arrays, and once freed
+ *   they stay in glibc's per-thread cache, which never coalesces.  A block
  *   freed now, below everything else, serves those small allocations
- *   instead: one free run of 103 MB, 23 faults, mcubes_s 0.070 -> 0.059 s
- *   (one thread, medians of 3). */
+ *   instead.
+ * The measurements are in bench/NOTES.md. */
 static void *volatile heap_pin;         /* holds the pool out of the top chunk */
 
 static void keep_freed_memory(void)
@@ -522,61 +657,23 @@ int main(int argc, char **argv)
 	if (o.nposes == 1 && is_trajectory(o.poses[0]) && traj_read(&tr, o.poses[0], &err))
 		fct_die_err(&err);
 
-	size_t nv = o.nviews + conf.n;
-	struct loaded *L = calloc(nv, sizeof *L);
-	struct fct_range_image *ri = calloc(nv, sizeof *ri);
-	if (!L || !ri)
-		fct_die(1, "out of memory");
+	struct views vs = { .tr = &tr, .dcam = &dcam, .dp = &dp };
+	views_init(&vs, &o, &conf);
+	size_t nv = vs.n;
 	double t0 = fct_now();
-	/* Read every view first: the memory estimate needs their extents. */
-	double area = 0, lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-	size_t nimage = 0;
-	for (size_t i = 0; i < nv; i++) {
-		load_view(&o, i, &conf, &tr, &dcam, &dp, &L[i]);
-		if (L[i].depth_image && nimage < o.nimages && !(L[i].image = fct_strdup(o.images[nimage], &err)))
-			fct_die_err(&err);
-		nimage += (size_t)L[i].depth_image;
-		area += mesh_area(&L[i].mesh);
-		for (size_t v = 0; v < L[i].mesh.nv; v++)
-			for (int k = 0; k < 3; k++) {
-				double x = L[i].mesh.xyz[3 * v + k];
-				lo[k] = x < lo[k] ? x : lo[k];
-				hi[k] = x > hi[k] ? x : hi[k];
-			}
-	}
-	if (o.nimages && o.nimages != nimage)
-		fct_usage_error("%zu depth views but %zu --image files", nimage, o.nimages);
-	double read_s = fct_now() - t0;
-	double vox = o.voxel, band = o.fp.band;
-	if (o.has_bbox)
-		for (int k = 0; k < 3; k++) {
-			lo[k] = fmax(lo[k], o.bbox[k] - 3 * vox);
-			hi[k] = fmin(hi[k], o.bbox[k + 3] + 3 * vox);
+	struct extent e = { { HUGE_VAL, HUGE_VAL, HUGE_VAL }, { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL }, 0, 0 };
+	if (o.carve)            /* the carving box first: the views' extent */
+		for (size_t i = 0; i < nv; i++) {
+			struct loaded L;
+			view_open(&vs, i, &L);
+			extent_add(&e, &L.mesh);
+			view_close(&L);
 		}
-	/* Memory: the band around the surface, in blocks, and the carving bitsets. */
-	double bs = 8 * vox, bbox_blocks = 1, est;
-	for (int k = 0; k < 3; k++)
-		bbox_blocks *= fmax(hi[k] - lo[k], 0) / bs + 3;
-	double band_blocks = 2 * area / (bs * bs) * (1 + 2 * band / bs) + 27.0 * (double)nv;
-	est = fmin(band_blocks, bbox_blocks) * (double)fct_voxgrid_block_bytes(0);
-	int32_t clo[3], chi[3];
-	for (int k = 0; k < 3; k++) {
-		double a = floor((lo[k] - band) / vox) - 2, b = ceil((hi[k] + band) / vox) + 2;
-		if (!(fabs(a) < (1 << 23) && fabs(b) < (1 << 23)))
-			fct_die(1, "--voxel %g: the views span %g m, %.3g voxels: too many for 32-bit indices",
-			        vox, hi[k] - lo[k], (hi[k] - lo[k]) / vox);
-		clo[k] = (int32_t)a, chi[k] = (int32_t)b;
-	}
-	if (o.carve)
-		est += (double)fct_carve_bytes(clo, chi);
-	if (o.color)            /* --color keeps a range image per view with an image */
-		for (size_t i = 0; i < nv; i++)
-			if (L[i].image && L[i].view.cam.kind != FCT_CAMERA_NONE)
-				est += 4.0 * L[i].view.cam.width * L[i].view.cam.height;
-	double have = machine_bytes();
-	fct_report("memory_estimate_mb", "%.1f", est / 1048576);
-	if (est > 0.8 * have)
-		fct_die(1, "--voxel %g: needs about %.1f GB, the machine has %.1f GB", vox, est / 1e9, have / 1e9);
+	double reread_s = vs.read_s;
+	vs.read_s = 0;
+	int32_t clo[3] = { 0, 0, 0 }, chi[3] = { 0, 0, 0 };
+	double est = o.carve ? volume_box(&o, &e, clo, chi) : 0;
+	double vox = o.voxel, band = o.fp.band, have = machine_bytes();
 	struct fct_voxgrid *g = fct_voxgrid_new(vox, 0, &err);
 	if (!g)
 		fct_die_err(&err);
@@ -590,43 +687,25 @@ int main(int argc, char **argv)
 			chi[k] = chi[k] < o.fp.clip_hi[k] ? chi[k] : o.fp.clip_hi[k];
 		}
 	}
+	struct fct_carving carving;
+	if (o.carve && fct_carving_init(&carving, clo, chi, vox, &err))
+		fct_die_err(&err);
 
 	struct fct_fuse_stats st = { 0 };
-	double t1 = fct_now();
-	for (size_t i = 0; i < nv; i++) {
-		double tv = fct_now();
-		if (fct_fuse_view(g, &L[i].view, &o.fp, &st, &err)) {
-			fct_err_prefix(&err, "%s", L[i].name);
-			fct_die_err(&err);
-		}
-		if (fct_verbose)
-			fprintf(stderr, "tsdfuse: view %zu/%zu %s: %zu faces, %.1f ms\n", i + 1, nv, L[i].name,
-			        L[i].mesh.nf, 1e3 * (fct_now() - tv));
-	}
-	double fuse_s = fct_now() - t1;
-	double carve_s = 0;
+	double fuse_s = 0, carve_s = 0;
+	fuse_views(&vs, g, o.carve ? &carving : NULL, &e, o.carve, &st, &fuse_s, &carve_s);
+	double read_s = vs.read_s;
+	if (!o.carve)
+		est = volume_box(&o, &e, clo, chi);
+	fct_report("memory_estimate_mb", "%.1f", est / 1048576);
 	size_t ncarved = 0;
 	if (o.carve) {
 		double tc = fct_now();
-		for (size_t i = 0; i < nv; i++) {
-			if (L[i].view.cam.kind == FCT_CAMERA_NONE && L[i].view.ortho_step < vox / 2)
-				L[i].view.ortho_step = vox / 2;
-			if (fct_range_image_make(&ri[i], &L[i].view, (size_t)1 << 26, &err)) {
-				fct_err_prefix(&err, "%s", L[i].name);
-				fct_die_err(&err);
-			}
-		}
 		float mark = o.min_weight > 0 ? (float)o.min_weight : 1e-3f;
-		if (fct_carve(g, ri, nv, clo, chi, band, mark, &ncarved, &err))
+		if (fct_carving_finish(&carving, g, band, mark, &ncarved, &err))
 			fct_die_err(&err);
-		carve_s = fct_now() - tc;
-	}
-	size_t ncolor = o.color ? color_ranges(L, ri, nv) : 0;
-	for (size_t i = 0; i < nv; i++) {
-		if (!ncolor)
-			fct_range_image_free(&ri[i]);
-		fct_mesh_free(&L[i].mesh);
-		free(L[i].depth);
+		fct_carving_free(&carving);
+		carve_s += fct_now() - tc;
 	}
 	double flow_s = 0;
 	if (o.flow) {
@@ -646,22 +725,20 @@ int main(int argc, char **argv)
 	                     o.fp.threads, &out, NULL, &err))
 		fct_die_err(&err);
 	double mc_s = fct_now() - tm, color_s = 0;
+	size_t nblocks = fct_voxgrid_count(g), gbytes = fct_voxgrid_bytes(g), ncolor = 0;
+	fct_voxgrid_free(g);    /* before the colour pass reads the views again */
 	if (o.color) {
-		double tc = fct_now();
-		color_vertices(&o, L, ri, nv, &out);
+		double tc = fct_now(), r0 = vs.read_s;
+		color_vertices(&vs, &out, &ncolor);
+		reread_s += vs.read_s - r0;
 		color_s = fct_now() - tc;
-	}
-	for (size_t i = 0; i < nv; i++) {
-		fct_range_image_free(&ri[i]);
-		free(L[i].image);
 	}
 	fct_report("views", "%zu", nv);
 	fct_report("view_faces", "%zu", st.faces);
 	fct_report("voxels_updated", "%zu", st.voxels);
 	fct_report("border_skipped", "%zu", st.border);
-	fct_report("blocks", "%zu", fct_voxgrid_count(g));
-	fct_report("memory_mb", "%.1f", (double)fct_voxgrid_bytes(g) / 1048576);
-	fct_voxgrid_free(g);
+	fct_report("blocks", "%zu", nblocks);
+	fct_report("memory_mb", "%.1f", (double)gbytes / 1048576);
 	if (fct_header_add_provenance(&out, "tsdfuse", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&out, o.out, o.ascii, &err))
 		fct_die_err(&err);
@@ -669,6 +746,7 @@ int main(int argc, char **argv)
 	fct_report("vertices", "%zu", out.nv);
 	fct_report("faces", "%zu", out.nf);
 	fct_report("read_s", "%.4f", read_s);
+	fct_report("reread_s", "%.4f", reread_s);
 	fct_report("fuse_s", "%.4f", fuse_s);
 	fct_report("ms_per_view", "%.2f", nv ? 1e3 * fuse_s / (double)nv : 0);
 	fct_report("carve_s", "%.4f", carve_s);
@@ -679,9 +757,11 @@ int main(int argc, char **argv)
 		fct_report("color_s", "%.4f", color_s);
 	}
 	fct_report("total_s", "%.4f", fct_now() - t0);
+	struct rusage ru;   /* ru_maxrss: kilobytes on Linux and the BSDs */
+	if (!getrusage(RUSAGE_SELF, &ru))
+		fct_report("peak_rss_mb", "%.1f", (double)ru.ru_maxrss / 1024);
 	fct_mesh_free(&out);
-	free(L);
-	free(ri);
+	free(vs.image);
 	free(tr.t);
 	free(tr.pose);
 	free(o.poses);

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,6 +17,41 @@
 const char *fct_prog = "facet";
 int fct_quiet, fct_verbose;
 
+/* Killed while writing: remove the hidden temporary files of -o (so that
+ * an interrupted run leaves nothing behind), then die of the same signal
+ * (SA_RESETHAND restored its default action; it is delivered on return). */
+static void on_fatal_signal(int sig)
+{
+	fct_out_remove_temporaries();
+	raise(sig);
+}
+
+/* SIGINT, SIGTERM, SIGHUP and SIGXFSZ clean up before the program dies,
+ * unless the parent ignores them (nohup, background jobs), which stays so.
+ * SIGPIPE is caught whatever the parent did with it: a closed pipe ends the
+ * program quietly, the Unix way, never with a write error on every stage of
+ * a pipeline whose reader went away. */
+static void catch_fatal_signals(void)
+{
+	static const int sigs[] = { SIGINT, SIGTERM, SIGHUP, SIGXFSZ, SIGPIPE };
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_fatal_signal;
+	sa.sa_flags = SA_RESETHAND;
+	sigemptyset(&sa.sa_mask);
+	for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+		struct sigaction old;
+		if (sigs[i] != SIGPIPE && sigaction(sigs[i], NULL, &old) == 0 &&
+		    old.sa_handler == SIG_IGN)
+			continue;
+		sigaction(sigs[i], &sa, NULL);
+	}
+	sigset_t pipe;
+	sigemptyset(&pipe);
+	sigaddset(&pipe, SIGPIPE);
+	sigprocmask(SIG_UNBLOCK, &pipe, NULL);
+}
+
 void fct_cli_init(const char *prog)
 {
 	fct_prog = prog;
@@ -24,6 +60,7 @@ void fct_cli_init(const char *prog)
 	static char outbuf[1 << 16];
 	setvbuf(stdout, outbuf, _IOFBF, sizeof outbuf);
 	fct_pipe_widen(STDOUT_FILENO);
+	catch_fatal_signals();
 }
 
 static void vmessage(const char *tag, const char *fmt, va_list ap)

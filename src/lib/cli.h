@@ -18,7 +18,10 @@
 
 extern const char *fct_prog;
 
-/* Record the program name (for messages) and set up stdout buffering. */
+/* Record the program name (for messages), set up stdout buffering, and
+ * catch SIGINT, SIGTERM, SIGHUP, SIGXFSZ (unless ignored) and SIGPIPE: the
+ * program dies of them, quietly, after removing its outputs' temporary
+ * files (output.h). */
 void fct_cli_init(const char *prog);
 
 /* "prog: message" on stderr and exit with status. */

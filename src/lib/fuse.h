@@ -119,6 +119,29 @@ int fct_carve(struct fct_voxgrid *g, const struct fct_range_image *views, size_t
               const int32_t lo[3], const int32_t hi[3], double band, float mark_weight,
               size_t *carved, struct fct_err *err);
 
+/* fct_carve a view at a time, for views that come one by one: the
+ * voxels of lo..hi each view saw through, kept as one bit each (seen),
+ * then carving with them once the views are fused.  The result is
+ * fct_carve's with the same views and box. */
+struct fct_carving {
+	int32_t lo[3];
+	size_t nx, ny, nz, nw, words;   /* the box in voxels; rows of nw 64-bit words */
+	double vox;
+	uint64_t *seen;
+};
+
+/* An empty carving over voxels lo..hi (inclusive) of size vox; it holds
+ * one of fct_carve_bytes' three bitsets.  0 or -1. */
+int fct_carving_init(struct fct_carving *c, const int32_t lo[3], const int32_t hi[3], double vox,
+                     struct fct_err *err);
+/* The voxels range image r saw through, into c. */
+void fct_carving_add(struct fct_carving *c, const struct fct_range_image *r);
+/* fct_carve's carving of g with the views added to c (the other two
+ * bitsets are allocated here).  c is spent: free it after.  0 or -1. */
+int fct_carving_finish(struct fct_carving *c, struct fct_voxgrid *g, double band, float mark_weight,
+                       size_t *carved, struct fct_err *err);
+void fct_carving_free(struct fct_carving *c);
+
 /* Level-set mean-curvature flow phi_t = |grad phi| div(grad phi / |grad phi|)
  * for iters explicit steps of dt = voxel^2 / 8 on the observed voxels
  * (unobserved neighbours mirror the voxel: no flux across the edge of the

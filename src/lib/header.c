@@ -8,15 +8,19 @@
 
 #include "numparse.h"
 
+/* Does text start with the word key? */
+static int starts_with_word(const char *t, const char *key)
+{
+	size_t n = strlen(key);
+	return !strncmp(t, key, n) && (t[n] == ' ' || t[n] == '\t' || !t[n]);
+}
+
 /* Index of the first comment whose text starts with the word key, or -1. */
 static long find_comment(const struct fct_mesh *m, const char *key, size_t from)
 {
-	size_t n = strlen(key);
-	for (size_t i = from; i < m->ncomments; i++) {
-		const char *t = m->comments[i].text;
-		if (!m->comments[i].obj_info && !strncmp(t, key, n) && (t[n] == ' ' || t[n] == '\t' || !t[n]))
+	for (size_t i = from; i < m->ncomments; i++)
+		if (!m->comments[i].obj_info && starts_with_word(m->comments[i].text, key))
 			return (long)i;
-	}
 	return -1;
 }
 
@@ -95,6 +99,17 @@ int fct_header_pose(const struct fct_mesh *m, double pose[12], struct fct_err *e
 	return 1;
 }
 
+/* "pose" and the 12 numbers, each the shortest text that reads back to the
+ * same double (a rotation's entries in %.17g made the line 260 bytes). */
+static void format_pose(char *buf, size_t size, const double pose[12])
+{
+	size_t n = (size_t)snprintf(buf, size, "pose");
+	for (int k = 0; k < 12 && n + 34 < size; k++) {
+		buf[n++] = ' ';
+		n += (size_t)fct_format_double(buf + n, size - n, pose[k]);
+	}
+}
+
 int fct_header_set_pose(struct fct_mesh *m, const double pose[12], struct fct_err *err)
 {
 	long i = find_comment(m, "pose", 0);
@@ -104,9 +119,7 @@ int fct_header_set_pose(struct fct_mesh *m, const double pose[12], struct fct_er
 		return 0;
 	}
 	char buf[512];
-	int n = snprintf(buf, sizeof buf, "pose");
-	for (int k = 0; k < 12; k++)
-		n += snprintf(buf + n, sizeof buf - (size_t)n, " %.17g", pose[k]);
+	format_pose(buf, sizeof buf, pose);
 	return put_comment(m, i, buf, err);
 }
 
@@ -230,4 +243,92 @@ int fct_header_add_provenance(struct fct_mesh *m, const char *prog, int argc, ch
 	int rc = fct_mesh_add_comment(m, buf, 0, err);
 	free(buf);
 	return rc;
+}
+
+/* Text of at most max bytes: the start of text, then "...". */
+static const char *cut_end(const char *text, size_t max, char *buf)
+{
+	snprintf(buf, max + 1, "%.*s...", (int)(max - 3), text);
+	return buf;
+}
+
+/* A provenance line "facet PROG ARGS..." in at most max bytes: the program,
+ * the leading arguments that fit (options, then the first operands), the
+ * count of those left out, and the last argument (its end, when it alone
+ * is too long): "facet tsdfuse -o room.ply v00.ply v01.ply ... (19 more)
+ * ... v21.ply". */
+static const char *abbreviate_provenance(const char *text, size_t max, char *buf)
+{
+	const char *p = text;        /* past "facet PROG", the head */
+	for (int k = 0; k < 2; k++) {
+		while (*p == ' ')
+			p++;
+		while (*p && *p != ' ')
+			p++;
+	}
+	size_t head = (size_t)(p - text);
+	const char *last = text + strlen(text);
+	while (last > p && last[-1] == ' ')
+		last--;
+	const char *end = last;
+	while (last > p && last[-1] != ' ')
+		last--;
+	size_t nargs = 0;            /* words between the head and the last one */
+	for (const char *q = p; q < last;) {
+		while (q < last && *q == ' ')
+			q++;
+		if (q < last)
+			nargs++;
+		while (q < last && *q != ' ')
+			q++;
+	}
+	if (last == p || head + 40 > max)
+		return cut_end(text, max, buf);
+	/* The last word, cut to its end when it takes over a third. */
+	char tail[96];
+	size_t lastlen = (size_t)(end - last);
+	if (lastlen > max / 3)
+		snprintf(tail, sizeof tail, "...%.*s", (int)(max / 3 - 3), end - (max / 3 - 3));
+	else
+		snprintf(tail, sizeof tail, "%.*s", (int)lastlen, last);
+	size_t n = head, kept = 0;
+	memcpy(buf, text, head);
+	for (const char *q = p; q < last;) {
+		while (q < last && *q == ' ')
+			q++;
+		const char *e = q;
+		while (e < last && *e != ' ')
+			e++;
+		if (e == q)
+			break;
+		char more[48];
+		int ml = snprintf(more, sizeof more, " ... (%zu more) ", nargs - kept - 1);
+		if (n + 1 + (size_t)(e - q) + (size_t)ml + strlen(tail) > max)
+			break;
+		buf[n++] = ' ';
+		memcpy(buf + n, q, (size_t)(e - q));
+		n += (size_t)(e - q);
+		kept++;
+		q = e;
+	}
+	snprintf(buf + n, max + 1 - n, " ... (%zu more) %s", nargs - kept, tail);
+	return buf;
+}
+
+const char *fct_comment_line(const struct fct_comment *c, size_t max, char *buf)
+{
+	const char *t = c->text;
+	if (strlen(t) <= max || max < 48)
+		return t;
+	double pose[12];
+	if (!c->obj_info && starts_with_word(t, "pose") && parse_numbers(t + 4, pose, 12) == 12) {
+		format_pose(buf, FCT_HEADER_LINE_MAX + 64, pose);   /* the same numbers, shorter */
+		return buf;
+	}
+	/* Data that cannot be shortened: kept whole. */
+	if (!c->obj_info && (fct_comment_texture(c) || starts_with_word(t, "camera")))
+		return t;
+	if (!c->obj_info && starts_with_word(t, "facet"))
+		return abbreviate_provenance(t, max, buf);
+	return cut_end(t, max, buf);
 }

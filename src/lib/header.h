@@ -42,8 +42,23 @@ int fct_comment_set_texture(struct fct_comment *c, const char *path, struct fct_
 int fct_header_set_texture(struct fct_mesh *m, size_t i, const char *path, struct fct_err *err);
 
 /* Append "facet PROG ARGS..." (arguments separated by blanks; blanks and
- * newlines inside an argument become '_' so the line stays one line). */
+ * newlines inside an argument become '_' so the line stays one line).  The
+ * whole line is kept in m; the writers abbreviate it (fct_comment_line). */
 int fct_header_add_provenance(struct fct_mesh *m, const char *prog, int argc, char **argv,
                               struct fct_err *err);
+
+/* The longest header line facet writes: MeshLab refuses lines of 510 bytes
+ * or more and Open3D's reader (RPly) of 1024; 255 leaves room for both. */
+#define FCT_HEADER_LINE_MAX 255
+
+/* The text to write for comment c where the line's keyword leaves max
+ * bytes (FCT_HEADER_LINE_MAX minus "comment ", "# comment ", ...): a pose
+ * in its shortest exact form (at most 12 x 24 + 16 bytes; a rotation in
+ * %.17g took 260); a longer provenance line with its middle arguments
+ * left out and counted ("facet tsdfuse -o room.ply v00.ply ... (19 more)
+ * ... v21.ply"); other free text cut with "..."; camera and TextureFile
+ * lines whole (data; a texture path over max is written as it is).
+ * Returns c->text or buf, which must hold FCT_HEADER_LINE_MAX + 64 bytes. */
+const char *fct_comment_line(const struct fct_comment *c, size_t max, char *buf);
 
 #endif

@@ -1,15 +1,17 @@
-/* image.c - PNG and PFM reading and writing (see image.h).
+/* image.c - PNG, JPEG and PFM reading, PNG and PFM writing (see image.h).
  *
- * Both readers take the whole input into memory first, growing the buffer
+ * The readers take the whole input into memory first, growing the buffer
  * only as bytes really arrive, and then decode from memory.  That gives the
  * exact input size even on a pipe, which is what bounds every allocation:
  * a lying header can never make us allocate more than about twice the bytes
- * it came with (PFM) or what they can inflate to (PNG). */
+ * it came with (PFM), what they can inflate to (PNG) or what their entropy
+ * code can stand for (JPEG). */
 #include "image.h"
 
 #include <errno.h>
 #include <math.h>
 #include <png.h>
+#include <jpeglib.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -58,7 +60,12 @@ const char *fct_pix_name(enum fct_pix type)
 
 const char *fct_image_format_name(enum fct_image_format fmt)
 {
-	return fmt == FCT_IMAGE_PNG ? "png" : "pfm";
+	switch (fmt) {
+	case FCT_IMAGE_PNG: return "png";
+	case FCT_IMAGE_PFM: return "pfm";
+	case FCT_IMAGE_JPEG: return "jpeg";
+	}
+	abort();
 }
 
 size_t fct_image_samples(const struct fct_image *img)
@@ -84,6 +91,21 @@ static int image_bytes(long width, long height, int channels, enum fct_pix type,
 		return fct_fail(err, "image size %ldx%ld: more than 2^31 pixels", width, height);
 	if (fct_mul_size(pixels, (size_t)channels * fct_pix_size(type), bytes))
 		return fct_fail(err, "image size %ldx%ld: too large for memory", width, height);
+	return 0;
+}
+
+/* A decoder's check of a header's size against the caller's limit
+ * (max_pixels, at most FCT_IMAGE_MAX_PIXELS) before it allocates: 0, or -1
+ * with "image size WxH: ...". */
+static int check_pixels(uint64_t width, uint64_t height, size_t max_pixels, struct fct_err *err)
+{
+	uint64_t n = width * height;   /* sides are below 2^32 */
+	if (n > FCT_IMAGE_MAX_PIXELS)
+		return fct_fail(err, "image size %llux%llu: more than 2^31 pixels",
+		                (unsigned long long)width, (unsigned long long)height);
+	if (n > max_pixels)
+		return fct_fail(err, "image size %llux%llu: more than the %zu pixels allowed here",
+		                (unsigned long long)width, (unsigned long long)height, max_pixels);
 	return 0;
 }
 
@@ -243,9 +265,10 @@ static void swap4(unsigned char *p, size_t n)
 
 /* Decode the PFM in buf (taking ownership of buf, which becomes the pixel
  * array): "PF" or "Pf", width, height, scale, one whitespace byte (CR LF
- * accepted), then exactly width*height*channels floats, bottom row first. */
+ * accepted), then exactly width*height*channels floats, bottom row first.
+ * With header_only, img gets the shape and no data (buf is freed). */
 static int pfm_decode(struct fct_image *img, unsigned char *buf, size_t len, const char *name,
-                      struct fct_err *err)
+                      size_t max_pixels, int header_only, struct fct_err *err)
 {
 	int channels = buf[1] == 'F' ? 3 : 1;
 	size_t pos = 2, at, wat;
@@ -267,7 +290,8 @@ static int pfm_decode(struct fct_image *img, unsigned char *buf, size_t len, con
 		}
 	}
 	size_t need;
-	if (image_bytes(w, h, channels, FCT_PIX_F32, &need, err)) {
+	if (image_bytes(w, h, channels, FCT_PIX_F32, &need, err) ||
+	    check_pixels((uint64_t)w, (uint64_t)h, max_pixels, err)) {
 		fct_err_prefix(err, "%s: byte %zu: PFM header", name, wat);
 		goto fail;
 	}
@@ -287,6 +311,14 @@ static int pfm_decode(struct fct_image *img, unsigned char *buf, size_t len, con
 		         channels > 1 ? "s" : "", need, len - data);
 		goto fail;
 	}
+	img->width = (int)w;
+	img->height = (int)h;
+	img->channels = channels;
+	img->type = FCT_PIX_F32;
+	if (header_only) {
+		free(buf);
+		return 0;
+	}
 	memmove(buf, buf + data, need);
 	unsigned char *shrunk = realloc(buf, need);
 	if (shrunk)
@@ -303,14 +335,11 @@ static int pfm_decode(struct fct_image *img, unsigned char *buf, size_t len, con
 	}
 	if ((scale < 0) != host_is_le())
 		swap4(buf, need);
-	img->width = (int)w;
-	img->height = (int)h;
-	img->channels = channels;
-	img->type = FCT_PIX_F32;
 	img->data = buf;
 	return 0;
 fail:
 	free(buf);
+	memset(img, 0, sizeof *img);
 	return -1;
 }
 
@@ -397,9 +426,10 @@ static int png_check_chunks(const unsigned char *b, size_t len, const char *name
 	return 0;
 }
 
-/* Decode the PNG in s->buf into img (whose data is set only on success). */
+/* Decode the PNG in s->buf into img (whose data is set only on success;
+ * with header_only, img gets the shape and no data). */
 static int png_decode(struct fct_image *img, struct png_state *s, const char *name,
-                      struct fct_err *err)
+                      size_t max_pixels, int header_only, struct fct_err *err)
 {
 	if (png_check_chunks(s->buf, s->len, name, err))
 		return -1;
@@ -430,9 +460,9 @@ static int png_decode(struct fct_image *img, struct png_state *s, const char *na
 	int depth, ctype, interlace;
 	png_get_IHDR(png, info, &w, &h, &depth, &ctype, &interlace, NULL, NULL);
 	/* Width and height sit at byte 16, in IHDR. */
-	if ((uint64_t)w * h > FCT_IMAGE_MAX_PIXELS)
-		png_fail(png, s, 16, "image size %lux%lu: more than 2^31 pixels",
-		         (unsigned long)w, (unsigned long)h);
+	struct fct_err big;
+	if (check_pixels(w, h, max_pixels, &big))
+		png_fail(png, s, 16, "%s", big.msg);
 	/* The filtered rows, one filter byte each, that IDAT must inflate to. */
 	uint64_t raw = ((uint64_t)w * png_get_channels(png, info) * (uint64_t)depth + 7) / 8 + 1;
 	if (raw * h > (uint64_t)s->len * DEFLATE_MAX_RATIO)
@@ -457,6 +487,14 @@ static int png_decode(struct fct_image *img, struct png_state *s, const char *na
 	if ((bits != 8 && bits != 16) || channels < 1 || channels > 4 ||
 	    rowbytes != (size_t)w * (size_t)channels * (size_t)(bits / 8))
 		abort();  /* the transformations above guarantee this */
+	if (header_only) {
+		png_destroy_read_struct(&png, &info, NULL);
+		img->width = (int)w;
+		img->height = (int)h;
+		img->channels = channels;
+		img->type = bits == 16 ? FCT_PIX_U16 : FCT_PIX_U8;
+		return 0;
+	}
 	data = malloc(rowbytes * h);
 	rows = malloc(h * sizeof *rows);
 	if (!data || !rows)
@@ -476,10 +514,157 @@ static int png_decode(struct fct_image *img, struct png_state *s, const char *na
 	return 0;
 }
 
+/* ---- JPEG ------------------------------------------------------------ */
+
+/* Huffman coding spends at least one bit on each 8x8 block of a component
+ * in a scan (progressive DC scans; sequential ones spend two, DC and EOB),
+ * so a JPEG of N bytes stands for at most 512 N pixels at full resolution.
+ * A header claiming more is lying, or arithmetic-coded with a compression
+ * beyond what any photograph reaches; both are refused before libjpeg
+ * allocates anything for the image (a progressive file's coefficients, the
+ * output). */
+enum { JPEG_MAX_PIXELS_PER_BYTE = 512 };
+
+/* libjpeg's error manager with the jump back into jpeg_decode and the
+ * message it carries there. */
+struct jpeg_state {
+	struct jpeg_error_mgr mgr;
+	jmp_buf jump;
+	char msg[JMSG_LENGTH_MAX + 16];
+};
+
+/* libjpeg's error_exit calls exit(); ours keeps the message and jumps back. */
+static void jpeg_on_error(j_common_ptr cinfo)
+{
+	struct jpeg_state *s = (struct jpeg_state *)cinfo->err;
+	char text[JMSG_LENGTH_MAX];
+	cinfo->err->format_message(cinfo, text);
+	snprintf(s->msg, sizeof s->msg, "libjpeg: %s", text);
+	longjmp(s->jump, 1);
+}
+
+/* libjpeg warns of corrupt or truncated data and goes on with grey or
+ * zero coefficients; a warning is an error here, as a bad CRC is for PNG
+ * (turbojpeg's TJFLAG_STOPONWARNING).  Trace messages are dropped. */
+static void jpeg_on_message(j_common_ptr cinfo, int level)
+{
+	if (level < 0)
+		jpeg_on_error(cinfo);
+}
+
+/* One row of CMYK to RGB as Pillow converts it: R = (255-C)(255-K)/255 and
+ * so on, rounded; Adobe's files (Photoshop's) store the inks inverted. */
+static void cmyk_to_rgb(unsigned char *rgb, const unsigned char *cmyk, size_t n, int inverted)
+{
+	for (size_t i = 0; i < n; i++, cmyk += 4, rgb += 3) {
+		unsigned k = inverted ? cmyk[3] : 255u - cmyk[3];   /* 255 - ink */
+		for (int c = 0; c < 3; c++) {
+			unsigned ink = inverted ? 255u - cmyk[c] : cmyk[c];
+			unsigned t = ink * k + 128;
+			rgb[c] = (unsigned char)(k - ((t >> 8) + t) / 256);
+		}
+	}
+}
+
+/* The byte libjpeg has reached in buf: at the end of the data it reads
+ * from a buffer of its own (a fake EOI), which counts as len. */
+static size_t jpeg_offset(const struct jpeg_decompress_struct *cinfo, const unsigned char *buf,
+                          size_t len)
+{
+	if (!cinfo->src)
+		return 0;
+	uintptr_t p = (uintptr_t)cinfo->src->next_input_byte, b = (uintptr_t)buf;
+	return p >= b && p - b <= len ? (size_t)(p - b) : len;
+}
+
+/* Decode the JPEG in buf[0..len) into img: 1 channel for greyscale, 3 (RGB)
+ * otherwise, CMYK and YCCK converted to RGB; header_only gives the shape
+ * and no data.  Errors name the byte libjpeg had reached. */
+static int jpeg_decode(struct fct_image *img, const unsigned char *buf, size_t len,
+                       const char *name, size_t max_pixels, int header_only,
+                       struct fct_err *err)
+{
+	struct jpeg_decompress_struct cinfo;
+	struct jpeg_state s;
+	/* Changed after setjmp and needed after longjmp: volatile. */
+	unsigned char *volatile data = NULL, *volatile cmyk = NULL;
+	memset(&cinfo, 0, sizeof cinfo);
+	cinfo.err = jpeg_std_error(&s.mgr);
+	s.mgr.error_exit = jpeg_on_error;
+	s.mgr.emit_message = jpeg_on_message;
+	s.msg[0] = 0;
+	if (setjmp(s.jump)) {
+		size_t at = jpeg_offset(&cinfo, buf, len);
+		jpeg_destroy_decompress(&cinfo);
+		free(data);
+		free(cmyk);
+		return fct_fail(err, "%s: byte %zu: %s", name, at, s.msg);
+	}
+	jpeg_create_decompress(&cinfo);
+	jpeg_mem_src(&cinfo, buf, (unsigned long)len);
+	jpeg_read_header(&cinfo, TRUE);
+
+	size_t at = jpeg_offset(&cinfo, buf, len);
+	uint64_t w = cinfo.image_width, h = cinfo.image_height;
+	struct fct_err big;
+	int fail = check_pixels(w, h, max_pixels, &big);
+	if (!fail && w * h > (uint64_t)len * JPEG_MAX_PIXELS_PER_BYTE)
+		fail = fct_fail(&big, "image size %llux%llu: more pixels than %zu bytes of JPEG "
+		                "can code (at most %d a byte)", (unsigned long long)w,
+		                (unsigned long long)h, len, JPEG_MAX_PIXELS_PER_BYTE);
+	int inverted = cinfo.saw_Adobe_marker;
+	switch (cinfo.jpeg_color_space) {
+	case JCS_GRAYSCALE: cinfo.out_color_space = JCS_GRAYSCALE; break;
+	case JCS_CMYK: case JCS_YCCK: cinfo.out_color_space = JCS_CMYK; break;
+	case JCS_RGB: case JCS_YCbCr: cinfo.out_color_space = JCS_RGB; break;
+	default:
+		if (!fail)
+			fail = fct_fail(&big, "%d components of unknown colour space",
+			                cinfo.num_components);
+	}
+	if (fail) {
+		jpeg_destroy_decompress(&cinfo);
+		return fct_fail(err, "%s: byte %zu: %s", name, at, big.msg);
+	}
+	int channels = cinfo.out_color_space == JCS_GRAYSCALE ? 1 : 3;
+	img->width = (int)w;
+	img->height = (int)h;
+	img->channels = channels;
+	img->type = FCT_PIX_U8;
+	if (header_only) {
+		jpeg_destroy_decompress(&cinfo);
+		return 0;
+	}
+	jpeg_start_decompress(&cinfo);
+	if (cinfo.output_width != w || cinfo.output_height != h ||
+	    cinfo.output_components != (cinfo.out_color_space == JCS_CMYK ? 4 : channels))
+		abort();  /* no scaling was asked for */
+	size_t row = (size_t)w * (size_t)channels;
+	if (!(data = malloc(row * (size_t)h)) ||
+	    (cinfo.out_color_space == JCS_CMYK && !(cmyk = malloc(4 * (size_t)w)))) {
+		snprintf(s.msg, sizeof s.msg, "out of memory (%zu bytes)", row * (size_t)h);
+		longjmp(s.jump, 1);
+	}
+	while (cinfo.output_scanline < cinfo.output_height) {
+		unsigned char *out = data + (size_t)cinfo.output_scanline * row;
+		JSAMPROW rows[1] = { cmyk ? cmyk : out };
+		jpeg_read_scanlines(&cinfo, rows, 1);
+		if (cmyk)
+			cmyk_to_rgb(out, cmyk, (size_t)w, inverted);
+	}
+	jpeg_finish_decompress(&cinfo);
+	jpeg_destroy_decompress(&cinfo);
+	free(cmyk);
+	img->data = data;
+	return 0;
+}
+
 /* ---- reading: detection ---------------------------------------------- */
 
-int fct_image_read_stream(struct fct_image *img, FILE *f, const char *name,
-                          enum fct_image_format *fmt, struct fct_err *err)
+/* The reader behind every entry point: detect, take in the rest, decode
+ * (or only read the header), refusing more than max_pixels. */
+static int read_image(struct fct_image *img, FILE *f, const char *name, size_t max_pixels,
+                      int header_only, enum fct_image_format *fmt, struct fct_err *err)
 {
 	memset(img, 0, sizeof *img);
 	/* Look at the first bytes before taking in the whole input, so that a
@@ -489,50 +674,84 @@ int fct_image_read_stream(struct fct_image *img, FILE *f, const char *name,
 	if (n < sizeof head && ferror(f))
 		return fct_fail(err, "%s: byte %zu: %s", name, n, strerror(errno));
 	if (n == 0)
-		return fct_fail(err, "%s: empty input, not a PNG or PFM image", name);
+		return fct_fail(err, "%s: empty input, not a PNG, JPEG or PFM image", name);
 	int png = !memcmp(head, png_magic, n < 8 ? n : 8);
 	int pfm = n >= 3 && head[0] == 'P' && (head[1] == 'F' || head[1] == 'f') &&
 	          is_space(head[2]);
+	/* SOI, then the first marker's 0xFF. */
+	int jpeg = n >= 3 && head[0] == 0xff && head[1] == 0xd8 && head[2] == 0xff;
 	if (png && n < 8)
 		return fct_fail(err, "%s: byte %zu: PNG signature: unexpected end of file", name, n);
-	if (!png && !pfm)
-		return fct_fail(err, "%s: not a PNG or PFM image", name);
+	if (!png && !pfm && !jpeg)
+		return fct_fail(err, "%s: not a PNG, JPEG or PFM image", name);
+	if (max_pixels > FCT_IMAGE_MAX_PIXELS)
+		max_pixels = FCT_IMAGE_MAX_PIXELS;
 
 	unsigned char *buf = NULL;
 	size_t len = 0;
 	if (slurp(f, name, head, n, &buf, &len, err))
 		return -1;
 
+	int rc;
 	if (pfm) {
-		if (pfm_decode(img, buf, len, name, err))
-			return -1;
+		rc = pfm_decode(img, buf, len, name, max_pixels, header_only, err);
+	} else if (jpeg) {
+		rc = jpeg_decode(img, buf, len, name, max_pixels, header_only, err);
+		free(buf);
 	} else {
 		struct png_state s;
 		memset(&s, 0, sizeof s);
 		s.buf = buf;
 		s.len = len;
-		int rc = png_decode(img, &s, name, err);
+		rc = png_decode(img, &s, name, max_pixels, header_only, err);
 		free(buf);
-		if (rc)
-			return -1;
+	}
+	if (rc) {
+		memset(img, 0, sizeof *img);
+		return -1;
 	}
 	if (fmt)
-		*fmt = pfm ? FCT_IMAGE_PFM : FCT_IMAGE_PNG;
+		*fmt = pfm ? FCT_IMAGE_PFM : jpeg ? FCT_IMAGE_JPEG : FCT_IMAGE_PNG;
 	return 0;
+}
+
+/* Open path (or stdin) and read it with read_image. */
+static int read_image_file(struct fct_image *img, const char *path, size_t max_pixels,
+                           int header_only, enum fct_image_format *fmt, struct fct_err *err)
+{
+	if (fct_path_is_std(path))
+		return read_image(img, stdin, "<stdin>", max_pixels, header_only, fmt, err);
+	memset(img, 0, sizeof *img);
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return fct_fail(err, "%s: %s", path, strerror(errno));
+	int rc = read_image(img, f, path, max_pixels, header_only, fmt, err);
+	fclose(f);
+	return rc;
+}
+
+int fct_image_read_stream(struct fct_image *img, FILE *f, const char *name,
+                          enum fct_image_format *fmt, struct fct_err *err)
+{
+	return read_image(img, f, name, FCT_IMAGE_MAX_PIXELS, 0, fmt, err);
 }
 
 int fct_image_read_file(struct fct_image *img, const char *path,
                         enum fct_image_format *fmt, struct fct_err *err)
 {
-	if (fct_path_is_std(path))
-		return fct_image_read_stream(img, stdin, "<stdin>", fmt, err);
-	memset(img, 0, sizeof *img);
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return fct_fail(err, "%s: %s", path, strerror(errno));
-	int rc = fct_image_read_stream(img, f, path, fmt, err);
-	fclose(f);
-	return rc;
+	return read_image_file(img, path, FCT_IMAGE_MAX_PIXELS, 0, fmt, err);
+}
+
+int fct_image_read_file_max(struct fct_image *img, const char *path, size_t max_pixels,
+                            enum fct_image_format *fmt, struct fct_err *err)
+{
+	return read_image_file(img, path, max_pixels, 0, fmt, err);
+}
+
+int fct_image_probe_file(struct fct_image *img, const char *path,
+                         enum fct_image_format *fmt, struct fct_err *err)
+{
+	return read_image_file(img, path, FCT_IMAGE_MAX_PIXELS, 1, fmt, err);
 }
 
 /* ---- writing ---------------------------------------------------------- */

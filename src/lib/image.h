@@ -1,4 +1,5 @@
-/* image.h - raster images: PNG (through libpng) and PFM, read and written.
+/* image.h - raster images: PNG (through libpng) and PFM, read and written;
+ * JPEG (through libjpeg-turbo) read.
  *
  * An image is a flat array of samples: row-major, top row first, channels
  * interleaved, in the host's byte order, whatever order the file used.
@@ -6,14 +7,24 @@
  * units); only sub-8-bit grey is widened, to 8 bits with libpng's bit
  * replication (1-bit 1 -> 255).
  *
- * Reading detects the format from the first bytes, never from the name:
- * the PNG signature, or "PF"/"Pf" followed by whitespace (PFM, colour/grey).
- * Nothing is allocated beyond what the input's real size justifies: a PNG's
- * pixel data may not exceed what its compressed bytes can inflate to, and a
- * PFM's header must match the number of bytes that follow it exactly.
+ * JPEG gives 8-bit samples: 1 channel for greyscale, else 3 (RGB), CMYK and
+ * YCCK converted to RGB as Pillow does (Adobe's inverted inks recognised);
+ * libjpeg's default, accurate integer IDCT and smooth chroma upsampling, so
+ * the pixels equal those of Pillow or djpeg built on libjpeg-turbo.  The
+ * Exif orientation is not applied (RGB-D frames are stored as seen).
  *
- * Errors follow err.h: "FILE: byte N: what", with libpng's own messages
- * prefixed "libpng: ". */
+ * Reading detects the format from the first bytes, never from the name:
+ * the PNG signature, FF D8 FF (JPEG), or "PF"/"Pf" followed by whitespace
+ * (PFM, colour/grey).  Nothing is allocated beyond what the input's real
+ * size justifies: a PNG's pixel data may not exceed what its compressed
+ * bytes can inflate to, a JPEG may not claim more than 512 pixels per byte
+ * of file (one bit per 8x8 block, the least Huffman coding spends; checked
+ * before libjpeg allocates), and a PFM's header must match the number of
+ * bytes that follow it exactly.  A JPEG that libjpeg warns about (truncated,
+ * corrupt entropy data) is refused, not filled in with grey.
+ *
+ * Errors follow err.h: "FILE: byte N: what", with libpng's and libjpeg's
+ * own messages prefixed "libpng: " and "libjpeg: ". */
 #ifndef FCT_IMAGE_H
 #define FCT_IMAGE_H
 
@@ -24,7 +35,7 @@
 
 enum fct_pix { FCT_PIX_U8, FCT_PIX_U16, FCT_PIX_F32 };
 
-enum fct_image_format { FCT_IMAGE_PNG, FCT_IMAGE_PFM };
+enum fct_image_format { FCT_IMAGE_PNG, FCT_IMAGE_PFM, FCT_IMAGE_JPEG };
 
 struct fct_image {
 	int width, height;
@@ -41,7 +52,7 @@ struct fct_image {
 size_t fct_pix_size(enum fct_pix type);
 /* "u8", "u16", "f32". */
 const char *fct_pix_name(enum fct_pix type);
-/* "png", "pfm". */
+/* "png", "pfm", "jpeg". */
 const char *fct_image_format_name(enum fct_image_format fmt);
 
 /* Number of samples (width*height*channels) of a valid image. */
@@ -60,10 +71,20 @@ void fct_image_free(struct fct_image *img);
  * failure.  fmt (may be NULL) gets the format read. */
 int fct_image_read_file(struct fct_image *img, const char *path,
                         enum fct_image_format *fmt, struct fct_err *err);
-/* The same from an open stream called name (left open, read to its end
- * for PFM, to IEND for PNG). */
+/* The same from an open stream called name (left open, read to its end). */
 int fct_image_read_stream(struct fct_image *img, FILE *f, const char *name,
                           enum fct_image_format *fmt, struct fct_err *err);
+/* fct_image_read_file refusing, from the header and before decoding, an
+ * image of more than max_pixels pixels ("image size WxH: more than N pixels
+ * allowed here"): a program's stated bound on what it will hold. */
+int fct_image_read_file_max(struct fct_image *img, const char *path, size_t max_pixels,
+                            enum fct_image_format *fmt, struct fct_err *err);
+/* The shape (width, height, channels, type) fct_image_read_file would give,
+ * from the header alone: img->data stays NULL and nothing is decoded (the
+ * file is read whole and checked as far as its header).  For callers that
+ * must bound what several images add up to before decoding any. */
+int fct_image_probe_file(struct fct_image *img, const char *path,
+                         enum fct_image_format *fmt, struct fct_err *err);
 
 /* Write a U8 or U16 image with 1..4 channels as PNG (no gamma, no time:
  * the same image gives the same bytes).  Does not flush or close f. */

@@ -19,14 +19,16 @@ const char *fct_format_name(enum fct_format fmt)
 	return names[fmt];
 }
 
-/* Rewrite every relative TextureFile path p of m: joined to dir (reading a
- * file from another folder) or made relative to dir (writing a file).  One
- * pass over the comments, so thousands of textures stay linear. */
+/* Rewrite the TextureFile paths of m: a relative one joined to dir
+ * (reading a file from another folder), or every one, absolute included,
+ * made relative to dir (writing a file), so that a model and its images
+ * move together.  One pass over the comments, so thousands of textures
+ * stay linear. */
 static int map_textures(struct fct_mesh *m, const char *dir, int to_relative, struct fct_err *err)
 {
 	for (size_t i = 0; i < m->ncomments; i++) {
 		const char *p = fct_comment_texture(&m->comments[i]);
-		if (!p || p[0] == '/' || !p[0])
+		if (!p || !p[0] || (!to_relative && p[0] == '/'))
 			continue;
 		char *q = to_relative ? fct_path_relative(p, dir, err) : fct_path_join(dir, p, err);
 		if (!q)

@@ -5,9 +5,11 @@
  * picks OBJ (with a .mtl beside it when textured) for names ending in .obj
  * and PLY otherwise; named outputs are atomic (output.h).
  *
- * TextureFile paths follow DESIGN.md: on the pipes they are relative to the
- * current folder; reading a file from another folder prefixes that folder,
- * and writing a named file rewrites them relative to the file's folder. */
+ * TextureFile paths follow DESIGN.md: on the pipes they are kept as given
+ * (relative to the current folder, or absolute); reading a file from
+ * another folder prefixes that folder to a relative one, and writing a
+ * named file rewrites every one, absolute included, relative to the file's
+ * folder (an OBJ's map_Kd too), so that the folder can be moved. */
 #ifndef FCT_MESHIO_H
 #define FCT_MESHIO_H
 

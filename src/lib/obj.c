@@ -21,6 +21,7 @@
 
 #include "numparse.h"
 #include "path.h"
+#include "texcoord.h"
 
 /* A corner's vt or vn is stored as index + 1, 0 meaning "none"; a position
  * not yet used by a face has UNUSED as its first vt. */
@@ -1080,7 +1081,9 @@ static const struct fct_prop *scalar(const struct fct_elem *e, const char *name)
 
 int fct_obj_wants_mtl(const struct fct_mesh *m)
 {
-	return scalar(&m->vertex, "s") && scalar(&m->vertex, "t") && fct_header_texture_count(m) > 0;
+	const struct fct_prop *s, *t;
+	return (fct_texcoord_vertex(m, &s, &t) || fct_texcoord_face(m)) &&
+	       fct_header_texture_count(m) > 0;
 }
 
 /* The material of face f: its texnumber when valid, else texture 0; -1 for
@@ -1110,13 +1113,18 @@ static int write_mtl(const struct fct_mesh *m, FILE *mtl, int untextured)
 int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE *mtl,
                   struct fct_err *err)
 {
-	const struct elem_cols {
+	struct elem_cols {
 		const struct fct_prop *nx, *ny, *nz, *s, *t, *r, *g, *b;
 	} c = {
 		scalar(&m->vertex, "nx"), scalar(&m->vertex, "ny"), scalar(&m->vertex, "nz"),
-		scalar(&m->vertex, "s"), scalar(&m->vertex, "t"),
+		NULL, NULL,
 		scalar(&m->vertex, "red"), scalar(&m->vertex, "green"), scalar(&m->vertex, "blue"),
 	};
+	/* Texture coordinates per face corner (a face list texcoord) win over
+	 * per vertex ones: they hold seams. */
+	const struct fct_prop *corner = fct_texcoord_face(m);
+	if (!corner)
+		fct_texcoord_vertex(m, &c.s, &c.t);
 	int has_vn = c.nx && c.ny && c.nz, has_vt = c.s && c.t;
 	int has_rgb = c.r && c.g && c.b && c.r->type == FCT_UINT8 && c.g->type == FCT_UINT8 &&
 	              c.b->type == FCT_UINT8;
@@ -1133,8 +1141,10 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 	w->f = f, w->len = 0;
 	w_str(w, "# facet\n");
 	for (size_t i = 0; i < m->ncomments; i++) {
-		w_str(w, m->comments[i].obj_info ? "# obj_info " : "# comment ");
-		w_str(w, m->comments[i].text);
+		const char *key = m->comments[i].obj_info ? "# obj_info " : "# comment ";
+		char line[FCT_HEADER_LINE_MAX + 64];
+		w_str(w, key);
+		w_str(w, fct_comment_line(&m->comments[i], FCT_HEADER_LINE_MAX - strlen(key), line));
 		w_str(w, "\n");
 	}
 	if (textured && mtl_name) {
@@ -1166,6 +1176,12 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 		w_str(w, " "), w_value(w, c.t, i);
 		w_str(w, "\n");
 	}
+	for (size_t i = 0; corner && i < corner->off[m->nf]; i += 2) {
+		w_str(w, "vt "), w_value(w, corner, i);
+		w_str(w, " "), w_value(w, corner, i + 1);
+		w_str(w, "\n");
+	}
+	uint64_t vt_next = 1;     /* the next face corner's vt, per corner */
 	for (size_t i = 0; has_vn && i < m->nv; i++) {
 		w_str(w, "vn "), w_value(w, c.nx, i);
 		w_str(w, " "), w_value(w, c.ny, i);
@@ -1187,14 +1203,15 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 			}
 		}
 		w_str(w, "f");
+		int face_vt = has_vt || (corner && corner->off[i + 1] > corner->off[i]);
 		for (uint32_t k = m->fstart[i]; k < m->fstart[i + 1]; k++) {
 			uint64_t v = (uint64_t)m->fvert[k] + 1;
 			w_str(w, " ");
 			w_uint(w, v);
-			if (has_vt || has_vn) {
+			if (face_vt || has_vn) {
 				w_str(w, "/");
-				if (has_vt)
-					w_uint(w, v);
+				if (face_vt)
+					w_uint(w, has_vt ? v : vt_next++);
 				if (has_vn) {
 					w_str(w, "/");
 					w_uint(w, v);

@@ -57,19 +57,21 @@ int fct_obj_read(struct fct_mesh *m, struct fct_reader *r, const char *dir, stru
 
 /* Write m as OBJ to f: "# facet", the comments as "# comment TEXT" /
  * "# obj_info TEXT", v (with r g b as float/255 when the mesh has uchar red
- * green blue), vt from s t, vn from nx ny nz, and f with matching indices
- * i/i/i.  Numbers are the shortest that read back to the same float (or
- * double, for double positions).  When m has s t and a TextureFile, a
- * material library is written to mtl (which may be NULL to skip it) and
- * referred to as mtl_name (a file name relative to the OBJ file; NULL writes
- * no mtllib or usemtl): one material_K per TextureFile with map_Kd the path
- * unchanged, faces choosing theirs by texnumber (an invalid texnumber uses a
- * material "untextured"). */
+ * green blue), vt from the texture coordinates (texcoord.h: one vt per face
+ * corner from a face list texcoord, else one per vertex from s t or its
+ * other names), vn from nx ny nz, and f with matching indices i/i/i (the
+ * corner's own vt when per corner).  Numbers are the shortest that read
+ * back to the same float (or double, for double positions).  When m has
+ * texture coordinates and a TextureFile, a material library is written to
+ * mtl (which may be NULL to skip it) and referred to as mtl_name (a file
+ * name relative to the OBJ file; NULL writes no mtllib or usemtl): one
+ * material_K per TextureFile with map_Kd the path unchanged, faces choosing
+ * theirs by texnumber (an invalid texnumber uses a material "untextured"). */
 int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE *mtl,
                   struct fct_err *err);
 
-/* Would fct_obj_write want a material library for m?  (s t vertex columns
- * and at least one TextureFile comment.) */
+/* Would fct_obj_write want a material library for m?  (Texture
+ * coordinates, texcoord.h, and at least one TextureFile comment.) */
 int fct_obj_wants_mtl(const struct fct_mesh *m);
 
 #endif

@@ -85,8 +85,11 @@ char *fct_path_join(const char *dir, const char *rel, struct fct_err *err)
 	return p;
 }
 
-/* Absolute, normalised form of p (no ".", "..", or repeated slashes). */
-static char *absolute(const char *p, struct fct_err *err)
+/* Absolute form of p with the folder resolved through the file system
+ * (symbolic links, then "..") where it exists, lexically where it does not:
+ * the ".." of a relative path climb the real folders, not the names that
+ * led there.  p names a folder when is_dir is set, else a file in one. */
+static char *physical(const char *p, int is_dir, struct fct_err *err)
 {
 	char *cwd = NULL;
 	if (p[0] != '/' && !(cwd = getcwd(NULL, 0))) {
@@ -94,23 +97,41 @@ static char *absolute(const char *p, struct fct_err *err)
 		return NULL;
 	}
 	size_t n = (cwd ? strlen(cwd) : 0) + strlen(p) + 3;
-	char *out = malloc(n);
-	if (!out) {
+	char *raw = malloc(n);
+	if (!raw) {
 		free(cwd);
 		fct_fail(err, "out of memory");
 		return NULL;
 	}
-	snprintf(out, n, "%s/%s", cwd ? cwd : "", p);
+	snprintf(raw, n, "%s/%s", cwd ? cwd : "", p);
 	free(cwd);
-	normalise(out);
-	return out;
+	char *slash = is_dir ? NULL : strrchr(raw, '/');
+	if (slash)
+		*slash = 0;
+	char *real = realpath(slash && slash == raw ? "/" : raw, NULL);
+	if (slash)
+		*slash = '/';
+	if (real) {
+		const char *base = slash ? slash + 1 : "";
+		size_t m = strlen(real) + strlen(base) + 2;
+		char *out = malloc(m);
+		if (out)
+			snprintf(out, m, "%s/%s", real, base);
+		free(real);
+		free(raw);
+		if (!out)
+			fct_fail(err, "out of memory");
+		else
+			normalise(out);
+		return out;
+	}
+	normalise(raw);
+	return raw;
 }
 
 char *fct_path_relative(const char *target, const char *from, struct fct_err *err)
 {
-	if (target[0] == '/')
-		return fct_strdup(target, err);
-	char *t = absolute(target, err), *f = t ? absolute(from, err) : NULL;
+	char *t = physical(target, 0, err), *f = t ? physical(from, 1, err) : NULL;
 	if (!t || !f) {
 		free(t);
 		return NULL;

@@ -10,8 +10,10 @@ char *fct_path_dir(const char *path, struct fct_err *err);
  * "." and "seg/.." collapsed lexically (a relative result keeps its leading
  * ".."); malloc'd. */
 char *fct_path_join(const char *dir, const char *rel, struct fct_err *err);
-/* The path of target relative to folder from (both relative to the current
- * folder or absolute); an absolute target stays absolute.  malloc'd. */
+/* The path of target relative to folder from (each relative to the current
+ * folder or absolute), through the real folders where they exist (symbolic
+ * links resolved), so that it leads to target from inside from; an
+ * absolute target becomes relative too.  malloc'd. */
 char *fct_path_relative(const char *target, const char *from, struct fct_err *err);
 /* Is path standard input or output: NULL or "-"? */
 int fct_path_is_std(const char *path);

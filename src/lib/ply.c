@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "header.h"
 #include "numparse.h"
 
 enum { MAX_PROPS = 4096, MAX_ELEMS = 4096, LIST_BATCH = 1 << 16 };
@@ -1129,8 +1130,12 @@ int fct_ply_write(const struct fct_mesh *m, FILE *f, enum fct_ply_format fmt, st
 			goto oom;
 
 	fprintf(f, "ply\nformat %s 1.0\n", fmt_name[fmt]);
-	for (size_t i = 0; i < m->ncomments; i++)
-		fprintf(f, "%s %s\n", m->comments[i].obj_info ? "obj_info" : "comment", m->comments[i].text);
+	for (size_t i = 0; i < m->ncomments; i++) {
+		const char *key = m->comments[i].obj_info ? "obj_info" : "comment";
+		char line[FCT_HEADER_LINE_MAX + 64];
+		fprintf(f, "%s %s\n", key, fct_comment_line(&m->comments[i],
+		        FCT_HEADER_LINE_MAX - strlen(key) - 1, line));
+	}
 	const char *xt = fct_type_name(m->xyz_type == FCT_FLOAT64 ? FCT_FLOAT64 : FCT_FLOAT32);
 	fprintf(f, "element vertex %zu\nproperty %s x\nproperty %s y\nproperty %s z\n", m->nv, xt, xt, xt);
 	write_prop_decls(f, el[0], ct[0]);

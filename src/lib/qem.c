@@ -1462,6 +1462,18 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 	if (make_triangles(&s, m, &src, err))
 		goto out;
 	st->faces_in = s.live = s.nt;
+	if (s.nt == 0) {
+		/* Nothing to collapse (a point cloud, or only degenerate faces):
+		 * the faces go and the vertices stay as they are, without the
+		 * quadrics and lists of a few hundred bytes a vertex that
+		 * decimation needs (3.3 GB for a 300 MB point cloud). */
+		if (fct_elem_gather(&m->face, src, 0, err) || fct_mesh_set_triangle_count(m, 0, err))
+			goto out;
+		fct_mesh_remove_elem(m, "edge");
+		st->vertices_out = m->nv;
+		rc = 0;
+		goto out;
+	}
 	size_t nv1 = s.nv ? s.nv : 1;
 	if (!(s.p = fct_alloc_array(3 * nv1, sizeof *s.p, err)) ||
 	    !(s.q = fct_alloc_array(nv1, sizeof *s.q, err)) ||

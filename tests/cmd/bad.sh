@@ -11,7 +11,7 @@ limit=
 
 for f in tests/bad/*; do
 	case $f in
-	*.png|*.pfm) prog=imginfo ;;
+	*.png|*.pfm|*.jpg) prog=imginfo ;;
 	*) prog=meshconv ;;
 	esac
 	[ -x "$FCT_BIN/$prog" ] || { not_ok "$f: $prog is not built"; continue; }

@@ -13,6 +13,16 @@ for n in depth rgb_be crlf; do
 	run_case 0 "imginfo $D/img_$n.pfm" "$D/img_$n.info"
 done
 run_case 0 "imginfo $D/img_grey8.png $D/img_depth.pfm" "$D/img_two.info"
+# JPEG (tests/data/jpg_gen.py): goldens from Pillow's decode, told by content
+# (also under a .png name and on stdin).
+for n in 7scenes 7scenes_prog 7scenes_arith 7scenes_restart grey cmyk tiles; do
+	run_case 0 "imginfo $D/jpg_$n.jpg" "$D/jpg_$n.info"
+done
+cp $D/jpg_7scenes.jpg "$TMP/frame.png"
+sed "s|^file .*|file $TMP/frame.png|" $D/jpg_7scenes.info >"$TMP/frame.info"
+run_case 0 "imginfo $TMP/frame.png" "$TMP/frame.info"
+sed 's|^file .*|file <stdin>|' $D/jpg_cmyk.info >"$TMP/cmyk.info"
+run_case 0 "cat $D/jpg_cmyk.jpg | imginfo" "$TMP/cmyk.info"
 
 # stdin, as a pipe and as "-", names itself <stdin>.
 sed 's|^file .*|file <stdin>|' "$D/img_depth.info" >"$TMP/stdin.info"
@@ -20,7 +30,7 @@ run_case 0 "cat $D/img_depth.pfm | imginfo" "$TMP/stdin.info"
 run_case 0 "imginfo - <$D/img_depth.pfm" "$TMP/stdin.info"
 
 # Every bad image: status 1 and one line naming the file.
-for f in tests/bad/img_*.png tests/bad/img_*.pfm; do
+for f in tests/bad/img_*.png tests/bad/img_*.pfm tests/bad/img_*.jpg; do
 	run_case 1 "imginfo $f" "" "imginfo: $f: "
 done
 # A bad file after a good one still fails, with the good one described.
@@ -30,6 +40,15 @@ run_case 1 "cat tests/bad/img_lying.pfm | imginfo" "" "imginfo: <stdin>: byte 14
 run_case 1 "imginfo tests/bad/img_huge.png" "" \
 	"imginfo: tests/bad/img_huge.png: byte 16: image size 1000000x1000000: more than 2^31 pixels"
 run_case 1 "imginfo $D/no-such-file.png" "" "imginfo: $D/no-such-file.png: No such file"
+# 661 bytes claiming 30000x30000: refused from the header, before libjpeg
+# allocates (a 100 MB address space is plenty for the rest; not under the
+# sanitizers, whose shadow memory needs more).
+lim=
+[ -z "${FCT_SANITIZE:-}" ] && lim="ulimit -v 102400;"
+run_case 1 "$lim imginfo tests/bad/img_jpeg_lying.jpg" "" \
+	"imginfo: tests/bad/img_jpeg_lying.jpg: byte 623: image size 30000x30000: more pixels than 661 bytes of JPEG can code"
+run_case 1 "imginfo tests/bad/img_jpeg_truncated.jpg" "" \
+	"imginfo: tests/bad/img_jpeg_truncated.jpg: byte 659: libjpeg: Premature end of JPEG file"
 
 # Usage.
 run_case 0 "imginfo -h | head -n 1 | grep -q '^usage: imginfo \[-h\] \[--version\] \[file \.\.\.\]\$'"

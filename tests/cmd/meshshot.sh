@@ -60,6 +60,37 @@ run_case 0 "imginfo $TMP/sheet.png"
 check_true "sheet size" grep -q "^width 226$" "$TMP/out"
 check_true "sheet height" grep -q "^height 128$" "$TMP/out"
 
+# A JPEG TextureFile (the atlas at quality 100, shot_atlas.jpg from
+# tests/data/jpg_gen.py), told by its content: the oblique picture within 3
+# levels of the PNG-textured golden, the head-on red face within 2 of the
+# PNG-textured one; the same under a .png name.
+cp $D/shot_atlas.jpg "$TMP/atlas.jpg"
+cp $D/shot_atlas.jpg "$TMP/atlas_named.png"
+sed 's/^comment TextureFile .*/comment TextureFile atlas.jpg/' $D/shot_cube.ply >"$TMP/jcube.ply"
+run_case 0 "meshshot -s 160x120 --view oblique -w -m texture -o $TMP/jtex.png $TMP/jcube.ply"
+run_case 0 "pngsheet -d 3 $TMP/jtex.png $D/shot_golden_tex.png"
+run_case 0 "meshshot --bg 0,0,0 --texture $D/shot_atlas.png -o $TMP/cp.png $TMP/cam.ply"
+run_case 0 "meshshot --bg 0,0,0 --texture $TMP/atlas_named.png -o $TMP/cj.png $TMP/cam.ply"
+run_case 0 "pngsheet -d 2 $TMP/cj.png $TMP/cp.png"
+
+# Pictures far larger than their files: refused from the header, before
+# decoding, by the stated limits (a texture 2^26 pixels, a sheet 2^28), in
+# a 512 MB address space (not under the sanitizers, whose shadow memory
+# needs more): 17000x17000 in 35 KB, and 60 pictures of 4000x4000 in 2 KB
+# each (2.9 GB of RGB).
+lim="timeout 20"
+[ -z "${FCT_SANITIZE:-}" ] && lim="ulimit -v 524288; timeout 20"
+run_case 1 "$lim meshshot --texture $D/big_17000_1bit.png -m texture $D/shot_cube.ply" "" \
+	"meshshot: $D/big_17000_1bit.png: byte 16: image size 17000x17000: more than the 67108864 pixels allowed here"
+run_case 1 "$lim pngsheet -o $TMP/big.png $D/big_17000_1bit.png" "" \
+	"pngsheet: the sheet would be 17016x17038 pixels"
+run_case 1 "$lim pngsheet -d 1 $D/big_17000_1bit.png $D/big_17000_1bit.png" "" \
+	"pngsheet: $D/big_17000_1bit.png: byte 16: image size 17000x17000: more than the 268435456 pixels"
+set --
+for i in $(seq 60); do set -- "$@" $D/big_4000_1bit.png; done
+run_case 1 "$lim pngsheet -o $TMP/big.png $*" "" "pngsheet: the sheet would be 32072x32248 pixels"
+check_true "no sheet written" test ! -e "$TMP/big.png"
+
 # Errors.
 run_case 2 "meshshot -s 0x10 $D/shot_cube.ply" "" "meshshot: -s: "
 run_case 2 "meshshot --view back $D/shot_cube.ply" "" "meshshot: --view: "

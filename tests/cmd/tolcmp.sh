@@ -78,6 +78,14 @@ run_case 0 "tolcmp $T/a /etc 2>/dev/null; test \$? = 2"
 run_case 0 "tolcmp --help | grep -q '^usage: tolcmp \[-s\] \[-a abs\] \[-r rel\] file1 file2$'"
 run_case 0 "tolcmp --version | grep -q '^tolcmp (facet) '"
 
+# Not text: a NUL byte, or a line past 16 MB (/dev/zero was read until
+# memory ran out at 2 GB): exit 2 within a 200 MB address space.
+printf '1 2\n3\0 4\n' >$T/nul
+run_case 2 "tolcmp $T/nul $T/nul" "" "tolcmp: $T/nul:2: NUL byte: not a text file"
+lim=
+[ -z "${FCT_SANITIZE:-}" ] && lim="ulimit -v 204800;"
+run_case 2 "$lim timeout 20 tolcmp /dev/zero $T/a" "" "tolcmp: /dev/zero:1: line longer than 16777216 bytes"
+
 # The man page's examples.
 run_case 0 "meshinfo tests/data/info_cube.ply >$T/got && tolcmp tests/cmd/expected/meshinfo_cube.txt $T/got"
 run_case 0 "meshconv -a tests/data/info_points.ply >$T/points.ply && tolcmp tests/data/info_points.ply $T/points.ply"

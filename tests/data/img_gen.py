@@ -127,3 +127,17 @@ put(B + 'img_header_cut.pfm', b'PF\n3 ')
 put(B + 'img_huge_side.pfm', b'Pf\n99999999999 1\n-1\n' + floats)
 put(B + 'img_too_many_pixels.pfm', b'Pf\n16777216 16777216\n-1\n' + floats)
 put(B + 'img_width_junk.pfm', b'Pf\n3x 2\n-1\n' + floats)
+
+# --- big pictures from small files (bounded by the programs' stated limits) --
+def blank_1bit(w, h):
+    """A w x h 1-bit grey PNG, all black: (w/8 + 1) * h zero bytes deflated."""
+    raw = (b'\0' * ((w + 7) // 8 + 1)) * h
+    return SIG + ihdr(w, h, 1, 0) + chunk(b'IDAT', zlib.compress(raw, 9)) + chunk(b'IEND', b'')
+
+# 4000x4000 (16 M pixels, 48 MB as RGB) in 2 KB: 60 of them on one sheet.
+# Neither is a fuzz seed (fuzz/run skips big_*): a valid big picture is no
+# finding.
+put(D + 'big_4000_1bit.png', blank_1bit(4000, 4000))
+# 17000x17000 (289 M pixels, 867 MB as RGB) in 35 KB: over pngsheet's 2^28
+# and meshshot's 2^26 texture pixels.
+put(D + 'big_17000_1bit.png', blank_1bit(17000, 17000))

@@ -1,7 +1,9 @@
 /* test_image.c - PNG and PFM reading and writing: bit-exact round trips,
  * hand-made PFM bytes, fixtures written by an independent encoder
  * (tests/data/img_gen.py, zlib only), real depth maps checked against values
- * decoded by a separate Python decoder, and the error messages. */
+ * decoded by a separate Python decoder, and the error messages.  JPEG:
+ * fixtures from tests/data/jpg_gen.py checked against Pillow's decode (its
+ * own libjpeg-turbo) and against colours known by construction. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -296,6 +298,178 @@ static void test_fixtures(void)
 	}
 }
 
+/* path (of size n) gets the file rel of the shared real data, from the
+ * top folder of a checkout beside it or at its usual place; -1 (the test
+ * skipped with a message) when it is not there. */
+static int find_real(char *path, size_t n, const char *rel)
+{
+	const char *roots[] = { "../shared/data/", "/work/shared/data/" };
+	for (int i = 0; i < 2; i++) {
+		snprintf(path, n, "%s%s", roots[i], rel);
+		FILE *f = fopen(path, "rb");
+		if (f) {
+			fclose(f);
+			return 0;
+		}
+	}
+	fprintf(stderr, "test_image: %s not found, skipped\n", rel);
+	return -1;
+}
+
+/* The pixel (x, y) of an 8-bit image, channels 0..2 (or the grey value). */
+static void check_rgb(const struct fct_image *img, int x, int y, int r, int g, int b)
+{
+	int want[3] = { r, g, b };
+	for (int c = 0; c < img->channels; c++)
+		CHECK_MSG(fct_image_get(img, x, y, c) == want[c], "pixel (%d, %d) channel %d: %g, want %d",
+		          x, y, c, fct_image_get(img, x, y, c), want[c]);
+}
+
+static double image_sum(const struct fct_image *img)
+{
+	double s = 0;
+	for (size_t i = 0; i < fct_image_samples(img); i++)
+		s += fct_image_sample(img, i);
+	return s;
+}
+
+/* A 64x48 piece of the 7-Scenes frame (jpegtran's lossless crop, 4:2:0):
+ * sums and pixels as Pillow decodes them; the same coefficients written
+ * progressive, arithmetic-coded and with a restart marker per MCU decode to
+ * the same bytes; CMYK and greyscale; flat tiles of known colour. */
+static void test_jpeg_fixtures(void)
+{
+	struct fct_image img, other;
+	struct fct_err err;
+	enum fct_image_format fmt = FCT_IMAGE_PNG;
+	if (fct_image_read_file(&img, "tests/data/jpg_7scenes.jpg", &fmt, &err)) {
+		CHECK_MSG(0, "%s", err.msg);
+		return;
+	}
+	CHECK_INT(fmt, FCT_IMAGE_JPEG);
+	CHECK_STR(fct_image_format_name(fmt), "jpeg");
+	CHECK_INT(img.width, 64);
+	CHECK_INT(img.height, 48);
+	CHECK_INT(img.channels, 3);
+	CHECK_INT(img.type, FCT_PIX_U8);
+	CHECK_NEAR(image_sum(&img), 1864122, 0);
+	check_rgb(&img, 0, 0, 236, 212, 176);
+	check_rgb(&img, 31, 20, 220, 201, 161);
+	check_rgb(&img, 63, 47, 228, 213, 180);
+	check_rgb(&img, 10, 40, 234, 220, 193);
+	static const char *const same[] = { "tests/data/jpg_7scenes_prog.jpg",
+	                                    "tests/data/jpg_7scenes_arith.jpg",
+	                                    "tests/data/jpg_7scenes_restart.jpg" };
+	for (int i = 0; i < 3; i++) {
+		if (read_path(&other, same[i]))
+			continue;
+		CHECK_MSG(other.width == 64 && other.height == 48 && other.channels == 3 &&
+		          !memcmp(other.data, img.data, fct_image_samples(&img)),
+		          "%s decodes to the same pixels as the baseline file", same[i]);
+		fct_image_free(&other);
+	}
+	if (!read_path(&other, "tests/data/jpg_cmyk.jpg")) {
+		CHECK_INT(other.channels, 3);
+		CHECK_NEAR(image_sum(&other), 1864160, 0);
+		check_rgb(&other, 0, 0, 236, 211, 176);
+		check_rgb(&other, 31, 20, 220, 201, 161);
+		/* Pillow's CMYK of the RGB piece, at quality 95: within 3 levels. */
+		double worst = 0;
+		for (size_t i = 0; i < fct_image_samples(&img); i++)
+			worst = fmax(worst, fabs(fct_image_sample(&img, i) - fct_image_sample(&other, i)));
+		CHECK_NEAR(worst, 3, 0);
+		fct_image_free(&other);
+	}
+	fct_image_free(&img);
+	if (!read_path(&img, "tests/data/jpg_grey.jpg")) {
+		CHECK_INT(img.channels, 1);
+		CHECK_NEAR(image_sum(&img), 641732, 0);
+		CHECK_NEAR(fct_image_get(&img, 0, 0, 0), 215, 0);
+		CHECK_NEAR(fct_image_get(&img, 31, 20, 0), 202, 0);
+		fct_image_free(&img);
+	}
+	if (!read_path(&img, "tests/data/jpg_tiles.jpg")) {
+		/* 8x8 tiles red, green / blue, (200, 150, 50) at quality 100, 4:4:4. */
+		static const int colour[4][3] = { { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 255 },
+		                                  { 200, 150, 50 } };
+		double worst = 0;
+		for (int y = 0; y < 16; y++)
+			for (int x = 0; x < 16; x++)
+				for (int c = 0; c < 3; c++)
+					worst = fmax(worst, fabs(fct_image_get(&img, x, y, c) -
+					                         colour[(y / 8) * 2 + x / 8][c]));
+		CHECK_MSG(worst <= 1, "flat tiles decode within 1 level of their colour (%g)", worst);
+		fct_image_free(&img);
+	}
+}
+
+/* The whole 7-Scenes frame the piece was cut from: Pillow's sums and
+ * pixels, and the piece equal to the frame's pixels away from its border
+ * (where chroma upsampling sees different neighbours). */
+static void test_jpeg_real(void)
+{
+	char path[512];
+	if (find_real(path, sizeof path, "7scenes_redkitchen/frames/frame-000000.color.jpg"))
+		return;
+	struct fct_image img, piece;
+	if (read_path(&img, path))
+		return;
+	CHECK_INT(img.width, 640);
+	CHECK_INT(img.height, 480);
+	CHECK_NEAR(image_sum(&img), 103947374, 0);
+	check_rgb(&img, 320, 240, 236, 212, 174);
+	check_rgb(&img, 0, 0, 76, 82, 82);
+	check_rgb(&img, 639, 479, 36, 31, 35);
+	check_rgb(&img, 100, 400, 130, 142, 158);
+	if (!read_path(&piece, "tests/data/jpg_7scenes.jpg")) {
+		int differ = 0;
+		for (int y = 2; y < 46; y++)
+			for (int x = 2; x < 62; x++)
+				for (int c = 0; c < 3; c++)
+					differ += fct_image_get(&piece, x, y, c) !=
+					          fct_image_get(&img, 320 + x, 240 + y, c);
+		CHECK_INT(differ, 0);
+		fct_image_free(&piece);
+	}
+	fct_image_free(&img);
+}
+
+/* The header alone, and a caller's limit applied before decoding. */
+static void test_probe_and_limit(void)
+{
+	static const struct { const char *path; int w, h, ch; enum fct_pix type; } probe[] = {
+		{ "tests/data/jpg_7scenes.jpg", 64, 48, 3, FCT_PIX_U8 },
+		{ "tests/data/jpg_grey.jpg", 64, 48, 1, FCT_PIX_U8 },
+		{ "tests/data/jpg_cmyk.jpg", 64, 48, 3, FCT_PIX_U8 },
+		{ "tests/data/img_pal2.png", 3, 2, 4, FCT_PIX_U8 },
+		{ "tests/data/img_grey16.png", 3, 2, 1, FCT_PIX_U16 },
+		{ "tests/data/img_rgb_be.pfm", 2, 2, 3, FCT_PIX_F32 },
+	};
+	struct fct_image img;
+	struct fct_err err;
+	for (size_t i = 0; i < sizeof probe / sizeof probe[0]; i++) {
+		int rc = fct_image_probe_file(&img, probe[i].path, NULL, &err);
+		CHECK_MSG(rc == 0 && img.data == NULL && img.width == probe[i].w &&
+		          img.height == probe[i].h && img.channels == probe[i].ch &&
+		          img.type == probe[i].type, "probe %s: %s", probe[i].path, rc ? err.msg : "");
+	}
+	CHECK(fct_image_probe_file(&img, "tests/bad/img_jpeg_huge.jpg", NULL, &err) == -1);
+	CHECK(fct_image_probe_file(&img, "tests/bad/img_lying.pfm", NULL, &err) == -1);
+
+	CHECK(fct_image_read_file_max(&img, "tests/data/jpg_7scenes.jpg", 3071, NULL, &err) == -1);
+	CHECK_STR(err.msg, "tests/data/jpg_7scenes.jpg: byte 623: image size 64x48: "
+	          "more than the 3071 pixels allowed here");
+	CHECK(img.data == NULL);
+	CHECK(fct_image_read_file_max(&img, "tests/data/jpg_7scenes.jpg", 3072, NULL, &err) == 0);
+	fct_image_free(&img);
+	CHECK(fct_image_read_file_max(&img, "tests/data/img_grey8.png", 5, NULL, &err) == -1);
+	CHECK_STR(err.msg, "tests/data/img_grey8.png: byte 16: image size 3x2: "
+	          "more than the 5 pixels allowed here");
+	CHECK(fct_image_read_file_max(&img, "tests/data/img_depth.pfm", 5, NULL, &err) == -1);
+	CHECK_STR(err.msg, "tests/data/img_depth.pfm: byte 3: PFM header: image size 3x2: "
+	          "more than the 5 pixels allowed here");
+}
+
 /* The real depth maps in ../shared/data.  Expected values were decoded with
  * a separate Python PNG decoder (zlib only, CRCs checked). */
 struct real_case {
@@ -307,18 +481,9 @@ struct real_case {
 
 static void test_real_depth(const struct real_case *rc)
 {
-	const char *roots[] = { "../shared/data/", "/work/shared/data/" };
 	char path[512];
-	FILE *f = NULL;
-	for (int i = 0; i < 2 && !f; i++) {
-		snprintf(path, sizeof path, "%s%s", roots[i], rc->path);
-		f = fopen(path, "rb");
-	}
-	if (!f) {
-		fprintf(stderr, "test_image: %s not found, skipped\n", rc->path);
+	if (find_real(path, sizeof path, rc->path))
 		return;
-	}
-	fclose(f);
 	struct fct_image img;
 	if (read_path(&img, path))
 		return;
@@ -356,7 +521,7 @@ static void check_error(const char *bytes, size_t n, const char *want)
 
 static void test_errors(void)
 {
-	check_error("hello", 5, "mem: not a PNG or PFM image");
+	check_error("hello", 5, "mem: not a PNG, JPEG or PFM image");
 	check_error("\x89PNG", 4, "mem: byte 4: PNG signature: unexpected end of file");
 	check_error("Pf\n2 1\n-1\n\0\0\0\0", 14,
 	            "mem: byte 10: PFM header says 2x1 with 1 channel (8 bytes) but 4 bytes follow");
@@ -413,6 +578,14 @@ static void test_bad_files(void)
 		{ "tests/bad/img_huge_rgba.png", "byte 16: image size 40000x40000 needs" },
 		{ "tests/bad/img_lying.pfm", "byte 14: PFM header says 300x200" },
 		{ "tests/bad/img_empty.png", "empty input" },
+		{ "tests/bad/img_jpeg_huge.jpg", "byte 623: image size 60000x60000: more than 2^31" },
+		{ "tests/bad/img_jpeg_lying.jpg", "byte 623: image size 30000x30000: more pixels than "
+		  "661 bytes of JPEG can code" },
+		{ "tests/bad/img_jpeg_lying_prog.jpg", "byte 245: image size 40000x40000: more pixels" },
+		{ "tests/bad/img_jpeg_truncated.jpg", "byte 659: libjpeg: Premature end of JPEG file" },
+		{ "tests/bad/img_jpeg_corrupt.jpg", "byte 659: libjpeg: Corrupt JPEG data" },
+		{ "tests/bad/img_jpeg_12bit.jpg", "byte 623: libjpeg: Unsupported JPEG data precision 12" },
+		{ "tests/bad/img_jpeg_two_components.jpg", "byte 331: 2 components of unknown colour" },
 	};
 	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
 		struct fct_err err;
@@ -433,6 +606,9 @@ int main(void)
 	test_pfm_whitespace();
 	test_pfm_round_trips();
 	test_fixtures();
+	test_jpeg_fixtures();
+	test_jpeg_real();
+	test_probe_and_limit();
 	static const struct real_case redkitchen = {
 		"7scenes_redkitchen/frames/frame-000000.depth.png", 33257, 526822367, 3493,
 		{ { 320, 240, 1382 }, { 100, 400, 1828 }, { 500, 50, 2834 } },
