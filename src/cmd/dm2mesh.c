@@ -13,6 +13,7 @@
 
 #include "cli.h"
 #include "depthmesh.h"
+#include "depthopts.h"
 #include "header.h"
 #include "image.h"
 #include "meshio.h"
@@ -71,162 +72,55 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum {
-	OPT_CAMERA = 256, OPT_CYL, OPT_SCALE, OPT_BASELINE, OPT_FOCAL, OPT_RANGE, OPT_STEP,
-	OPT_ANGLE, OPT_MINFACES, OPT_NOISE, OPT_POINTS, OPT_MAXEDGE, OPT_POSE, OPT_IMAGE, OPT_VERSION
-};
+enum { OPT_MINFACES = 256, OPT_POINTS, OPT_MAXEDGE, OPT_VERSION };
 
 struct options {
-	const char *out, *camera_file, *pose_file, *image_file, *input;
-	const char *K, *cylindrical, *noise;
-	int ascii, points, scale_given;
-	double focal, max_edge;
-	struct fct_depth_params depth;
+	const char *out, *input;
+	int ascii, points;
+	double max_edge;
+	struct fct_depth_opts d;
 };
-
-/* The camera the options name; width and height of a size-less camera come
- * from the image (w, h; 0 for sparse points without a size). */
-static void resolve_camera(struct options *o, struct fct_camera *cam, int w, int h)
-{
-	struct fct_err err;
-	int given = !!o->K + !!o->camera_file + !!o->cylindrical;
-	memset(cam, 0, sizeof *cam);
-	if (given > 1)
-		fct_usage_error("-K, --camera and --cylindrical exclude each other");
-	if (o->K) {
-		double scale, k[4];
-		if (!fct_camera_named(o->K, cam, &scale)) {
-			if (!o->scale_given)
-				o->depth.depth_scale = scale;
-		} else if (strchr(o->K, ',')) {
-			fct_opt_doubles("-K", o->K, k, 4);
-			if (!(k[0] > 0 && k[1] > 0))
-				fct_usage_error("-K: focal lengths must be positive");
-			cam->kind = FCT_CAMERA_PINHOLE;
-			cam->fx = k[0], cam->fy = k[1], cam->cx = k[2], cam->cy = k[3];
-		} else {
-			fct_usage_error("-K: \"%s\" is neither fx,fy,cx,cy nor a camera name (%s)",
-			                o->K, fct_camera_names());
-		}
-	} else if (o->camera_file) {
-		if (fct_camera_read_file(o->camera_file, cam, &err))
-			fct_die_err(&err);
-	} else if (o->cylindrical) {
-		fct_opt_cylindrical(o->cylindrical, w, h, cam);
-	} else if (!o->points) {
-		fct_usage_error("no camera: give -K, --camera or --cylindrical");
-	}
-	if (cam->kind != FCT_CAMERA_NONE && cam->width == 0)
-		cam->width = w, cam->height = h;
-}
-
-/* Does arg start with the name of a noise model (rather than name a file)? */
-static int names_model(const char *arg)
-{
-	size_t n = strcspn(arg, ":, \t");
-	const char *m = fct_noise_models();
-	while (*m) {
-		size_t k = strcspn(m, " ");
-		if (k == n && !strncmp(arg, m, n))
-			return 1;
-		m += k + (m[k] == ' ');
-	}
-	return 0;
-}
-
-/* The noise model: --noise's (a model parsed with the options, or a file),
- * else the one a dataset's camera name implies; the unit of the image's
- * depth encoding when the model gives none. */
-static void resolve_noise(struct options *o, const struct fct_image *img)
-{
-	struct fct_noise *nz = &o->depth.noise;
-	struct fct_err err;
-	if (o->noise && !names_model(o->noise) && fct_noise_read_file(o->noise, nz, &err))
-		fct_die_err(&err);
-	if (!o->noise && o->K)
-		fct_noise_named(o->K, nz);
-	if (nz->model != FCT_NOISE_UNKNOWN && nz->unit == 0)
-		nz->unit = fct_depth_unit(img, &o->depth);
-}
 
 static void parse_options(int argc, char **argv, struct options *o)
 {
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, OPT_VERSION},
-		{"camera", required_argument, NULL, OPT_CAMERA},
-		{"cylindrical", required_argument, NULL, OPT_CYL},
-		{"depth-scale", required_argument, NULL, OPT_SCALE},
-		{"baseline", required_argument, NULL, OPT_BASELINE},
-		{"focal", required_argument, NULL, OPT_FOCAL},
-		{"range", required_argument, NULL, OPT_RANGE},
-		{"step", required_argument, NULL, OPT_STEP},
-		{"max-angle", required_argument, NULL, OPT_ANGLE},
+		FCT_DEPTH_LONGOPTS,
 		{"min-faces", required_argument, NULL, OPT_MINFACES},
-		{"noise", required_argument, NULL, OPT_NOISE},
 		{"points", no_argument, NULL, OPT_POINTS},
 		{"max-edge", required_argument, NULL, OPT_MAXEDGE},
-		{"pose", required_argument, NULL, OPT_POSE},
-		{"image", required_argument, NULL, OPT_IMAGE},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ahj:K:o:qv";
 	int c;
-	double r[2];
 	memset(o, 0, sizeof *o);
-	fct_depth_params_default(&o->depth);
+	fct_depth_opts_init(&o->d);
 	o->max_edge = HUGE_VAL;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		if (fct_depth_opt(&o->d, c, optarg))
+			continue;
 		switch (c) {
 		case 'a': o->ascii = 1; break;
 		case 'h': fputs(usage, stdout); exit(0);
-		case 'j': o->depth.grid.max_jump = fct_opt_double("-j", optarg, 0, HUGE_VAL); break;
-		case 'K': o->K = optarg; break;
 		case 'o': o->out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("dm2mesh (facet) " FCT_VERSION); exit(0);
-		case OPT_CAMERA: o->camera_file = optarg; break;
-		case OPT_CYL: o->cylindrical = optarg; break;
-		case OPT_SCALE:
-			o->depth.depth_scale = fct_opt_double("--depth-scale", optarg, 1e-300, 1e300);
-			o->depth.scale_float = o->scale_given = 1;
-			break;
-		case OPT_BASELINE: o->depth.baseline = fct_opt_double("--baseline", optarg, 1e-300, 1e300); break;
-		case OPT_FOCAL: o->focal = fct_opt_double("--focal", optarg, 1e-300, 1e300); break;
-		case OPT_RANGE:
-			fct_opt_doubles("--range", optarg, r, 2);
-			if (!(r[0] >= 0 && r[1] > r[0]))
-				fct_usage_error("--range: expected 0 <= min < max");
-			o->depth.min_depth = r[0], o->depth.max_depth = r[1];
-			break;
-		case OPT_STEP: o->depth.step = (int)fct_opt_long("--step", optarg, 1, 1 << 20); break;
-		case OPT_ANGLE:
-			o->depth.grid.max_jump = tan(fct_opt_double("--max-angle", optarg, 0, 89.999) * M_PI / 180);
-			break;
-		case OPT_MINFACES: o->depth.grid.min_faces = (size_t)fct_opt_long("--min-faces", optarg, 0, 1L << 40); break;
-		case OPT_NOISE: o->noise = optarg; break;
+		case OPT_MINFACES: o->d.depth.grid.min_faces = (size_t)fct_opt_long("--min-faces", optarg, 0, 1L << 40); break;
 		case OPT_POINTS: o->points = 1; break;
 		case OPT_MAXEDGE: o->max_edge = fct_opt_double("--max-edge", optarg, 0, HUGE_VAL); break;
-		case OPT_POSE: o->pose_file = optarg; break;
-		case OPT_IMAGE: o->image_file = optarg; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
 	o->input = fct_one_operand(argc, argv, optind, "-");
-	if (o->focal > 0 && !(o->depth.baseline > 0))
-		fct_usage_error("--focal is for disparities and needs --baseline");
-	if (o->points && (o->depth.baseline > 0 || o->depth.step != 1))
+	if (o->points && (o->d.depth.baseline > 0 || o->d.depth.step != 1))
 		fct_usage_error("--points takes no --baseline or --step");
 	if (!o->points && o->max_edge < HUGE_VAL)
 		fct_usage_error("--max-edge is for --points");
-	if (o->points && o->noise)
+	if (o->points && o->d.noise)
 		fct_usage_error("--noise is for depth images");
-	if (o->noise && names_model(o->noise)) {
-		struct fct_err err;
-		if (fct_noise_parse(&o->depth.noise, o->noise, &err))
-			fct_usage_error("--%s", err.msg);
-	}
+	fct_depth_opts_check(&o->d);
 }
 
 static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
@@ -235,15 +129,11 @@ static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
 	struct fct_image img;
 	if (fct_image_read_file(&img, o->input, NULL, &err))
 		fct_die_err(&err);
-	resolve_camera(o, cam, img.width, img.height);
-	if (o->depth.baseline > 0)
-		o->depth.focal = o->focal > 0 ? o->focal
-		               : cam->kind == FCT_CAMERA_CYLINDRICAL ? cam->f : cam->fx;
-	resolve_noise(o, &img);
+	fct_depth_opts_resolve(&o->d, cam, &img);
 	struct fct_mesh m;
 	fct_report("pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	struct fct_grid_stats st;
-	if (fct_depth_mesh(&m, &img, cam, &o->depth, &st, &err)) {
+	if (fct_depth_mesh(&m, &img, cam, &o->d.depth, &st, &err)) {
 		fct_image_free(&img);
 		fct_err_prefix(&err, "%s", fct_path_display(o->input));
 		fct_die_err(&err);
@@ -260,18 +150,18 @@ static struct fct_mesh mesh_points(struct options *o, struct fct_camera *cam)
 	struct fct_image_points pts;
 	if (fct_image_points_read_file(&pts, o->input, &err))
 		fct_die_err(&err);
-	resolve_camera(o, cam, 0, 0);
-	if (cam->kind != FCT_CAMERA_NONE && cam->width == 0 && o->image_file) {
+	fct_depth_opts_camera(&o->d, cam, 0, 0, 0);
+	if (cam->kind != FCT_CAMERA_NONE && cam->width == 0 && o->d.image_file) {
 		/* The image gives the size that texture coordinates need. */
 		struct fct_image img;
-		if (fct_image_read_file(&img, o->image_file, NULL, &err)) {
+		if (fct_image_read_file(&img, o->d.image_file, NULL, &err)) {
 			fct_image_points_free(&pts);
 			fct_die_err(&err);
 		}
 		cam->width = img.width, cam->height = img.height;
 		fct_image_free(&img);
 	}
-	struct fct_sparse_params sp = { o->depth.grid.max_jump, o->max_edge };
+	struct fct_sparse_params sp = { o->d.depth.grid.max_jump, o->max_edge };
 	struct fct_mesh m;
 	fct_report("points", "%zu", pts.n);
 	struct fct_sparse_stats st;
@@ -291,25 +181,17 @@ int main(int argc, char **argv)
 	struct options o;
 	parse_options(argc, argv, &o);
 	struct fct_err err;
-	double pose[12];
-	if (o.pose_file && fct_pose_read_file(o.pose_file, pose, &err))
-		fct_die_err(&err);
+	fct_depth_opts_read_pose(&o.d);
 
 	double t0 = fct_now(), c0 = fct_cpu_time();
 	struct fct_camera cam;
 	struct fct_mesh m = o.points ? mesh_points(&o, &cam) : mesh_depth(&o, &cam);
 	double mesh_s = fct_now() - t0;
 
-	if (o.pose_file)
-		for (size_t v = 0; v < m.nv; v++)
-			fct_pose_apply(pose, &m.xyz[3 * v], &m.xyz[3 * v]);
 	char noise[256];
-	fct_noise_format(&o.depth.noise, noise, sizeof noise);
+	fct_noise_format(&o.d.depth.noise, noise, sizeof noise);
 	fct_report("noise", "%s", *noise ? noise : "unknown");
-	if (fct_header_set_camera(&m, &cam, &err) ||
-	    fct_header_set_noise(&m, &o.depth.noise, &err) ||
-	    (o.pose_file && fct_header_set_pose(&m, pose, &err)) ||
-	    (o.image_file && fct_header_set_texture(&m, 0, o.image_file, &err)) ||
+	if (fct_depth_opts_finish(&o.d, &m, &cam, &err) ||
 	    fct_header_add_provenance(&m, "dm2mesh", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, o.out, o.ascii, &err))
 		fct_die_err(&err);

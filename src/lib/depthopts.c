@@ -1,0 +1,177 @@
+/* depthopts.c - the depth-image options of dm2mesh and planarize (see
+ * depthopts.h). */
+#include "depthopts.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "cli.h"
+#include "header.h"
+
+void fct_depth_opts_init(struct fct_depth_opts *o)
+{
+	memset(o, 0, sizeof *o);
+	fct_depth_params_default(&o->depth);
+}
+
+/* The name of option c as a user types it. */
+static const char *opt_name(int c)
+{
+	switch (c) {
+	case 'K': return "-K";
+	case 'j': return "-j";
+	case FCT_DOPT_CAMERA: return "--camera";
+	case FCT_DOPT_CYL: return "--cylindrical";
+	case FCT_DOPT_SCALE: return "--depth-scale";
+	case FCT_DOPT_BASELINE: return "--baseline";
+	case FCT_DOPT_FOCAL: return "--focal";
+	case FCT_DOPT_RANGE: return "--range";
+	case FCT_DOPT_STEP: return "--step";
+	case FCT_DOPT_ANGLE: return "--max-angle";
+	case FCT_DOPT_NOISE: return "--noise";
+	case FCT_DOPT_POSE: return "--pose";
+	default: return NULL;
+	}
+}
+
+int fct_depth_opt(struct fct_depth_opts *o, int c, const char *arg)
+{
+	double r[2];
+	switch (c) {
+	case 'K': o->K = arg; break;
+	case 'j': o->depth.grid.max_jump = fct_opt_double("-j", arg, 0, HUGE_VAL); break;
+	case FCT_DOPT_CAMERA: o->camera_file = arg; break;
+	case FCT_DOPT_CYL: o->cylindrical = arg; break;
+	case FCT_DOPT_SCALE:
+		o->depth.depth_scale = fct_opt_double("--depth-scale", arg, 1e-300, 1e300);
+		o->depth.scale_float = o->scale_given = 1;
+		break;
+	case FCT_DOPT_BASELINE: o->depth.baseline = fct_opt_double("--baseline", arg, 1e-300, 1e300); break;
+	case FCT_DOPT_FOCAL: o->focal = fct_opt_double("--focal", arg, 1e-300, 1e300); break;
+	case FCT_DOPT_RANGE:
+		fct_opt_doubles("--range", arg, r, 2);
+		if (!(r[0] >= 0 && r[1] > r[0]))
+			fct_usage_error("--range: expected 0 <= min < max");
+		o->depth.min_depth = r[0], o->depth.max_depth = r[1];
+		break;
+	case FCT_DOPT_STEP: o->depth.step = (int)fct_opt_long("--step", arg, 1, 1 << 20); break;
+	case FCT_DOPT_ANGLE:
+		o->depth.grid.max_jump = tan(fct_opt_double("--max-angle", arg, 0, 89.999) * M_PI / 180);
+		break;
+	case FCT_DOPT_NOISE: o->noise = arg; break;
+	case FCT_DOPT_POSE: o->pose_file = arg; break;
+	case FCT_DOPT_IMAGE: o->image_file = arg; return 1;
+	default: return 0;
+	}
+	if (!o->first)
+		o->first = opt_name(c);
+	return 1;
+}
+
+/* Does arg start with the name of a noise model (rather than name a file)? */
+static int names_model(const char *arg)
+{
+	size_t n = strcspn(arg, ":, \t");
+	const char *m = fct_noise_models();
+	while (*m) {
+		size_t k = strcspn(m, " ");
+		if (k == n && !strncmp(arg, m, n))
+			return 1;
+		m += k + (m[k] == ' ');
+	}
+	return 0;
+}
+
+void fct_depth_opts_check(struct fct_depth_opts *o)
+{
+	if (o->focal > 0 && !(o->depth.baseline > 0))
+		fct_usage_error("--focal is for disparities and needs --baseline");
+	if (o->noise && names_model(o->noise)) {
+		struct fct_err err;
+		if (fct_noise_parse(&o->depth.noise, o->noise, &err))
+			fct_usage_error("--%s", err.msg);
+	}
+}
+
+void fct_depth_opts_read_pose(struct fct_depth_opts *o)
+{
+	struct fct_err err;
+	if (o->pose_file) {
+		if (fct_pose_read_file(o->pose_file, o->pose, &err))
+			fct_die_err(&err);
+		o->has_pose = 1;
+	}
+}
+
+void fct_depth_opts_camera(struct fct_depth_opts *o, struct fct_camera *cam, int width, int height,
+                           int required)
+{
+	struct fct_err err;
+	int given = !!o->K + !!o->camera_file + !!o->cylindrical;
+	memset(cam, 0, sizeof *cam);
+	if (given > 1)
+		fct_usage_error("-K, --camera and --cylindrical exclude each other");
+	if (o->K) {
+		double scale, k[4];
+		if (!fct_camera_named(o->K, cam, &scale)) {
+			if (!o->scale_given)
+				o->depth.depth_scale = scale;
+		} else if (strchr(o->K, ',')) {
+			fct_opt_doubles("-K", o->K, k, 4);
+			if (!(k[0] > 0 && k[1] > 0))
+				fct_usage_error("-K: focal lengths must be positive");
+			cam->kind = FCT_CAMERA_PINHOLE;
+			cam->fx = k[0], cam->fy = k[1], cam->cx = k[2], cam->cy = k[3];
+		} else {
+			fct_usage_error("-K: \"%s\" is neither fx,fy,cx,cy nor a camera name (%s)",
+			                o->K, fct_camera_names());
+		}
+	} else if (o->camera_file) {
+		if (fct_camera_read_file(o->camera_file, cam, &err))
+			fct_die_err(&err);
+	} else if (o->cylindrical) {
+		fct_opt_cylindrical(o->cylindrical, width, height, cam);
+	} else if (required) {
+		fct_usage_error("no camera: give -K, --camera or --cylindrical");
+	}
+	if (cam->kind != FCT_CAMERA_NONE && cam->width == 0)
+		cam->width = width, cam->height = height;
+}
+
+/* The noise model: --noise's (a model parsed with the options, or a file),
+ * else the one a dataset's camera name implies; the unit of the image's
+ * depth encoding when the model gives none. */
+static void resolve_noise(struct fct_depth_opts *o, const struct fct_image *img)
+{
+	struct fct_noise *nz = &o->depth.noise;
+	struct fct_err err;
+	if (o->noise && !names_model(o->noise) && fct_noise_read_file(o->noise, nz, &err))
+		fct_die_err(&err);
+	if (!o->noise && o->K)
+		fct_noise_named(o->K, nz);
+	if (nz->model != FCT_NOISE_UNKNOWN && nz->unit == 0)
+		nz->unit = fct_depth_unit(img, &o->depth);
+}
+
+void fct_depth_opts_resolve(struct fct_depth_opts *o, struct fct_camera *cam,
+                            const struct fct_image *img)
+{
+	fct_depth_opts_camera(o, cam, img->width, img->height, 1);
+	if (o->depth.baseline > 0)
+		o->depth.focal = o->focal > 0 ? o->focal
+		               : cam->kind == FCT_CAMERA_CYLINDRICAL ? cam->f : cam->fx;
+	resolve_noise(o, img);
+}
+
+int fct_depth_opts_finish(const struct fct_depth_opts *o, struct fct_mesh *m,
+                          const struct fct_camera *cam, struct fct_err *err)
+{
+	if (o->has_pose)
+		for (size_t v = 0; v < m->nv; v++)
+			fct_pose_apply(o->pose, &m->xyz[3 * v], &m->xyz[3 * v]);
+	if (fct_header_set_camera(m, cam, err) || fct_header_set_noise(m, &o->depth.noise, err) ||
+	    (o->has_pose && fct_header_set_pose(m, o->pose, err)) ||
+	    (o->image_file && fct_header_set_texture(m, 0, o->image_file, err)))
+		return -1;
+	return 0;
+}
