@@ -12,8 +12,7 @@
 #include "header.h"
 #include "meshio.h"
 #include "path.h"
-#include "planes.h"
-#include "segment.h"
+#include "segmesh.h"
 
 static const char usage[] =
 	"usage: segplanes [-aqv] [-c factor] [-n patches] [-o file] [--area-weighted]\n"
@@ -88,54 +87,13 @@ int main(int argc, char **argv)
 	if (fct_mesh_read_file(&m, input, NULL, &err))
 		fct_die_err(&err);
 	double read_s = fct_now() - t0;
-	if (m.nf == 0) {
-		size_t nv = m.nv;
-		fct_mesh_free(&m);
-		fct_die(1, "%s: no faces to segment (%s)", name,
-		        nv ? "a point cloud: mesh it first, e.g. with dm2mesh --points" : "an empty mesh");
-	}
-	/* Noise along the rays of the camera the mesh was measured with. */
-	struct fct_camera cam;
-	int hc = fct_header_camera(&m, &cam, &err);
-	if (hc < 0) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
-	if (hc > 0 && !tls) {
-		double pose[12];
-		int hp = fct_header_pose(&m, pose, &err);
-		if (hp < 0) {
-			fct_err_prefix(&err, "%s", name);
-			fct_die_err(&err);
-		}
-		sp.use_viewpoint = 1;
-		if (hp > 0)
-			sp.viewpoint[0] = pose[3], sp.viewpoint[1] = pose[7], sp.viewpoint[2] = pose[11];
-	}
-	/* The noise of each vertex from the sensor's model (dm2mesh's sigma). */
-	double *sigma = NULL;
-	const struct fct_prop *sp_sigma = fct_elem_find(&m.vertex, "sigma");
-	if (sp_sigma && sp_sigma->count_type == FCT_NONE) {
-		sigma = malloc((m.nv ? m.nv : 1) * sizeof *sigma);
-		if (!sigma)
-			fct_die(1, "%s: out of memory for %zu vertices", name, m.nv);
-		for (size_t v = 0; v < m.nv; v++)
-			sigma[v] = fct_prop_get(sp_sigma, v);
-		sp.sigma = sigma;
-	}
-	int32_t *patch = malloc(m.nf * sizeof *patch);
-	if (!patch)
-		fct_die(1, "%s: out of memory for %zu faces", name, m.nf);
-	struct fct_plane *planes;
-	size_t np;
 	struct fct_segment_stats st;
-	if (fct_segment(patch, &planes, &np, &m, &sp, &st, &err)) {
+	if (fct_segment_mesh(&m, &sp, tls, &st, &err)) {
 		fct_err_prefix(&err, "%s", name);
 		fct_die_err(&err);
 	}
 	double seg_s = fct_now() - t0 - read_s;
-	if (fct_patches_set(&m, patch, &err) || fct_planes_set(&m, planes, np, &err) ||
-	    fct_header_add_provenance(&m, "segplanes", argc - 1, argv + 1, &err) ||
+	if (fct_header_add_provenance(&m, "segplanes", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err))
 		fct_die_err(&err);
 	double total_s = fct_now() - t0, cpu_s = fct_cpu_time() - c0;
@@ -164,9 +122,6 @@ int main(int argc, char **argv)
 	fct_report("total_s", "%.4f", total_s);
 	fct_report("cpu_s", "%.4f", cpu_s);
 	fct_report("faces_per_s", "%.0f", seg_s > 0 ? m.nf / seg_s : 0);
-	free(patch);
-	free(planes);
-	free(sigma);
 	fct_mesh_free(&m);
 	return 0;
 }
