@@ -237,79 +237,46 @@ int main(int argc, char **argv)
 	if (fct_cylview_plan(&cam, &o.view, views, &err))
 		fct_die_err(&err);
 
-	/* Which views to write, and their names. */
-	char **names = calloc(nviews, sizeof *names);
-	char *want = calloc(nviews, 1);
-	int32_t *view_of = NULL;
-	struct fct_cylview_assign_stats ast;
-	memset(&ast, 0, sizeof ast);
-	double assign_s = 0;
-	if (!names || !want)
-		fct_die(1, "out of memory");
 	if (o.mesh) {
-		struct fct_cylview_assign_params ap = {o.split, 0};
+		/* The model textured from the views, written beside it. */
+		struct fct_cylview_model_stats mst;
 		double t2 = fct_now();
-		if (fct_cylview_assign(&m, have_pose ? pose : NULL, views, nviews, &ap, &view_of, &ast,
-		                       &err)) {
-			fct_err_prefix(&err, "%s", mname);
+		if (fct_cylview_texture_model(&m, &img, &cam, have_pose ? pose : NULL, &o.view, o.split,
+		                              mname, o.out, &mst, &err) ||
+		    fct_header_add_provenance(&m, "cyl2planar", argc - 1, argv + 1, &err) ||
+		    fct_mesh_write_file(&m, o.out, o.ascii, &err))
 			fct_die_err(&err);
-		}
-		assign_s = fct_now() - t2;
-		if (ast.uncovered) {
-			char list[200] = "";
-			size_t len = 0, shown = 0;
-			for (size_t f = 0; f < m.nf && shown < 10; f++)
-				if (view_of[f] < 0) {
-					len += (size_t)snprintf(list + len, sizeof list - len, "%s%zu",
-					                        shown ? ", " : "", f);
-					shown++;
-				}
-			char msg[600];
-			snprintf(msg, sizeof msg, "%s: %zu face%s (%s%s) lie whole in no view: give more "
-			         "views (--count) or a wider --fov%s", mname, ast.uncovered,
-			         ast.uncovered == 1 ? "" : "s", list, ast.uncovered > shown ? ", ..." : "",
-			         o.split ? "" : ", or let them be split");
-			free(view_of);
-			free(views);
-			free(names);
-			free(want);
-			fct_image_free(&img);
-			fct_mesh_free(&m);
-			fct_die(1, "%s", msg);
-		}
-		for (size_t f = 0; f < m.nf; f++)
-			want[view_of[f]] = 1;
-		/* name.obj -> name.viewNN.png */
-		const char *dot = strrchr(o.out, '.'), *slash = strrchr(o.out, '/');
-		size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - o.out) : strlen(o.out);
-		char *base = malloc(stem + 1);
-		if (!base)
-			fct_die(1, "out of memory");
-		memcpy(base, o.out, stem);
-		base[stem] = 0;
-		for (size_t k = 0; k < nviews; k++)
-			if (want[k])
-				names[k] = xprintf("%s.view%02d%s", base, (int)k, ".png");
-		free(base);
-	} else {
-		struct stat sb;
-		if (mkdir(o.out, 0777) != 0 &&
-		    (errno != EEXIST || stat(o.out, &sb) != 0 || !S_ISDIR(sb.st_mode)))
-			fct_die(1, "%s: %s", o.out, errno == EEXIST ? "exists and is not a folder"
-			                                            : strerror(errno));
-		const char *ext = img.type == FCT_PIX_F32 ? ".pfm" : ".png";
-		for (size_t k = 0; k < nviews; k++) {
-			want[k] = 1;
-			names[k] = xprintf("%s/view%02d%s", o.out, (int)k, ext);
-		}
+		fct_report("panorama", "%dx%d", img.width, img.height);
+		fct_report("channels", "%d", img.channels);
+		fct_report("views", "%zu", nviews);
+		fct_report("view_size", "%dx%d", views[0].cam.width, views[0].cam.height);
+		fct_report("focal", "%.9g", views[0].cam.fx);
+		fct_report("written", "%zu", mst.written);
+		fct_report("seam_ratio", "%.4g", seam_ratio);
+		fct_report("faces", "%zu", mst.assign.faces);
+		fct_report("splits", "%zu", mst.assign.splits);
+		fct_report("views_used", "%zu", mst.assign.views_used);
+		fct_report("max_depth_ratio", "%.9g", mst.assign.max_ratio);
+		fct_report("read_s", "%.4f", read_s);
+		fct_report("texture_s", "%.4f", fct_now() - t2);
+		fct_report("total_s", "%.4f", fct_now() - t0);
+		free(views);
+		fct_image_free(&img);
+		fct_mesh_free(&m);
+		return 0;
 	}
 
-	/* Render and write the views. */
+	/* The views, their cameras and poses. */
+	struct stat sb;
+	if (mkdir(o.out, 0777) != 0 &&
+	    (errno != EEXIST || stat(o.out, &sb) != 0 || !S_ISDIR(sb.st_mode)))
+		fct_die(1, "%s: %s", o.out, errno == EEXIST ? "exists and is not a folder"
+		                                            : strerror(errno));
+	const char *ext = img.type == FCT_PIX_F32 ? ".pfm" : ".png";
 	double split_s = 0, write_s = 0;
-	size_t written = 0, pixels = 0;
+	size_t pixels = 0;
 	for (size_t k = 0; k < nviews; k++) {
-		if (!want[k])
-			continue;
+		char *name = xprintf("%s/view%02d%s", o.out, (int)k, ext);
 		struct fct_image vi;
 		double t3 = fct_now();
 		if (fct_cylview_render(&img, &cam, &views[k], &vi, &err)) {
@@ -318,38 +285,27 @@ int main(int argc, char **argv)
 		}
 		double t4 = fct_now();
 		split_s += t4 - t3;
-		fct_write_image_or_die(&vi, names[k]);
+		fct_write_image_or_die(&vi, name);
+		free(name);
 		pixels += (size_t)vi.width * vi.height;
 		fct_image_free(&vi);
-		if (!o.mesh) {
-			char text[600], line[300];
-			fct_camera_format(&views[k].cam, line, sizeof line);
-			snprintf(text, sizeof text, "camera %s\n", line);
-			char *p = xprintf("%s/view%02d%s", o.out, (int)k, ".camera");
-			fct_write_text_or_die(text, p);
-			free(p);
-			double vp[12];
-			fct_cylview_pose(&views[k], have_pose ? pose : NULL, vp);
-			size_t len = 0;
-			for (int i = 0; i < 12; i++)
-				len += (size_t)snprintf(text + len, sizeof text - len, "%.17g%c",
-				                        vp[i] + 0.0, i % 4 == 3 ? '\n' : ' ');
-			snprintf(text + len, sizeof text - len, "0 0 0 1\n");
-			p = xprintf("%s/view%02d%s", o.out, (int)k, ".pose");
-			fct_write_text_or_die(text, p);
-			free(p);
-		}
+		char text[600], line[300];
+		fct_camera_format(&views[k].cam, line, sizeof line);
+		snprintf(text, sizeof text, "camera %s\n", line);
+		char *p = xprintf("%s/view%02d%s", o.out, (int)k, ".camera");
+		fct_write_text_or_die(text, p);
+		free(p);
+		double vp[12];
+		fct_cylview_pose(&views[k], have_pose ? pose : NULL, vp);
+		size_t len = 0;
+		for (int i = 0; i < 12; i++)
+			len += (size_t)snprintf(text + len, sizeof text - len, "%.17g%c",
+			                        vp[i] + 0.0, i % 4 == 3 ? '\n' : ' ');
+		snprintf(text + len, sizeof text - len, "0 0 0 1\n");
+		p = xprintf("%s/view%02d%s", o.out, (int)k, ".pose");
+		fct_write_text_or_die(text, p);
+		free(p);
 		write_s += fct_now() - t4;
-		written++;
-	}
-
-	if (o.mesh) {
-		int per_face = !fct_path_has_suffix(o.out, ".obj");
-		if (fct_cylview_texture(&m, have_pose ? pose : NULL, views, nviews, view_of, names,
-		                        per_face, &err) ||
-		    fct_header_add_provenance(&m, "cyl2planar", argc - 1, argv + 1, &err) ||
-		    fct_mesh_write_file(&m, o.out, o.ascii, &err))
-			fct_die_err(&err);
 	}
 
 	fct_report("panorama", "%dx%d", img.width, img.height);
@@ -357,26 +313,13 @@ int main(int argc, char **argv)
 	fct_report("views", "%zu", nviews);
 	fct_report("view_size", "%dx%d", views[0].cam.width, views[0].cam.height);
 	fct_report("focal", "%.9g", views[0].cam.fx);
-	fct_report("written", "%zu", written);
+	fct_report("written", "%zu", nviews);
 	fct_report("seam_ratio", "%.4g", seam_ratio);
-	if (o.mesh) {
-		fct_report("faces", "%zu", ast.faces);
-		fct_report("splits", "%zu", ast.splits);
-		fct_report("views_used", "%zu", ast.views_used);
-		fct_report("max_depth_ratio", "%.9g", ast.max_ratio);
-		fct_report("assign_s", "%.4f", assign_s);
-	}
 	fct_report("read_s", "%.4f", read_s);
 	fct_report("split_s", "%.4f", split_s);
 	fct_report("pixels_per_s", "%.0f", split_s > 0 ? pixels / split_s : 0);
 	fct_report("write_s", "%.4f", write_s);
 	fct_report("total_s", "%.4f", fct_now() - t0);
-
-	for (size_t k = 0; k < nviews; k++)
-		free(names[k]);
-	free(names);
-	free(want);
-	free(view_of);
 	free(views);
 	fct_image_free(&img);
 	fct_mesh_free(&m);

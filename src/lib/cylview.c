@@ -1,5 +1,6 @@
 /* cylview.c - planar views of a cylindrical panorama (see cylview.h). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -7,6 +8,8 @@
 
 #include "cylview.h"
 #include "header.h"
+#include "output.h"
+#include "path.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -742,5 +745,107 @@ int fct_cylview_texture(struct fct_mesh *m, const double *pano_pose,
 out:
 	free(used);
 	free(rank);
+	return rc;
+}
+
+/* Render view and write it to path atomically (output.h); *pixels gets its
+ * pixel count. */
+static int write_view(const struct fct_image *img, const struct fct_camera *pano,
+                      const struct fct_cylview *view, const char *path, size_t *pixels,
+                      struct fct_err *err)
+{
+	struct fct_image vi;
+	if (fct_cylview_render(img, pano, view, &vi, err))
+		return -1;
+	struct fct_out o;
+	int rc = fct_out_open(&o, path, err);
+	if (!rc) {
+		if ((rc = fct_png_write(&vi, o.f, err))) {
+			fct_out_abort(&o);
+			fct_err_prefix(err, "%s", path);
+		} else {
+			rc = fct_out_commit(&o, err);
+		}
+	}
+	*pixels = (size_t)vi.width * (size_t)vi.height;
+	fct_image_free(&vi);
+	return rc;
+}
+
+/* The message for faces in no view: their count and the first ten. */
+static int fail_uncovered(const int32_t *view_of, size_t nf, size_t uncovered, int split,
+                          struct fct_err *err)
+{
+	char list[200] = "";
+	size_t len = 0, shown = 0;
+	for (size_t f = 0; f < nf && shown < 10; f++)
+		if (view_of[f] < 0) {
+			len += (size_t)snprintf(list + len, sizeof list - len, "%s%zu", shown ? ", " : "", f);
+			shown++;
+		}
+	return fct_fail(err, "%zu face%s (%s%s) lie whole in no view: give more views (--count) or a "
+	                "wider --fov%s", uncovered, uncovered == 1 ? "" : "s", list,
+	                uncovered > shown ? ", ..." : "", split ? "" : ", or let them be split");
+}
+
+int fct_cylview_texture_model(struct fct_mesh *m, const struct fct_image *img,
+                              const struct fct_camera *pano, const double *pano_pose,
+                              const struct fct_cylview_params *p, int split, const char *name,
+                              const char *out, struct fct_cylview_model_stats *st,
+                              struct fct_err *err)
+{
+	struct fct_cylview_model_stats local;
+	if (!st)
+		st = &local;
+	memset(st, 0, sizeof *st);
+	if (img->type == FCT_PIX_F32)
+		return fct_fail(err, "a PFM image cannot texture a model: give a PNG or JPEG");
+	size_t nviews = p->count > 0 ? (size_t)p->count : 0;
+	struct fct_cylview *views = calloc(nviews ? nviews : 1, sizeof *views);
+	char **names = calloc(nviews ? nviews : 1, sizeof *names);
+	int32_t *view_of = NULL;
+	int rc = -1;
+	if (!views || !names) {
+		fct_fail(err, "out of memory for %zu views", nviews);
+		goto out;
+	}
+	struct fct_cylview_assign_params ap = { split, 0 };
+	if (fct_cylview_plan(pano, p, views, err))
+		goto out;
+	if (fct_cylview_assign(m, pano_pose, views, nviews, &ap, &view_of, &st->assign, err) ||
+	    (st->assign.uncovered && fail_uncovered(view_of, m->nf, st->assign.uncovered, split, err))) {
+		fct_err_prefix(err, "%s", name);
+		goto out;
+	}
+	/* name.obj -> name.viewNN.png, for the views some face uses */
+	const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
+	size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - out) : strlen(out);
+	for (size_t f = 0; f < m->nf; f++) {
+		size_t k = (size_t)view_of[f];
+		if (names[k])
+			continue;
+		if (!(names[k] = malloc(stem + 32))) {
+			fct_fail(err, "out of memory");
+			goto out;
+		}
+		snprintf(names[k], stem + 32, "%.*s.view%02d.png", (int)stem, out, (int)k);
+	}
+	for (size_t k = 0; k < nviews; k++) {
+		size_t px;
+		if (!names[k])
+			continue;
+		if (write_view(img, pano, &views[k], names[k], &px, err))
+			goto out;
+		st->written++;
+		st->pixels += px;
+	}
+	rc = fct_cylview_texture(m, pano_pose, views, nviews, view_of, names,
+	                         !fct_path_has_suffix(out, ".obj"), err);
+out:
+	for (size_t k = 0; names && k < nviews; k++)
+		free(names[k]);
+	free(names);
+	free(views);
+	free(view_of);
 	return rc;
 }

@@ -138,4 +138,26 @@ int fct_cylview_texture(struct fct_mesh *m, const double *pano_pose,
                         const struct fct_cylview *views, size_t nviews, const int32_t *view_of,
                         char *const *names, int per_face, struct fct_err *err);
 
+struct fct_cylview_model_stats {
+	struct fct_cylview_assign_stats assign;
+	size_t written;        /* views written */
+	size_t pixels;         /* their pixels */
+};
+
+/* Texture the model m, to be written to the file out, from the panorama
+ * img (U8 or U16: a texture) seen by pano (pano_pose: camera-to-world,
+ * NULL when m is in the panorama's frame) through the views planned by p:
+ * each face from its view (fct_cylview_assign; with split, faces that fit
+ * in none are bisected), the views some face uses written beside out as
+ * STEM.viewNN.png (STEM: out without its extension; atomically),
+ * then fct_cylview_texture with those names, per-corner texcoord unless
+ * out ends in .obj.  st may be NULL.  Fails (message set) when faces lie
+ * whole in no view, naming up to ten of them; that message and the
+ * assignment's start with name (m's, for messages). */
+int fct_cylview_texture_model(struct fct_mesh *m, const struct fct_image *img,
+                              const struct fct_camera *pano, const double *pano_pose,
+                              const struct fct_cylview_params *p, int split, const char *name,
+                              const char *out, struct fct_cylview_model_stats *st,
+                              struct fct_err *err);
+
 #endif
