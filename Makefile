@@ -53,7 +53,7 @@ LDLIBS = $(DEP_LIBS) -lm
 
 # Pipeline scripts, installed beside the programs (and copied into $(O)/bin
 # so that the tests find them where they find the programs).
-SCRIPTS = tools/planarize tools/sunfuse
+SCRIPTS = tools/sunfuse
 SCRIPT_BIN = $(SCRIPTS:tools/%=$(O)/bin/%)
 
 all: $(PROGS) $(SCRIPT_BIN)

@@ -1,0 +1,496 @@
+/* planarize - a depth image (and its co-registered image) or any mesh to a
+ * concise model of the scene's planes, in one process: the depth meshed
+ * (dm2mesh), its faces grouped into planar patches (segplanes), the planar
+ * model made (planedecim: planes where the world is planar, a decimated
+ * surface elsewhere, one mesh), and the texture: Kang, Johnson and
+ * Szeliski, "Extraction of Concise and Realistic 3-D Models from Real Data"
+ * (DEC CRL 95/7), sections 2-7.  Every stage is a library call on one mesh
+ * in memory; this is their command line. */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "bvh.h"
+#include "cli.h"
+#include "cylview.h"
+#include "depthopts.h"
+#include "header.h"
+#include "meshio.h"
+#include "path.h"
+#include "planemodel.h"
+#include "segmesh.h"
+
+static const char usage[] =
+	"usage: planarize [-aqv] [-o model] [depth-image options] [-c factor | -n patches]\n"
+	"                 [-e error] [--area-weighted] [--fit k] [--max-dev k]\n"
+	"                 [--max-rms r] [--min-faces k] [--tls] [--border k] [--max-hole k]\n"
+	"                 [--max-move k] [--min-free k] [--min-plane k] [--outline k]\n"
+	"                 [--count n] [--fov deg] [--keep dir] [depth-image | mesh] [image]\n"
+	"Make a concise model of a scene's planes from a depth image (16- or 8-bit PNG,\n"
+	"PFM) and its co-registered image, or from a mesh (PLY or OBJ), told by content:\n"
+	"the depth meshed (dm2mesh), the faces grouped into planar patches (segplanes),\n"
+	"planes where the surface is planar and a decimated surface elsewhere, one mesh\n"
+	"(planedecim), textured from the image.\n"
+	"  -a                 write ascii PLY\n"
+	"  -o model           name.obj (with name.mtl) or name.ply (s t and TextureFile);\n"
+	"                     default standard output (PLY)\n"
+	"  -q                 quiet\n"
+	"  -v                 each stage's figures, then vertices, faces and CPU seconds\n"
+	"                     per stage, the reduction and E_mean E_stdev E_rms E_max\n"
+	"                     (the dense mesh's vertices to the model)\n"
+	"      --keep dir     write each stage into dir: 1-mesh.ply, 2-patches.ply,\n"
+	"                     3-model.ply\n"
+	"Depth image (as dm2mesh(1)):\n"
+	"  -K fx,fy,cx,cy | name, --camera file, --cylindrical f,cy,theta0\n"
+	"                     the camera (a dataset's name also sets its depth scale and\n"
+	"                     noise model)\n"
+	"      --depth-scale s, --baseline b, --focal f, --range min,max, --step n\n"
+	"  -j jump, --max-angle deg\n"
+	"                     cut faces across depth jumps (default 10, and the noise)\n"
+	"      --noise model | file\n"
+	"                     the sensor's noise model (vertex sigma)\n"
+	"      --pose file    camera-to-world pose: the model in world coordinates\n"
+	"      --image file   the co-registered image (or the second operand)\n"
+	"Planar patches (as segplanes(1)):\n"
+	"  -c factor          merge while the smaller patch moves by at most factor\n"
+	"                     times the noise (default 3)\n"
+	"  -n patches         stop at this many patches instead\n"
+	"      --area-weighted\n"
+	"                     weight each face by its area\n"
+	"      --fit k        a patch's rms stays within k sigma (default 1.5)\n"
+	"      --max-dev k    no face of a patch farther than k sigma from its plane\n"
+	"                     (default 3)\n"
+	"      --max-rms r    never make a patch of rms above r (metres)\n"
+	"      --min-faces k  absorb patches of fewer faces (default: one in 600 of the\n"
+	"                     dense mesh's faces, at least 8)\n"
+	"      --tls          fit planes orthogonally, not along the camera's rays\n"
+	"Planar model (as planedecim(1)):\n"
+	"  -e error           largest quadric distance of a collapse, in sigma (default 1)\n"
+	"      --border k     a border may move by k edge lengths (default 1)\n"
+	"      --max-hole k   fill holes of at most k edges inside a patch (default 64)\n"
+	"      --max-move k   move a vertex onto a line or corner by at most k sigma\n"
+	"                     (default 4)\n"
+	"      --min-free k   a speck of fewer faces joins the label around it (64)\n"
+	"      --min-plane k  a patch of fewer faces is free-form (default 64)\n"
+	"      --outline k    simplify outlines to k sample spacings (default 3)\n"
+	"Panoramas (as cyl2planar(1)):\n"
+	"      --count n, --fov deg\n"
+	"                     texture through n planar views of deg degrees, written\n"
+	"                     beside the model (default 8 of 90)\n"
+	"  -h, --help         this help\n"
+	"      --version      print the version\n";
+
+enum {
+	OPT_VERSION = 256, OPT_AREA, OPT_FIT, OPT_MAXDEV, OPT_MAXRMS, OPT_MINFACES, OPT_TLS,
+	OPT_BORDER, OPT_MAXHOLE, OPT_MAXMOVE, OPT_MINFREE, OPT_MINPLANE, OPT_OUTLINE, OPT_COUNT,
+	OPT_FOV, OPT_KEEP
+};
+
+struct options {
+	const char *out, *keep, *input, *image;
+	int ascii, tls, factor_given, min_faces_given;
+	struct fct_depth_opts d;
+	struct fct_segment_params seg;
+	struct fct_planar_params plan;
+	struct fct_cylview_params view;
+};
+
+static void parse_options(int argc, char **argv, struct options *o)
+{
+	static const struct option longopts[] = {
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, OPT_VERSION},
+		FCT_DEPTH_LONGOPTS,
+		{"area-weighted", no_argument, NULL, OPT_AREA},
+		{"fit", required_argument, NULL, OPT_FIT},
+		{"max-dev", required_argument, NULL, OPT_MAXDEV},
+		{"max-rms", required_argument, NULL, OPT_MAXRMS},
+		{"min-faces", required_argument, NULL, OPT_MINFACES},
+		{"tls", no_argument, NULL, OPT_TLS},
+		{"border", required_argument, NULL, OPT_BORDER},
+		{"max-hole", required_argument, NULL, OPT_MAXHOLE},
+		{"max-move", required_argument, NULL, OPT_MAXMOVE},
+		{"min-free", required_argument, NULL, OPT_MINFREE},
+		{"min-plane", required_argument, NULL, OPT_MINPLANE},
+		{"outline", required_argument, NULL, OPT_OUTLINE},
+		{"count", required_argument, NULL, OPT_COUNT},
+		{"fov", required_argument, NULL, OPT_FOV},
+		{"keep", required_argument, NULL, OPT_KEEP},
+		{NULL, 0, NULL, 0},
+	};
+	static const char optstring[] = "ac:e:hj:K:n:o:qv";
+	int c;
+	memset(o, 0, sizeof *o);
+	fct_depth_opts_init(&o->d);
+	fct_segment_params_default(&o->seg);
+	fct_planar_params_default(&o->plan);
+	fct_cylview_params_default(&o->view);
+	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		if (fct_depth_opt(&o->d, c, optarg))
+			continue;
+		switch (c) {
+		case 'a': o->ascii = 1; break;
+		case 'c':
+			o->seg.factor = fct_opt_double("-c", optarg, 0, HUGE_VAL);
+			o->factor_given = 1;
+			break;
+		case 'e': o->plan.max_error = fct_opt_double("-e", optarg, 0, INFINITY); break;
+		case 'h': fputs(usage, stdout); exit(0);
+		case 'n': o->seg.target = fct_opt_long("-n", optarg, 1, INT32_MAX); break;
+		case 'o': o->out = optarg; break;
+		case 'q': fct_quiet = 1; break;
+		case 'v': fct_verbose = 1; break;
+		case OPT_VERSION: puts("planarize (facet) " FCT_VERSION); exit(0);
+		case OPT_AREA: o->seg.area_weighted = 1; break;
+		case OPT_FIT: o->seg.fit = fct_opt_double("--fit", optarg, 0, HUGE_VAL); break;
+		case OPT_MAXDEV: o->seg.max_dev = fct_opt_double("--max-dev", optarg, 0, HUGE_VAL); break;
+		case OPT_MAXRMS: o->seg.max_rms = fct_opt_double("--max-rms", optarg, 0, HUGE_VAL); break;
+		case OPT_MINFACES:
+			o->seg.min_faces = fct_opt_long("--min-faces", optarg, 0, INT32_MAX);
+			o->min_faces_given = 1;
+			break;
+		case OPT_TLS: o->tls = 1; break;
+		case OPT_BORDER: o->plan.border_tol = fct_opt_double("--border", optarg, 0, INFINITY); break;
+		case OPT_MAXHOLE: o->plan.max_hole = (size_t)fct_opt_long("--max-hole", optarg, 0, 0x7fffffffL); break;
+		case OPT_MAXMOVE: o->plan.max_move = fct_opt_double("--max-move", optarg, 0, INFINITY); break;
+		case OPT_MINFREE: o->plan.min_free = (size_t)fct_opt_long("--min-free", optarg, 0, 0x7fffffffL); break;
+		case OPT_MINPLANE: o->plan.min_plane = (size_t)fct_opt_long("--min-plane", optarg, 0, 0x7fffffffL); break;
+		case OPT_OUTLINE: o->plan.outline_tol = fct_opt_double("--outline", optarg, 0, INFINITY); break;
+		case OPT_COUNT: o->view.count = (int)fct_opt_long("--count", optarg, 1, FCT_CYLVIEW_MAX_COUNT); break;
+		case OPT_FOV:
+			o->view.fov = fct_opt_double("--fov", optarg, -HUGE_VAL, HUGE_VAL);
+			if (!(o->view.fov > 0 && o->view.fov < 180))
+				fct_usage_error("--fov: %s degrees: a planar view sees less than 180", optarg);
+			break;
+		case OPT_KEEP: o->keep = optarg; break;
+		default: fct_bad_option(optstring, argv);
+		}
+	}
+	if (argc - optind > 2)
+		fct_usage_error("too many operands: a depth image or a mesh, and an image");
+	o->input = optind < argc ? argv[optind] : "-";
+	o->image = optind + 1 < argc ? argv[optind + 1] : NULL;
+	if (o->image && o->d.image_file)
+		fct_usage_error("the image is given twice (--image and the second operand)");
+	if (!o->image)
+		o->image = o->d.image_file;
+	if (o->image && fct_path_is_std(o->image))
+		fct_usage_error("the image cannot be standard input: a model names its texture's file");
+	if (o->factor_given && o->seg.target > 0)
+		fct_usage_error("-c and -n exclude each other");
+	fct_depth_opts_check(&o->d);
+}
+
+/* With -v: "planarize: STAGE: key=value". */
+static void stage_report(const char *stage, const char *key, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+static void stage_report(const char *stage, const char *key, const char *fmt, ...)
+{
+	if (!fct_verbose)
+		return;
+	char k[64], v[256];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(v, sizeof v, fmt, ap);
+	va_end(ap);
+	snprintf(k, sizeof k, "%s: %s", stage, key);
+	fct_report(k, "%s", v);
+}
+
+/* Each stage's size and CPU time, for the summary of -v. */
+struct stage_line {
+	const char *name;
+	size_t vertices, faces;
+	double cpu_s;
+};
+
+static struct stage_line lines[4];
+static size_t nlines;
+
+static void stage_done(const char *name, const struct fct_mesh *m, double c0)
+{
+	lines[nlines++] = (struct stage_line){ name, m->nv, m->nf, fct_cpu_time() - c0 };
+}
+
+/* Die of a stage's failure: "planarize: STAGE: what". */
+static _Noreturn void stage_die(const char *stage, struct fct_err *err)
+{
+	fct_err_prefix(err, "%s", stage);
+	fct_die_err(err);
+}
+
+/* Open the input and tell a depth image from a mesh by its first byte:
+ * the PNG signature's 0x89, JPEG's 0xFF, PFM's 'P' (a mesh is PLY, "ply",
+ * or OBJ, whose keywords are lower case). */
+static FILE *open_input(const char *path, int *is_image)
+{
+	FILE *f = fct_path_is_std(path) ? stdin : fopen(path, "rb");
+	if (!f)
+		fct_die(1, "%s: %s", path, strerror(errno));
+	int c = getc(f);
+	*is_image = c == 0x89 || c == 0xff || c == 'P';
+	if (c != EOF)
+		ungetc(c, f);
+	return f;
+}
+
+/* Stage 1 from a depth image: its dense mesh (dm2mesh). */
+static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct options *o, FILE *f)
+{
+	struct fct_err err;
+	struct fct_image img;
+	const char *name = fct_path_display(o->input);
+	if (fct_image_read_stream(&img, f, name, NULL, &err))
+		fct_die_err(&err);
+	fct_depth_opts_resolve(&o->d, cam, &img);
+	struct fct_grid_stats st;
+	if (fct_depth_mesh(m, &img, cam, &o->d.depth, &st, &err)) {
+		fct_image_free(&img);
+		fct_err_prefix(&err, "%s", name);
+		stage_die("dm2mesh", &err);
+	}
+	stage_report("dm2mesh", "pixels", "%zu", (size_t)img.width * (size_t)img.height);
+	fct_image_free(&img);
+	stage_report("dm2mesh", "jump_faces", "%zu", st.jump_faces);
+	stage_report("dm2mesh", "speck_faces", "%zu", st.speck_faces);
+	char noise[256];
+	fct_noise_format(&o->d.depth.noise, noise, sizeof noise);
+	stage_report("dm2mesh", "noise", "%s", *noise ? noise : "unknown");
+	o->d.image_file = o->image;
+	if (fct_depth_opts_finish(&o->d, m, cam, &err))
+		stage_die("dm2mesh", &err);
+}
+
+/* Stage 1 from a mesh: the mesh as it is, its camera if it has one; an
+ * image given replaces its texture. */
+static void mesh_read(struct fct_mesh *m, struct fct_camera *cam, const struct options *o, FILE *f)
+{
+	struct fct_err err;
+	const char *name = fct_path_display(o->input);
+	char *dir = fct_path_is_std(o->input) ? NULL : fct_path_dir(o->input, &err);
+	if (!fct_path_is_std(o->input) && !dir)
+		fct_die_err(&err);
+	int rc = fct_mesh_read_stream(m, f, name, dir, NULL, &err);
+	free(dir);
+	if (rc) {
+		/* The reader takes anything that is not PLY for OBJ: say what else
+		 * the input could have been. */
+		if (strstr(err.msg, "not a PLY or OBJ file"))
+			fct_die(1, "%s: neither a depth image (PNG, JPEG or PFM) nor a mesh (PLY or OBJ)", name);
+		fct_die_err(&err);
+	}
+	if (o->d.first)
+		fct_usage_error("%s: for depth images, and %s is a mesh", o->d.first, name);
+	if (fct_header_camera(m, cam, &err) < 0) {
+		fct_err_prefix(&err, "%s", name);
+		fct_die_err(&err);
+	}
+	if (o->image && fct_header_set_texture(m, 0, o->image, &err))
+		fct_die_err(&err);
+}
+
+static void keep_stage(const struct options *o, const struct fct_mesh *m, const char *file)
+{
+	if (!o->keep)
+		return;
+	struct fct_err err;
+	char *path = fct_path_join(o->keep, file, &err);
+	if (!path || fct_mesh_write_file(m, path, o->ascii, &err))
+		fct_die_err(&err);
+	free(path);
+}
+
+/* The folder of --keep, made when missing. */
+static void make_keep_folder(const char *dir)
+{
+	struct stat sb;
+	if (mkdir(dir, 0777) == 0)
+		return;
+	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
+		return;
+	fct_die(1, "--keep: %s: %s", dir, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
+}
+
+/* Table 1 of Kang et al.: the distances of the dense mesh's vertices
+ * (xyz, nv of them) to the model's faces, as meshdist measures them. */
+static void report_errors(const double *xyz, size_t nv, const struct fct_mesh *model)
+{
+	struct fct_err err;
+	struct fct_bvh tree;
+	if (fct_bvh_build_mesh(&tree, model, &err))
+		fct_die_err(&err);
+	double mean = 0, m2 = 0, max = 0;
+	size_t n = 0;
+	for (size_t i = 0; i < nv && tree.ntri; i++) {
+		struct fct_bvh_hit hit;
+		if (!fct_bvh_closest(&tree, xyz + 3 * i, INFINITY, &hit))
+			continue;
+		double d = sqrt(hit.d2), delta = d - mean;
+		n++;
+		mean += delta / (double)n;
+		m2 += delta * (d - mean);
+		max = fmax(max, d);
+	}
+	fct_bvh_free(&tree);
+	double var = n ? m2 / (double)n : 0;
+	fct_report("E_mean", "%.9g", mean);
+	fct_report("E_stdev", "%.9g", sqrt(var));
+	fct_report("E_rms", "%.9g", sqrt(mean * mean + var));
+	fct_report("E_max", "%.9g", max);
+}
+
+/* The figures of the planar model's steps. */
+static void report_model(const struct fct_planar_stats *st)
+{
+	stage_report("planedecim", "planes", "%zu", st->planes);
+	stage_report("planedecim", "sigma_estimated", "%d", st->sigma_estimated);
+	stage_report("planedecim", "small_faces", "%zu", st->tidy.small_faces);
+	stage_report("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
+	stage_report("planedecim", "holes_filled", "%zu", st->holes_filled);
+	stage_report("planedecim", "projected", "%zu", st->projected);
+	stage_report("planedecim", "collapses", "%zu", st->qem.collapses);
+	stage_report("planedecim", "max_error", "%.9g", st->qem.max_error);
+	stage_report("planedecim", "planar_triangles", "%zu", st->outline.planar_triangles);
+	stage_report("planedecim", "free_faces", "%zu", st->outline.free_faces);
+	stage_report("planedecim", "tripatch_failures", "%zu", st->outline.tri.failures);
+	stage_report("planedecim", "moved_line", "%zu", st->meet.lines);
+	stage_report("planedecim", "moved_corner", "%zu", st->meet.corners);
+	stage_report("planedecim", "stayed", "%zu", st->meet.stayed);
+}
+
+/* A panorama's model textured through planar views written beside it
+ * (cyl2planar): from the image given, else the mesh's TextureFile. */
+static void texture_panorama(struct fct_mesh *m, const struct fct_camera *cam,
+                             const struct options *o)
+{
+	struct fct_err err;
+	const char *path = o->image ? o->image : fct_header_texture(m, 0);
+	if (!path)
+		return;
+	if (!o->out || fct_path_is_std(o->out))
+		fct_usage_error("-o model is needed: a panorama's model has its views beside it");
+	struct fct_image img;
+	if (fct_image_read_file(&img, path, NULL, &err))
+		fct_die_err(&err);
+	if (img.type == FCT_PIX_F32)
+		fct_die(1, "%s: a PFM image cannot texture a model: give a PNG or JPEG", path);
+	double pose[12];
+	int hp = fct_header_pose(m, pose, &err);
+	struct fct_cylview_model_stats st;
+	if (hp < 0)
+		stage_die("cyl2planar", &err);
+	if (fct_cylview_check_panorama(&img, cam, 1, NULL, &err)) {
+		fct_err_prefix(&err, "%s", path);
+		stage_die("cyl2planar", &err);
+	}
+	if (fct_cylview_texture_model(m, &img, cam, hp ? pose : NULL, &o->view, 1, "the model", o->out,
+	                              &st, &err))
+		stage_die("cyl2planar", &err);
+	fct_image_free(&img);
+	stage_report("cyl2planar", "views_used", "%zu", st.assign.views_used);
+	stage_report("cyl2planar", "splits", "%zu", st.assign.splits);
+	stage_report("cyl2planar", "max_depth_ratio", "%.9g", st.assign.max_ratio);
+}
+
+int main(int argc, char **argv)
+{
+	fct_cli_init("planarize");
+	struct options o;
+	parse_options(argc, argv, &o);
+	struct fct_err err;
+	int is_image;
+	FILE *in = open_input(o.input, &is_image);
+	if (o.d.cylindrical && o.image && (!o.out || fct_path_is_std(o.out)))
+		fct_usage_error("-o model is needed: a panorama's model has its views beside it");
+	if (o.image) {
+		/* The texture's file must be an image now, not when a viewer opens
+		 * the model. */
+		struct fct_image probe;
+		if (fct_image_probe_file(&probe, o.image, NULL, &err))
+			fct_die_err(&err);
+	}
+	fct_depth_opts_read_pose(&o.d);
+	if (o.keep)
+		make_keep_folder(o.keep);
+
+	double t0 = fct_now(), c0 = fct_cpu_time(), c1;
+	struct fct_mesh m;
+	struct fct_camera cam;
+	if (is_image)
+		mesh_depth(&m, &cam, &o, in);
+	else
+		mesh_read(&m, &cam, &o, in);
+	if (in != stdin)
+		fclose(in);
+	if (fct_header_add_provenance(&m, "planarize", argc - 1, argv + 1, &err))
+		fct_die_err(&err);
+	/* Coordinates as a file holds them, so that the stages give what the
+	 * programs give on a pipe (and on the files of --keep). */
+	if (m.xyz_type == FCT_FLOAT32)
+		for (size_t i = 0; i < 3 * m.nv; i++)
+			m.xyz[i] = (float)m.xyz[i];
+	stage_done(is_image ? "dm2mesh" : "read", &m, c0);
+	keep_stage(&o, &m, "1-mesh.ply");
+	size_t dense_faces = m.nf, dense_nv = m.nv;
+	double *dense = NULL;
+	if (fct_verbose) {
+		if (!(dense = fct_alloc_array(3 * m.nv, sizeof *dense, &err)))
+			fct_die_err(&err);
+		memcpy(dense, m.xyz, 3 * m.nv * sizeof *dense);
+	}
+
+	/* Patches of fewer faces than one in 600 of the mesh's (at least 8) go
+	 * to their best neighbour: below that they are specks of noise. */
+	if (!o.min_faces_given)
+		o.seg.min_faces = m.nf / 600 > 8 ? (long)(m.nf / 600) : 8;
+	c1 = fct_cpu_time();
+	struct fct_segment_stats sst;
+	if (fct_segment_mesh(&m, &o.seg, o.tls, &sst, &err)) {
+		fct_err_prefix(&err, "%s", fct_path_display(o.input));
+		stage_die("segplanes", &err);
+	}
+	stage_report("segplanes", "min_faces", "%ld", o.seg.min_faces);
+	stage_report("segplanes", "patches", "%zu", sst.patches);
+	stage_report("segplanes", "noise", "%.9g", sst.noise);
+	stage_report("segplanes", "clusters", "%zu", sst.clusters);
+	stage_report("segplanes", "merges", "%zu", sst.merges);
+	stage_report("segplanes", "absorbed", "%zu", sst.absorbed);
+	stage_report("segplanes", "free_faces", "%zu", sst.free_faces);
+	stage_done("segplanes", &m, c1);
+	keep_stage(&o, &m, "2-patches.ply");
+
+	c1 = fct_cpu_time();
+	struct fct_planar_stats pst;
+	if (fct_planar_model(&m, &o.plan, &pst, &err)) {
+		fct_err_prefix(&err, "%s", fct_path_display(o.input));
+		stage_die("planedecim", &err);
+	}
+	report_model(&pst);
+	stage_done("planedecim", &m, c1);
+	keep_stage(&o, &m, "3-model.ply");
+
+	if (cam.kind == FCT_CAMERA_CYLINDRICAL) {
+		c1 = fct_cpu_time();
+		texture_panorama(&m, &cam, &o);
+		stage_done("cyl2planar", &m, c1);
+	}
+	if (fct_mesh_write_file(&m, o.out, o.ascii, &err))
+		fct_die_err(&err);
+
+	for (size_t i = 0; fct_verbose && i < nlines; i++)
+		fprintf(stderr, "%s: %-10s %9zu vertices %9zu faces %8.3f s\n", fct_prog, lines[i].name,
+		        lines[i].vertices, lines[i].faces, lines[i].cpu_s);
+	fct_report("reduction", "%.1f", pst.faces_out ? (double)dense_faces / (double)pst.faces_out : 0);
+	if (dense)
+		report_errors(dense, dense_nv, &m);
+	fct_report("cpu_s", "%.3f", fct_cpu_time() - c0);
+	fct_report("total_s", "%.3f", fct_now() - t0);
+	free(dense);
+	fct_mesh_free(&m);
+	return 0;
+}
