@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """tests/cmd/interop.py MODULE SPEC... - read files facet wrote with another
-program's reader (open3d, pymeshlab or trimesh) and check what it got.
+program's reader (open3d, pymeshlab, trimesh or bpy, Blender's) and check
+what it got.
 
 Each SPEC is "path:ref:kind", ref an ascii PLY of the same mesh (meshconv -a)
 whose numbers are the truth, kind one of
@@ -132,6 +133,32 @@ def main():
                 check(tag + ' uv', uv is not None and close(uv, st, 1e-6), 'no uv')
                 img = getattr(getattr(t.visual, 'material', None), 'image', None)
                 check(tag + ' image', img is not None, 'TextureFile image not loaded')
+        elif module == 'bpy':
+            import bpy
+            if kind == 'wire':
+                print('SKIP %s: Blender imports a PLY\'s faces, not its edge element' % tag)
+                continue
+            bpy.ops.wm.read_factory_settings(use_empty=True)
+            if kind == 'obj':
+                bpy.ops.wm.obj_import(filepath=os.path.abspath(path))
+            else:
+                bpy.ops.wm.ply_import(filepath=os.path.abspath(path))
+            objs = [o for o in bpy.context.scene.objects if o.type == 'MESH']
+            if not objs:
+                check(tag + ' mesh', False, 'no mesh object')
+                continue
+            m = objs[0].data
+            v = np.array([tuple(x.co) for x in m.vertices])
+            if kind in ('obj', 'corner'):     # Blender splits an OBJ's vertices by use
+                v, want = np.unique(v, axis=0), np.unique(xyz, axis=0)
+            else:
+                want = xyz
+            check(tag + ' vertices', close(v, want, scale), 'got %s, want %s' % (v.shape, want.shape))
+            check(tag + ' faces', len(m.polygons) == len(faces), '%d, want %d' % (len(m.polygons), len(faces)))
+            if kind == 'obj':      # Blender ignores TextureFile in PLY, reads map_Kd
+                imgs = [i for i in bpy.data.images if i.size[0] > 0]
+                check(tag + ' uvs and image', len(m.uv_layers) >= 1 and len(imgs) >= 1,
+                      '%d uv layers, %d images' % (len(m.uv_layers), len(imgs)))
         else:
             sys.exit('interop.py: unknown module ' + module)
 

@@ -1,10 +1,11 @@
 # The PLY forms facet writes, read by the readers users have: Open3D,
-# pymeshlab (MeshLab) and trimesh, each when its Python module is
+# pymeshlab (MeshLab), trimesh and Blender (bpy), each when its Python module is
 # installed (skipped with a message otherwise): binary little- and
 # big-endian and ascii, with s t and TextureFile, with the face property
 # patch and the plane element (segplanes), the edge element (simpchain),
 # per-corner texcoord over several views (cyl2planar), an OBJ with its
-# .mtl, and tsdfuse naming 30 views, whose provenance line Open3D's reader
+# .mtl, planarize's models (PLY with s t, OBJ, a panorama's per-corner
+# texcoord), and tsdfuse naming 30 views, whose provenance line Open3D's reader
 # aborted on at 2359 bytes ("RPly: Line too long").  The numbers each reader
 # gets are checked against facet's own ascii output (tests/cmd/interop.py).
 . tests/lib.sh
@@ -21,6 +22,8 @@ run_case 0 "segplanes -o planes.ply desk.ply"
 run_case 0 "simpchain -o chains.ply planes.ply"
 run_case 0 "projverts chains.ply | tripatch -o model.ply"
 run_case 0 "meshconv -o model.obj model.ply"
+run_case 0 "planarize -K tum --step 2 -o plan.ply $S/TUM_depth.png rgb.png"
+run_case 0 "planarize -K tum --step 2 -o plan_obj.obj $S/TUM_depth.png rgb.png"
 mkscene -q --views 2 --size 80x60 --fx 60 --panorama 1024x256 -o room
 for i in 00 01; do
 	dm2mesh -q --camera room/view$i.camera --pose room/view$i.pose -o room/v$i.ply room/view$i.depth.pfm
@@ -37,9 +40,10 @@ check_true "30 views named in the provenance, abbreviated" \
 dm2mesh -q --step 8 --cylindrical ,,0 --pose room/pano.pose --image room/pano.color.png -o dense.ply room/pano.depth.pfm
 mkdir c
 run_case 0 "cyl2planar --mesh dense.ply -o c/room.ply"
+run_case 0 "planarize --step 4 --cylindrical ,,0 --pose room/pano.pose -o c/plan.ply room/pano.depth.pfm room/pano.color.png"
 
 # Every header line of every file: at most 255 bytes.
-for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply c/room.ply; do
+for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply c/room.ply plan.ply c/plan.ply; do
 	check_num "$f: longest header line" "$(sed -n '1,/^end_header/p' "$f" | LC_ALL=C awk '{ n = length($0) > n ? length($0) : n } END { print n }')" "<=" 255
 done
 
@@ -50,20 +54,21 @@ if ! command -v "$PY" >/dev/null 2>&1 || ! "$PY" -c 'import numpy' 2>/dev/null; 
 	exit
 fi
 specs=
-for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply c/room.ply model.obj; do
+for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply c/room.ply model.obj \
+	plan.ply c/plan.ply plan_obj.obj; do
 	ref=${f%.*}.ref.ply
 	case $f in model.obj) ref=model.ref.ply ;; esac
 	[ -f "$ref" ] || meshconv -a -o "$ref" "$f"
 	case $f in
 	chains.ply) kind=wire ;;
 	fused.ply) kind=mesh ;;
-	c/room.ply) kind=corner ;;
-	model.obj) kind=obj ;;
+	c/room.ply | c/plan.ply) kind=corner ;;
+	*.obj) kind=obj ;;
 	*) kind=st ;;
 	esac
 	specs="$specs $f:$ref:$kind"
 done
-for mod in open3d pymeshlab trimesh; do
+for mod in open3d pymeshlab trimesh bpy; do
 	if ! "$PY" -c "import $mod" 2>/dev/null; then
 		echo "interop.sh: Python module $mod not installed, skipped (pip install $mod)" >&2
 		continue
