@@ -139,6 +139,7 @@ int main(int argc, char **argv)
 	fct_report("planar_triangles", "%zu", st.outline.planar_triangles);
 	fct_report("free_faces", "%zu", st.outline.free_faces);
 	fct_report("tripatch_failures", "%zu", st.outline.tri.failures);
+	fct_report("outline_kept_patches", "%zu", st.outline.kept_patches);
 	fct_report("moved_line", "%zu", st.meet.lines);
 	fct_report("moved_corner", "%zu", st.meet.corners);
 	fct_report("stayed", "%zu", st.meet.stayed);

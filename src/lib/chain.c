@@ -14,6 +14,11 @@
 
 #define OUTSIDE FCT_CHAIN_OUTSIDE
 
+static int label_fixed(const struct fct_chain_params *p, int32_t l)
+{
+	return p->fixed && l >= 0 && (size_t)l < p->nfixed && p->fixed[l];
+}
+
 void fct_chain_params_default(struct fct_chain_params *p)
 {
 	p->threshold = 3;
@@ -22,6 +27,8 @@ void fct_chain_params_default(struct fct_chain_params *p)
 	p->scale = NULL;
 	p->scale_factor = 3;
 	p->fix_unlabelled = 0;
+	p->fixed = NULL;
+	p->nfixed = 0;
 }
 
 void fct_chains_free(struct fct_chains *c)
@@ -1376,8 +1383,11 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 	if (!stack)
 		return -1;
 	for (size_t i = 0; i < c->n; i++) {
-		if (p->fix_unlabelled && c->right[i] == -1)
-			continue;   /* every point kept, as extracted */
+		if ((p->fix_unlabelled && c->right[i] == -1) || label_fixed(p, c->left[i]) ||
+		    label_fixed(p, c->right[i])) {
+			memset(c->keep + c->start[i], 1, c->start[i + 1] - c->start[i]);
+			continue;   /* every point kept */
+		}
 		double t2 = tol2;
 		if (p->scale) {
 			double sum = 0;

@@ -128,6 +128,9 @@ struct fct_chain_params {
 	double scale_factor;
 	int fix_unlabelled;    /* 1: chains against unlabelled faces (-1) keep every
 	                          point (their other side is not rebuilt from them) */
+	const unsigned char *fixed;   /* NULL, or a flag per patch (nfixed): chains
+	                                 of a flagged patch keep every point */
+	size_t nfixed;
 };
 
 void fct_chain_params_default(struct fct_chain_params *p);

@@ -112,10 +112,51 @@ static void plane_frame(const double n[3], double u[3], double v[3])
 	fct_v3_cross(v, n, u);
 }
 
+/* Edges as 64-bit keys (lower vertex high), in an open-addressing set. */
+struct edge_set {
+	uint64_t *key;   /* 0: empty (no edge joins vertex 0 to itself) */
+	size_t mask;
+};
+
+static uint64_t edge_key(uint32_t a, uint32_t b)
+{
+	return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+static size_t edge_slot(const struct edge_set *h, uint64_t k)
+{
+	size_t i = (size_t)((k * 0x9e3779b97f4a7c15u) >> 17) & h->mask;
+	while (h->key[i] && h->key[i] != k)
+		i = (i + 1) & h->mask;
+	return i;
+}
+
+/* Does edge (a, b) exist: in the mesh's adjacency, or added by a fill? */
+static int edge_exists(const struct fct_adj *adj, const struct edge_set *h, uint32_t a, uint32_t b)
+{
+	uint64_t k = edge_key(a, b);
+	if (h->key[edge_slot(h, k)] == k)
+		return 1;
+	size_t lo = 0, hi = adj->ne;
+	uint32_t x = a < b ? a : b, y = a < b ? b : a;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		const uint32_t *e = adj->edge_v + 2 * mid;
+		if (e[0] < x || (e[0] == x && e[1] < y))
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < adj->ne && adj->edge_v[2 * lo] == x && adj->edge_v[2 * lo + 1] == y;
+}
+
 /* Fill one hole: loop[0..k) in border order (faces on its left), inside
- * patch p. */
+ * patch p; not when a new triangle's inner edge exists already (the hole's
+ * corners are joined elsewhere, across a fold or a thin wall, and the fill
+ * would make that edge non-manifold). */
 static int fill_loop(struct fct_mesh *m, int32_t **patch, const struct fct_plane *pl, int32_t p,
-                     const uint32_t *loop, size_t k, size_t *filled, struct fct_err *err)
+                     const uint32_t *loop, size_t k, const struct fct_adj *adj, struct edge_set *h,
+                     size_t *filled, struct fct_err *err)
 {
 	double u[3], v[3], *xy = fct_alloc_array(2 * k, sizeof *xy, err);
 	uint32_t *lv = fct_alloc_array(k, sizeof *lv, err), lstart[2] = {0, (uint32_t)k};
@@ -142,6 +183,22 @@ static int fill_loop(struct fct_mesh *m, int32_t **patch, const struct fct_plane
 		rc = r > 0 ? 0 : fct_fail(err, "%s", local.msg);
 		goto out;
 	}
+	for (size_t t = 0; t < ntri; t++)
+		for (int c = 0; c < 3; c++) {
+			uint32_t i = tri[3 * t + (size_t)c], j = tri[3 * t + (size_t)(c + 1) % 3];
+			if ((i + 1) % k == j || (j + 1) % k == i)
+				continue;   /* a loop edge */
+			if (edge_exists(adj, h, loop[k - 1 - i], loop[k - 1 - j])) {
+				rc = 0;
+				goto out;
+			}
+		}
+	for (size_t t = 0; t < ntri; t++)
+		for (int c = 0; c < 3; c++) {
+			uint64_t key = edge_key(loop[k - 1 - tri[3 * t + (size_t)c]],
+			                        loop[k - 1 - tri[3 * t + (size_t)(c + 1) % 3]]);
+			h->key[edge_slot(h, key)] = key;
+		}
 	int32_t *np = realloc(*patch, (m->nf + ntri) * sizeof *np);
 	if (!np) {
 		fct_fail(err, "out of memory");
@@ -176,9 +233,19 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 	uint32_t *face = fct_alloc_array(nv1, sizeof *face, err);
 	unsigned char *outdeg = fct_alloc_array(nv1, 1, err);
 	uint32_t *loop = fct_alloc_array(max_edges + 1, sizeof *loop, err);
+	struct edge_set h = {NULL, 0};
 	int rc = -1;
 	if (!next || !face || !outdeg || !loop)
 		goto out;
+	/* Room for every edge the fills can add: at most three per border edge. */
+	size_t cap = 64;
+	while (cap < 8 * (adj.nborder + 8))
+		cap *= 2;
+	if (!(h.key = calloc(cap, sizeof *h.key))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	h.mask = cap - 1;
 	memset(outdeg, 0, nv1);
 	/* Each border edge as its face walks it: a -> b, the face on its left. */
 	for (size_t f = 0; f < m->nf; f++) {
@@ -216,12 +283,12 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 				p = -1;
 		if (p < 0 || (size_t)p >= nplanes)
 			continue;
-		if (fill_loop(m, patch, &planes[p], p, loop, k, filled, err))
+		if (fill_loop(m, patch, &planes[p], p, loop, k, &adj, &h, filled, err))
 			goto out;
 	}
 	rc = 0;
 out:
-	free(next), free(face), free(outdeg), free(loop);
+	free(next), free(face), free(outdeg), free(loop), free(h.key);
 	fct_adj_free(&adj);
 	return rc;
 }
@@ -246,6 +313,63 @@ static int drop_unused_vertices(struct fct_mesh *m, struct fct_err *err)
 	return rc;
 }
 
+/* The patches' outlines as wires (vertex numbers of m): each kept segment
+ * of each chain, its right side -1 when that is free-form, the outside or a
+ * patch kept as it is (keep[label]). */
+static struct fct_wire *outline_wires(const struct fct_chains *c, const unsigned char *keep,
+                                      size_t *n, struct fct_err *err)
+{
+	size_t ne = 0;
+	for (size_t i = 0; i < c->n; i++)
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++)
+			ne += c->keep[q];
+	struct fct_wire *w = fct_alloc_array(ne ? ne : 1, sizeof *w, err);
+	if (!w)
+		return NULL;
+	size_t row = 0;
+	for (size_t i = 0; i < c->n; i++) {
+		int32_t l = c->left[i], r = c->right[i] >= 0 && !keep[c->right[i]] ? c->right[i] : -1;
+		if (keep[l]) {
+			if (r < 0)
+				continue;   /* neither side is rebuilt */
+			l = -1;
+		}
+		size_t last = c->start[i];
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++) {
+			if (!c->keep[q])
+				continue;
+			/* A wire has a patch on its first side. */
+			w[row++] = l >= 0 ? (struct fct_wire){ c->vert[last], c->vert[q], l, r }
+			                  : (struct fct_wire){ c->vert[q], c->vert[last], r, -1 };
+			last = q;
+		}
+	}
+	*n = row;
+	return w;
+}
+
+/* Flag (unclean) the rebuilt patches of the faces on edges of w that three
+ * or more faces share: a diagonal of a rebuilt patch that exists elsewhere
+ * already (its ends are joined across a fold, or by the free-form faces). */
+static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *np, const unsigned char *keep,
+                            unsigned char *unclean, struct fct_err *err)
+{
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, w, err))
+		return -1;
+	for (size_t e = 0; e < adj.ne; e++) {
+		if (fct_adj_edge_nfaces(&adj, e) <= 2)
+			continue;
+		for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++) {
+			int32_t l = np[adj.edge_f[k]];
+			if (l >= 0 && !keep[l])
+				unclean[l] = 1;
+		}
+	}
+	fct_adj_free(&adj);
+	return 0;
+}
+
 int fct_planes_retriangulate(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
                              size_t nplanes, const double *spacing, double tolerance,
                              struct fct_retri_stats *st, struct fct_err *err)
@@ -253,80 +377,98 @@ int fct_planes_retriangulate(struct fct_mesh *m, int32_t **patch, const struct f
 	memset(st, 0, sizeof *st);
 	struct fct_chains c;
 	memset(&c, 0, sizeof c);
-	struct fct_chain_params cp;
-	fct_chain_params_default(&cp);
-	cp.scale = spacing;
-	cp.scale_factor = tolerance;
-	cp.fix_unlabelled = 1;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
 	struct fct_wire *wires = NULL;
+	int32_t *np = NULL;
+	unsigned char *keep = calloc(nplanes ? nplanes : 1, 1);
+	unsigned char *unclean = calloc(nplanes ? nplanes : 1, 1);
 	int rc = -1;
-	if (fct_chains_extract(&c, m, *patch, err) ||
-	    fct_chains_simplify(&c, m, *patch, planes, nplanes, &cp, &st->chains, err))
+	if (!keep || !unclean) {
+		fct_fail(err, "out of memory");
 		goto out;
-	size_t ne = 0;
-	for (size_t i = 0; i < c.n; i++)
-		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++)
-			ne += c.keep[q];
-	if (!(wires = fct_alloc_array(ne ? ne : 1, sizeof *wires, err)))
-		goto out;
-	size_t row = 0;
-	for (size_t i = 0; i < c.n; i++) {
-		size_t last = c.start[i];
-		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++) {
-			if (!c.keep[q])
-				continue;
-			wires[row++] = (struct fct_wire){ c.vert[last], c.vert[q], c.left[i],
-			                                  c.right[i] >= 0 ? c.right[i] : -1 };
-			last = q;
-		}
 	}
-	/* The planes' triangles from their outlines (tripatch), on a copy of
-	 * the vertices; then the free-form faces as they were. */
-	if (fct_mesh_copy(&w, m, err) || fct_mesh_gather_faces(&w, NULL, 0, err))
+	if (fct_chains_extract(&c, m, *patch, err))
 		goto out;
-	w.has_faces = 0;
-	while (w.face.nprops)
-		fct_elem_remove(&w.face, w.face.props[0].name);
-	struct fct_tripatch_params tp;
-	fct_tripatch_params_default(&tp);
-	if (fct_wires_set(&w, wires, ne, err) || fct_tripatch(&w, &tp, &st->tri, err))
-		goto out;
-	size_t nplanar = w.nf, nfree = 0;
-	for (size_t f = 0; f < m->nf; f++)
-		nfree += (*patch)[f] < 0;
-	int32_t *np = fct_alloc_array(nplanar + nfree ? nplanar + nfree : 1, sizeof *np, err);
-	if (!np)
-		goto out;
-	const struct fct_prop *wp = fct_elem_find(&w.face, "patch");
-	for (size_t f = 0; f < nplanar; f++)
-		np[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
-	for (size_t f = 0; f < m->nf; f++) {
-		if ((*patch)[f] >= 0)
-			continue;
-		long k = fct_mesh_add_face(&w, m->fvert + m->fstart[f], fct_face_size(m, f), err);
-		if (k < 0) {
-			free(np);
+	/* Rounds: a patch whose outline tripatch cannot triangulate cleanly
+	 * (slits, repairs: the loops cross in its plane), or whose triangles
+	 * would share an edge with two other faces, keeps the faces it has, and
+	 * the chains around it keep every point, so that its neighbours meet it
+	 * edge for edge; until every rebuilt patch is clean. */
+	for (int round = 0;; round++) {
+		struct fct_chain_params cp;
+		fct_chain_params_default(&cp);
+		cp.scale = spacing;
+		cp.scale_factor = tolerance;
+		cp.fix_unlabelled = 1;
+		cp.fixed = keep, cp.nfixed = nplanes;
+		size_t ne;
+		free(wires), free(np);
+		wires = NULL, np = NULL;
+		fct_mesh_free(&w);
+		fct_mesh_init(&w);
+		if (fct_chains_simplify(&c, m, *patch, planes, nplanes, &cp, &st->chains, err) ||
+		    !(wires = outline_wires(&c, keep, &ne, err)))
+			goto out;
+		if (fct_mesh_copy(&w, m, err) || fct_mesh_gather_faces(&w, NULL, 0, err))
+			goto out;
+		w.has_faces = 0;
+		while (w.face.nprops)
+			fct_elem_remove(&w.face, w.face.props[0].name);
+		struct fct_tripatch_params tp;
+		fct_tripatch_params_default(&tp);
+		memset(unclean, 0, nplanes ? nplanes : 1);
+		tp.unclean = unclean;
+		memset(&st->tri, 0, sizeof st->tri);
+		if (fct_wires_set(&w, wires, ne, err) || fct_tripatch(&w, &tp, &st->tri, err))
+			goto out;
+		/* The rebuilt patches' triangles, then the faces kept as they were. */
+		size_t nplanar = w.nf, nkept = 0;
+		for (size_t f = 0; f < m->nf; f++)
+			nkept += (*patch)[f] < 0 || keep[(*patch)[f]];
+		if (!(np = fct_alloc_array(nplanar + nkept ? nplanar + nkept : 1, sizeof *np, err)))
+			goto out;
+		const struct fct_prop *wp = fct_elem_find(&w.face, "patch");
+		for (size_t f = 0; f < nplanar; f++)
+			np[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
+		st->free_faces = 0;
+		for (size_t f = 0; f < m->nf; f++) {
+			int32_t l = (*patch)[f];
+			if (l >= 0 && !keep[l])
+				continue;
+			long k = fct_mesh_add_face(&w, m->fvert + m->fstart[f], fct_face_size(m, f), err);
+			if (k < 0)
+				goto out;
+			np[k] = l;
+			st->free_faces += l < 0;
+		}
+		st->planar_triangles = nplanar;
+		if (flag_nonmanifold(&w, np, keep, unclean, err))
+			goto out;
+		size_t more = 0;
+		for (size_t l = 0; l < nplanes; l++)
+			if (unclean[l] && !keep[l])
+				keep[l] = 1, more++;
+		st->kept_patches += more;
+		if (!more)
+			break;
+		if (round == 8) {
+			fct_fail(err, "outlines: %zu patches still unclean after 8 rounds", more);
 			goto out;
 		}
-		np[k] = -1;
 	}
-	if (fct_patches_set(&w, np, err) || drop_unused_vertices(&w, err)) {
-		free(np);
+	if (fct_patches_set(&w, np, err) || drop_unused_vertices(&w, err))
 		goto out;
-	}
 	free(*patch);
 	*patch = np;
-	st->planar_triangles = nplanar;
-	st->free_faces = nfree;
+	np = NULL;
 	fct_mesh_free(m);
 	*m = w;
 	fct_mesh_init(&w);
 	rc = 0;
 out:
 	fct_chains_free(&c);
-	free(wires);
+	free(wires), free(np), free(keep), free(unclean);
 	fct_mesh_free(&w);
 	return rc;
 }

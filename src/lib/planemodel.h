@@ -49,6 +49,8 @@ struct fct_retri_stats {
 	struct fct_chain_stats chains;       /* the outlines' simplification */
 	struct fct_tripatch_stats tri;       /* their triangulation */
 	size_t planar_triangles, free_faces;
+	size_t kept_patches;                 /* patches whose outline tripatch could not
+	                                        triangulate cleanly: faces kept */
 };
 
 /* Rebuild the faces of the planar patches of m from their outlines: the
@@ -60,7 +62,10 @@ struct fct_retri_stats {
  * polygon triangulated
  * (tripatch.h): Kang, Johnson and Szeliski's sections 3 and 4.  The chains
  * against free-form faces keep every point and the free-form faces stay as
- * they are, so the surface stays one piece.  Vertices no face uses any more
+ * they are, so the surface stays one piece.  A patch whose outline does not
+ * triangulate cleanly (its loops cross in its plane: slits, repairs) keeps
+ * its faces too, the chains around it every point, in rounds until the
+ * rebuilt patches are all clean.  Vertices no face uses any more
  * are dropped.  *patch (m->nf labels) is replaced to match m's new faces.
  * 0, or -1 (message set). */
 int fct_planes_retriangulate(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
