@@ -313,166 +313,6 @@ static int drop_unused_vertices(struct fct_mesh *m, struct fct_err *err)
 	return rc;
 }
 
-/* The patches' outlines as wires (vertex numbers of m): each kept segment
- * of each chain, its right side -1 when that is free-form, the outside or a
- * patch kept as it is (keep[label]). */
-static struct fct_wire *outline_wires(const struct fct_chains *c, const unsigned char *keep,
-                                      size_t *n, struct fct_err *err)
-{
-	size_t ne = 0;
-	for (size_t i = 0; i < c->n; i++)
-		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++)
-			ne += c->keep[q];
-	struct fct_wire *w = fct_alloc_array(ne ? ne : 1, sizeof *w, err);
-	if (!w)
-		return NULL;
-	size_t row = 0;
-	for (size_t i = 0; i < c->n; i++) {
-		int32_t l = c->left[i], r = c->right[i] >= 0 && !keep[c->right[i]] ? c->right[i] : -1;
-		if (keep[l]) {
-			if (r < 0)
-				continue;   /* neither side is rebuilt */
-			l = -1;
-		}
-		size_t last = c->start[i];
-		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++) {
-			if (!c->keep[q])
-				continue;
-			/* A wire has a patch on its first side. */
-			w[row++] = l >= 0 ? (struct fct_wire){ c->vert[last], c->vert[q], l, r }
-			                  : (struct fct_wire){ c->vert[q], c->vert[last], r, -1 };
-			last = q;
-		}
-	}
-	*n = row;
-	return w;
-}
-
-/* Flag (unclean) the rebuilt patches of the faces on edges of w that three
- * or more faces share: a diagonal of a rebuilt patch that exists elsewhere
- * already (its ends are joined across a fold, or by the free-form faces). */
-static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *np, const unsigned char *keep,
-                            unsigned char *unclean, struct fct_err *err)
-{
-	struct fct_adj adj;
-	if (fct_adj_build(&adj, w, err))
-		return -1;
-	for (size_t e = 0; e < adj.ne; e++) {
-		if (fct_adj_edge_nfaces(&adj, e) <= 2)
-			continue;
-		for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++) {
-			int32_t l = np[adj.edge_f[k]];
-			if (l >= 0 && !keep[l])
-				unclean[l] = 1;
-		}
-	}
-	fct_adj_free(&adj);
-	return 0;
-}
-
-int fct_planes_retriangulate(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
-                             size_t nplanes, const double *spacing, double tolerance,
-                             struct fct_retri_stats *st, struct fct_err *err)
-{
-	memset(st, 0, sizeof *st);
-	struct fct_chains c;
-	memset(&c, 0, sizeof c);
-	struct fct_mesh w;
-	fct_mesh_init(&w);
-	struct fct_wire *wires = NULL;
-	int32_t *np = NULL;
-	unsigned char *keep = calloc(nplanes ? nplanes : 1, 1);
-	unsigned char *unclean = calloc(nplanes ? nplanes : 1, 1);
-	int rc = -1;
-	if (!keep || !unclean) {
-		fct_fail(err, "out of memory");
-		goto out;
-	}
-	if (fct_chains_extract(&c, m, *patch, err))
-		goto out;
-	/* Rounds: a patch whose outline tripatch cannot triangulate cleanly
-	 * (slits, repairs: the loops cross in its plane), or whose triangles
-	 * would share an edge with two other faces, keeps the faces it has, and
-	 * the chains around it keep every point, so that its neighbours meet it
-	 * edge for edge; until every rebuilt patch is clean. */
-	for (int round = 0;; round++) {
-		struct fct_chain_params cp;
-		fct_chain_params_default(&cp);
-		cp.scale = spacing;
-		cp.scale_factor = tolerance;
-		cp.fix_unlabelled = 1;
-		cp.fixed = keep, cp.nfixed = nplanes;
-		size_t ne;
-		free(wires), free(np);
-		wires = NULL, np = NULL;
-		fct_mesh_free(&w);
-		fct_mesh_init(&w);
-		if (fct_chains_simplify(&c, m, *patch, planes, nplanes, &cp, &st->chains, err) ||
-		    !(wires = outline_wires(&c, keep, &ne, err)))
-			goto out;
-		if (fct_mesh_copy(&w, m, err) || fct_mesh_gather_faces(&w, NULL, 0, err))
-			goto out;
-		w.has_faces = 0;
-		while (w.face.nprops)
-			fct_elem_remove(&w.face, w.face.props[0].name);
-		struct fct_tripatch_params tp;
-		fct_tripatch_params_default(&tp);
-		memset(unclean, 0, nplanes ? nplanes : 1);
-		tp.unclean = unclean;
-		memset(&st->tri, 0, sizeof st->tri);
-		if (fct_wires_set(&w, wires, ne, err) || fct_tripatch(&w, &tp, &st->tri, err))
-			goto out;
-		/* The rebuilt patches' triangles, then the faces kept as they were. */
-		size_t nplanar = w.nf, nkept = 0;
-		for (size_t f = 0; f < m->nf; f++)
-			nkept += (*patch)[f] < 0 || keep[(*patch)[f]];
-		if (!(np = fct_alloc_array(nplanar + nkept ? nplanar + nkept : 1, sizeof *np, err)))
-			goto out;
-		const struct fct_prop *wp = fct_elem_find(&w.face, "patch");
-		for (size_t f = 0; f < nplanar; f++)
-			np[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
-		st->free_faces = 0;
-		for (size_t f = 0; f < m->nf; f++) {
-			int32_t l = (*patch)[f];
-			if (l >= 0 && !keep[l])
-				continue;
-			long k = fct_mesh_add_face(&w, m->fvert + m->fstart[f], fct_face_size(m, f), err);
-			if (k < 0)
-				goto out;
-			np[k] = l;
-			st->free_faces += l < 0;
-		}
-		st->planar_triangles = nplanar;
-		if (flag_nonmanifold(&w, np, keep, unclean, err))
-			goto out;
-		size_t more = 0;
-		for (size_t l = 0; l < nplanes; l++)
-			if (unclean[l] && !keep[l])
-				keep[l] = 1, more++;
-		st->kept_patches += more;
-		if (!more)
-			break;
-		if (round == 8) {
-			fct_fail(err, "outlines: %zu patches still unclean after 8 rounds", more);
-			goto out;
-		}
-	}
-	if (fct_patches_set(&w, np, err) || drop_unused_vertices(&w, err))
-		goto out;
-	free(*patch);
-	*patch = np;
-	np = NULL;
-	fct_mesh_free(m);
-	*m = w;
-	fct_mesh_init(&w);
-	rc = 0;
-out:
-	fct_chains_free(&c);
-	free(wires), free(np), free(keep), free(unclean);
-	fct_mesh_free(&w);
-	return rc;
-}
-
 /* Planes closer than this to parallel (the sine of their angle, squared)
  * have no line worth moving a vertex to: 10 degrees. */
 #define MIN_SIN2 0.0301536896
@@ -732,7 +572,6 @@ out:
 void fct_planar_params_default(struct fct_planar_params *p)
 {
 	p->max_error = 1;
-	p->target_faces = 0;
 	p->border_tol = 1;
 	p->outline_tol = 3;
 	p->max_move = 4;
@@ -815,6 +654,206 @@ static double *sample_spacing(const struct fct_mesh *m, const struct fct_camera 
 	return s;
 }
 
+/* The free-form faces of m (patch -1) decimated alone by quadric edge
+ * collapse (qem.h) in units of sigma, their borders held and corner[v]
+ * kept: into F, whose faces are renumbered to m's vertices; its vertex
+ * arrays keep the decimation's numbering, and vmap[i] is m's number of its
+ * vertex i (nmap of them). */
+static int decimate_free(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, const struct fct_mesh *m,
+                         const int32_t *patch, const double *sigma, const unsigned char *corner,
+                         const double *vp, const struct fct_planar_params *p,
+                         struct fct_qem_stats *qs, struct fct_err *err)
+{
+	size_t nfree = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		nfree += patch[f] < 0;
+	size_t *keep = fct_alloc_array(nfree ? nfree : 1, sizeof *keep, err);
+	int rc = -1;
+	if (!keep || fct_mesh_copy(F, m, err))
+		goto out;
+	size_t k = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] < 0)
+			keep[k++] = f;
+	struct fct_prop *idx = fct_elem_add_scalar(&F->vertex, "fct_vertex", FCT_UINT32, err);
+	if (!idx || fct_mesh_gather_faces(F, keep, nfree, err))
+		goto out;
+	for (size_t v = 0; v < F->nv; v++)
+		fct_prop_set(idx, v, (double)v);
+	struct fct_qem_params qp;
+	fct_qem_params_default(&qp);
+	qp.max_error = p->max_error;
+	qp.border_tol = p->border_tol;
+	qp.hold_borders = 1;
+	qp.sigma = sigma;
+	qp.corner = corner;
+	if (vp) {
+		qp.use_viewpoint = 1;
+		memcpy(qp.viewpoint, vp, sizeof qp.viewpoint);
+	}
+	if (fct_qem_decimate(F, &qp, qs, err))
+		goto out;
+	idx = fct_elem_find(&F->vertex, "fct_vertex");
+	if (!(*vmap = fct_alloc_array(F->nv ? F->nv : 1, sizeof **vmap, err)))
+		goto out;
+	*nmap = F->nv;
+	for (size_t v = 0; v < F->nv; v++)
+		(*vmap)[v] = (uint32_t)fct_prop_get(idx, v);
+	for (size_t c = 0; c < (F->nf ? F->fstart[F->nf] : 0); c++)
+		F->fvert[c] = (*vmap)[F->fvert[c]];
+	rc = 0;
+out:
+	free(keep);
+	return rc;
+}
+
+/* The patches' outlines as wires (m's vertex numbers): each kept segment of
+ * each chain, its right side -1 when that is free-form or the outside. */
+static struct fct_wire *outline_wires(const struct fct_chains *c, size_t *n, struct fct_err *err)
+{
+	size_t ne = 0;
+	for (size_t i = 0; i < c->n; i++)
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++)
+			ne += c->keep[q];
+	struct fct_wire *w = fct_alloc_array(ne ? ne : 1, sizeof *w, err);
+	if (!w)
+		return NULL;
+	size_t row = 0;
+	for (size_t i = 0; i < c->n; i++) {
+		size_t last = c->start[i];
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++) {
+			if (!c->keep[q])
+				continue;
+			w[row++] = (struct fct_wire){ c->vert[last], c->vert[q], c->left[i],
+			                              c->right[i] >= 0 ? c->right[i] : -1 };
+			last = q;
+		}
+	}
+	*n = row;
+	return w;
+}
+
+/* Flag (unclean) the patches of the faces on edges of w that three or more
+ * faces share: a diagonal of a rebuilt patch that exists elsewhere already
+ * (its ends are joined across a fold, or by the free-form faces). */
+static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsigned char *unclean,
+                            struct fct_err *err)
+{
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, w, err))
+		return -1;
+	for (size_t e = 0; e < adj.ne; e++)
+		if (fct_adj_edge_nfaces(&adj, e) > 2)
+			for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
+				if (lab[adj.edge_f[k]] >= 0)
+					unclean[lab[adj.edge_f[k]]] = 1;
+	fct_adj_free(&adj);
+	return 0;
+}
+
+/* One try at the model from the dense m and its labels: the free-form faces
+ * decimated alone, their outline's surviving vertices frozen into the
+ * chains, the other chains simplified, each patch triangulated from its
+ * outline (tripatch), all assembled into w.  unclean[l] is set for the
+ * patches tripatch could not triangulate cleanly or whose triangles would
+ * share an edge with two other faces. */
+static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
+                       const struct fct_plane *pl, size_t np, const double *sigma,
+                       const double *spacing, const double *vp, const struct fct_planar_params *p,
+                       unsigned char *unclean, struct fct_planar_stats *st, struct fct_err *err)
+{
+	struct fct_chains c;
+	memset(&c, 0, sizeof c);
+	struct fct_mesh F;
+	fct_mesh_init(&F);
+	uint32_t *vmap = NULL;
+	size_t nmap = 0;
+	unsigned char *corner = calloc(m->nv ? m->nv : 1, 1), *alive = calloc(m->nv ? m->nv : 1, 1);
+	struct fct_wire *wires = NULL;
+	int32_t *lab = NULL;
+	int rc = -1;
+	if (!corner || !alive) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	if (fct_chains_extract(&c, m, patch, err))
+		goto out;
+	/* The junctions stay: the chains meet there. */
+	for (size_t i = 0; i < c.n; i++)
+		if (c.closed[i] != 2) {
+			corner[c.vert[c.start[i]]] = 1;
+			corner[c.vert[c.start[i + 1] - 1]] = 1;
+		}
+	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
+		goto out;
+	for (size_t i = 0; i < nmap; i++)
+		alive[vmap[i]] = 1;
+	/* A chain against the free-form surface keeps what its decimation kept;
+	 * the others are simplified to their tolerance. */
+	if (!(c.frozen = calloc(c.n ? c.n : 1, 1))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	for (size_t i = 0; i < c.n; i++) {
+		if (c.right[i] != -1)
+			continue;
+		c.frozen[i] = 1;
+		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+			c.keep[q] = alive[c.vert[q]];
+	}
+	struct fct_chain_params cp;
+	fct_chain_params_default(&cp);
+	cp.scale = spacing;
+	cp.scale_factor = p->outline_tol;
+	size_t ne;
+	if (fct_chains_simplify(&c, m, patch, pl, np, &cp, &st->chains, err) ||
+	    !(wires = outline_wires(&c, &ne, err)))
+		goto out;
+	/* The planes' triangles, on m's vertices with the decimation's moves. */
+	if (fct_mesh_copy(w, m, err) || fct_mesh_gather_faces(w, NULL, 0, err))
+		goto out;
+	w->has_faces = 0;
+	while (w->face.nprops)
+		fct_elem_remove(&w->face, w->face.props[0].name);
+	for (size_t i = 0; i < nmap; i++) {
+		memcpy(w->xyz + 3 * (size_t)vmap[i], F.xyz + 3 * i, sizeof(double[3]));
+		for (size_t j = 0; j < w->vertex.nprops; j++) {
+			struct fct_prop *dst = &w->vertex.props[j];
+			const struct fct_prop *src = fct_elem_find(&F.vertex, dst->name);
+			if (src && src->count_type == FCT_NONE && dst->count_type == FCT_NONE)
+				fct_prop_set(dst, vmap[i], fct_prop_get(src, i));
+		}
+	}
+	struct fct_tripatch_params tp;
+	fct_tripatch_params_default(&tp);
+	tp.unclean = unclean;
+	if (fct_wires_set(w, wires, ne, err) || fct_tripatch(w, &tp, &st->tri, err))
+		goto out;
+	/* Then the free-form faces. */
+	size_t nplanar = w->nf;
+	if (!(lab = fct_alloc_array(nplanar + F.nf ? nplanar + F.nf : 1, sizeof *lab, err)))
+		goto out;
+	const struct fct_prop *wp = fct_elem_find(&w->face, "patch");
+	for (size_t f = 0; f < nplanar; f++)
+		lab[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
+	for (size_t f = 0; f < F.nf; f++) {
+		long k = fct_mesh_add_face(w, F.fvert + F.fstart[f], fct_face_size(&F, f), err);
+		if (k < 0)
+			goto out;
+		lab[k] = -1;
+	}
+	if (fct_patches_set(w, lab, err) || flag_nonmanifold(w, lab, unclean, err))
+		goto out;
+	st->planar_triangles = nplanar;
+	st->free_faces = F.nf;
+	rc = 0;
+out:
+	fct_chains_free(&c);
+	fct_mesh_free(&F);
+	free(vmap), free(corner), free(alive), free(wires), free(lab);
+	return rc;
+}
+
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
                      struct fct_planar_stats *st, struct fct_err *err)
 {
@@ -823,6 +862,9 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t np = 0;
 	int32_t *patch = NULL;
 	double *sigma = NULL, *spacing = NULL;
+	unsigned char *unclean = NULL;
+	struct fct_mesh w;
+	fct_mesh_init(&w);
 	int present = 0, rc = -1;
 	st->vertices_in = m->nv, st->faces_in = m->nf;
 	if (fct_planes_get(m, &pl, &np, err) || fct_patches_get(m, &patch, &present, (long)np, err))
@@ -845,34 +887,46 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	    fct_patches_tidy(patch, m, p->min_plane, p->min_free, &st->tidy, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
-	    fct_patches_set(m, patch, err) ||
-	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err))
+	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
+	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, mean_edge(m), err)) ||
+	    !(unclean = calloc(np ? np : 1, 1)))
 		goto out;
-	double input_spacing = mean_edge(m);
-	struct fct_qem_params qp;
-	fct_qem_params_default(&qp);
-	qp.max_error = p->max_error;
-	qp.target_faces = p->target_faces;
-	qp.border_tol = p->border_tol;
-	qp.patch = patch, qp.planes = pl, qp.nplanes = np, qp.sigma = sigma;
-	if (have_cam) {
-		qp.use_viewpoint = 1;
-		memcpy(qp.viewpoint, vp, sizeof vp);
+	/* Rounds: a patch that does not triangulate cleanly from its outline
+	 * (its loops cross in its plane, or a diagonal exists elsewhere) becomes
+	 * free-form, until none is left. */
+	for (int round = 0;; round++) {
+		memset(unclean, 0, np ? np : 1);
+		fct_mesh_free(&w);
+		fct_mesh_init(&w);
+		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, unclean,
+		                st, err))
+			goto out;
+		size_t more = 0;
+		for (size_t f = 0; f < m->nf; f++)
+			if (patch[f] >= 0 && unclean[patch[f]])
+				patch[f] = -1, more++;
+		if (!more)
+			break;
+		st->rounds++;
+		for (size_t l = 0; l < np; l++)
+			st->unclean_patches += unclean[l];
+		if (round == 8) {
+			fct_fail(err, "outlines: patches still not clean after 8 rounds");
+			goto out;
+		}
 	}
-	/* Holes filled add no vertex, so sigma still matches m's vertices. */
-	if (fct_qem_decimate(m, &qp, &st->qem, err))
-		goto out;
+	fct_mesh_free(m);
+	*m = w;
+	fct_mesh_init(&w);
 	free(patch), free(sigma);
 	patch = NULL, sigma = NULL;
-	if (fct_patches_get(m, &patch, &present, (long)np, err))
+	int estimated, dummy;
+	if (fct_patches_get(m, &patch, &dummy, (long)np, err) || drop_unused_vertices(m, err) ||
+	    vertex_sigma(m, pl, np, &sigma, &estimated, err))
 		goto out;
-	if (p->outline_tol > 0) {
-		if (!(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing, err)) ||
-		    fct_planes_retriangulate(m, &patch, pl, np, spacing, p->outline_tol, &st->outline, err))
-			goto out;
-	}
-	int estimated;
-	if (vertex_sigma(m, pl, np, &sigma, &estimated, err) ||
+	free(patch);
+	patch = NULL;
+	if (fct_patches_get(m, &patch, &dummy, (long)np, err) ||
 	    fct_planes_meet(m, patch, pl, sigma, p->max_move, have_cam ? vp : NULL, &st->meet, err))
 		goto out;
 	if (have_cam && fct_elem_find(&m->vertex, "s") && fct_elem_find(&m->vertex, "t") &&
@@ -881,6 +935,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	st->vertices_out = m->nv, st->faces_out = m->nf;
 	rc = 0;
 out:
-	free(pl), free(patch), free(sigma), free(spacing);
+	fct_mesh_free(&w);
+	free(pl), free(patch), free(sigma), free(spacing), free(unclean);
 	return rc;
 }
