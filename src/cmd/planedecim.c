@@ -118,6 +118,7 @@ int main(int argc, char **argv)
 	fct_report("reduction", "%.1f", st.faces_out ? (double)st.faces_in / (double)st.faces_out : 0);
 	fct_report("planes", "%zu", st.planes);
 	fct_report("sigma_estimated", "%d", st.sigma_estimated);
+	fct_report("facets", "%zu", st.facets);
 	fct_report("small_faces", "%zu", st.tidy.small_faces);
 	fct_report("speck_faces", "%zu", st.tidy.speck_faces);
 	fct_report("holes_filled", "%zu", st.holes_filled);

@@ -100,6 +100,50 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 	return 0;
 }
 
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                        size_t nplanes, double max_angle, double min_share, size_t *facets,
+                        struct fct_err *err)
+{
+	*facets = 0;
+	if (nplanes == 0)
+		return 0;
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, m, err))
+		return -1;
+	double *shared = calloc(2 * nplanes, sizeof *shared);   /* shallow, all */
+	unsigned char *facet = calloc(nplanes, 1);
+	if (!shared || !facet) {
+		free(shared), free(facet);
+		fct_adj_free(&adj);
+		return fct_fail(err, "out of memory");
+	}
+	double cos_max = cos(max_angle * M_PI / 180);
+	for (size_t e = 0; e < adj.ne; e++) {
+		if (fct_adj_edge_nfaces(&adj, e) != 2)
+			continue;
+		int32_t a = patch[adj.edge_f[adj.edge_fstart[e]]], b = patch[adj.edge_f[adj.edge_fstart[e] + 1]];
+		if (a == b || a < 0 || b < 0)
+			continue;
+		double len = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
+		                               m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+		int shallow = fct_v3_dot(planes[a].n, planes[b].n) >= cos_max;
+		for (int k = 0; k < 2; k++) {
+			int32_t l = k ? b : a;
+			shared[2 * l] += shallow ? len : 0;
+			shared[2 * l + 1] += len;
+		}
+	}
+	for (size_t l = 0; l < nplanes; l++)
+		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1])
+			facet[l] = 1, ++*facets;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0 && facet[patch[f]])
+			patch[f] = -1;
+	free(shared), free(facet);
+	fct_adj_free(&adj);
+	return 0;
+}
+
 /* A unit frame (u, v) of the plane with normal n, u x v = n. */
 static void plane_frame(const double n[3], double u[3], double v[3])
 {
@@ -497,8 +541,8 @@ static int spoilt(const struct fct_mesh *m, size_t f, int32_t lab, const struct 
 }
 
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                    const double *sigma, double max_move, const double *viewpoint,
-                    struct fct_meet_stats *st, struct fct_err *err)
+                    const double *sigma, const double *spacing, double max_move,
+                    const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err)
 {
 	memset(st, 0, sizeof *st);
 	uint32_t *vstart = NULL, *vf = NULL;
@@ -516,7 +560,8 @@ int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_p
 		if (n < 2)
 			continue;
 		const double *p = before + 3 * v;
-		double bound2 = sigma && max_move > 0 ? max_move * max_move * sigma[v] * sigma[v] : INFINITY;
+		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
+		double bound2 = e2 > 0 && max_move > 0 ? max_move * max_move * e2 : INFINITY;
 		double x[3], best[3], bd = INFINITY;
 		if (n >= 3 && onto_planes(planes, ls, n, p, x) && fct_v3_dist2(x, p) <= bound2) {
 			memcpy(best, x, sizeof x);
@@ -578,6 +623,7 @@ void fct_planar_params_default(struct fct_planar_params *p)
 	p->min_free = 64;
 	p->min_plane = 64;
 	p->max_hole = 64;
+	p->facet_angle = 20;
 }
 
 /* Each vertex's sigma: the property, else the noise the data show, else
@@ -866,6 +912,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	struct fct_mesh w;
 	fct_mesh_init(&w);
 	int present = 0, rc = -1;
+	double input_spacing = 0;
 	st->vertices_in = m->nv, st->faces_in = m->nf;
 	if (fct_planes_get(m, &pl, &np, err) || fct_patches_get(m, &patch, &present, (long)np, err))
 		goto out;
@@ -884,11 +931,12 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		vp[0] = pose[3], vp[1] = pose[7], vp[2] = pose[11];
 	}
 	if (vertex_sigma(m, pl, np, &sigma, &st->sigma_estimated, err) ||
+	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
 	    fct_patches_tidy(patch, m, p->min_plane, p->min_free, &st->tidy, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
-	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, mean_edge(m), err)) ||
+	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
 	    !(unclean = calloc(np ? np : 1, 1)))
 		goto out;
 	/* Rounds: a patch that does not triangulate cleanly from its outline
@@ -926,8 +974,11 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		goto out;
 	free(patch);
 	patch = NULL;
+	free(spacing);
 	if (fct_patches_get(m, &patch, &dummy, (long)np, err) ||
-	    fct_planes_meet(m, patch, pl, sigma, p->max_move, have_cam ? vp : NULL, &st->meet, err))
+	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing, err)) ||
+	    fct_planes_meet(m, patch, pl, sigma, spacing, p->max_move, have_cam ? vp : NULL, &st->meet,
+	                    err))
 		goto out;
 	if (have_cam && fct_elem_find(&m->vertex, "s") && fct_elem_find(&m->vertex, "t") &&
 	    fct_camera_texcoords(m, &cam, have_pose ? inv : NULL, &st->no_pixel, err))

@@ -33,6 +33,17 @@ struct fct_tidy_stats {
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
                      struct fct_tidy_stats *st, struct fct_err *err);
 
+/* Facets of curved surfaces become free-form: each patch whose boundary
+ * with other patches runs, for at least min_share of its length, along
+ * creases shallower than max_angle degrees (the angle between the planes'
+ * normals).  Noise large enough lets planes fit a sphere or a cylinder
+ * piecewise; such facets meet each other at shallow creases all round,
+ * which walls, floors and boxes, meeting at right angles or at the image's
+ * edge, do not.  patch changes in place; *facets gets the count. */
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                        size_t nplanes, double max_angle, double min_share, size_t *facets,
+                        struct fct_err *err);
+
 /* Fill the holes of the mesh inside one patch: each border loop of at most
  * max_edges edges whose faces are all in one patch p >= 0 and which bounds
  * a hole (the loop, projected on p's plane, turns clockwise about its
@@ -65,12 +76,14 @@ struct fct_meet_stats {
  * whose normals spread: least eigenvalue of their scatter at least 0.1) or
  * else the nearest line of two of them (not within 10 degrees of parallel;
  * its point nearest the vertex's ray with a viewpoint), when that is within
- * max_move times the vertex's sigma (no bound without sigma); a move that
+ * max_move times the vertex's uncertainty, sqrt(sigma^2 + spacing^2): its
+ * noise along its ray and its sample spacing across it (no bound when both
+ * are NULL; where creases meet is known to a sample); a move that
  * turns a face over (against its plane's normal) or leaves it a sliver is
  * taken back, in rounds: Kang et al.'s section 5.  0, or -1 out of memory. */
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                    const double *sigma, double max_move, const double *viewpoint,
-                    struct fct_meet_stats *st, struct fct_err *err);
+                    const double *sigma, const double *spacing, double max_move,
+                    const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err);
 
 /* The planar model of a segmented mesh (planedecim, planarize). */
 struct fct_planar_params {
@@ -84,11 +97,16 @@ struct fct_planar_params {
 	size_t min_plane;     /* patches of fewer faces are free-form (64) */
 	size_t max_hole;      /* holes of at most this many edges inside a patch are
 	                         filled (64; 0: none) */
+	double facet_angle;   /* a patch whose boundary with other patches runs
+	                         mostly (half its length) along creases shallower
+	                         than this is a facet of a curved surface: free-form
+	                         (20 degrees; 0: none) */
 };
 
 struct fct_planar_stats {
 	size_t vertices_in, faces_in, vertices_out, faces_out, planes;
 	int sigma_estimated;             /* no sigma property: estimated (noise.h) */
+	size_t facets;                   /* patches found facets of curved surfaces */
 	struct fct_tidy_stats tidy;
 	size_t holes_filled, projected;
 	struct fct_qem_stats qem;        /* the free-form faces' decimation */

@@ -3,6 +3,7 @@
 # installed (skipped with a message otherwise): binary little- and
 # big-endian and ascii, with s t and TextureFile, with the face property
 # patch and the plane element (segplanes), the edge element (simpchain),
+# the planar model (planedecim),
 # per-corner texcoord over several views (cyl2planar), an OBJ with its
 # .mtl, and tsdfuse naming 30 views, whose provenance line Open3D's reader
 # aborted on at 2359 bytes ("RPly: Line too long").  The numbers each reader
@@ -19,7 +20,7 @@ run_case 0 "dm2mesh -a -K tum --step 8 --image rgb.png -o desk_a.ply $S/TUM_dept
 run_case 0 "meshconv -f binary_big_endian -o desk_be.ply desk.ply"
 run_case 0 "segplanes -o planes.ply desk.ply"
 run_case 0 "simpchain -o chains.ply planes.ply"
-run_case 0 "projverts chains.ply | tripatch -o model.ply"
+run_case 0 "planedecim -o model.ply planes.ply"
 run_case 0 "meshconv -o model.obj model.ply"
 mkscene -q --views 2 --size 80x60 --fx 60 --panorama 1024x256 -o room
 for i in 00 01; do
