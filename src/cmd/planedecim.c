@@ -140,6 +140,7 @@ int main(int argc, char **argv)
 	fct_report("moved_corner", "%zu", st.meet.corners);
 	fct_report("stayed", "%zu", st.meet.stayed);
 	fct_report("moves_undone", "%zu", st.meet.undone);
+	fct_report("torn", "%zu", st.meet.torn);
 	fct_report("no_pixel", "%zu", st.no_pixel);
 	fct_report("read_s", "%.3f", t1 - t0);
 	fct_report("model_s", "%.3f", t2 - t1);

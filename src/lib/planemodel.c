@@ -540,6 +540,77 @@ static int spoilt(const struct fct_mesh *m, size_t f, int32_t lab, const struct 
 	return 0;
 }
 
+/* A vertex still off the plane of one of its patches by more than its
+ * uncertainty (sigma along its ray, across it its sample spacing) is torn:
+ * that patch's faces get a copy of it on their plane, where its ray meets
+ * the plane (when that is within max_move of its uncertainty; else, or
+ * without a viewpoint, straight across).  Where no line or point of the
+ * planes lies near (an occlusion: a box's edge in front of the wall, the
+ * noise's own folds), a shared vertex would tilt every face of the patch
+ * that is not its own; the tear leaves a crack there instead, which is
+ * what the sensor saw.  The copy has every property of the vertex. */
+static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                          const double *sigma, const double *spacing, double max_move,
+                          const double *viewpoint, const uint32_t *vstart, const uint32_t *vf,
+                          struct fct_meet_stats *st, struct fct_err *err)
+{
+	struct tear {
+		uint32_t v;
+		int32_t label;
+		double x[3];
+	} *tears = NULL;
+	size_t n = 0, cap = 0, nv0 = m->nv;
+	for (size_t v = 0; v < nv0; v++) {
+		int32_t ls[8];
+		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
+		if (k < 2 || !(e2 > 0))
+			continue;
+		for (int i = 0; i < k; i++) {
+			const struct fct_plane *pl = &planes[ls[i]];
+			const double *p = m->xyz + 3 * v;
+			double r = fct_v3_dot(pl->n, p) + pl->d, x[3];
+			if (r * r <= e2)
+				continue;
+			onto_planes(planes, &ls[i], 1, p, x);
+			if (viewpoint && along_ray(planes, &ls[i], 1, viewpoint, p, x) &&
+			    !(fct_v3_dist2(x, p) <= max_move * max_move * e2))
+				onto_planes(planes, &ls[i], 1, p, x);
+			if (n == cap && fct_grow((void **)&tears, &cap, n + 1, sizeof *tears, err)) {
+				free(tears);
+				return -1;
+			}
+			tears[n].v = (uint32_t)v, tears[n].label = ls[i];
+			memcpy(tears[n++].x, x, sizeof x);
+		}
+	}
+	if (n && fct_mesh_set_vertex_count(m, nv0 + n, err)) {
+		free(tears);
+		return -1;
+	}
+	for (size_t t = 0; t < n; t++) {
+		size_t c = nv0 + t;
+		uint32_t v = tears[t].v;
+		for (size_t j = 0; j < m->vertex.nprops; j++) {
+			struct fct_prop *pr = &m->vertex.props[j];
+			if (pr->count_type == FCT_NONE)
+				fct_prop_set(pr, c, fct_prop_get(pr, v));
+		}
+		memcpy(m->xyz + 3 * c, tears[t].x, sizeof tears[t].x);
+		for (uint32_t k = vstart[v]; k < vstart[v + 1]; k++) {
+			uint32_t f = vf[k];
+			if (patch[f] != tears[t].label)
+				continue;
+			for (uint32_t q = m->fstart[f]; q < m->fstart[f + 1]; q++)
+				if (m->fvert[q] == v)
+					m->fvert[q] = (uint32_t)c;
+		}
+	}
+	st->torn = n;
+	free(tears);
+	return 0;
+}
+
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
                     const double *sigma, const double *spacing, double max_move,
                     const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err)
@@ -608,6 +679,8 @@ int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_p
 		st->lines += kind[v] == 2;
 		st->corners += kind[v] == 3;
 	}
+	if (tear_off_plane(m, patch, planes, sigma, spacing, max_move, viewpoint, vstart, vf, st, err))
+		goto out;
 	rc = 0;
 out:
 	free(before), free(kind), free(vstart), free(vf);

@@ -70,6 +70,7 @@ struct fct_meet_stats {
 	size_t corners;   /* ... on the point of three or more */
 	size_t stayed;    /* where patches meet, but no line or point near enough */
 	size_t undone;    /* moves taken back: a face turned over or thinned */
+	size_t torn;      /* copies of vertices off a plane of theirs, on it */
 };
 
 /* Every vertex where patches meet onto their point (three or more planes
@@ -80,7 +81,11 @@ struct fct_meet_stats {
  * noise along its ray and its sample spacing across it (no bound when both
  * are NULL; where creases meet is known to a sample); a move that
  * turns a face over (against its plane's normal) or leaves it a sliver is
- * taken back, in rounds: Kang et al.'s section 5.  0, or -1 out of memory. */
+ * taken back, in rounds: Kang et al.'s section 5.  A vertex then still off
+ * one of its planes by more than its uncertainty is torn: that patch's
+ * faces get a copy of it on their plane (along its ray), so that no plane
+ * is tilted by another's vertex; the surface has a crack there, as the
+ * sensor saw it (an occlusion).  0, or -1 out of memory. */
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
                     const double *sigma, const double *spacing, double max_move,
                     const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err);
