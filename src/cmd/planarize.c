@@ -75,8 +75,8 @@ static const char usage[] =
 	"                     dense mesh's faces, at least 8)\n"
 	"      --tls          fit planes orthogonally, not along the camera's rays\n"
 	"The planar model, as planedecim(1):\n"
-	"  -e error           largest quadric distance of a collapse, in sigma\n"
-	"                     (default 1)\n"
+	"  -e error           the free-form decimation's bound: the largest quadric\n"
+	"                     distance of a collapse, in sigma (default 1)\n"
 	"      --border k     a border may move by k edge lengths (default 1)\n"
 	"      --max-hole k   fill holes of at most k edges inside a patch (64)\n"
 	"      --max-move k   move a vertex onto a line or corner by at most k sigma\n"
@@ -355,18 +355,18 @@ static void report_model(const struct fct_planar_stats *st)
 {
 	stage_report("planedecim", "planes", "%zu", st->planes);
 	stage_report("planedecim", "sigma_estimated", "%d", st->sigma_estimated);
+	stage_report("planedecim", "facets", "%zu", st->facets);
 	stage_report("planedecim", "small_faces", "%zu", st->tidy.small_faces);
 	stage_report("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
 	stage_report("planedecim", "holes_filled", "%zu", st->holes_filled);
-	stage_report("planedecim", "projected", "%zu", st->projected);
 	stage_report("planedecim", "collapses", "%zu", st->qem.collapses);
 	stage_report("planedecim", "max_error", "%.9g", st->qem.max_error);
-	stage_report("planedecim", "planar_triangles", "%zu", st->outline.planar_triangles);
-	stage_report("planedecim", "free_faces", "%zu", st->outline.free_faces);
-	stage_report("planedecim", "tripatch_failures", "%zu", st->outline.tri.failures);
+	stage_report("planedecim", "planar_triangles", "%zu", st->planar_triangles);
+	stage_report("planedecim", "free_faces", "%zu", st->free_faces);
+	stage_report("planedecim", "unclean_patches", "%zu", st->unclean_patches);
 	stage_report("planedecim", "moved_line", "%zu", st->meet.lines);
 	stage_report("planedecim", "moved_corner", "%zu", st->meet.corners);
-	stage_report("planedecim", "stayed", "%zu", st->meet.stayed);
+	stage_report("planedecim", "torn", "%zu", st->meet.torn);
 }
 
 /* A panorama's model textured through planar views written beside it

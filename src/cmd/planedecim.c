@@ -19,7 +19,7 @@
 #include "planemodel.h"
 
 static const char usage[] =
-	"usage: planedecim [-aqv] [-e error] [-n faces] [-o file] [--border k]\n"
+	"usage: planedecim [-aqv] [-e error] [-o file] [--border k]\n"
 	"                  [--max-hole k] [--max-move k] [--min-free k] [--min-plane k]\n"
 	"                  [--outline k] [input]\n"
 	"Make the planar model of a mesh segmented by segplanes: the free-form faces\n"
@@ -27,10 +27,8 @@ static const char usage[] =
 	"simplified outline in its plane, vertices where patches meet on their line\n"
 	"or corner, all one connected mesh.\n"
 	"  -a             write ascii PLY\n"
-	"  -e error       the largest quadric distance of a collapse, in units of\n"
-	"                 the vertices' sigma (default 1)\n"
-	"  -n faces       stop the decimation at this many triangles (default: the\n"
-	"                 bound alone)\n"
+	"  -e error       the free-form decimation's bound: the largest quadric\n"
+	"                 distance of a collapse, in units of sigma (default 1)\n"
 	"  -o file        output file (default standard output)\n"
 	"      --border k a border may move by k edge lengths (default 1)\n"
 	"      --max-hole k\n"
@@ -46,8 +44,7 @@ static const char usage[] =
 	"                 a patch of fewer than k faces is free-form (default 64)\n"
 	"      --outline k\n"
 	"                 simplify the patches' outlines to k sample spacings\n"
-	"                 (pixels at the vertex's distance; default 3; 0: keep the\n"
-	"                 decimation's triangles)\n"
+	"                 (pixels at the vertex's distance; default 3)\n"
 	"  -q             quiet\n"
 	"  -v             report counts, errors and times on stderr\n"
 	"  -h, --help     this help\n"
@@ -69,7 +66,7 @@ int main(int argc, char **argv)
 		{"outline", required_argument, NULL, OPT_OUTLINE},
 		{NULL, 0, NULL, 0},
 	};
-	static const char optstring[] = "ae:hn:o:qv";
+	static const char optstring[] = "ae:ho:qv";
 	fct_cli_init("planedecim");
 	struct fct_planar_params par;
 	fct_planar_params_default(&par);
@@ -80,7 +77,6 @@ int main(int argc, char **argv)
 		case 'a': ascii = 1; break;
 		case 'e': par.max_error = fct_opt_double("-e", optarg, 0, INFINITY); break;
 		case 'h': fputs(usage, stdout); return 0;
-		case 'n': par.target_faces = (size_t)fct_opt_long("-n", optarg, 0, 0x7fffffffL); break;
 		case 'o': out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
@@ -122,27 +118,29 @@ int main(int argc, char **argv)
 	fct_report("reduction", "%.1f", st.faces_out ? (double)st.faces_in / (double)st.faces_out : 0);
 	fct_report("planes", "%zu", st.planes);
 	fct_report("sigma_estimated", "%d", st.sigma_estimated);
+	fct_report("facets", "%zu", st.facets);
 	fct_report("small_faces", "%zu", st.tidy.small_faces);
 	fct_report("speck_faces", "%zu", st.tidy.speck_faces);
 	fct_report("holes_filled", "%zu", st.holes_filled);
 	fct_report("projected", "%zu", st.projected);
-	fct_report("thinned", "%zu", st.qem.thinned);
 	fct_report("collapses", "%zu", st.qem.collapses);
 	fct_report("corners", "%zu", st.qem.corners);
 	fct_report("refused_topology", "%zu", st.qem.refused_topology);
 	fct_report("refused_flip", "%zu", st.qem.refused_flip);
 	fct_report("refused_error", "%zu", st.qem.refused_error);
 	fct_report("max_error", "%.9g", st.qem.max_error);
-	fct_report("decimated_faces", "%zu", st.qem.faces_out);
-	fct_report("outline_vertices", "%zu", st.outline.chains.kept_vertices);
-	fct_report("outline_tolerance", "%.9g", st.outline.chains.tolerance);
-	fct_report("planar_triangles", "%zu", st.outline.planar_triangles);
-	fct_report("free_faces", "%zu", st.outline.free_faces);
-	fct_report("tripatch_failures", "%zu", st.outline.tri.failures);
+	fct_report("free_faces_in", "%zu", st.qem.faces_in);
+	fct_report("free_faces", "%zu", st.free_faces);
+	fct_report("outline_vertices", "%zu", st.chains.kept_vertices);
+	fct_report("outline_tolerance", "%.9g", st.chains.tolerance);
+	fct_report("planar_triangles", "%zu", st.planar_triangles);
+	fct_report("rounds", "%zu", st.rounds);
+	fct_report("unclean_patches", "%zu", st.unclean_patches);
 	fct_report("moved_line", "%zu", st.meet.lines);
 	fct_report("moved_corner", "%zu", st.meet.corners);
 	fct_report("stayed", "%zu", st.meet.stayed);
 	fct_report("moves_undone", "%zu", st.meet.undone);
+	fct_report("torn", "%zu", st.meet.torn);
 	fct_report("no_pixel", "%zu", st.no_pixel);
 	fct_report("read_s", "%.3f", t1 - t0);
 	fct_report("model_s", "%.3f", t2 - t1);

@@ -21,7 +21,6 @@ void fct_chain_params_default(struct fct_chain_params *p)
 	p->keep_small_loops = 0;
 	p->scale = NULL;
 	p->scale_factor = 3;
-	p->fix_unlabelled = 0;
 }
 
 void fct_chains_free(struct fct_chains *c)
@@ -34,6 +33,7 @@ void fct_chains_free(struct fct_chains *c)
 	free(c->left);
 	free(c->right);
 	free(c->closed);
+	free(c->frozen);
 	memset(c, 0, sizeof *c);
 }
 
@@ -1273,7 +1273,7 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 					continue;
 				if (k.split[last]) {
 					k.split[last] = 0;
-					if (q - last >= 2) {
+					if (q - last >= 2 && !(c->frozen && c->frozen[ci])) {
 						/* Split at the farthest point, then refit both
 						 * halves: a shorter segment may leave points
 						 * beyond the tolerance that the longer one did not. */
@@ -1376,8 +1376,8 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 	if (!stack)
 		return -1;
 	for (size_t i = 0; i < c->n; i++) {
-		if (p->fix_unlabelled && c->right[i] == -1)
-			continue;   /* every point kept, as extracted */
+		if (c->frozen && c->frozen[i])
+			continue;   /* the caller's keep */
 		double t2 = tol2;
 		if (p->scale) {
 			double sum = 0;

@@ -94,6 +94,9 @@ struct fct_chains {
 	                           FCT_CHAIN_OUTSIDE */
 	unsigned char *closed;  /* 0 open; 1 closed at a junction (a lasso); 2 a
 	                           loop without junction */
+	unsigned char *frozen;  /* NULL, or 1 for the chains whose keep the caller
+	                           has set (malloc'd; fct_chains_free frees it):
+	                           simplification leaves them as they are */
 
 	double mean_edge;       /* mean length of the mesh's edges */
 	size_t boundary_edges;  /* records in the chains */
@@ -126,8 +129,6 @@ struct fct_chain_params {
 	                          scale_factor times its points' mean scale, instead
 	                          of threshold mean edges of the whole mesh */
 	double scale_factor;
-	int fix_unlabelled;    /* 1: chains against unlabelled faces (-1) keep every
-	                          point (their other side is not rebuilt from them) */
 };
 
 void fct_chain_params_default(struct fct_chain_params *p);

@@ -100,6 +100,50 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 	return 0;
 }
 
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                        size_t nplanes, double max_angle, double min_share, size_t *facets,
+                        struct fct_err *err)
+{
+	*facets = 0;
+	if (nplanes == 0)
+		return 0;
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, m, err))
+		return -1;
+	double *shared = calloc(2 * nplanes, sizeof *shared);   /* shallow, all */
+	unsigned char *facet = calloc(nplanes, 1);
+	if (!shared || !facet) {
+		free(shared), free(facet);
+		fct_adj_free(&adj);
+		return fct_fail(err, "out of memory");
+	}
+	double cos_max = cos(max_angle * M_PI / 180);
+	for (size_t e = 0; e < adj.ne; e++) {
+		if (fct_adj_edge_nfaces(&adj, e) != 2)
+			continue;
+		int32_t a = patch[adj.edge_f[adj.edge_fstart[e]]], b = patch[adj.edge_f[adj.edge_fstart[e] + 1]];
+		if (a == b || a < 0 || b < 0)
+			continue;
+		double len = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
+		                               m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+		int shallow = fct_v3_dot(planes[a].n, planes[b].n) >= cos_max;
+		for (int k = 0; k < 2; k++) {
+			int32_t l = k ? b : a;
+			shared[2 * l] += shallow ? len : 0;
+			shared[2 * l + 1] += len;
+		}
+	}
+	for (size_t l = 0; l < nplanes; l++)
+		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1])
+			facet[l] = 1, ++*facets;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0 && facet[patch[f]])
+			patch[f] = -1;
+	free(shared), free(facet);
+	fct_adj_free(&adj);
+	return 0;
+}
+
 /* A unit frame (u, v) of the plane with normal n, u x v = n. */
 static void plane_frame(const double n[3], double u[3], double v[3])
 {
@@ -112,10 +156,51 @@ static void plane_frame(const double n[3], double u[3], double v[3])
 	fct_v3_cross(v, n, u);
 }
 
+/* Edges as 64-bit keys (lower vertex high), in an open-addressing set. */
+struct edge_set {
+	uint64_t *key;   /* 0: empty (no edge joins vertex 0 to itself) */
+	size_t mask;
+};
+
+static uint64_t edge_key(uint32_t a, uint32_t b)
+{
+	return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+static size_t edge_slot(const struct edge_set *h, uint64_t k)
+{
+	size_t i = (size_t)((k * 0x9e3779b97f4a7c15u) >> 17) & h->mask;
+	while (h->key[i] && h->key[i] != k)
+		i = (i + 1) & h->mask;
+	return i;
+}
+
+/* Does edge (a, b) exist: in the mesh's adjacency, or added by a fill? */
+static int edge_exists(const struct fct_adj *adj, const struct edge_set *h, uint32_t a, uint32_t b)
+{
+	uint64_t k = edge_key(a, b);
+	if (h->key[edge_slot(h, k)] == k)
+		return 1;
+	size_t lo = 0, hi = adj->ne;
+	uint32_t x = a < b ? a : b, y = a < b ? b : a;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		const uint32_t *e = adj->edge_v + 2 * mid;
+		if (e[0] < x || (e[0] == x && e[1] < y))
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < adj->ne && adj->edge_v[2 * lo] == x && adj->edge_v[2 * lo + 1] == y;
+}
+
 /* Fill one hole: loop[0..k) in border order (faces on its left), inside
- * patch p. */
+ * patch p; not when a new triangle's inner edge exists already (the hole's
+ * corners are joined elsewhere, across a fold or a thin wall, and the fill
+ * would make that edge non-manifold). */
 static int fill_loop(struct fct_mesh *m, int32_t **patch, const struct fct_plane *pl, int32_t p,
-                     const uint32_t *loop, size_t k, size_t *filled, struct fct_err *err)
+                     const uint32_t *loop, size_t k, const struct fct_adj *adj, struct edge_set *h,
+                     size_t *filled, struct fct_err *err)
 {
 	double u[3], v[3], *xy = fct_alloc_array(2 * k, sizeof *xy, err);
 	uint32_t *lv = fct_alloc_array(k, sizeof *lv, err), lstart[2] = {0, (uint32_t)k};
@@ -142,6 +227,22 @@ static int fill_loop(struct fct_mesh *m, int32_t **patch, const struct fct_plane
 		rc = r > 0 ? 0 : fct_fail(err, "%s", local.msg);
 		goto out;
 	}
+	for (size_t t = 0; t < ntri; t++)
+		for (int c = 0; c < 3; c++) {
+			uint32_t i = tri[3 * t + (size_t)c], j = tri[3 * t + (size_t)(c + 1) % 3];
+			if ((i + 1) % k == j || (j + 1) % k == i)
+				continue;   /* a loop edge */
+			if (edge_exists(adj, h, loop[k - 1 - i], loop[k - 1 - j])) {
+				rc = 0;
+				goto out;
+			}
+		}
+	for (size_t t = 0; t < ntri; t++)
+		for (int c = 0; c < 3; c++) {
+			uint64_t key = edge_key(loop[k - 1 - tri[3 * t + (size_t)c]],
+			                        loop[k - 1 - tri[3 * t + (size_t)(c + 1) % 3]]);
+			h->key[edge_slot(h, key)] = key;
+		}
 	int32_t *np = realloc(*patch, (m->nf + ntri) * sizeof *np);
 	if (!np) {
 		fct_fail(err, "out of memory");
@@ -176,9 +277,19 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 	uint32_t *face = fct_alloc_array(nv1, sizeof *face, err);
 	unsigned char *outdeg = fct_alloc_array(nv1, 1, err);
 	uint32_t *loop = fct_alloc_array(max_edges + 1, sizeof *loop, err);
+	struct edge_set h = {NULL, 0};
 	int rc = -1;
 	if (!next || !face || !outdeg || !loop)
 		goto out;
+	/* Room for every edge the fills can add: at most three per border edge. */
+	size_t cap = 64;
+	while (cap < 8 * (adj.nborder + 8))
+		cap *= 2;
+	if (!(h.key = calloc(cap, sizeof *h.key))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	h.mask = cap - 1;
 	memset(outdeg, 0, nv1);
 	/* Each border edge as its face walks it: a -> b, the face on its left. */
 	for (size_t f = 0; f < m->nf; f++) {
@@ -216,12 +327,12 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 				p = -1;
 		if (p < 0 || (size_t)p >= nplanes)
 			continue;
-		if (fill_loop(m, patch, &planes[p], p, loop, k, filled, err))
+		if (fill_loop(m, patch, &planes[p], p, loop, k, &adj, &h, filled, err))
 			goto out;
 	}
 	rc = 0;
 out:
-	free(next), free(face), free(outdeg), free(loop);
+	free(next), free(face), free(outdeg), free(loop), free(h.key);
 	fct_adj_free(&adj);
 	return rc;
 }
@@ -243,91 +354,6 @@ static int drop_unused_vertices(struct fct_mesh *m, struct fct_err *err)
 			keep[n++] = v;
 	int rc = n == m->nv ? 0 : fct_mesh_gather_vertices(m, keep, n, err);
 	free(used), free(keep);
-	return rc;
-}
-
-int fct_planes_retriangulate(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
-                             size_t nplanes, const double *spacing, double tolerance,
-                             struct fct_retri_stats *st, struct fct_err *err)
-{
-	memset(st, 0, sizeof *st);
-	struct fct_chains c;
-	memset(&c, 0, sizeof c);
-	struct fct_chain_params cp;
-	fct_chain_params_default(&cp);
-	cp.scale = spacing;
-	cp.scale_factor = tolerance;
-	cp.fix_unlabelled = 1;
-	struct fct_mesh w;
-	fct_mesh_init(&w);
-	struct fct_wire *wires = NULL;
-	int rc = -1;
-	if (fct_chains_extract(&c, m, *patch, err) ||
-	    fct_chains_simplify(&c, m, *patch, planes, nplanes, &cp, &st->chains, err))
-		goto out;
-	size_t ne = 0;
-	for (size_t i = 0; i < c.n; i++)
-		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++)
-			ne += c.keep[q];
-	if (!(wires = fct_alloc_array(ne ? ne : 1, sizeof *wires, err)))
-		goto out;
-	size_t row = 0;
-	for (size_t i = 0; i < c.n; i++) {
-		size_t last = c.start[i];
-		for (size_t q = c.start[i] + 1; q < c.start[i + 1]; q++) {
-			if (!c.keep[q])
-				continue;
-			wires[row++] = (struct fct_wire){ c.vert[last], c.vert[q], c.left[i],
-			                                  c.right[i] >= 0 ? c.right[i] : -1 };
-			last = q;
-		}
-	}
-	/* The planes' triangles from their outlines (tripatch), on a copy of
-	 * the vertices; then the free-form faces as they were. */
-	if (fct_mesh_copy(&w, m, err) || fct_mesh_gather_faces(&w, NULL, 0, err))
-		goto out;
-	w.has_faces = 0;
-	while (w.face.nprops)
-		fct_elem_remove(&w.face, w.face.props[0].name);
-	struct fct_tripatch_params tp;
-	fct_tripatch_params_default(&tp);
-	if (fct_wires_set(&w, wires, ne, err) || fct_tripatch(&w, &tp, &st->tri, err))
-		goto out;
-	size_t nplanar = w.nf, nfree = 0;
-	for (size_t f = 0; f < m->nf; f++)
-		nfree += (*patch)[f] < 0;
-	int32_t *np = fct_alloc_array(nplanar + nfree ? nplanar + nfree : 1, sizeof *np, err);
-	if (!np)
-		goto out;
-	const struct fct_prop *wp = fct_elem_find(&w.face, "patch");
-	for (size_t f = 0; f < nplanar; f++)
-		np[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
-	for (size_t f = 0; f < m->nf; f++) {
-		if ((*patch)[f] >= 0)
-			continue;
-		long k = fct_mesh_add_face(&w, m->fvert + m->fstart[f], fct_face_size(m, f), err);
-		if (k < 0) {
-			free(np);
-			goto out;
-		}
-		np[k] = -1;
-	}
-	if (fct_patches_set(&w, np, err) || drop_unused_vertices(&w, err)) {
-		free(np);
-		goto out;
-	}
-	free(*patch);
-	*patch = np;
-	st->planar_triangles = nplanar;
-	st->free_faces = nfree;
-	fct_mesh_free(m);
-	*m = w;
-	fct_mesh_init(&w);
-	rc = 0;
-out:
-	fct_chains_free(&c);
-	free(wires);
-	fct_mesh_free(&w);
 	return rc;
 }
 
@@ -514,9 +540,80 @@ static int spoilt(const struct fct_mesh *m, size_t f, int32_t lab, const struct 
 	return 0;
 }
 
+/* A vertex still off the plane of one of its patches by more than its
+ * uncertainty (sigma along its ray, across it its sample spacing) is torn:
+ * that patch's faces get a copy of it on their plane, where its ray meets
+ * the plane (when that is within max_move of its uncertainty; else, or
+ * without a viewpoint, straight across).  Where no line or point of the
+ * planes lies near (an occlusion: a box's edge in front of the wall, the
+ * noise's own folds), a shared vertex would tilt every face of the patch
+ * that is not its own; the tear leaves a crack there instead, which is
+ * what the sensor saw.  The copy has every property of the vertex. */
+static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                          const double *sigma, const double *spacing, double max_move,
+                          const double *viewpoint, const uint32_t *vstart, const uint32_t *vf,
+                          struct fct_meet_stats *st, struct fct_err *err)
+{
+	struct tear {
+		uint32_t v;
+		int32_t label;
+		double x[3];
+	} *tears = NULL;
+	size_t n = 0, cap = 0, nv0 = m->nv;
+	for (size_t v = 0; v < nv0; v++) {
+		int32_t ls[8];
+		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
+		if (k < 2 || !(e2 > 0))
+			continue;
+		for (int i = 0; i < k; i++) {
+			const struct fct_plane *pl = &planes[ls[i]];
+			const double *p = m->xyz + 3 * v;
+			double r = fct_v3_dot(pl->n, p) + pl->d, x[3];
+			if (r * r <= e2)
+				continue;
+			onto_planes(planes, &ls[i], 1, p, x);
+			if (viewpoint && along_ray(planes, &ls[i], 1, viewpoint, p, x) &&
+			    !(fct_v3_dist2(x, p) <= max_move * max_move * e2))
+				onto_planes(planes, &ls[i], 1, p, x);
+			if (n == cap && fct_grow((void **)&tears, &cap, n + 1, sizeof *tears, err)) {
+				free(tears);
+				return -1;
+			}
+			tears[n].v = (uint32_t)v, tears[n].label = ls[i];
+			memcpy(tears[n++].x, x, sizeof x);
+		}
+	}
+	if (n && fct_mesh_set_vertex_count(m, nv0 + n, err)) {
+		free(tears);
+		return -1;
+	}
+	for (size_t t = 0; t < n; t++) {
+		size_t c = nv0 + t;
+		uint32_t v = tears[t].v;
+		for (size_t j = 0; j < m->vertex.nprops; j++) {
+			struct fct_prop *pr = &m->vertex.props[j];
+			if (pr->count_type == FCT_NONE)
+				fct_prop_set(pr, c, fct_prop_get(pr, v));
+		}
+		memcpy(m->xyz + 3 * c, tears[t].x, sizeof tears[t].x);
+		for (uint32_t k = vstart[v]; k < vstart[v + 1]; k++) {
+			uint32_t f = vf[k];
+			if (patch[f] != tears[t].label)
+				continue;
+			for (uint32_t q = m->fstart[f]; q < m->fstart[f + 1]; q++)
+				if (m->fvert[q] == v)
+					m->fvert[q] = (uint32_t)c;
+		}
+	}
+	st->torn = n;
+	free(tears);
+	return 0;
+}
+
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                    const double *sigma, double max_move, const double *viewpoint,
-                    struct fct_meet_stats *st, struct fct_err *err)
+                    const double *sigma, const double *spacing, double max_move,
+                    const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err)
 {
 	memset(st, 0, sizeof *st);
 	uint32_t *vstart = NULL, *vf = NULL;
@@ -534,7 +631,8 @@ int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_p
 		if (n < 2)
 			continue;
 		const double *p = before + 3 * v;
-		double bound2 = sigma && max_move > 0 ? max_move * max_move * sigma[v] * sigma[v] : INFINITY;
+		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
+		double bound2 = e2 > 0 && max_move > 0 ? max_move * max_move * e2 : INFINITY;
 		double x[3], best[3], bd = INFINITY;
 		if (n >= 3 && onto_planes(planes, ls, n, p, x) && fct_v3_dist2(x, p) <= bound2) {
 			memcpy(best, x, sizeof x);
@@ -581,6 +679,8 @@ int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_p
 		st->lines += kind[v] == 2;
 		st->corners += kind[v] == 3;
 	}
+	if (tear_off_plane(m, patch, planes, sigma, spacing, max_move, viewpoint, vstart, vf, st, err))
+		goto out;
 	rc = 0;
 out:
 	free(before), free(kind), free(vstart), free(vf);
@@ -590,13 +690,13 @@ out:
 void fct_planar_params_default(struct fct_planar_params *p)
 {
 	p->max_error = 1;
-	p->target_faces = 0;
 	p->border_tol = 1;
 	p->outline_tol = 3;
 	p->max_move = 4;
 	p->min_free = 64;
 	p->min_plane = 64;
 	p->max_hole = 64;
+	p->facet_angle = 20;
 }
 
 /* Each vertex's sigma: the property, else the noise the data show, else
@@ -673,6 +773,206 @@ static double *sample_spacing(const struct fct_mesh *m, const struct fct_camera 
 	return s;
 }
 
+/* The free-form faces of m (patch -1) decimated alone by quadric edge
+ * collapse (qem.h) in units of sigma, their borders held and corner[v]
+ * kept: into F, whose faces are renumbered to m's vertices; its vertex
+ * arrays keep the decimation's numbering, and vmap[i] is m's number of its
+ * vertex i (nmap of them). */
+static int decimate_free(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, const struct fct_mesh *m,
+                         const int32_t *patch, const double *sigma, const unsigned char *corner,
+                         const double *vp, const struct fct_planar_params *p,
+                         struct fct_qem_stats *qs, struct fct_err *err)
+{
+	size_t nfree = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		nfree += patch[f] < 0;
+	size_t *keep = fct_alloc_array(nfree ? nfree : 1, sizeof *keep, err);
+	int rc = -1;
+	if (!keep || fct_mesh_copy(F, m, err))
+		goto out;
+	size_t k = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] < 0)
+			keep[k++] = f;
+	struct fct_prop *idx = fct_elem_add_scalar(&F->vertex, "fct_vertex", FCT_UINT32, err);
+	if (!idx || fct_mesh_gather_faces(F, keep, nfree, err))
+		goto out;
+	for (size_t v = 0; v < F->nv; v++)
+		fct_prop_set(idx, v, (double)v);
+	struct fct_qem_params qp;
+	fct_qem_params_default(&qp);
+	qp.max_error = p->max_error;
+	qp.border_tol = p->border_tol;
+	qp.hold_borders = 1;
+	qp.sigma = sigma;
+	qp.corner = corner;
+	if (vp) {
+		qp.use_viewpoint = 1;
+		memcpy(qp.viewpoint, vp, sizeof qp.viewpoint);
+	}
+	if (fct_qem_decimate(F, &qp, qs, err))
+		goto out;
+	idx = fct_elem_find(&F->vertex, "fct_vertex");
+	if (!(*vmap = fct_alloc_array(F->nv ? F->nv : 1, sizeof **vmap, err)))
+		goto out;
+	*nmap = F->nv;
+	for (size_t v = 0; v < F->nv; v++)
+		(*vmap)[v] = (uint32_t)fct_prop_get(idx, v);
+	for (size_t c = 0; c < (F->nf ? F->fstart[F->nf] : 0); c++)
+		F->fvert[c] = (*vmap)[F->fvert[c]];
+	rc = 0;
+out:
+	free(keep);
+	return rc;
+}
+
+/* The patches' outlines as wires (m's vertex numbers): each kept segment of
+ * each chain, its right side -1 when that is free-form or the outside. */
+static struct fct_wire *outline_wires(const struct fct_chains *c, size_t *n, struct fct_err *err)
+{
+	size_t ne = 0;
+	for (size_t i = 0; i < c->n; i++)
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++)
+			ne += c->keep[q];
+	struct fct_wire *w = fct_alloc_array(ne ? ne : 1, sizeof *w, err);
+	if (!w)
+		return NULL;
+	size_t row = 0;
+	for (size_t i = 0; i < c->n; i++) {
+		size_t last = c->start[i];
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++) {
+			if (!c->keep[q])
+				continue;
+			w[row++] = (struct fct_wire){ c->vert[last], c->vert[q], c->left[i],
+			                              c->right[i] >= 0 ? c->right[i] : -1 };
+			last = q;
+		}
+	}
+	*n = row;
+	return w;
+}
+
+/* Flag (unclean) the patches of the faces on edges of w that three or more
+ * faces share: a diagonal of a rebuilt patch that exists elsewhere already
+ * (its ends are joined across a fold, or by the free-form faces). */
+static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsigned char *unclean,
+                            struct fct_err *err)
+{
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, w, err))
+		return -1;
+	for (size_t e = 0; e < adj.ne; e++)
+		if (fct_adj_edge_nfaces(&adj, e) > 2)
+			for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
+				if (lab[adj.edge_f[k]] >= 0)
+					unclean[lab[adj.edge_f[k]]] = 1;
+	fct_adj_free(&adj);
+	return 0;
+}
+
+/* One try at the model from the dense m and its labels: the free-form faces
+ * decimated alone, their outline's surviving vertices frozen into the
+ * chains, the other chains simplified, each patch triangulated from its
+ * outline (tripatch), all assembled into w.  unclean[l] is set for the
+ * patches tripatch could not triangulate cleanly or whose triangles would
+ * share an edge with two other faces. */
+static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
+                       const struct fct_plane *pl, size_t np, const double *sigma,
+                       const double *spacing, const double *vp, const struct fct_planar_params *p,
+                       unsigned char *unclean, struct fct_planar_stats *st, struct fct_err *err)
+{
+	struct fct_chains c;
+	memset(&c, 0, sizeof c);
+	struct fct_mesh F;
+	fct_mesh_init(&F);
+	uint32_t *vmap = NULL;
+	size_t nmap = 0;
+	unsigned char *corner = calloc(m->nv ? m->nv : 1, 1), *alive = calloc(m->nv ? m->nv : 1, 1);
+	struct fct_wire *wires = NULL;
+	int32_t *lab = NULL;
+	int rc = -1;
+	if (!corner || !alive) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	if (fct_chains_extract(&c, m, patch, err))
+		goto out;
+	/* The junctions stay: the chains meet there. */
+	for (size_t i = 0; i < c.n; i++)
+		if (c.closed[i] != 2) {
+			corner[c.vert[c.start[i]]] = 1;
+			corner[c.vert[c.start[i + 1] - 1]] = 1;
+		}
+	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
+		goto out;
+	for (size_t i = 0; i < nmap; i++)
+		alive[vmap[i]] = 1;
+	/* A chain against the free-form surface keeps what its decimation kept;
+	 * the others are simplified to their tolerance. */
+	if (!(c.frozen = calloc(c.n ? c.n : 1, 1))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	for (size_t i = 0; i < c.n; i++) {
+		if (c.right[i] != -1)
+			continue;
+		c.frozen[i] = 1;
+		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+			c.keep[q] = alive[c.vert[q]];
+	}
+	struct fct_chain_params cp;
+	fct_chain_params_default(&cp);
+	cp.scale = spacing;
+	cp.scale_factor = p->outline_tol;
+	size_t ne;
+	if (fct_chains_simplify(&c, m, patch, pl, np, &cp, &st->chains, err) ||
+	    !(wires = outline_wires(&c, &ne, err)))
+		goto out;
+	/* The planes' triangles, on m's vertices with the decimation's moves. */
+	if (fct_mesh_copy(w, m, err) || fct_mesh_gather_faces(w, NULL, 0, err))
+		goto out;
+	w->has_faces = 0;
+	while (w->face.nprops)
+		fct_elem_remove(&w->face, w->face.props[0].name);
+	for (size_t i = 0; i < nmap; i++) {
+		memcpy(w->xyz + 3 * (size_t)vmap[i], F.xyz + 3 * i, sizeof(double[3]));
+		for (size_t j = 0; j < w->vertex.nprops; j++) {
+			struct fct_prop *dst = &w->vertex.props[j];
+			const struct fct_prop *src = fct_elem_find(&F.vertex, dst->name);
+			if (src && src->count_type == FCT_NONE && dst->count_type == FCT_NONE)
+				fct_prop_set(dst, vmap[i], fct_prop_get(src, i));
+		}
+	}
+	struct fct_tripatch_params tp;
+	fct_tripatch_params_default(&tp);
+	tp.unclean = unclean;
+	if (fct_wires_set(w, wires, ne, err) || fct_tripatch(w, &tp, &st->tri, err))
+		goto out;
+	/* Then the free-form faces. */
+	size_t nplanar = w->nf;
+	if (!(lab = fct_alloc_array(nplanar + F.nf ? nplanar + F.nf : 1, sizeof *lab, err)))
+		goto out;
+	const struct fct_prop *wp = fct_elem_find(&w->face, "patch");
+	for (size_t f = 0; f < nplanar; f++)
+		lab[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
+	for (size_t f = 0; f < F.nf; f++) {
+		long k = fct_mesh_add_face(w, F.fvert + F.fstart[f], fct_face_size(&F, f), err);
+		if (k < 0)
+			goto out;
+		lab[k] = -1;
+	}
+	if (fct_patches_set(w, lab, err) || flag_nonmanifold(w, lab, unclean, err))
+		goto out;
+	st->planar_triangles = nplanar;
+	st->free_faces = F.nf;
+	rc = 0;
+out:
+	fct_chains_free(&c);
+	fct_mesh_free(&F);
+	free(vmap), free(corner), free(alive), free(wires), free(lab);
+	return rc;
+}
+
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
                      struct fct_planar_stats *st, struct fct_err *err)
 {
@@ -681,7 +981,11 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t np = 0;
 	int32_t *patch = NULL;
 	double *sigma = NULL, *spacing = NULL;
+	unsigned char *unclean = NULL;
+	struct fct_mesh w;
+	fct_mesh_init(&w);
 	int present = 0, rc = -1;
+	double input_spacing = 0;
 	st->vertices_in = m->nv, st->faces_in = m->nf;
 	if (fct_planes_get(m, &pl, &np, err) || fct_patches_get(m, &patch, &present, (long)np, err))
 		goto out;
@@ -700,38 +1004,54 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		vp[0] = pose[3], vp[1] = pose[7], vp[2] = pose[11];
 	}
 	if (vertex_sigma(m, pl, np, &sigma, &st->sigma_estimated, err) ||
+	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
 	    fct_patches_tidy(patch, m, p->min_plane, p->min_free, &st->tidy, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
-	    fct_patches_set(m, patch, err) ||
-	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err))
+	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
+	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
+	    !(unclean = calloc(np ? np : 1, 1)))
 		goto out;
-	double input_spacing = mean_edge(m);
-	struct fct_qem_params qp;
-	fct_qem_params_default(&qp);
-	qp.max_error = p->max_error;
-	qp.target_faces = p->target_faces;
-	qp.border_tol = p->border_tol;
-	qp.patch = patch, qp.planes = pl, qp.nplanes = np, qp.sigma = sigma;
-	if (have_cam) {
-		qp.use_viewpoint = 1;
-		memcpy(qp.viewpoint, vp, sizeof vp);
+	/* Rounds: a patch that does not triangulate cleanly from its outline
+	 * (its loops cross in its plane, or a diagonal exists elsewhere) becomes
+	 * free-form, until none is left. */
+	for (int round = 0;; round++) {
+		memset(unclean, 0, np ? np : 1);
+		fct_mesh_free(&w);
+		fct_mesh_init(&w);
+		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, unclean,
+		                st, err))
+			goto out;
+		size_t more = 0;
+		for (size_t f = 0; f < m->nf; f++)
+			if (patch[f] >= 0 && unclean[patch[f]])
+				patch[f] = -1, more++;
+		if (!more)
+			break;
+		st->rounds++;
+		for (size_t l = 0; l < np; l++)
+			st->unclean_patches += unclean[l];
+		if (round == 8) {
+			fct_fail(err, "outlines: patches still not clean after 8 rounds");
+			goto out;
+		}
 	}
-	/* Holes filled add no vertex, so sigma still matches m's vertices. */
-	if (fct_qem_decimate(m, &qp, &st->qem, err))
-		goto out;
+	fct_mesh_free(m);
+	*m = w;
+	fct_mesh_init(&w);
 	free(patch), free(sigma);
 	patch = NULL, sigma = NULL;
-	if (fct_patches_get(m, &patch, &present, (long)np, err))
+	int estimated, dummy;
+	if (fct_patches_get(m, &patch, &dummy, (long)np, err) || drop_unused_vertices(m, err) ||
+	    vertex_sigma(m, pl, np, &sigma, &estimated, err))
 		goto out;
-	if (p->outline_tol > 0) {
-		if (!(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing, err)) ||
-		    fct_planes_retriangulate(m, &patch, pl, np, spacing, p->outline_tol, &st->outline, err))
-			goto out;
-	}
-	int estimated;
-	if (vertex_sigma(m, pl, np, &sigma, &estimated, err) ||
-	    fct_planes_meet(m, patch, pl, sigma, p->max_move, have_cam ? vp : NULL, &st->meet, err))
+	free(patch);
+	patch = NULL;
+	free(spacing);
+	if (fct_patches_get(m, &patch, &dummy, (long)np, err) ||
+	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing, err)) ||
+	    fct_planes_meet(m, patch, pl, sigma, spacing, p->max_move, have_cam ? vp : NULL, &st->meet,
+	                    err))
 		goto out;
 	if (have_cam && fct_elem_find(&m->vertex, "s") && fct_elem_find(&m->vertex, "t") &&
 	    fct_camera_texcoords(m, &cam, have_pose ? inv : NULL, &st->no_pixel, err))
@@ -739,6 +1059,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	st->vertices_out = m->nv, st->faces_out = m->nf;
 	rc = 0;
 out:
-	free(pl), free(patch), free(sigma), free(spacing);
+	fct_mesh_free(&w);
+	free(pl), free(patch), free(sigma), free(spacing), free(unclean);
 	return rc;
 }

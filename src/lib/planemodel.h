@@ -33,6 +33,17 @@ struct fct_tidy_stats {
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
                      struct fct_tidy_stats *st, struct fct_err *err);
 
+/* Facets of curved surfaces become free-form: each patch whose boundary
+ * with other patches runs, for at least min_share of its length, along
+ * creases shallower than max_angle degrees (the angle between the planes'
+ * normals).  Noise large enough lets planes fit a sphere or a cylinder
+ * piecewise; such facets meet each other at shallow creases all round,
+ * which walls, floors and boxes, meeting at right angles or at the image's
+ * edge, do not.  patch changes in place; *facets gets the count. */
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                        size_t nplanes, double max_angle, double min_share, size_t *facets,
+                        struct fct_err *err);
+
 /* Fill the holes of the mesh inside one patch: each border loop of at most
  * max_edges edges whose faces are all in one patch p >= 0 and which bounds
  * a hole (the loop, projected on p's plane, turns clockwise about its
@@ -45,27 +56,6 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
                          size_t nplanes, size_t max_edges, size_t *filled, struct fct_err *err);
 
-struct fct_retri_stats {
-	struct fct_chain_stats chains;       /* the outlines' simplification */
-	struct fct_tripatch_stats tri;       /* their triangulation */
-	size_t planar_triangles, free_faces;
-};
-
-/* Rebuild the faces of the planar patches of m from their outlines: the
- * boundary between patches (and the free-form faces, -1, and the outside)
- * as chains, each simplified once by end-point fit to tolerance times its
- * points' mean sample spacing (with spacing, m->nv lengths; else chain.h's
- * default of three mean edges), without crossings (chain.h): an outline is
- * known to a sample across it, not to the depth's noise; then each patch's
- * polygon triangulated
- * (tripatch.h): Kang, Johnson and Szeliski's sections 3 and 4.  The chains
- * against free-form faces keep every point and the free-form faces stay as
- * they are, so the surface stays one piece.  Vertices no face uses any more
- * are dropped.  *patch (m->nf labels) is replaced to match m's new faces.
- * 0, or -1 (message set). */
-int fct_planes_retriangulate(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
-                             size_t nplanes, const double *spacing, double tolerance,
-                             struct fct_retri_stats *st, struct fct_err *err);
 
 /* Every vertex of a face of a patch onto the nearest of its patches' planes:
  * along its ray from viewpoint (when not NULL, and no more than four times
@@ -80,54 +70,82 @@ struct fct_meet_stats {
 	size_t corners;   /* ... on the point of three or more */
 	size_t stayed;    /* where patches meet, but no line or point near enough */
 	size_t undone;    /* moves taken back: a face turned over or thinned */
+	size_t torn;      /* copies of vertices off a plane of theirs, on it */
 };
 
 /* Every vertex where patches meet onto their point (three or more planes
  * whose normals spread: least eigenvalue of their scatter at least 0.1) or
  * else the nearest line of two of them (not within 10 degrees of parallel;
  * its point nearest the vertex's ray with a viewpoint), when that is within
- * max_move times the vertex's sigma (no bound without sigma); a move that
+ * max_move times the vertex's uncertainty, sqrt(sigma^2 + spacing^2): its
+ * noise along its ray and its sample spacing across it (no bound when both
+ * are NULL; where creases meet is known to a sample); a move that
  * turns a face over (against its plane's normal) or leaves it a sliver is
- * taken back, in rounds: Kang et al.'s section 5.  0, or -1 out of memory. */
+ * taken back, in rounds: Kang et al.'s section 5.  A vertex then still off
+ * one of its planes by more than its uncertainty is torn: that patch's
+ * faces get a copy of it on their plane (along its ray), so that no plane
+ * is tilted by another's vertex; the surface has a crack there, as the
+ * sensor saw it (an occlusion).  0, or -1 out of memory. */
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                    const double *sigma, double max_move, const double *viewpoint,
-                    struct fct_meet_stats *st, struct fct_err *err);
+                    const double *sigma, const double *spacing, double max_move,
+                    const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err);
 
-/* The planar model of a segmented mesh (planedecim, planarize): */
+/* The planar model of a segmented mesh (planedecim, planarize). */
 struct fct_planar_params {
-	double max_error;     /* quadric distance of a collapse, in sigma (default 1) */
-	size_t target_faces;  /* stop the decimation at this many triangles (0: the bound) */
-	double border_tol;    /* border distances in edge lengths (default 1; qem.h) */
+	double max_error;     /* the free-form decimation's quadric distance, in sigma
+	                         (default 1) */
+	double border_tol;    /* its border distances in edge lengths (default 1) */
 	double outline_tol;   /* outlines simplified to this many sample spacings
-	                         (default 3; 0: not rebuilt) */
+	                         (default 3) */
 	double max_move;      /* moves onto lines and points, in sigma (default 4) */
 	size_t min_free;      /* specks of fewer faces join the label around them (64) */
 	size_t min_plane;     /* patches of fewer faces are free-form (64) */
 	size_t max_hole;      /* holes of at most this many edges inside a patch are
 	                         filled (64; 0: none) */
+	double facet_angle;   /* a patch whose boundary with other patches runs
+	                         mostly (half its length) along creases shallower
+	                         than this is a facet of a curved surface: free-form
+	                         (20 degrees; 0: none) */
 };
 
 struct fct_planar_stats {
 	size_t vertices_in, faces_in, vertices_out, faces_out, planes;
 	int sigma_estimated;             /* no sigma property: estimated (noise.h) */
+	size_t facets;                   /* patches found facets of curved surfaces */
 	struct fct_tidy_stats tidy;
 	size_t holes_filled, projected;
-	struct fct_qem_stats qem;
-	struct fct_retri_stats outline;
+	struct fct_qem_stats qem;        /* the free-form faces' decimation */
+	struct fct_chain_stats chains;   /* the outlines' simplification */
+	struct fct_tripatch_stats tri;   /* their triangulation */
+	size_t planar_triangles, free_faces;
+	size_t rounds, unclean_patches;  /* patches made free-form, not clean */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
 };
 
 void fct_planar_params_default(struct fct_planar_params *p);
 
-/* Make the planar model of m in place: m needs the face property patch and
- * the plane element (segplanes); its vertex property sigma, or else the
- * noise its data show (fct_noise_estimate_vertices), measures every bound;
- * its camera and pose comments, when present, give the viewpoint (moves
- * along rays) and the sample spacing, and s t are computed again from the
- * camera when m has them.  The steps: fct_patches_tidy, fct_fill_plane_holes,
- * fct_planes_project, fct_qem_decimate with the planes, fct_planes_retriangulate,
- * fct_planes_meet.  0, or -1 (message set; m may be half done). */
+/* Make the planar model of m in place (Kang, Johnson and Szeliski, DEC CRL
+ * 95/7, sections 3 to 5, with free-form surfaces, their section 9's open
+ * case): m needs the face property patch and the plane element
+ * (segplanes).  Its vertex property sigma, or else the noise its data show
+ * (fct_noise_estimate_vertices), measures every bound; its camera and pose
+ * comments, when present, give the viewpoint (moves along rays) and the
+ * sample spacing (one pixel's span; else the mean edge), and s t are
+ * computed again from the camera when m has them.  The steps:
+ *  1. fct_patches_tidy, fct_fill_plane_holes, fct_planes_project;
+ *  2. the free-form faces (-1) alone decimated by quadric edge collapse
+ *     (qem.h, in units of sigma), the junctions of the patch boundaries kept;
+ *  3. the patch boundaries as chains (chain.h): those against the free-form
+ *     surface keep the vertices its decimation kept, the others simplified
+ *     by end-point fit to outline_tol sample spacings without crossings;
+ *  4. each patch the polygon of its outline, triangulated (tripatch.h), and
+ *     the free-form faces beside them: one surface, edge for edge;
+ *  5. a patch whose outline does not triangulate cleanly (its loops cross,
+ *     or a diagonal would be an edge of three faces) becomes free-form and
+ *     the model is made again, until none is left;
+ *  6. fct_planes_meet: vertices onto the planes' lines and corners.
+ * 0, or -1 (message set; m may be half done). */
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
                      struct fct_planar_stats *st, struct fct_err *err);
 

@@ -22,12 +22,8 @@
 #define MAX_FAN 512
 
 enum { ALIVE = 1, BORDER = 2, LOCKED = 4, MOVED = 8 };
-/* Planar model: a vertex inside a region, on a curve, at a corner (qem.h). */
-enum { REGION = 0, CURVE = 1, CORNER = 2 };
-/* The planar model makes no triangle thinner than this (twice the area over
- * the longest edge squared: 0.01 is a height of a hundredth of its length)
- * unless it was already. */
-#define MIN_QUALITY 0.01
+/* Held borders: a vertex inside, on a border, at a corner (qem.h). */
+enum { INSIDE = 0, ON_BORDER = 1, CORNER = 2 };
 
 /* A quadric x^T A x + 2 b.x + c: a[0..5] = A00 A01 A02 A11 A12 A22,
  * a[6..8] = b, a[9] = c; w is the face area it carries. */
@@ -59,7 +55,6 @@ struct qem {
 	size_t nv, nt, ne;
 	double *p;              /* positions, relative to the centre */
 	struct quad *q;         /* face planes */
-	struct quad *qf;        /* planar model: the free-form faces' planes alone */
 	uint32_t *bq;           /* border planes of v: bquad[bq[v]], or NOBQ */
 	struct quad *bquad;     /* w: the border weight they carry */
 	size_t nbquad;
@@ -82,13 +77,9 @@ struct qem {
 	size_t nattr;
 	long nrm[3];            /* columns of nx ny nz in attr, or -1 */
 
-	int no_heap;            /* collapses leave the heap alone (before it is built) */
-	int32_t *tlab;          /* planar model: each triangle's patch (-1 free-form), or NULL */
-	unsigned char *cls;     /* planar model: REGION, CURVE or CORNER */
-	const struct fct_plane *planes;
-	double *pd;             /* planar model: each plane's d, relative to the centre */
+	unsigned char *cls;     /* held borders: INSIDE, ON_BORDER or CORNER; else NULL */
 	double *wv;             /* with sigma: each vertex's 1 / sigma^2 */
-	int has_vp;             /* the viewpoint, relative to the centre */
+	int has_vp;             /* with sigma: the viewpoint, relative to the centre */
 	double vp[3];
 
 	size_t target;
@@ -190,9 +181,7 @@ static double quad_noise(const double q[10], const double x[3])
 /* The best point of the segment pa-pb for the quadric q: its ends, its
  * midpoint, the minimum along it.  The ends are tried first and kept on
  * ties (within rounding), so that vertices that need not move keep their
- * coordinates bit for bit.  It is where a collapse goes when the quadric
- * has no trustworthy optimum near the edge, and in the planar model where
- * the new vertex must stay on the plane or line both ends lie on. */
+ * coordinates bit for bit. */
 static double segment_cost(const double q[10], const double *pa, const double *pb, double x[3])
 {
 	double best = quad_eval(q, pa), e = quad_eval(q, pb);
@@ -205,6 +194,7 @@ static double segment_cost(const double q[10], const double *pa, const double *p
 	e = quad_eval(q, mid);
 	if (e < bend - quad_noise(q, mid))
 		best = e, memcpy(x, mid, sizeof mid);
+	/* The minimum on the segment: Q(pa + t d) is a parabola in t. */
 	double ad[3] = {
 		q[0] * d[0] + q[1] * d[1] + q[2] * d[2],
 		q[1] * d[0] + q[3] * d[1] + q[4] * d[2],
@@ -224,7 +214,9 @@ static double segment_cost(const double q[10], const double *pa, const double *p
 	return best;
 }
 
-/* The cost of collapsing (a, b) and where the vertex goes (see qem.h). */
+/* The cost of collapsing (a, b) and where the vertex goes (see qem.h): the
+ * quadric's optimum when it is well posed and near the edge, else
+ * segment_cost. */
 static double edge_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3])
 {
 	double q[10], y[3], d[3], mid[3];
@@ -244,59 +236,26 @@ static double edge_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3]
 	return best;
 }
 
-/* Does triangle t (three corners) hold v? */
-static int tri_has(const uint32_t *t, uint32_t v)
-{
-	return t[0] == v || t[1] == v || t[2] == v;
-}
+static int edge_faces(const struct qem *s, uint32_t v, uint32_t u);
 
-/* Planar model --------------------------------------------------------- */
-
-/* Is (v, u) a feature edge: a border, or between triangles of different
- * patches? */
-static int is_feature(const struct qem *s, uint32_t v, uint32_t u)
-{
-	int n = 0;
-	int32_t lab = 0;
-	const uint32_t *l = s->vt.pool + s->vt.st[v];
-	for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
-		const uint32_t *t = s->tri + 3 * (size_t)l[i];
-		if (t[0] == DEAD || !(t[0] == u || t[1] == u || t[2] == u))
-			continue;
-		if (n++ == 0)
-			lab = s->tlab[l[i]];
-		else if (s->tlab[l[i]] != lab)
-			return 1;
-	}
-	return n == 1;
-}
-
-/* May v be removed into u: inside a region always, on a curve along it. */
+/* Held borders: may v be removed into u?  Inside always; on a border along
+ * it; a corner never. */
 static int may_go(const struct qem *s, uint32_t v, uint32_t u)
 {
-	return s->cls[v] == REGION || (s->cls[v] == CURVE && is_feature(s, v, u));
-}
-
-/* The label of the region v is inside of (its first live triangle's). */
-static int32_t region_label(const struct qem *s, uint32_t v)
-{
-	const uint32_t *l = s->vt.pool + s->vt.st[v];
-	for (uint32_t i = 0; i < s->vt.cnt[v]; i++)
-		if (s->tri[3 * (size_t)l[i]] != DEAD)
-			return s->tlab[l[i]];
-	return -1;
+	return s->cls[v] == INSIDE || (s->cls[v] == ON_BORDER && edge_faces(s, v, u) == 1);
 }
 
 /* The cost of collapsing (a, b) and where the vertex goes: edge_cost, or
- * in the planar model the rules of qem.h; INFINITY when neither end may
- * go. */
+ * with held borders the rules of qem.h (INFINITY when neither end may go). */
 static double collapse_cost(const struct qem *s, uint32_t a, uint32_t b, double x[3])
 {
-	if (!s->tlab)
+	if (!s->cls)
 		return edge_cost(s, a, b, x);
 	int ga = may_go(s, a, b), gb = may_go(s, b, a);
 	if (!ga && !gb)
 		return INFINITY;
+	if (ga && gb && s->cls[a] == INSIDE)
+		return edge_cost(s, a, b, x);
 	double q[10];
 	edge_quadric(s, a, b, FACES | BORDERS, q, NULL);
 	if (ga != gb) {
@@ -304,8 +263,6 @@ static double collapse_cost(const struct qem *s, uint32_t a, uint32_t b, double 
 		memcpy(x, keep, sizeof(double[3]));
 		return quad_eval(q, keep);
 	}
-	if (s->cls[a] == REGION && region_label(s, a) < 0)
-		return edge_cost(s, a, b, x);   /* free-form: the optimum */
 	return segment_cost(q, s->p + 3 * (size_t)a, s->p + 3 * (size_t)b, x);
 }
 
@@ -394,8 +351,6 @@ static void heap_remove(struct qem *s, uint32_t e)
 /* Cost edge e afresh and put it in the heap, or move it to its new place. */
 static void heap_set(struct qem *s, uint32_t e)
 {
-	if (s->no_heap)
-		return;
 	uint32_t a = s->ev[2 * (size_t)e], b = s->ev[2 * (size_t)e + 1];
 	double x[3], cost = collapse_cost(s, a, b, x);
 	if (cost == INFINITY) {
@@ -555,6 +510,11 @@ static void lists_free(struct lists *l)
 
 /* Collapse ---------------------------------------------------------------- */
 
+static int tri_has(const uint32_t *t, uint32_t v)
+{
+	return t[0] == v || t[1] == v || t[2] == v;
+}
+
 /* Number of live triangles around v that hold the edge (v, u). */
 static int edge_faces(const struct qem *s, uint32_t v, uint32_t u)
 {
@@ -664,13 +624,7 @@ static int link_ok(struct qem *s, uint32_t a, uint32_t b, int *dying, uint32_t *
 	return 1;
 }
 
-/* Would moving a and b to x turn or flatten a surviving triangle?  Turned:
- * its normal at 90 degrees or more from what it was (in the planar model,
- * from its patch's plane normal, which slivers cannot blur); flattened: no
- * area (|n| <= 1e-12 of its longest edge squared).  In the planar model
- * also refused: a triangle left thinner than MIN_QUALITY (twice its area
- * over its longest edge squared) and thinner than it was, since slivers
- * block later collapses (their normals turn at a touch). */
+/* Would moving a and b to x turn or flatten a surviving triangle? */
 static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 {
 	for (int side = 0; side < 2; side++) {
@@ -689,67 +643,22 @@ static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 			fct_v3_sub(e1, c[1], c[0]);
 			fct_v3_sub(e2, c[2], c[0]);
 			fct_v3_cross(n0, e1, e2);
-			double m0 = fct_v3_dot(e1, e1), m1 = fct_v3_dot(e2, e2);
-			fct_v3_sub(e3, c[2], c[1]);
-			double m2 = fct_v3_dot(e3, e3), l0 = m0 > m1 ? m0 : m1;
-			l0 = m2 > l0 ? m2 : l0;
 			fct_v3_sub(e1, n[1], n[0]);
 			fct_v3_sub(e2, n[2], n[0]);
 			fct_v3_sub(e3, n[2], n[1]);
 			fct_v3_cross(n1, e1, e2);
-			double l2 = fct_v3_dot(e1, e1), k1 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
-			if (k1 > l2)
-				l2 = k1;
+			double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
+			if (m2 > l2)
+				l2 = m2;
 			if (k2 > l2)
 				l2 = k2;
-			double a1 = fct_v3_dot(n1, n1);
-			if (!(a1 > 1e-24 * l2 * l2))
+			if (!(fct_v3_dot(n1, n1) > 1e-24 * l2 * l2))
 				return 1;
-			if (s->tlab && s->tlab[l[i]] >= 0) {
-				if (fct_v3_dot(s->planes[s->tlab[l[i]]].n, n1) <= 0)
-					return 1;
-				double q1 = sqrt(a1) / l2, q0 = l0 > 0 ? sqrt(fct_v3_dot(n0, n0)) / l0 : 0;
-				if (q1 < MIN_QUALITY && q1 < q0)
-					return 1;
-				continue;
-			}
 			if (fct_v3_dot(n0, n1) <= 0 && (n0[0] != 0 || n0[1] != 0 || n0[2] != 0))
 				return 1;
 		}
 	}
 	return 0;
-}
-
-/* The least quality (twice the area over the longest edge squared) of the
- * triangles around a and b once they move to x, those of the edge left
- * out. */
-static double least_quality(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
-{
-	double least = INFINITY;
-	for (int side = 0; side < 2; side++) {
-		uint32_t v = side ? b : a, o = side ? a : b;
-		const uint32_t *l = s->vt.pool + s->vt.st[v];
-		for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
-			const uint32_t *t = s->tri + 3 * (size_t)l[i];
-			if (t[0] == DEAD || tri_has(t, o))
-				continue;
-			const double *c[3];
-			for (int k = 0; k < 3; k++)
-				c[k] = t[k] == v ? x : s->p + 3 * (size_t)t[k];
-			double e1[3], e2[3], e3[3], n[3];
-			fct_v3_sub(e1, c[1], c[0]);
-			fct_v3_sub(e2, c[2], c[0]);
-			fct_v3_sub(e3, c[2], c[1]);
-			fct_v3_cross(n, e1, e2);
-			double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
-			l2 = m2 > l2 ? m2 : l2;
-			l2 = k2 > l2 ? k2 : l2;
-			double q = l2 > 0 ? sqrt(fct_v3_dot(n, n)) / l2 : 0;
-			if (q < least)
-				least = q;
-		}
-	}
-	return least;
 }
 
 /* Collapse edge e = (a, b) into x. */
@@ -792,11 +701,6 @@ static int collapse(struct qem *s, uint32_t e, const double x[3], uint32_t hole,
 	for (int k = 0; k < 10; k++)
 		s->q[keep].a[k] += s->q[gone].a[k];
 	s->q[keep].w += s->q[gone].w;
-	if (s->qf) {
-		for (int k = 0; k < 10; k++)
-			s->qf[keep].a[k] += s->qf[gone].a[k];
-		s->qf[keep].w += s->qf[gone].w;
-	}
 	if (s->bq[gone] != NOBQ) {
 		if (s->bq[keep] == NOBQ) {
 			s->bq[keep] = s->bq[gone];
@@ -878,127 +782,6 @@ static int collapse(struct qem *s, uint32_t e, const double x[3], uint32_t hole,
 	return 0;
 }
 
-/* The planar model's first passes: the vertices inside a patch go without
- * the heap.  On a plane every such collapse costs nothing, so their order
- * does not matter to the error, only to the shapes left: each pass takes an
- * independent set of them in index order (no two within one ring of a
- * collapse), each into the neighbour at the shortest edge that keeps the
- * mesh valid, which thins a plane evenly as the heap's shape term would, at
- * a fraction of the heap's cost.  Passes until one removes less than a
- * tenth of what it tried. */
-static int thin_planes(struct qem *s, struct fct_err *err)
-{
-	unsigned char *busy = fct_alloc_array(s->nv ? s->nv : 1, 1, err);
-	if (!busy)
-		return -1;
-	s->no_heap = 1;
-	for (int pass = 0; pass < 16; pass++) {
-		size_t tried = 0, done = 0;
-		memset(busy, 0, s->nv);
-		for (size_t vi = 0; vi < s->nv; vi++) {
-			uint32_t v = (uint32_t)vi;
-			if (!(s->flag[v] & ALIVE) || s->cls[v] != REGION || (s->flag[v] & LOCKED) ||
-			    busy[v] || region_label(s, v) < 0)
-				continue;
-			tried++;
-			/* Into the neighbour that leaves the best triangles (the
-			 * greatest least quality; ties to the first edge). */
-			uint32_t best_e = DEAD;
-			double best_q = -1;
-			const uint32_t *l = s->ve.pool + s->ve.st[v];
-			for (uint32_t i = 0; i < s->ve.cnt[v]; i++) {
-				const uint32_t *ev = s->ev + 2 * (size_t)l[i];
-				if (ev[0] == DEAD)
-					continue;
-				uint32_t u = ev[0] == v ? ev[1] : ev[0];
-				if (s->flag[u] & LOCKED || s->vt.cnt[u] + s->vt.cnt[v] > MAX_FAN)
-					continue;
-				double q = least_quality(s, v, u, s->p + 3 * (size_t)u);
-				int dying;
-				uint32_t hole;
-				if (q <= best_q || !link_ok(s, v, u, &dying, &hole) || hole != NOHOLE ||
-				    s->live - (size_t)dying < s->target ||
-				    flips(s, v, u, s->p + 3 * (size_t)u))
-					continue;
-				best_e = l[i], best_q = q;
-			}
-			if (best_e == DEAD)
-				continue;
-			uint32_t u = s->ev[2 * (size_t)best_e] == v ? s->ev[2 * (size_t)best_e + 1]
-			                                           : s->ev[2 * (size_t)best_e];
-			double x[3];
-			memcpy(x, s->p + 3 * (size_t)u, sizeof x);
-			if (collapse(s, best_e, x, NOHOLE, err)) {
-				free(busy);
-				return -1;
-			}
-			done++;
-			/* u and its ring wait for the next pass. */
-			busy[u] = 1;
-			const uint32_t *lu = s->ve.pool + s->ve.st[u];
-			for (uint32_t i = 0; i < s->ve.cnt[u]; i++) {
-				const uint32_t *ev = s->ev + 2 * (size_t)lu[i];
-				if (ev[0] != DEAD)
-					busy[ev[0] == u ? ev[1] : ev[0]] = 1;
-			}
-		}
-		s->st->thinned += done;
-		if (done * 10 < tried || done == 0)
-			break;
-	}
-	s->no_heap = 0;
-	free(busy);
-	return 0;
-}
-
-/* The distinct patches of v's triangles (free-form left out), up to 8. */
-static int vertex_labels(const struct qem *s, uint32_t v, int32_t ls[8])
-{
-	int n = 0;
-	const uint32_t *l = s->vt.pool + s->vt.st[v];
-	for (uint32_t i = 0; i < s->vt.cnt[v]; i++) {
-		int32_t lab = s->tlab[l[i]];
-		int seen = lab < 0;
-		for (int k = 0; k < n && !seen; k++)
-			seen = ls[k] == lab;
-		if (!seen && n < 8)
-			ls[n++] = lab;
-	}
-	return n;
-}
-
-/* The planar model's squared error of collapsing a and b into x: the
- * larger of its distance from each plane of their patches, in units of
- * their noise (the lesser sigma of the two), and the free-form faces'
- * quadric distance.  Not one mean over all the faces they stand for: the
- * area of a plane, where every collapse costs nothing, would dilute the
- * error of the few faces of another plane or of the free-form surface
- * beside it until anything passed. */
-static double planar_error2(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
-{
-	double e2 = 0, wv = 1;
-	if (s->wv)
-		wv = s->wv[a] > s->wv[b] ? s->wv[a] : s->wv[b];
-	for (int side = 0; side < 2; side++) {
-		int32_t ls[8];
-		int n = vertex_labels(s, side ? b : a, ls);
-		for (int i = 0; i < n; i++) {
-			double d = fct_v3_dot(s->planes[ls[i]].n, x) + s->pd[ls[i]];
-			if (d * d * wv > e2)
-				e2 = d * d * wv;
-		}
-	}
-	double q[10], w = s->qf[a].w + s->qf[b].w;
-	for (int k = 0; k < 10; k++)
-		q[k] = s->qf[a].a[k] + s->qf[b].a[k];
-	if (w > 0) {
-		double f = quad_eval(q, x) / w;
-		if (f > e2)
-			e2 = f;
-	}
-	return e2;
-}
-
 /* One pass: collapse from the top of the heap until it is empty or the
  * target is reached.  A refused edge leaves the heap until one of its ends
  * changes (or the next pass). */
@@ -1014,7 +797,7 @@ static int run_pass(struct qem *s, struct fct_err *err)
 		edge_quadric(s, a, b, FACES, fq, &w);
 		edge_quadric(s, a, b, BORDERS, bqd, &wb);
 		double fcost = quad_eval(fq, x), bcost = quad_eval(bqd, x);
-		double d2 = s->qf ? planar_error2(s, a, b, x) : w > 0 ? fcost / w : fcost > 0 ? INFINITY : 0;
+		double d2 = w > 0 ? fcost / w : fcost > 0 ? INFINITY : 0;
 		if (wb > 0 && bcost / wb > d2)
 			d2 = bcost / wb;
 		if (d2 > s->max_err2) {
@@ -1047,22 +830,6 @@ static int run_pass(struct qem *s, struct fct_err *err)
 	return 0;
 }
 
-/* Passes until the target, or until one collapses nothing. */
-static int decimate(struct qem *s, struct fct_err *err)
-{
-	size_t passes = 0;
-	for (;;) {
-		size_t before = s->st->collapses;
-		heap_build(s);
-		s->st->passes++;
-		passes++;
-		if (run_pass(s, err))
-			return -1;
-		if (s->live <= s->target || s->st->collapses == before || passes >= MAX_PASSES)
-			return 0;
-	}
-}
-
 /* Set-up ------------------------------------------------------------------ */
 
 /* Add a border plane carrying weight w, its quadric weighted wq, to v's
@@ -1079,44 +846,11 @@ static void border_plane(struct qem *s, uint32_t v, const double n[3], double d,
 	s->bquad[s->bq[v]].w += w;
 }
 
-/* The planes through the border edges perpendicular to their triangles,
- * weighted by border_weight times the squared edge length, in edge order.
- * In the planar model a border is known to a sample, not to the noise: the
- * border distance is then in units of border_tol edge lengths. */
-static void border_planes(struct qem *s, double border_weight, double border_tol)
-{
-	for (size_t e = 0; e < s->ne && border_weight > 0; e++) {
-		uint32_t u = s->ev[2 * e], v = s->ev[2 * e + 1];
-		if (!(s->flag[u] & BORDER) || !(s->flag[v] & BORDER) || edge_faces(s, u, v) != 1)
-			continue;
-		const uint32_t *t = NULL, *l = s->vt.pool + s->vt.st[u];
-		for (uint32_t i = 0; i < s->vt.cnt[u] && !t; i++)
-			if (tri_has(s->tri + 3 * (size_t)l[i], v))
-				t = s->tri + 3 * (size_t)l[i];
-		const double *pu = s->p + 3 * (size_t)u, *pv = s->p + 3 * (size_t)v;
-		double fn[3], dir[3], m[3], e2[3];
-		fct_v3_sub(dir, s->p + 3 * (size_t)t[1], s->p + 3 * (size_t)t[0]);
-		fct_v3_sub(e2, s->p + 3 * (size_t)t[2], s->p + 3 * (size_t)t[0]);
-		fct_v3_cross(fn, dir, e2);
-		fct_v3_sub(dir, pv, pu);
-		fct_v3_cross(m, dir, fn);
-		double len = sqrt(fct_v3_dot(m, m));
-		if (len > 0) {
-			m[0] /= len, m[1] /= len, m[2] /= len;
-			double w = border_weight * fct_v3_dot(dir, dir), dd = -fct_v3_dot(m, pu);
-			double wq = s->tlab ? border_weight / (border_tol * border_tol * fct_v3_dot(dir, dir)) : w;
-			if (s->tlab)
-				w = border_weight;
-			border_plane(s, u, m, dd, wq, w);
-			border_plane(s, v, m, dd, wq, w);
-		}
-	}
-}
-
 /* From the adjacency of the triangles: the edges and the vertex lists; lock
- * the vertices on non-manifold edges; flag the border vertices and make
- * room for their border planes. */
-static int find_topology(struct qem *s, struct fct_err *err)
+ * the vertices on non-manifold edges; flag the border vertices; add the
+ * border planes. */
+static int find_topology(struct qem *s, double border_weight, double border_tol,
+                         const unsigned char *corner, struct fct_err *err)
 {
 	struct fct_mesh tm;
 	struct fct_adj adj;
@@ -1153,14 +887,38 @@ static int find_topology(struct qem *s, struct fct_err *err)
 			s->flag[u] |= BORDER, s->flag[v] |= BORDER;
 		}
 	}
-	/* The planar model's curves get border quadrics too (curve_lines). */
-	if (s->tlab)
-		nborder = s->nv;
-	if (!(s->bq = fct_alloc_array(s->nv ? s->nv : 1, sizeof *s->bq, err)) ||
-	    !(s->bquad = fct_alloc_array(nborder ? nborder : 1, sizeof *s->bquad, err)))
+	if (!(s->bq = fct_alloc_array(s->nv, sizeof *s->bq, err)) ||
+	    !(s->bquad = fct_alloc_array(nborder, sizeof *s->bquad, err)))
 		goto out;
 	for (size_t v = 0; v < s->nv; v++)
 		s->bq[v] = NOBQ;
+	for (size_t e = 0; e < adj.ne && border_weight > 0; e++) {
+		if (fct_adj_edge_nfaces(&adj, e) != 1)
+			continue;
+		uint32_t u = adj.edge_v[2 * e], v = adj.edge_v[2 * e + 1];
+		const uint32_t *t = s->tri + 3 * (size_t)adj.edge_f[adj.edge_fstart[e]];
+		const double *pu = s->p + 3 * (size_t)u, *pv = s->p + 3 * (size_t)v;
+		double fn[3], dir[3], m[3], e2[3];
+		fct_v3_sub(dir, s->p + 3 * (size_t)t[1], s->p + 3 * (size_t)t[0]);
+		fct_v3_sub(e2, s->p + 3 * (size_t)t[2], s->p + 3 * (size_t)t[0]);
+		fct_v3_cross(fn, dir, e2);
+		fct_v3_sub(dir, pv, pu);
+		fct_v3_cross(m, dir, fn);
+		double len = sqrt(fct_v3_dot(m, m));
+		if (len > 0) {
+			m[0] /= len, m[1] /= len, m[2] /= len;
+			double l2 = fct_v3_dot(dir, dir), w = border_weight * l2, dd = -fct_v3_dot(m, pu);
+			if (s->cls) {
+				/* Held borders: in units of border_tol times the edge. */
+				double wq = border_weight / (border_tol * border_tol * l2);
+				border_plane(s, u, m, dd, wq, border_weight);
+				border_plane(s, v, m, dd, wq, border_weight);
+			} else {
+				border_plane(s, u, m, dd, w, w);
+				border_plane(s, v, m, dd, w, w);
+			}
+		}
+	}
 	/* Edges of each vertex, in edge order. */
 	for (size_t v = 0; v < s->nv; v++)
 		vstart[v + 1] += vstart[v];
@@ -1176,6 +934,22 @@ static int find_topology(struct qem *s, struct fct_err *err)
 
 	for (size_t v = 0; v < s->nv; v++)
 		s->st->locked += (s->flag[v] & LOCKED) != 0;
+	if (s->cls) {
+		/* Border edges at each vertex: none inside, two on a border. */
+		memset(s->cls, 0, s->nv);
+		for (size_t e = 0; e < adj.ne; e++)
+			if (fct_adj_edge_nfaces(&adj, e) == 1)
+				for (int k = 0; k < 2; k++) {
+					unsigned char *c = &s->cls[adj.edge_v[2 * e + (size_t)k]];
+					*c += *c < 3;
+				}
+		for (size_t v = 0; v < s->nv; v++) {
+			s->cls[v] = s->cls[v] == 0 ? INSIDE : s->cls[v] == 2 ? ON_BORDER : CORNER;
+			if (corner && corner[v])
+				s->cls[v] = CORNER;
+			s->st->corners += s->cls[v] == CORNER;
+		}
+	}
 	rc = 0;
 out:
 	fct_adj_free(&adj);
@@ -1189,7 +963,6 @@ static void qem_free(struct qem *s)
 {
 	free(s->p);
 	free(s->q);
-	free(s->qf);
 	free(s->bq);
 	free(s->bquad);
 	free(s->flag);
@@ -1201,10 +974,22 @@ static void qem_free(struct qem *s)
 	free(s->mark);
 	free(s->heap);
 	free(s->attr);
-	free(s->tlab);
 	free(s->cls);
-	free(s->pd);
 	free(s->wv);
+}
+
+void fct_qem_params_default(struct fct_qem_params *p)
+{
+	p->target_faces = 0;
+	p->max_error = 0;
+	p->border_weight = 1;
+	p->close_holes = 0;
+	p->hold_borders = 0;
+	p->border_tol = 1;
+	p->corner = NULL;
+	p->sigma = NULL;
+	p->use_viewpoint = 0;
+	p->viewpoint[0] = p->viewpoint[1] = p->viewpoint[2] = 0;
 }
 
 /* The squared noise across triangle tv's plane (unit normal n): see qem.h. */
@@ -1227,107 +1012,6 @@ static double triangle_noise2(const struct qem *s, const uint32_t *tv, const dou
 	double l = (sqrt(fct_v3_dist2(a, b)) + sqrt(fct_v3_dist2(b, c)) + sqrt(fct_v3_dist2(c, a))) / 3;
 	double e = s2 * cos2 + l * l * (1 - cos2);
 	return e > 0 ? e : s2 > 0 ? s2 : 1;
-}
-
-/* Face quadrics: each triangle's plane (its patch's in the planar model),
- * weighted by its area (over its corners' mean sigma^2 with sigma); w
- * carries the area. */
-static void face_quadrics(struct qem *s)
-{
-	for (size_t t = 0; t < s->nt; t++) {
-		const uint32_t *tv = s->tri + 3 * t;
-		const double *a = s->p + 3 * (size_t)tv[0], *b = s->p + 3 * (size_t)tv[1];
-		const double *c = s->p + 3 * (size_t)tv[2];
-		double e1[3], e2[3], n[3];
-		fct_v3_sub(e1, b, a);
-		fct_v3_sub(e2, c, a);
-		fct_v3_cross(n, e1, e2);
-		double len = sqrt(fct_v3_dot(n, n));
-		if (!(len > 0) || !isfinite(len))
-			continue;
-		n[0] /= len, n[1] /= len, n[2] /= len;
-		double d = -fct_v3_dot(n, a), area = 0.5 * len, wq = area;
-		if (s->tlab && s->tlab[t] >= 0) {
-			const struct fct_plane *pl = &s->planes[s->tlab[t]];
-			memcpy(n, pl->n, sizeof n);
-			d = s->pd[s->tlab[t]];
-		}
-		if (s->wv)
-			wq = area / triangle_noise2(s, tv, n);
-		for (int k = 0; k < 3; k++) {
-			quad_add_plane(&s->q[tv[k]], n, d, wq);
-			s->q[tv[k]].w += area;
-			if (s->qf && s->tlab[t] < 0) {
-				quad_add_plane(&s->qf[tv[k]], n, d, wq);
-				s->qf[tv[k]].w += area;
-			}
-		}
-	}
-}
-
-/* The planar model's set-up: each triangle's patch, the topology, each
- * vertex's class and weight, the planes relative to the centre, and the
- * vertices on their planes. */
-static int planar_setup(struct qem *s, const struct fct_qem_params *p, const size_t *src,
-                        const double ctr[3], struct fct_err *err)
-{
-	size_t nv1 = s->nv ? s->nv : 1;
-	if (!(s->qf = fct_alloc_array(nv1, sizeof *s->qf, err)))
-		return -1;
-	memset(s->qf, 0, nv1 * sizeof *s->qf);
-	if (!(s->tlab = fct_alloc_array(s->nt ? s->nt : 1, sizeof *s->tlab, err)) ||
-	    !(s->cls = fct_alloc_array(nv1, 1, err)) ||
-	    !(s->pd = fct_alloc_array(p->nplanes ? p->nplanes : 1, sizeof *s->pd, err)))
-		return -1;
-	s->planes = p->planes;
-	s->has_vp = p->use_viewpoint;
-	fct_v3_sub(s->vp, p->viewpoint, ctr);
-	for (size_t l = 0; l < p->nplanes; l++)
-		s->pd[l] = p->planes[l].d + fct_v3_dot(p->planes[l].n, ctr);
-	for (size_t t = 0; t < s->nt; t++) {
-		int32_t l = p->patch[src[t]];
-		s->tlab[t] = l >= 0 && (size_t)l < p->nplanes ? l : -1;
-	}
-	if (p->sigma) {
-		if (!(s->wv = fct_alloc_array(nv1, sizeof *s->wv, err)))
-			return -1;
-		for (size_t v = 0; v < s->nv; v++) {
-			double sg = p->sigma[v];
-			s->wv[v] = sg > 0 && isfinite(sg) ? 1 / (sg * sg) : 1;
-		}
-	}
-	if (find_topology(s, err))
-		return -1;
-	/* Classes from the feature edges at each vertex. */
-	unsigned char *nfeat = s->cls;
-	memset(nfeat, 0, nv1);
-	for (size_t e = 0; e < s->ne; e++) {
-		uint32_t u = s->ev[2 * e], v = s->ev[2 * e + 1];
-		if (is_feature(s, u, v)) {
-			nfeat[u] += nfeat[u] < 3;
-			nfeat[v] += nfeat[v] < 3;
-		}
-	}
-	for (size_t v = 0; v < s->nv; v++) {
-		nfeat[v] = nfeat[v] == 0 ? REGION : nfeat[v] == 2 ? CURVE : CORNER;
-		s->st->corners += nfeat[v] == CORNER;
-	}
-	return 0;
-}
-
-void fct_qem_params_default(struct fct_qem_params *p)
-{
-	p->target_faces = 0;
-	p->max_error = 0;
-	p->border_weight = 1;
-	p->close_holes = 0;
-	p->patch = NULL;
-	p->planes = NULL;
-	p->nplanes = 0;
-	p->sigma = NULL;
-	p->border_tol = 1;
-	p->use_viewpoint = 0;
-	p->viewpoint[0] = p->viewpoint[1] = p->viewpoint[2] = 0;
 }
 
 /* The interpolated vertex properties: scalar float and double columns. */
@@ -1458,7 +1142,6 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 		for (int c = 0; c < 3; c++)
 			ctr[c] = 0.5 * lo[c] + 0.5 * hi[c];
 
-	int planar = p->patch != NULL;
 	if (make_triangles(&s, m, &src, err))
 		goto out;
 	st->faces_in = s.live = s.nt;
@@ -1521,22 +1204,50 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 		}
 	}
 
-	if (planar && planar_setup(&s, p, src, ctr, err))
-		goto out;
-	face_quadrics(&s);
-	if (!planar && find_topology(&s, err))
-		goto out;
-	border_planes(&s, p->border_weight, p->border_tol);
-
-	if (planar) {
-		/* The insides of the planes first, without the heap. */
-		for (size_t e = 0; e < s.ne; e++)
-			s.hpos[e] = NOPOS;
-		if (thin_planes(&s, err))
+	/* Face quadrics, weighted by area (over the noise across them). */
+	if (p->sigma) {
+		if (!(s.wv = fct_alloc_array(nv1, sizeof *s.wv, err)))
 			goto out;
+		for (size_t v = 0; v < s.nv; v++) {
+			double sg = p->sigma[v];
+			s.wv[v] = sg > 0 && isfinite(sg) ? 1 / (sg * sg) : 1;
+		}
+		s.has_vp = p->use_viewpoint;
+		fct_v3_sub(s.vp, p->viewpoint, ctr);
 	}
-	if (decimate(&s, err))
+	for (size_t t = 0; t < s.nt; t++) {
+		const uint32_t *tv = s.tri + 3 * t;
+		const double *a = s.p + 3 * (size_t)tv[0], *b = s.p + 3 * (size_t)tv[1];
+		const double *c = s.p + 3 * (size_t)tv[2];
+		double e1[3], e2[3], n[3];
+		fct_v3_sub(e1, b, a);
+		fct_v3_sub(e2, c, a);
+		fct_v3_cross(n, e1, e2);
+		double len = sqrt(fct_v3_dot(n, n));
+		if (!(len > 0) || !isfinite(len))
+			continue;
+		n[0] /= len, n[1] /= len, n[2] /= len;
+		double d = -fct_v3_dot(n, a), area = 0.5 * len;
+		double wq = s.wv ? area / triangle_noise2(&s, tv, n) : area;
+		for (int k = 0; k < 3; k++) {
+			quad_add_plane(&s.q[tv[k]], n, d, wq);
+			s.q[tv[k]].w += area;
+		}
+	}
+	if (p->hold_borders && !(s.cls = fct_alloc_array(nv1, 1, err)))
 		goto out;
+	if (find_topology(&s, p->border_weight, p->border_tol, p->corner, err))
+		goto out;
+
+	for (;;) {
+		size_t before = st->collapses;
+		heap_build(&s);
+		st->passes++;
+		if (run_pass(&s, err))
+			goto out;
+		if (s.live <= s.target || st->collapses == before || st->passes >= MAX_PASSES)
+			break;
+	}
 	st->max_error = sqrt(st->max_error);
 	if (write_back(&s, m, src, ctr, err))
 		goto out;

@@ -80,32 +80,28 @@
  * except an `edge` element, whose vertex numbers would be stale, which is
  * removed.
  *
- * Planes.  Given each face's planar patch (segplanes' labels, -1 for the
- * free-form faces that no plane fits) and the patches' planes, the result
- * is the planar model: planes where the surface is planar, a decimated
- * surface elsewhere, one connected mesh.  Every vertex is first put on its
- * patches' geometry: a vertex inside a patch on its plane, a vertex where
- * two patches meet on their line and one where three or more meet on their
- * point, each only as far as max_move sigma (else onto the nearest of its
- * planes; planes within 10 degrees of parallel meet nowhere useful).  The
- * faces of a patch carry the quadric of its plane, not their own.  An edge
- * is a feature when it is a border or its two triangles are in different
- * patches (free-form counting as one); a vertex on no feature edge is
- * inside a region, on two a curve vertex (a patch boundary or a border),
- * else a corner.  A corner is never removed nor moved; a curve vertex is
- * removed only along its curve (into the other end of a feature edge); so
- * patch boundaries survive as polylines whose vertices lie on the planes'
- * lines.  When both ends may go, the new vertex is the optimum of their
- * quadric in a free-form region and the best point of the edge itself
- * elsewhere (which keeps it on the plane or line); when only one may go,
- * it goes into the other.  With sigma, each triangle's quadric is weighted
+ * Held borders (hold_borders; the free-form surface of the planar model,
+ * planemodel.h, whose borders are where the planes' polygons join it): a
+ * vertex on no border edge is inside, on two a border vertex, on another
+ * number (or flagged in corner) a corner.  A corner is never removed nor
+ * moved; a border vertex is removed only along its border (into the other
+ * end of a border edge), onto the best point of that edge (its ends, its
+ * midpoint, the minimum along it), so a border's vertices stay a subset of
+ * its samples, each where it was or on a segment between two of them; an
+ * inside vertex goes as usual, or into a border vertex or corner.  The
+ * border planes then measure a border's distance in units of border_tol
+ * edge lengths (of the edge each plane came from): a border is known to a
+ * sample, not to the depth's noise.
+ *
+ * Noise (sigma, one figure per vertex): each triangle's quadric is weighted
  * by 1 / sigma_t^2, so the quadric distance and max_error are in units of
- * the noise: sigma_t is its corners' mean sigma, or with a viewpoint the
- * noise of the samples across the triangle's plane, sigma^2 cos^2 a +
- * l^2 sin^2 a for the angle a between its normal and the ray to it and l
- * its mean edge length: a depth sensor measures along its rays, and across
- * them a sample is known to a pixel's footprint (so the steep faces of a
- * crease or an occluding edge are not held to the noise of the depth).
+ * the noise.  sigma_t^2 is its corners' mean sigma^2, or with a viewpoint
+ * (the samples were measured along rays from it) the noise across the
+ * triangle's plane, sigma^2 cos^2 a + l^2 sin^2 a for the angle a between
+ * its normal and the ray to it and l its mean edge length: a depth sensor
+ * measures along its rays, and across them a sample is known to a pixel's
+ * footprint (so the steep faces of a crease or an occluding edge are not
+ * held to the noise of the depth).
  *
  * Cost: O(F log F) time. */
 #ifndef FCT_QEM_H
@@ -115,22 +111,18 @@
 
 #include "err.h"
 #include "mesh.h"
-#include "planes.h"
 
 struct fct_qem_params {
 	size_t target_faces;    /* stop at this many triangles (0: only max_error stops) */
 	double max_error;       /* largest quadric distance of a collapse; <= 0: no bound */
 	double border_weight;   /* weight of the border planes (default 1; 0: free borders) */
 	int close_holes;        /* let collapses close triangular holes (default 0) */
-	/* The planar model (see "Planes" above); all NULL for plain QEM. */
-	const int32_t *patch;   /* each face's planar patch, -1 free-form */
-	const struct fct_plane *planes;   /* the patches' planes */
-	size_t nplanes;
-	const double *sigma;    /* each vertex's noise: distances in units of it */
-	double border_tol;      /* planar model: border distances in units of this many
-	                           edge lengths (default 1) */
+	int hold_borders;       /* borders held (see above; default 0) */
+	double border_tol;      /* held borders: distances in these many edge lengths (1) */
+	const unsigned char *corner;   /* held borders: NULL, or 1 for vertices kept */
+	const double *sigma;    /* NULL, or each vertex's noise (see above) */
 	int use_viewpoint;      /* with sigma: the samples were measured along rays ... */
-	double viewpoint[3];    /* ... from this point (see "Planes") */
+	double viewpoint[3];    /* ... from this point */
 };
 
 struct fct_qem_stats {
@@ -144,8 +136,7 @@ struct fct_qem_stats {
 	size_t refused_error;           /* beyond max_error */
 	size_t passes;                  /* heap builds */
 	size_t holes_closed;
-	size_t corners;                 /* planar model: vertices kept where 3+ patches meet */
-	size_t thinned;                 /* collapses inside patches before the heap */
+	size_t corners;                 /* held borders: vertices kept as corners */
 	double max_error;               /* largest quadric distance of a collapse done */
 	double max_cost;                /* largest Q(x) of a collapse done (area x length^2) */
 };

@@ -907,9 +907,11 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 			if (!(len > 0))
 				continue;
 			u[0] /= len, u[1] /= len, u[2] /= len;
-			q[0] += w * u[0] * u[0], q[1] += w * u[1] * u[1], q[2] += w * u[2] * u[2];
-			q[3] += w * u[0] * u[1], q[4] += w * u[1] * u[2], q[5] += w * u[0] * u[2];
-			q[6] += w * u[0] / len, q[7] += w * u[1] / len, q[8] += w * u[2] / len;
+			/* 1/s has deviation sigma / s^2: weight s^4 / sigma^2. */
+			double x = w * len * len * len * len * S->wv[m->fvert[s0 + k]];
+			q[0] += x * u[0] * u[0], q[1] += x * u[1] * u[1], q[2] += x * u[2] * u[2];
+			q[3] += x * u[0] * u[1], q[4] += x * u[1] * u[2], q[5] += x * u[0] * u[2];
+			q[6] += x * u[0] / len, q[7] += x * u[1] / len, q[8] += x * u[2] / len;
 		}
 	}
 	for (size_t l = 0; l < np; l++)

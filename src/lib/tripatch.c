@@ -11,6 +11,12 @@
 #include "header.h"
 #include "planes.h"
 
+static void mark_unclean(const struct fct_tripatch_params *p, int32_t patch, size_t nplanes)
+{
+	if (p->unclean && patch >= 0 && (size_t)patch < nplanes)
+		p->unclean[patch] = 1;
+}
+
 void fct_tripatch_params_default(struct fct_tripatch_params *p)
 {
 	memset(p, 0, sizeof *p);
@@ -38,6 +44,7 @@ static int hedge_cmp(const void *pa, const void *pb)
 /* Growable arrays of the per-patch work and the output. */
 struct work {
 	struct fct_err *err;
+	size_t nplanes;          /* of the plane element, for the unclean flags */
 	/* the patch: local vertices gl[0..nl) (global ids), loc[global] = local */
 	int32_t *loc;
 	uint32_t *gl, *hf, *ht;
@@ -469,6 +476,8 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 			return 0;
 		}
 	}
+	if (p->unclean && patch >= 0 && (size_t)patch < w->nplanes && (open || (!done && w->nloops > 0)))
+		p->unclean[patch] = 1;
 	if (!done && w->nloops > 0 && w->have[1]) {
 		st->repairs++;
 		if (repair(w, p, st))
@@ -476,6 +485,8 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 	}
 	st->open_edges += open;
 	if (w->nptri == 0) {
+		if (p->unclean && patch >= 0 && (size_t)patch < w->nplanes)
+			p->unclean[patch] = 1;
 		st->failures++;
 		if (st->first_failure < 0)
 			st->first_failure = patch;
@@ -569,6 +580,7 @@ int fct_tripatch(struct fct_mesh *m, const struct fct_tripatch_params *p,
 		for (size_t i = 0; i < nhe; i++) {
 			if (k && !hedge_cmp(&he[k - 1], &he[i])) {
 				st->duplicates++;
+				mark_unclean(p, he[i].patch, nplanes);
 				continue;
 			}
 			he[k++] = he[i];
@@ -587,6 +599,7 @@ int fct_tripatch(struct fct_mesh *m, const struct fct_tripatch_params *p,
 			if (f) {
 				gone[i] = gone[f - he] = 1;
 				st->slits++;
+				mark_unclean(p, he[i].patch, nplanes);
 			}
 		}
 		k = 0;
@@ -604,6 +617,7 @@ int fct_tripatch(struct fct_mesh *m, const struct fct_tripatch_params *p,
 	struct fct_err cerr;
 	if (fct_header_camera(m, &cam, &cerr) == 1 && cam.width > 0 && cam.height > 0)
 		W = cam.width, H = cam.height;
+	w.nplanes = nplanes;
 	w.loc = fct_alloc_array(m->nv, sizeof *w.loc, err);
 	if (!w.loc)
 		goto out;

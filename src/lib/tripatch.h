@@ -48,6 +48,11 @@
 struct fct_tripatch_params {
 	enum fct_polytri_method method;   /* greedy (default) or CDT */
 	int plane_only;                   /* ignore s t: triangulate in the plane */
+	unsigned char *unclean;           /* NULL, or one flag per plane (nplanes of
+	                                     the plane element), set to 1 for a patch
+	                                     whose edges had slits or repeats, did not
+	                                     all close, or whose loops needed repair
+	                                     (step 3) or gave no triangle */
 };
 
 struct fct_tripatch_stats {

@@ -3,6 +3,7 @@
 # installed (skipped with a message otherwise): binary little- and
 # big-endian and ascii, with s t and TextureFile, with the face property
 # patch and the plane element (segplanes), the edge element (simpchain),
+# the planar model (planedecim),
 # per-corner texcoord over several views (cyl2planar), an OBJ with its
 # .mtl, planarize's models (PLY with s t, OBJ, a panorama's per-corner
 # texcoord), and tsdfuse naming 30 views, whose provenance line Open3D's reader
@@ -20,7 +21,7 @@ run_case 0 "dm2mesh -a -K tum --step 8 --image rgb.png -o desk_a.ply $S/TUM_dept
 run_case 0 "meshconv -f binary_big_endian -o desk_be.ply desk.ply"
 run_case 0 "segplanes -o planes.ply desk.ply"
 run_case 0 "simpchain -o chains.ply planes.ply"
-run_case 0 "projverts chains.ply | tripatch -o model.ply"
+run_case 0 "planedecim -o model.ply planes.ply"
 run_case 0 "meshconv -o model.obj model.ply"
 run_case 0 "planarize -K tum --step 2 -o plan.ply $S/TUM_depth.png rgb.png"
 run_case 0 "planarize -K tum --step 2 -o plan_obj.obj $S/TUM_depth.png rgb.png"
