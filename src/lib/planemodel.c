@@ -100,6 +100,11 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 	return 0;
 }
 
+/* A facet of a curved surface has at least this many neighbours at shallow
+ * creases; a plane that noise or a sensor's distortion split has one or
+ * two. */
+#define SHALLOW_NEIGHBOURS 3
+
 int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
                         struct fct_err *err)
@@ -112,12 +117,16 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 		return -1;
 	double *shared = calloc(2 * nplanes, sizeof *shared);   /* shallow, all */
 	unsigned char *facet = calloc(nplanes, 1);
-	if (!shared || !facet) {
-		free(shared), free(facet);
+	/* Each patch's first shallow neighbours (up to SHALLOW_NEIGHBOURS). */
+	int32_t *nb = malloc(nplanes * SHALLOW_NEIGHBOURS * sizeof *nb);
+	if (!shared || !facet || !nb) {
+		free(shared), free(facet), free(nb);
 		fct_adj_free(&adj);
 		return fct_fail(err, "out of memory");
 	}
 	double cos_max = cos(max_angle * M_PI / 180);
+	for (size_t i = 0; i < nplanes * SHALLOW_NEIGHBOURS; i++)
+		nb[i] = -1;
 	for (size_t e = 0; e < adj.ne; e++) {
 		if (fct_adj_edge_nfaces(&adj, e) != 2)
 			continue;
@@ -128,18 +137,28 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 		                               m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
 		int shallow = fct_v3_dot(planes[a].n, planes[b].n) >= cos_max;
 		for (int k = 0; k < 2; k++) {
-			int32_t l = k ? b : a;
+			int32_t l = k ? b : a, o = k ? a : b;
 			shared[2 * l] += shallow ? len : 0;
 			shared[2 * l + 1] += len;
+			int32_t *list = nb + (size_t)l * SHALLOW_NEIGHBOURS;
+			for (int i = 0; shallow && i < SHALLOW_NEIGHBOURS; i++) {
+				if (list[i] == o)
+					break;
+				if (list[i] < 0) {
+					list[i] = o;
+					break;
+				}
+			}
 		}
 	}
 	for (size_t l = 0; l < nplanes; l++)
-		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1])
+		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1] &&
+		    nb[l * SHALLOW_NEIGHBOURS + SHALLOW_NEIGHBOURS - 1] >= 0)
 			facet[l] = 1, ++*facets;
 	for (size_t f = 0; f < m->nf; f++)
 		if (patch[f] >= 0 && facet[patch[f]])
 			patch[f] = -1;
-	free(shared), free(facet);
+	free(shared), free(facet), free(nb);
 	fct_adj_free(&adj);
 	return 0;
 }
@@ -897,12 +916,12 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	}
 	if (fct_chains_extract(&c, m, patch, err))
 		goto out;
-	/* The junctions stay: the chains meet there. */
-	for (size_t i = 0; i < c.n; i++)
-		if (c.closed[i] != 2) {
-			corner[c.vert[c.start[i]]] = 1;
-			corner[c.vert[c.start[i + 1] - 1]] = 1;
-		}
+	/* The junctions stay, where the chains meet, and a loop's first point,
+	 * where its wire starts and ends. */
+	for (size_t i = 0; i < c.n; i++) {
+		corner[c.vert[c.start[i]]] = 1;
+		corner[c.vert[c.start[i + 1] - 1]] = 1;
+	}
 	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
 		goto out;
 	for (size_t i = 0; i < nmap; i++)
