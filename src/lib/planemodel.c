@@ -27,6 +27,9 @@ static uint32_t uf_find(int32_t *parent, uint32_t x)
 	return x;
 }
 
+/* Narrower than this many samples, a piece of faces is a sliver. */
+#define SLIVER_WIDTH 3
+
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
                      struct fct_tidy_stats *st, struct fct_err *err)
 {
@@ -74,23 +77,36 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 					}
 				}
 	}
+	/* count: each piece's boundary edges (to another label or none). */
+	memset(count, 0, nf * sizeof *count);
 	for (size_t e = 0; e < adj.ne; e++) {
 		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
 		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		if (k == 1)
+			count[uf_find(root, fs[0])]++;
 		for (uint32_t i = 0; i < k; i++)
 			for (uint32_t j = 0; j < k; j++) {
 				if (patch[fs[i]] == patch[fs[j]])
 					continue;
 				uint32_t r = uf_find(root, fs[i]);
+				if (j == (i + 1) % k)
+					count[r]++;
 				if (host[r] == -2)
 					host[r] = patch[fs[j]];
 				else if (host[r] != patch[fs[j]])
 					host[r] = -3;
 			}
 	}
+	/* A piece with one label around it joins it when small, or narrow: a
+	 * strip w samples wide and L long has about 2 w L faces and 2 L
+	 * boundary edges, so faces < SLIVER_WIDTH boundary edges is a strip
+	 * narrower than that.  Such slivers between two parts of one patch
+	 * would close up when decimated, and the patch's outline would run
+	 * both ways along them. */
 	for (size_t f = 0; f < nf; f++) {
 		uint32_t r = uf_find(root, (uint32_t)f);
-		if (host[r] >= -1 && (size_t)(-root[r]) < min_free) {
+		size_t size = (size_t)(-root[r]);
+		if (host[r] >= -1 && (size < min_free || size < SLIVER_WIDTH * (size_t)count[r])) {
 			patch[f] = host[r];
 			st->speck_faces++;
 		}

@@ -25,8 +25,9 @@ struct fct_tidy_stats {
 /* Tidy a segmentation for the planar model: patches of fewer than min_plane
  * faces become free-form (-1), too small to be worth a plane of their own;
  * then each piece of faces of one label (joined across edges; free-form
- * counts as a label) of fewer than min_free faces with one other label
- * all around it joins that label: specks of outliers inside a plane, which
+ * counts as a label) of fewer than min_free faces, or narrower than three
+ * samples (fewer faces than three times its boundary edges), with one
+ * other label all around it joins that label: specks of outliers inside a plane, which
  * the model puts on the plane, and the islands that a crease's noise leaves
  * on either side of it, each of which would cost the model a boundary.
  * patch: m->nf labels, changed in place. */
