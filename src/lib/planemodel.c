@@ -876,8 +876,8 @@ static struct fct_wire *outline_wires(const struct fct_chains *c, size_t *n, str
 	for (size_t i = 0; i < c->n; i++) {
 		size_t last = c->start[i];
 		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++) {
-			if (!c->keep[q])
-				continue;
+			if (!c->keep[q] || c->vert[q] == c->vert[last])
+				continue;   /* dropped, or a lasso left with no point between */
 			w[row++] = (struct fct_wire){ c->vert[last], c->vert[q], c->left[i],
 			                              c->right[i] >= 0 ? c->right[i] : -1 };
 			last = q;
@@ -897,10 +897,11 @@ static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsign
 	if (fct_adj_build(&adj, w, err))
 		return -1;
 	for (size_t e = 0; e < adj.ne; e++)
-		if (fct_adj_edge_nfaces(&adj, e) > 2)
+		if (fct_adj_edge_nfaces(&adj, e) > 2) {
 			for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
 				if (lab[adj.edge_f[k]] >= 0)
 					unclean[lab[adj.edge_f[k]]] = 1;
+		}
 	fct_adj_free(&adj);
 	return 0;
 }
@@ -933,10 +934,28 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	if (fct_chains_extract(&c, m, patch, err))
 		goto out;
 	/* The junctions stay, where the chains meet, and a loop's first point,
-	 * where its wire starts and ends. */
+	 * where its wire starts and ends.  So does every point of a chain
+	 * against the free-form surface whose ends another chain of one of its
+	 * patches joins too: with its inner points gone, the patch's outline
+	 * would run to and fro along one segment there (a sliver of the patch
+	 * between the free-form surface and the border, say). */
 	for (size_t i = 0; i < c.n; i++) {
 		corner[c.vert[c.start[i]]] = 1;
 		corner[c.vert[c.start[i + 1] - 1]] = 1;
+	}
+	for (size_t i = 0; i < c.n; i++) {
+		if (c.right[i] != -1 || c.closed[i])
+			continue;
+		uint32_t a = c.vert[c.start[i]], b = c.vert[c.start[i + 1] - 1];
+		for (size_t j = 0; j < c.n; j++) {
+			uint32_t x = c.vert[c.start[j]], y = c.vert[c.start[j + 1] - 1];
+			if (j == i || !((x == a && y == b) || (x == b && y == a)) ||
+			    (c.left[j] != c.left[i] && c.right[j] != c.left[i]))
+				continue;
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				corner[c.vert[q]] = 1;
+			break;
+		}
 	}
 	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
 		goto out;
