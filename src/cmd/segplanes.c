@@ -16,28 +16,38 @@
 
 static const char usage[] =
 	"usage: segplanes [-aqv] [-c factor] [-n patches] [-o file] [--area-weighted]\n"
-	"                 [--max-rms r] [--min-faces k] [--tls] [input]\n"
-	"Label the faces of a mesh with planar patches (face property patch) and add\n"
-	"their planes (element plane), merging the adjacent patches that fit one\n"
-	"plane best until a criterion stops it.\n"
+	"                 [--fit f] [--max-dev d] [--max-rms r] [--min-extent e]\n"
+	"                 [--min-faces k] [--tls] [input]\n"
+	"Label the faces of a mesh with planar patches (face property patch, -1 for\n"
+	"free-form faces no plane fits) and add their planes (element plane),\n"
+	"merging the adjacent patches that fit one plane best until a criterion\n"
+	"stops it; every bound in units of the vertices' noise (vertex property\n"
+	"sigma, or estimated from the data).\n"
 	"  -a                 write ascii PLY\n"
 	"  -c factor          automatic criterion: merge while the smaller patch moves\n"
-	"                     by at most factor times the noise (default 3)\n"
+	"                     by at most factor sigma, rms (default 3)\n"
 	"  -n patches         stop at this many patches instead (T_N)\n"
 	"  -o file            output file (default standard output)\n"
 	"      --area-weighted\n"
 	"                     weight each face by its area, not each corner by 1\n"
+	"      --fit f        a patch's points stay within f sigma of its plane, rms\n"
+	"                     (default 1.5)\n"
+	"      --max-dev d    no face farther than d sigma from its patch's plane: it\n"
+	"                     is free-form (default 3)\n"
 	"      --max-rms r    never make a patch of rms above r (units of the\n"
 	"                     coordinates; default no bound)\n"
+	"      --min-extent e a patch narrower than e sigma is free-form (default 10)\n"
 	"      --min-faces k  absorb patches of fewer than k faces into the adjacent\n"
-	"                     patch of k or more that fits them best (default 8)\n"
+	"                     patch of k or more that fits them best; those left are\n"
+	"                     free-form (default 8)\n"
 	"      --tls          fit planes orthogonally (eq. 1) even with a camera\n"
 	"  -q                 quiet\n"
 	"  -v                 report patches, noise, rms, merges and times on stderr\n"
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum { OPT_AREA = 256, OPT_MAXRMS, OPT_MINFACES, OPT_TLS, OPT_VERSION };
+enum { OPT_AREA = 256, OPT_FIT, OPT_MAXDEV, OPT_MAXRMS, OPT_MINEXTENT, OPT_MINFACES, OPT_TLS,
+       OPT_VERSION };
 
 int main(int argc, char **argv)
 {
@@ -45,7 +55,10 @@ int main(int argc, char **argv)
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, OPT_VERSION},
 		{"area-weighted", no_argument, NULL, OPT_AREA},
+		{"fit", required_argument, NULL, OPT_FIT},
+		{"max-dev", required_argument, NULL, OPT_MAXDEV},
 		{"max-rms", required_argument, NULL, OPT_MAXRMS},
+		{"min-extent", required_argument, NULL, OPT_MINEXTENT},
 		{"min-faces", required_argument, NULL, OPT_MINFACES},
 		{"tls", no_argument, NULL, OPT_TLS},
 		{NULL, 0, NULL, 0},
@@ -70,6 +83,9 @@ int main(int argc, char **argv)
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("segplanes (facet) " FCT_VERSION); return 0;
 		case OPT_AREA: sp.area_weighted = 1; break;
+		case OPT_FIT: sp.fit = fct_opt_double("--fit", optarg, 0, HUGE_VAL); break;
+		case OPT_MAXDEV: sp.max_dev = fct_opt_double("--max-dev", optarg, 0, HUGE_VAL); break;
+		case OPT_MINEXTENT: sp.min_extent = fct_opt_double("--min-extent", optarg, 0, HUGE_VAL); break;
 		case OPT_MAXRMS: sp.max_rms = fct_opt_double("--max-rms", optarg, 0, HUGE_VAL); break;
 		case OPT_MINFACES: sp.min_faces = fct_opt_long("--min-faces", optarg, 0, INT32_MAX); break;
 		case OPT_TLS: tls = 1; break;
@@ -103,6 +119,7 @@ int main(int argc, char **argv)
 	fct_report("adjacencies", "%zu", st.adjacencies);
 	fct_report("patches", "%zu", st.patches);
 	fct_report("noise", "%.9g", st.noise);
+	fct_report("noise_estimated", "%d", st.noise_estimated);
 	fct_report("max_rms", "%.9g", st.max_rms);
 	fct_report("mean_rms", "%.9g", st.mean_rms);
 	fct_report("last_ratio", "%.9g", st.last_ratio);

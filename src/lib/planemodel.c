@@ -27,6 +27,9 @@ static uint32_t uf_find(int32_t *parent, uint32_t x)
 	return x;
 }
 
+/* Narrower than this many samples, a piece of faces is a sliver. */
+#define SLIVER_WIDTH 3
+
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
                      struct fct_tidy_stats *st, struct fct_err *err)
 {
@@ -74,23 +77,36 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 					}
 				}
 	}
+	/* count: each piece's boundary edges (to another label or none). */
+	memset(count, 0, nf * sizeof *count);
 	for (size_t e = 0; e < adj.ne; e++) {
 		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
 		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		if (k == 1)
+			count[uf_find(root, fs[0])]++;
 		for (uint32_t i = 0; i < k; i++)
 			for (uint32_t j = 0; j < k; j++) {
 				if (patch[fs[i]] == patch[fs[j]])
 					continue;
 				uint32_t r = uf_find(root, fs[i]);
+				if (j == (i + 1) % k)
+					count[r]++;
 				if (host[r] == -2)
 					host[r] = patch[fs[j]];
 				else if (host[r] != patch[fs[j]])
 					host[r] = -3;
 			}
 	}
+	/* A piece with one label around it joins it when small, or narrow: a
+	 * strip w samples wide and L long has about 2 w L faces and 2 L
+	 * boundary edges, so faces < SLIVER_WIDTH boundary edges is a strip
+	 * narrower than that.  Such slivers between two parts of one patch
+	 * would close up when decimated, and the patch's outline would run
+	 * both ways along them. */
 	for (size_t f = 0; f < nf; f++) {
 		uint32_t r = uf_find(root, (uint32_t)f);
-		if (host[r] >= -1 && (size_t)(-root[r]) < min_free) {
+		size_t size = (size_t)(-root[r]);
+		if (host[r] >= -1 && (size < min_free || size < SLIVER_WIDTH * (size_t)count[r])) {
 			patch[f] = host[r];
 			st->speck_faces++;
 		}
@@ -99,6 +115,11 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 	fct_adj_free(&adj);
 	return 0;
 }
+
+/* A facet of a curved surface has at least this many neighbours at shallow
+ * creases; a plane that noise or a sensor's distortion split has one or
+ * two. */
+#define SHALLOW_NEIGHBOURS 3
 
 int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
@@ -112,12 +133,16 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 		return -1;
 	double *shared = calloc(2 * nplanes, sizeof *shared);   /* shallow, all */
 	unsigned char *facet = calloc(nplanes, 1);
-	if (!shared || !facet) {
-		free(shared), free(facet);
+	/* Each patch's first shallow neighbours (up to SHALLOW_NEIGHBOURS). */
+	int32_t *nb = malloc(nplanes * SHALLOW_NEIGHBOURS * sizeof *nb);
+	if (!shared || !facet || !nb) {
+		free(shared), free(facet), free(nb);
 		fct_adj_free(&adj);
 		return fct_fail(err, "out of memory");
 	}
 	double cos_max = cos(max_angle * M_PI / 180);
+	for (size_t i = 0; i < nplanes * SHALLOW_NEIGHBOURS; i++)
+		nb[i] = -1;
 	for (size_t e = 0; e < adj.ne; e++) {
 		if (fct_adj_edge_nfaces(&adj, e) != 2)
 			continue;
@@ -128,18 +153,28 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 		                               m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
 		int shallow = fct_v3_dot(planes[a].n, planes[b].n) >= cos_max;
 		for (int k = 0; k < 2; k++) {
-			int32_t l = k ? b : a;
+			int32_t l = k ? b : a, o = k ? a : b;
 			shared[2 * l] += shallow ? len : 0;
 			shared[2 * l + 1] += len;
+			int32_t *list = nb + (size_t)l * SHALLOW_NEIGHBOURS;
+			for (int i = 0; shallow && i < SHALLOW_NEIGHBOURS; i++) {
+				if (list[i] == o)
+					break;
+				if (list[i] < 0) {
+					list[i] = o;
+					break;
+				}
+			}
 		}
 	}
 	for (size_t l = 0; l < nplanes; l++)
-		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1])
+		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1] &&
+		    nb[l * SHALLOW_NEIGHBOURS + SHALLOW_NEIGHBOURS - 1] >= 0)
 			facet[l] = 1, ++*facets;
 	for (size_t f = 0; f < m->nf; f++)
 		if (patch[f] >= 0 && facet[patch[f]])
 			patch[f] = -1;
-	free(shared), free(facet);
+	free(shared), free(facet), free(nb);
 	fct_adj_free(&adj);
 	return 0;
 }
@@ -841,8 +876,8 @@ static struct fct_wire *outline_wires(const struct fct_chains *c, size_t *n, str
 	for (size_t i = 0; i < c->n; i++) {
 		size_t last = c->start[i];
 		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++) {
-			if (!c->keep[q])
-				continue;
+			if (!c->keep[q] || c->vert[q] == c->vert[last])
+				continue;   /* dropped, or a lasso left with no point between */
 			w[row++] = (struct fct_wire){ c->vert[last], c->vert[q], c->left[i],
 			                              c->right[i] >= 0 ? c->right[i] : -1 };
 			last = q;
@@ -862,10 +897,11 @@ static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsign
 	if (fct_adj_build(&adj, w, err))
 		return -1;
 	for (size_t e = 0; e < adj.ne; e++)
-		if (fct_adj_edge_nfaces(&adj, e) > 2)
+		if (fct_adj_edge_nfaces(&adj, e) > 2) {
 			for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
 				if (lab[adj.edge_f[k]] >= 0)
 					unclean[lab[adj.edge_f[k]]] = 1;
+		}
 	fct_adj_free(&adj);
 	return 0;
 }
@@ -897,12 +933,30 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	}
 	if (fct_chains_extract(&c, m, patch, err))
 		goto out;
-	/* The junctions stay: the chains meet there. */
-	for (size_t i = 0; i < c.n; i++)
-		if (c.closed[i] != 2) {
-			corner[c.vert[c.start[i]]] = 1;
-			corner[c.vert[c.start[i + 1] - 1]] = 1;
+	/* The junctions stay, where the chains meet, and a loop's first point,
+	 * where its wire starts and ends.  So does every point of a chain
+	 * against the free-form surface whose ends another chain of one of its
+	 * patches joins too: with its inner points gone, the patch's outline
+	 * would run to and fro along one segment there (a sliver of the patch
+	 * between the free-form surface and the border, say). */
+	for (size_t i = 0; i < c.n; i++) {
+		corner[c.vert[c.start[i]]] = 1;
+		corner[c.vert[c.start[i + 1] - 1]] = 1;
+	}
+	for (size_t i = 0; i < c.n; i++) {
+		if (c.right[i] != -1 || c.closed[i])
+			continue;
+		uint32_t a = c.vert[c.start[i]], b = c.vert[c.start[i + 1] - 1];
+		for (size_t j = 0; j < c.n; j++) {
+			uint32_t x = c.vert[c.start[j]], y = c.vert[c.start[j + 1] - 1];
+			if (j == i || !((x == a && y == b) || (x == b && y == a)) ||
+			    (c.left[j] != c.left[i] && c.right[j] != c.left[i]))
+				continue;
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				corner[c.vert[q]] = 1;
+			break;
 		}
+	}
 	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
 		goto out;
 	for (size_t i = 0; i < nmap; i++)

@@ -25,8 +25,9 @@ struct fct_tidy_stats {
 /* Tidy a segmentation for the planar model: patches of fewer than min_plane
  * faces become free-form (-1), too small to be worth a plane of their own;
  * then each piece of faces of one label (joined across edges; free-form
- * counts as a label) of fewer than min_free faces with one other label
- * all around it joins that label: specks of outliers inside a plane, which
+ * counts as a label) of fewer than min_free faces, or narrower than three
+ * samples (fewer faces than three times its boundary edges), with one
+ * other label all around it joins that label: specks of outliers inside a plane, which
  * the model puts on the plane, and the islands that a crease's noise leaves
  * on either side of it, each of which would cost the model a boundary.
  * patch: m->nf labels, changed in place. */
@@ -36,10 +37,10 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 /* Facets of curved surfaces become free-form: each patch whose boundary
  * with other patches runs, for at least min_share of its length, along
  * creases shallower than max_angle degrees (the angle between the planes'
- * normals).  Noise large enough lets planes fit a sphere or a cylinder
- * piecewise; such facets meet each other at shallow creases all round,
- * which walls, floors and boxes, meeting at right angles or at the image's
- * edge, do not.  patch changes in place; *facets gets the count. */
+ * normals) with three or more patches.  Noise large enough lets planes fit
+ * a sphere piecewise; such facets meet several others at shallow creases
+ * all round, which walls, floors and boxes, meeting at right angles or at
+ * the image's edge, do not, nor a plane that noise split in two.  patch changes in place; *facets gets the count. */
 int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
                         struct fct_err *err);

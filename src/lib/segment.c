@@ -30,7 +30,7 @@
 #define CLUSTER_FIT 2.0
 /* Faces narrower than this many times their noise are no plane's evidence
  * (see narrow). */
-#define PEEL_ROUNDS 3
+#define PEEL_ROUNDS 2
 /* Rounding in the moments is of the order of 1e-16 times the scatter's
  * trace: an increase of the residual below 64 times that is no increase. */
 #define ROUNDING 1.4e-14
@@ -86,6 +86,7 @@ struct seg {
 	size_t nfpairs;
 	struct rheap q;
 	double *wv;              /* each vertex's weight, 1 / sigma^2 */
+	double *isigma;          /* and 1 / sigma */
 	double area_unit;        /* area weighting: a third of the mean face area */
 	double floor2;           /* no noise below (1e-7 bounding-box diagonal)^2 */
 	double max_ms, stop;     /* max_rms^2, factor^2 */
@@ -942,7 +943,7 @@ static double face_deviation(const struct seg *S, size_t f, const struct fct_pla
 		uint32_t v = m->fvert[c];
 		const double *p = &m->xyz[3 * (size_t)v];
 		double d = pl->n[0] * p[0] + pl->n[1] * p[1] + pl->n[2] * p[2] + pl->d;
-		dev += d * sqrt(S->wv[v]);
+		dev += d * S->isigma[v];
 	}
 	return fabs(dev) / n;
 }
@@ -1027,10 +1028,12 @@ static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_pla
 	size_t nf = S->m->nf;
 	int32_t *best = fct_alloc_array(nf ? nf : 1, sizeof *best, err);
 	double *dev = fct_alloc_array(nf ? nf : 1, sizeof *dev, err);
-	if (!best || !dev) {
-		free(best), free(dev);
-		return -1;
+	unsigned char *changed = malloc(nf ? nf : 1);
+	if (!best || !dev || !changed) {
+		free(best), free(dev), free(changed);
+		return fct_fail(err, "out of memory");
 	}
+	memset(changed, 1, nf);
 	for (int round = 0; round < 64; round++) {
 		for (size_t f = 0; f < nf; f++)
 			best[f] = -1;
@@ -1038,7 +1041,8 @@ static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_pla
 			for (int side = 0; side < 2; side++) {
 				uint32_t f = S->fpair[i][side], g = S->fpair[i][!side];
 				int32_t a = patch[f], b = patch[g];
-				if (a < 0 || b < 0 || a == b)
+				/* Only where a label changed last round can one change now. */
+				if (a < 0 || b < 0 || a == b || (!changed[f] && !changed[g]))
 					continue;
 				if (best[f] < 0) {
 					best[f] = a;
@@ -1049,16 +1053,18 @@ static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_pla
 					best[f] = b, dev[f] = d;
 			}
 		size_t moved = 0;
-		for (size_t f = 0; f < nf; f++)
-			if (best[f] >= 0 && best[f] != patch[f]) {
+		for (size_t f = 0; f < nf; f++) {
+			changed[f] = best[f] >= 0 && best[f] != patch[f];
+			if (changed[f]) {
 				patch[f] = best[f];
 				moved++;
 			}
+		}
 		S->st.settled += moved;
 		if (!moved)
 			break;
 	}
-	free(best), free(dev);
+	free(best), free(dev), free(changed);
 	return 0;
 }
 
@@ -1351,6 +1357,12 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 			sv[v] = (float)(sg < HUGE_VAL ? sg : 0);
 		}
 		S.st.noise = m->nv ? select_float(sv, m->nv, (m->nv - 1) / 2, count) : 0;
+		if (!(S.isigma = fct_alloc_array(m->nv ? m->nv : 1, sizeof *S.isigma, err))) {
+			free(sv);
+			goto out;
+		}
+		for (size_t v = 0; v < m->nv; v++)
+			S.isigma[v] = sqrt(S.wv[v]);
 		free(sv);
 		free(count);
 		count = NULL;
@@ -1446,6 +1458,7 @@ out:
 	free(S.pair);
 	free(S.fpair);
 	free(S.wv);
+	free(S.isigma);
 	free(S.dirty);
 	rh_free(&S.q);
 	S.st.seconds = fct_now() - t0;

@@ -8,91 +8,86 @@
  * edge of k faces, every pair of them when k <= 8, otherwise each face and
  * the next in index order); faces that share only a vertex are not.
  *
- * Points and weights.  By default each face contributes its corners, one
- * point of weight 1 per corner: a vertex shared by j faces of a patch
- * counts j times (in a regular triangle grid an interior vertex counts 6
- * times, a vertex on the patch's outline fewer).  A patch's moments are then
- * the plain sum of its faces', so the fit of a union is O(1).  With area
- * weighting each face contributes the exact moments of its surface (a
- * polygon as the fan of triangles from its first corner), weight = area, so
- * a region sampled twice as densely does not pull the plane twice as hard
- * (section 7); a face of zero area has no weight.
+ * Noise.  Every bound is in units of the data's noise: each vertex's sigma
+ * (the expected deviation of its position along its ray: dm2mesh's vertex
+ * property from the sensor's noise model, noise.h), or, when the mesh has
+ * none, the noise its data show (fct_noise_estimate_vertices: plane fits
+ * over neighbourhoods of several rings, above any quantisation plateau), or
+ * for a mesh too small to tell, the floor of exact data (1e-7 of its
+ * bounding box's diagonal).  Never from one-ring residuals: quantised depth
+ * comes in plateaus of equal depth, exact planes along the optical axis.
  *
- * The fit (eq. 1): the plane through the weighted centroid whose normal is
- * the eigenvector of the smallest eigenvalue of the scatter matrix
- * S = sum w (p - c)(p - c)^T; that eigenvalue is the patch's summed squared
- * residual sse, and its rms is sqrt(sse / sum w).  Moments are kept central
- * (weight, centroid, scatter about it) and combined by the parallel-axis
- * rule, so large coordinates lose no precision.
+ * Points and weights.  Each face contributes its corners, each weighted by
+ * 1 / sigma^2 of its vertex (a vertex shared by j faces of a patch counts j
+ * times), or with area weighting the exact moments of its surface weighted
+ * by its corners' mean 1 / sigma^2 (section 7's uneven density).  A patch's
+ * moments (weight, centroid, scatter about it, kept central and combined by
+ * the parallel-axis rule) are then the sum of its faces', so the fit of a
+ * union is O(1).  The fit (eq. 1): the plane through the weighted centroid
+ * whose normal is the eigenvector of the least eigenvalue of the scatter;
+ * that eigenvalue is the patch's chi^2, the sum of its points' squared
+ * residuals in units of their noise, and chi^2 / n (n its corners) its mean.
  *
- * Local noise.  For each face, the least mean square of its union with one
- * of its neighbours, then the least of that over the face and its
- * neighbours (a face across a crease, all of whose pairs fold, gets the
- * noise of the planes beside it): e_f^2, zero on exact planes.  Times 47
- * (the ratio of a typical pair's mean square to that statistic, measured on
- * noisy planes), its median over the faces is E^2: the paper's E-bar, the
- * scale of noise and curvature, reported as `noise`.  With a viewpoint (data
- * from a depth sensor), E^2 is at least 0.3 times the upper quartile of the
- * pairs' mean squares: sensors quantise depth, and the plateaus of equal
- * depth make most adjacent pairs exactly coplanar (60 to 70% of them in
- * TUM and 7-Scenes frames), which hides the noise from each face's least
- * pair but not from the quartile.
- *
- * Phase 1, clusters.  Greedy merging by the sse of the union, which can
+ * Phase 1, clusters.  Greedy merging by the chi^2 of the union, which can
  * only grow as a part grows, so a queued key is a lower bound: pop, cost
- * again, push back if it grew, else merge; the order is exactly greedy.
- * (A pair that is the least of both its faces' merges before anything
- * touches them, so those are merged in one pass first: the same result.)  A
+ * again, push back if it grew, else merge; the order is exactly greedy.  A
  * union is refused for good past 64 faces, past max_rms, or when its mean
- * square exceeds 2^2 times the largest of E^2, the parts' own mean squares
- * and the lesser of the parts' mean e_f^2.  Each cluster's noise is then
- * nu^2 = (sse + 8 w e^2) / (w + 8 w) with w the mean face weight and e^2 the
- * cluster's mean e_f^2: its own residual at a scale where a plane is a
- * plane, leaning on the local figure while it is small.  Clusters follow
- * the noise where it varies (a Kinect's grows as depth squared).
+ * chi^2 exceeds 2^2.
  *
  * Phase 2, patches.  The cost of merging patches a and b is how far, in
- * mean square, the smaller one moves from its own plane to the plane of
- * the union, relative to the noise of the larger:
- *     t = (sse(a u b) - sse(a) - sse(b)) / (w_small nu_large^2),
- * nu^2 being the weighted mean of the patch's clusters' noise (and at
- * least (1e-7 times the bounding-box diagonal)^2, so exact data compare).
- * t is dimensionless: the result does not change when the input is
- * rotated, moved or scaled (up to floating-point ties, broken by index).
- * It is not monotone, so the queue's lazy re-evaluation (merge the popped
- * pair unless its cost grew) is greedy up to stale keys; the automatic
- * criterion therefore ends with sweeps that cost afresh every adjacent pair
- * whose patches changed, until one merges nothing.
+ * mean square and in units of the noise, the points of the smaller one
+ * move from its own plane to the plane of the union:
+ *     t = (chi^2(a u b) - chi^2(a) - chi^2(b)) / n_small,
+ * and a union is made only while its mean chi^2 stays within fit^2 (its
+ * points consistent with one plane and their noise: quantisation's
+ * plateaus of a slanted wall included, whose staircase about the true
+ * plane is what sigma's quantisation term is).  t is dimensionless: the
+ * result does not change when the input is rotated, moved or scaled (up to
+ * floating-point ties, broken by index).  It is not monotone, so the
+ * queue's lazy re-evaluation is greedy up to stale keys; the automatic
+ * criterion ends with sweeps that cost afresh every adjacent pair whose
+ * patches changed, until one merges nothing.
  *
  * Stop criteria:
  *   target > 0     stop at that many patches (T_N of the paper), in either
- *                  phase;
- *   target == 0    automatic: stop when the cheapest merge has t > factor^2,
- *                  i.e. the smaller part would move by more than factor
- *                  times the noise (the paper's threshold as a multiple of
- *                  E-bar, made local);
+ *                  phase (the fit test is not applied then);
+ *   target == 0    automatic: stop when the cheapest merge has t > factor^2;
  *   max_rms        in both modes a union of rms above max_rms is never made
  *                  (a hard bound in the units of the coordinates).
  * Then, in the automatic mode and when min_faces > 1, each patch of fewer
  * faces is absorbed into the adjacent patch of at least min_faces faces
- * that fits it best (least increase of sse, never past max_rms): specks of
- * noise and the faces across creases.  The host keeps its plane.  Small
- * patches next to small ones only, such as a cube's faces, stay.
+ * whose plane fits it best, while the union still passes the fit test and
+ * its points move by at most max_dev sigma (mean square); the host's plane
+ * is fitted again.
  *
- * The queue is a radix heap with a prefetching front (see segment.c);
+ * The guarantee, and free-form faces.  Each patch's plane is fitted again
+ * to its faces, and a face whose distance from it (its centroid's, each
+ * corner in units of its sigma) exceeds max_dev leaves the patch: free-form
+ * (label -1, no plane fits it within the noise), for three rounds.  Then
+ * the patches grow back into the free-form faces their planes fit within
+ * max_dev (region growing leaves faces along a crease to whichever side got
+ * there first), and each face on a boundary between two patches moves to
+ * the one whose plane it is nearer (so that boundaries run along the
+ * planes' lines, not in teeth on either side).  A patch narrower than
+ * min_extent sigma (a strip a few samples wide fits any plane and says
+ * nothing of the surface), and one of fewer than min_faces faces when some
+ * patch reaches that size (a curved surface cut into facets), is free-form
+ * too.  So no face of a patch lies farther than max_dev sigma from its
+ * plane.
+ * * The queue is a radix heap with a prefetching front (see segment.c);
  * patches are a union-find, so no adjacency list is kept or merged and a
  * merge is O(1): the run is O(F log F) at worst, about a microsecond a face.
  *
  * Output.  Patches are numbered 0, 1, ... in the order of their smallest
- * face index.  Each plane is the fit above, or, when the points were
- * measured along rays from a viewpoint (use_viewpoint), the least-squares
- * plane in inverse distance along those rays, which has no error in the
- * variables when the noise lies along the rays (the orthogonal fit is then
- * biased, by a degree and more for small far planes of a Kinect frame).  Its
- * normal points to the side the patch's faces face (the sum of their vector
- * areas); rms is the residual of the points the plane was fitted to
- * (absorbed faces excluded); count is the number of distinct vertices of
- * the patch's faces. */
+ * face index; free-form faces are -1.  Each plane is the fit above, or,
+ * when the points were measured along rays from a viewpoint (use_viewpoint),
+ * the least-squares plane in inverse distance along those rays, each point
+ * weighted by s^4 / sigma^2 (1/s has deviation sigma / s^2), which has no
+ * error in the variables when the noise lies along the rays (the orthogonal
+ * fit is then biased, by a degree and more for small far planes of a Kinect
+ * frame).  Its normal points to the side the patch's faces face (the sum of
+ * their vector areas); rms is the residual of its corners (metres); count is
+ * the number of distinct vertices of the patch's faces. */
 #ifndef FCT_SEGMENT_H
 #define FCT_SEGMENT_H
 
@@ -115,7 +110,7 @@ struct fct_segment_params {
 	double fit;           /* a patch's mean squared residual stays within fit^2 sigma^2 */
 	double max_dev;       /* no face farther than max_dev sigma from its plane (free-form) */
 	double min_extent;    /* a patch narrower than min_extent sigma is free-form (0: none) */
-	const double *sigma;  /* m->nv noise figures (metres; NULL: estimated E-bar) */
+	const double *sigma;  /* m->nv noise figures (metres; NULL: estimated from the data) */
 	double max_rms;       /* never merge beyond this rms (HUGE_VAL: no bound) */
 	int area_weighted;    /* 1: area-weighted surface moments; 0: corners */
 	long min_faces;       /* absorb patches of fewer faces (0 or 1: none) */
@@ -132,7 +127,7 @@ struct fct_segment_stats {
 	size_t evaluations;   /* union fits computed */
 	size_t repushes;      /* pairs pushed back because their cost grew */
 	size_t sweeps;        /* fresh passes after the first (automatic) */
-	double noise;         /* E-bar: sqrt(47 median e_f^2) */
+	double noise;         /* the vertices' median sigma */
 	double max_rms;       /* largest patch rms */
 	double mean_rms;      /* patch rms averaged over faces */
 	double last_ratio;    /* sqrt(t) of the last merge of phase 2 */
