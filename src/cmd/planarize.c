@@ -31,10 +31,11 @@ static const char usage[] =
 	"                 [--focal f] [--range min,max] [--step n] [-j jump]\n"
 	"                 [--max-angle deg] [--noise model | file] [--pose file]\n"
 	"                 [--image file] [-c factor | -n patches] [--area-weighted]\n"
-	"                 [--fit k] [--max-dev k] [--max-rms r] [--min-faces k] [--tls]\n"
-	"                 [-e error] [--border k] [--max-hole k] [--max-move k]\n"
-	"                 [--min-free k] [--min-plane k] [--outline k] [--count n]\n"
-	"                 [--fov deg] [--keep dir] [depth-image | mesh] [image]\n"
+	"                 [--fit k] [--max-dev k] [--max-rms r] [--min-extent k]\n"
+	"                 [--min-faces k] [--tls] [-e error] [--border k] [--max-hole k]\n"
+	"                 [--max-move k] [--min-free k] [--min-plane k] [--outline k]\n"
+	"                 [--count n] [--fov deg] [--keep dir] [depth-image | mesh]\n"
+	"                 [image]\n"
 	"Make a concise model of a scene's planes from a depth image (PNG, PFM) and its\n"
 	"co-registered image, or from a mesh (PLY, OBJ), told by content: the depth\n"
 	"meshed (dm2mesh), its faces grouped into planar patches (segplanes), planes\n"
@@ -63,14 +64,16 @@ static const char usage[] =
 	"      --image file   the co-registered image (or the second operand)\n"
 	"Planar patches, as segplanes(1):\n"
 	"  -c factor          merge while the smaller patch moves by at most factor\n"
-	"                     times the noise (default 3)\n"
+	"                     sigma, rms (default 3)\n"
 	"  -n patches         stop at this many patches instead\n"
 	"      --area-weighted\n"
 	"                     weight each face by its area\n"
-	"      --fit k        a patch's rms stays within k sigma (default 1.5)\n"
-	"      --max-dev k    no face of a patch farther than k sigma from its plane\n"
-	"                     (default 3)\n"
+	"      --fit k        a patch's points stay within k sigma of its plane, rms\n"
+	"                     (default 1.5)\n"
+	"      --max-dev k    no face farther than k sigma from its patch's plane: it\n"
+	"                     is free-form (default 3)\n"
 	"      --max-rms r    never make a patch of rms above r (metres)\n"
+	"      --min-extent k a patch narrower than k sigma is free-form (default 10)\n"
 	"      --min-faces k  absorb patches of fewer faces (default: one in 600 of the\n"
 	"                     dense mesh's faces, at least 8)\n"
 	"      --tls          fit planes orthogonally, not along the camera's rays\n"
@@ -92,7 +95,7 @@ static const char usage[] =
 	"      --version      print the version\n";
 
 enum {
-	OPT_VERSION = 256, OPT_AREA, OPT_FIT, OPT_MAXDEV, OPT_MAXRMS, OPT_MINFACES, OPT_TLS,
+	OPT_VERSION = 256, OPT_AREA, OPT_FIT, OPT_MAXDEV, OPT_MAXRMS, OPT_MINEXTENT, OPT_MINFACES, OPT_TLS,
 	OPT_BORDER, OPT_MAXHOLE, OPT_MAXMOVE, OPT_MINFREE, OPT_MINPLANE, OPT_OUTLINE, OPT_COUNT,
 	OPT_FOV, OPT_KEEP
 };
@@ -116,6 +119,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"fit", required_argument, NULL, OPT_FIT},
 		{"max-dev", required_argument, NULL, OPT_MAXDEV},
 		{"max-rms", required_argument, NULL, OPT_MAXRMS},
+		{"min-extent", required_argument, NULL, OPT_MINEXTENT},
 		{"min-faces", required_argument, NULL, OPT_MINFACES},
 		{"tls", no_argument, NULL, OPT_TLS},
 		{"border", required_argument, NULL, OPT_BORDER},
@@ -156,6 +160,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		case OPT_FIT: o->seg.fit = fct_opt_double("--fit", optarg, 0, HUGE_VAL); break;
 		case OPT_MAXDEV: o->seg.max_dev = fct_opt_double("--max-dev", optarg, 0, HUGE_VAL); break;
 		case OPT_MAXRMS: o->seg.max_rms = fct_opt_double("--max-rms", optarg, 0, HUGE_VAL); break;
+		case OPT_MINEXTENT: o->seg.min_extent = fct_opt_double("--min-extent", optarg, 0, HUGE_VAL); break;
 		case OPT_MINFACES:
 			o->seg.min_faces = fct_opt_long("--min-faces", optarg, 0, INT32_MAX);
 			o->min_faces_given = 1;

@@ -58,10 +58,10 @@ check_num "gauss: E_max is meshdist's" "$(awk -v a="$(field E_max "$R/err")" -v 
 # Structured-light noise as ICL-NUIM simulates it (disparity noise, 1/8-px
 # steps, jittered sampling; measured: 424x, 1437 faces; mean distance to
 # the truth 4.0 mm against 16.1 for the dense mesh and 5.4 for QEM, p95 21
-# mm against 50 and 17).
+# mm against 50 and 17; measured on planar 0ad0ec0, 355x at d60fa92).
 room kinect kinect
 R=$TMP/kinect
-check_num "kinect: reduction 350x" "$(field reduction "$R/err")" ">=" 350
+check_num "kinect: reduction 300x" "$(field reduction "$R/err")" ">=" 300
 check_num "kinect: closer to the truth than the dense mesh (mean, half)" \
 	"$(ratio "$(figure mean "$R/model")" "$(figure mean "$R/dense")")" "<" 0.5
 check_num "kinect: closer to the truth than QEM at the same face count (mean)" \
