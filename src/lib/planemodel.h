@@ -34,10 +34,12 @@ struct fct_tidy_stats {
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
                      struct fct_tidy_stats *st, struct fct_err *err);
 
-/* Facets of curved surfaces become free-form: each patch whose boundary
- * with other patches runs, for at least min_share of its length, along
+/* Facets of curved surfaces become free-form: each patch whose outline
+ * (to other patches, the free-form surface and the outside) runs, for at
+ * least min_share of its length, along
  * creases shallower than max_angle degrees (the angle between the planes'
- * normals) with three or more patches.  Noise large enough lets planes fit
+ * normals; but 3 degrees at least: planes nearer parallel make no crease, a
+ * sheet of paper on a table) with three or more patches.  Noise large enough lets planes fit
  * a sphere piecewise; such facets meet several others at shallow creases
  * all round, which walls, floors and boxes, meeting at right angles or at
  * the image's edge, do not, nor a plane that noise split in two.  patch changes in place; *facets gets the count. */
@@ -119,6 +121,7 @@ struct fct_planar_stats {
 	struct fct_chain_stats chains;   /* the outlines' simplification */
 	struct fct_tripatch_stats tri;   /* their triangulation */
 	size_t planar_triangles, free_faces;
+	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
 	size_t rounds, unclean_patches;  /* patches made free-form, not clean */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
