@@ -27,6 +27,9 @@ static uint32_t uf_find(int32_t *parent, uint32_t x)
 	return x;
 }
 
+/* A patch of at least 1 / LARGE_PATCH of the faces is worth keeping a plane
+ * with its outline as sampled rather than made free-form. */
+#define LARGE_PATCH 50
 /* Narrower than this many samples, a piece of faces is a sliver. */
 #define SLIVER_WIDTH 3
 
@@ -996,7 +999,8 @@ static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsign
 static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
-                       unsigned char *unclean, struct fct_planar_stats *st, struct fct_err *err)
+                       const unsigned char *dense, unsigned char *unclean,
+                       struct fct_planar_stats *st, struct fct_err *err)
 {
 	struct fct_chains c;
 	memset(&c, 0, sizeof c);
@@ -1023,6 +1027,10 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	for (size_t i = 0; i < c.n; i++) {
 		corner[c.vert[c.start[i]]] = 1;
 		corner[c.vert[c.start[i + 1] - 1]] = 1;
+		/* A patch's whole outline stays as sampled (dense). */
+		if (dense[c.left[i]] || (c.right[i] >= 0 && dense[c.right[i]]))
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				corner[c.vert[q]] = 1;
 	}
 	for (size_t i = 0; i < c.n; i++) {
 		if (c.right[i] != -1 || c.closed[i])
@@ -1049,7 +1057,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		goto out;
 	}
 	for (size_t i = 0; i < c.n; i++) {
-		if (c.right[i] != -1)
+		if (c.right[i] != -1 && !dense[c.left[i]] && !(c.right[i] >= 0 && dense[c.right[i]]))
 			continue;
 		c.frozen[i] = 1;
 		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
@@ -1119,7 +1127,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t np = 0;
 	int32_t *patch = NULL;
 	double *sigma = NULL, *spacing = NULL;
-	unsigned char *unclean = NULL;
+	unsigned char *unclean = NULL, *dense = NULL;
+	size_t *nfaces = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
 	int present = 0, rc = -1;
@@ -1148,8 +1157,12 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
-	    !(unclean = calloc(np ? np : 1, 1)))
+	    !(unclean = calloc(np ? np : 1, 1)) || !(dense = calloc(np ? np : 1, 1)) ||
+	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)))
 		goto out;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0)
+			nfaces[patch[f]]++;
 	/* Rounds: a patch that does not triangulate cleanly from its outline
 	 * (its loops cross in its plane, or a diagonal exists elsewhere) becomes
 	 * free-form, until none is left. */
@@ -1157,10 +1170,15 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		memset(unclean, 0, np ? np : 1);
 		fct_mesh_free(&w);
 		fct_mesh_init(&w);
-		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, unclean,
-		                st, err))
+		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, dense,
+		                unclean, st, err))
 			goto out;
+		/* Unclean: a large patch keeps its outline as sampled, a small one
+		 * (or a large one still unclean) becomes free-form. */
 		size_t more = 0;
+		for (size_t l = 0; l < np; l++)
+			if (unclean[l] && !dense[l] && nfaces[l] >= m->nf / LARGE_PATCH)
+				dense[l] = 1, unclean[l] = 0, more++, st->dense_patches++;
 		for (size_t f = 0; f < m->nf; f++)
 			if (patch[f] >= 0 && unclean[patch[f]])
 				patch[f] = -1, more++;
@@ -1198,6 +1216,6 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	rc = 0;
 out:
 	fct_mesh_free(&w);
-	free(pl), free(patch), free(sigma), free(spacing), free(unclean);
+	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(dense), free(nfaces);
 	return rc;
 }

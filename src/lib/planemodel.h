@@ -122,7 +122,8 @@ struct fct_planar_stats {
 	struct fct_tripatch_stats tri;   /* their triangulation */
 	size_t planar_triangles, free_faces;
 	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
-	size_t rounds, unclean_patches;  /* patches made free-form, not clean */
+	size_t rounds, dense_patches;    /* patches whose outline was kept as sampled */
+	size_t unclean_patches;          /* ... and made free-form, still not clean */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
 };
@@ -146,8 +147,10 @@ void fct_planar_params_default(struct fct_planar_params *p);
  *  4. each patch the polygon of its outline, triangulated (tripatch.h), and
  *     the free-form faces beside them: one surface, edge for edge;
  *  5. a patch whose outline does not triangulate cleanly (its loops cross,
- *     or a diagonal would be an edge of three faces) becomes free-form and
- *     the model is made again, until none is left;
+ *     or a diagonal would be an edge of three faces) becomes free-form, or
+ *     when it holds a fiftieth of the faces or more, keeps its outline as
+ *     sampled (and free-form only if even that fails); the model is made
+ *     again, until none is left;
  *  6. fct_planes_meet: vertices onto the planes' lines and corners.
  * 0, or -1 (message set; m may be half done). */
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,

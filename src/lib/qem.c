@@ -624,6 +624,23 @@ static int link_ok(struct qem *s, uint32_t a, uint32_t b, int *dying, uint32_t *
 	return 1;
 }
 
+/* Held borders with a viewpoint (one view's mesh): would the triangle with
+ * corners c before (normal n0) and n after (normal n1) turn to face the
+ * other way as seen from the viewpoint?  A depth map's surface is a height
+ * field over its image; so it must stay, or its triangles fold over its
+ * borders in the image, where the planes beside them are triangulated. */
+static int turns_from_view(const struct qem *s, const double *const c[3], const double *const n[3],
+                           const double n0[3], const double n1[3])
+{
+	double g0[3], g1[3];
+	for (int i = 0; i < 3; i++) {
+		g0[i] = (c[0][i] + c[1][i] + c[2][i]) / 3 - s->vp[i];
+		g1[i] = (n[0][i] + n[1][i] + n[2][i]) / 3 - s->vp[i];
+	}
+	double r0 = fct_v3_dot(n0, g0), r1 = fct_v3_dot(n1, g1);
+	return r0 != 0 && !(r0 * r1 > 0);
+}
+
 /* Would moving a and b to x turn or flatten a surviving triangle? */
 static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 {
@@ -655,6 +672,8 @@ static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 			if (!(fct_v3_dot(n1, n1) > 1e-24 * l2 * l2))
 				return 1;
 			if (fct_v3_dot(n0, n1) <= 0 && (n0[0] != 0 || n0[1] != 0 || n0[2] != 0))
+				return 1;
+			if (s->cls && s->has_vp && turns_from_view(s, c, n, n0, n1))
 				return 1;
 		}
 	}
