@@ -612,9 +612,11 @@ static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct
 	size_t n = 0, cap = 0, nv0 = m->nv;
 	for (size_t v = 0; v < nv0; v++) {
 		int32_t ls[8];
-		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls), other = k >= 2;
+		for (uint32_t j = vstart[v]; j < vstart[v + 1] && !other; j++)
+			other = patch[vf[j]] < 0;   /* beside the free-form surface */
 		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
-		if (k < 2 || !(e2 > 0))
+		if (k < 1 || !other || !(e2 > 0))
 			continue;
 		for (int i = 0; i < k; i++) {
 			const struct fct_plane *pl = &planes[ls[i]];

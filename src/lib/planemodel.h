@@ -85,7 +85,8 @@ struct fct_meet_stats {
  * are NULL; where creases meet is known to a sample); a move that
  * turns a face over (against its plane's normal) or leaves it a sliver is
  * taken back, in rounds: Kang et al.'s section 5.  A vertex then still off
- * one of its planes by more than its uncertainty is torn: that patch's
+ * one of its planes by more than its uncertainty (where patches meet, or
+ * where a patch meets the free-form surface) is torn: that patch's
  * faces get a copy of it on their plane (along its ray), so that no plane
  * is tilted by another's vertex; the surface has a crack there, as the
  * sensor saw it (an occlusion).  0, or -1 out of memory. */

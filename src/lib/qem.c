@@ -24,6 +24,9 @@
 enum { ALIVE = 1, BORDER = 2, LOCKED = 4, MOVED = 8 };
 /* Held borders: a vertex inside, on a border, at a corner (qem.h). */
 enum { INSIDE = 0, ON_BORDER = 1, CORNER = 2 };
+/* Held borders: the thinnest triangle a collapse may make (twice the area
+ * over the longest edge squared), unless it was as thin. */
+#define HELD_QUALITY 1e-4
 
 /* A quadric x^T A x + 2 b.x + c: a[0..5] = A00 A01 A02 A11 A12 A22,
  * a[6..8] = b, a[9] = c; w is the face area it carries. */
@@ -624,6 +627,15 @@ static int link_ok(struct qem *s, uint32_t a, uint32_t b, int *dying, uint32_t *
 	return 1;
 }
 
+/* The longest edge of triangle c, to the fourth power. */
+static double before_l4(const double *const c[3])
+{
+	double l2 = fct_v3_dist2(c[0], c[1]), m2 = fct_v3_dist2(c[1], c[2]), k2 = fct_v3_dist2(c[2], c[0]);
+	l2 = m2 > l2 ? m2 : l2;
+	l2 = k2 > l2 ? k2 : l2;
+	return l2 * l2;
+}
+
 /* Held borders with a viewpoint (one view's mesh): would the triangle with
  * corners c before (normal n0) and n after (normal n1) turn to face the
  * other way as seen from the viewpoint?  A depth map's surface is a height
@@ -674,6 +686,11 @@ static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 			if (fct_v3_dot(n0, n1) <= 0 && (n0[0] != 0 || n0[1] != 0 || n0[2] != 0))
 				return 1;
 			if (s->cls && s->has_vp && turns_from_view(s, c, n, n0, n1))
+				return 1;
+			/* Held borders: no sliver thinner than HELD_QUALITY (twice the
+			 * area over the longest edge squared) unless it was. */
+			if (s->cls && sqrt(fct_v3_dot(n1, n1)) < HELD_QUALITY * l2 &&
+			    fct_v3_dot(n1, n1) * before_l4(c) < fct_v3_dot(n0, n0) * l2 * l2)
 				return 1;
 		}
 	}
