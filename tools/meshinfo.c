@@ -18,7 +18,8 @@ static const char usage[] =
 	"Describe each mesh (PLY or OBJ; stdin when no file is given or for \"-\"):\n"
 	"format, elements and properties, comments, counts, bounding box, edges,\n"
 	"components, isolated vertices, degenerate and duplicate faces, the\n"
-	"noise model and the vertices' sigma, as \"key: value\" lines.\n"
+	"noise model, the noise estimated from the data and the vertices' sigma,\n"
+	"as \"key: value\" lines.\n"
 	"  -h, --help    this help\n"
 	"      --version print the version\n";
 
@@ -211,6 +212,20 @@ static int print_sigma(const struct fct_mesh *m, struct fct_err *err)
 	return 0;
 }
 
+/* The noise estimated from the data (noise.h), or none when the mesh gives
+ * too little to estimate it. */
+static void print_estimate(const struct fct_mesh *m)
+{
+	struct fct_noise_fit fit;
+	struct fct_err err;
+	if (fct_noise_fit(&fit, m, &err)) {
+		printf("sigma_estimate: none\nsigma_estimate_law: none\n");
+		return;
+	}
+	printf("sigma_estimate: %.9g\n", fit.sigma);
+	printf("sigma_estimate_law: %.9g z^%d %s\n", fit.c, fit.p, fit.camera ? "along rays" : "along normals");
+}
+
 /* Topology and face checks; -1 with err set when out of memory. */
 static int print_topology(const struct fct_mesh *m, double diag2, struct fct_err *err)
 {
@@ -252,6 +267,8 @@ static int describe(const char *path, int *printed, struct fct_err *err)
 	print_counts(&m);
 	double diag2 = print_bbox(&m);
 	int rc = print_topology(&m, diag2, err);
+	if (!rc)
+		print_estimate(&m);
 	if (!rc)
 		rc = print_sigma(&m, err);
 	if (rc)

@@ -15,7 +15,11 @@
  *
  * With a noise model (noise.h) each vertex gets the float property sigma:
  * the expected standard deviation (metres) of its position along its ray,
- * fct_noise_sigma of its depth times the ray's length per unit depth. */
+ * fct_noise_sigma of its depth times the ray's length per unit depth.  The
+ * model also widens the depth-jump test (gridmesh.h) by what the noise of
+ * two samples may make of one surface: noise_jump times the deviation of
+ * their difference, sqrt(2) sigma(z) at the farther depth z, so that a far
+ * wall under Kinect noise stays one surface while occlusions are cut. */
 #ifndef FCT_DEPTHMESH_H
 #define FCT_DEPTHMESH_H
 
@@ -34,11 +38,12 @@ struct fct_depth_params {
 	struct fct_grid_params grid;
 	int texcoords;            /* add float vertex properties s, t */
 	struct fct_noise noise;   /* FCT_NOISE_UNKNOWN: no sigma property */
+	double noise_jump;        /* deviations of noise allowed in a jump */
 };
 
 /* The defaults: scale 1000, no disparity, depths in (0, inf), step 1,
  * max_jump FCT_DEFAULT_MAX_JUMP, min_faces FCT_DEFAULT_MIN_FACES, s t on,
- * no noise model. */
+ * no noise model, noise_jump FCT_DEFAULT_NOISE_JUMP. */
 void fct_depth_params_default(struct fct_depth_params *p);
 
 /* Largest depth change per lateral step that is still one surface: 10 is
@@ -47,6 +52,7 @@ void fct_depth_params_default(struct fct_depth_params *p);
  * values start to shred surfaces along the sensor's noise (see dm2mesh(1)). */
 #define FCT_DEFAULT_MAX_JUMP 10.0
 #define FCT_DEFAULT_MIN_FACES 8
+#define FCT_DEFAULT_NOISE_JUMP 2.0
 
 /* Depth in metres of sample (x, y) of a one-channel depth image, 0 for no
  * data. */

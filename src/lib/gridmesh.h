@@ -9,10 +9,14 @@
  *   still gets the one triangle on them);
  * - no triangle is made across a depth discontinuity: an edge between cells
  *   a and b, L grid steps apart, is cut when
- *       |depth_a - depth_b| > max_jump * L * footprint * min(depth_a, depth_b),
+ *       |depth_a - depth_b| > max_jump * L * footprint * min(depth_a, depth_b)
+ *                             + noise_jump * sqrt(2) * max(sigma_a, sigma_b),
  *   footprint * depth being the lateral size of one grid step at that depth,
  *   so max_jump is the largest depth change per lateral step that still
- *   counts as one surface (tan of the grazing angle);
+ *   counts as one surface (tan of the grazing angle), and the last term the
+ *   change the sensor's noise alone makes of one surface: noise_jump
+ *   deviations of the difference of two samples of deviation sigma (none
+ *   without per-cell sigma);
  * - of the two diagonals of a square, the one along which the surface bends
  *   less is chosen: for each diagonal, the distance of its end cells from the
  *   3-D lines through their neighbours along it (zero on any plane and along
@@ -37,11 +41,12 @@
  * storing a position per pixel of a large depth map. */
 /* The depth-jump test that both the grid mesher and the sparse mesher apply:
  * depths da and db, `steps` pixels (or grid steps) apart laterally, are one
- * surface when |da - db| <= limit * steps * min(da, db), limit being
- * max_jump times the footprint of one step per unit depth. */
-static inline int fct_depth_joined(double da, double db, double limit, double steps)
+ * surface when |da - db| <= limit * steps * min(da, db) + allow, limit being
+ * max_jump times the footprint of one step per unit depth and allow what
+ * noise may add. */
+static inline int fct_depth_joined(double da, double db, double limit, double steps, double allow)
 {
-	return fabs(da - db) <= limit * steps * (da < db ? da : db);
+	return fabs(da - db) <= limit * steps * (da < db ? da : db) + allow;
 }
 
 struct fct_range_grid {
@@ -52,6 +57,8 @@ struct fct_range_grid {
 	const double *depth;     /* per cell, along the sensor's ray; not > 0: no data */
 	double footprint;        /* lateral size of one grid step per unit depth */
 	int wrap;                /* the last column borders the first (360-degree cylinder) */
+	const float *sigma;      /* per cell, the deviation of its depth; or NULL */
+	double noise_jump;       /* deviations of noise allowed in a jump */
 };
 
 struct fct_grid_params {

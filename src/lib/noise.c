@@ -6,8 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "adj.h"
 #include "camera.h"
+#include "geom.h"
+#include "header.h"
 #include "numparse.h"
+#include "segment.h"
 
 static const char *const model_names[] = {
 	[FCT_NOISE_NONE] = "none", [FCT_NOISE_KINECT] = "kinect", [FCT_NOISE_TOF] = "tof",
@@ -244,16 +248,284 @@ static double disparity_step(const struct fct_noise *nz, double z)
 	return nz->model == FCT_NOISE_KINECT ? z * z * nz->step / nz->fb : 0;
 }
 
+/* sigma^2 as a polynomial in z, c[0] + c[1] z + ... + c[4] z^4: every
+ * model's Gaussian part is a polynomial of degree at most 2 and its
+ * quantisation steps constant or quadratic. */
+static void sigma2_polynomial(const struct fct_noise *nz, double c[5])
+{
+	memset(c, 0, 5 * sizeof *c);
+	double a = 0, b = 0, q = 0;   /* Gaussian part a + b z + q z^2 */
+	switch (nz->model) {
+	case FCT_NOISE_NONE:
+		b = FCT_NOISE_FLOOR;
+		break;
+	case FCT_NOISE_KINECT:
+	case FCT_NOISE_STEREO:
+		q = nz->sd / nz->fb;
+		break;
+	case FCT_NOISE_TOF:
+	case FCT_NOISE_POLY:
+		a = nz->coef[0], b = nz->coef[1], q = nz->coef[2];
+		break;
+	default:
+		return;
+	}
+	double step = disparity_step(nz, 1);
+	c[0] = a * a + nz->unit * nz->unit / 12;
+	c[1] = 2 * a * b;
+	c[2] = b * b + 2 * a * q;
+	c[3] = 2 * b * q;
+	c[4] = q * q + step * step / 12;
+}
+
+static double evaluate(const double c[5], double z)
+{
+	return (((c[4] * z + c[3]) * z + c[2]) * z + c[1]) * z + c[0];
+}
+
 double fct_noise_sigma(const struct fct_noise *nz, double z)
 {
-	if (nz->model == FCT_NOISE_UNKNOWN)
-		return 0;
-	double g = fct_noise_sigma_gaussian(nz, z), q = disparity_step(nz, z);
-	return sqrt(g * g + (q * q + nz->unit * nz->unit) / 12);
+	double c[5];
+	sigma2_polynomial(nz, c);
+	return sqrt(evaluate(c, z));
+}
+
+void fct_noise_sigmas(const struct fct_noise *nz, const double *depth, float *sigma, size_t n)
+{
+	double c[5];
+	sigma2_polynomial(nz, c);
+	for (size_t i = 0; i < n; i++) {
+		double z = depth[i] > 0 ? depth[i] : 0;
+		sigma[i] = depth[i] > 0 ? (float)sqrt(evaluate(c, z)) : 0;
+	}
 }
 
 double fct_noise_step(const struct fct_noise *nz, double z)
 {
 	double q = disparity_step(nz, z);
 	return q > nz->unit ? q : nz->unit;
+}
+
+/* Estimating ---------------------------------------------------------------- */
+
+/* Where the mesh was seen from: its camera and the inverse of its pose. */
+struct viewpoint {
+	int known;
+	struct fct_camera cam;
+	double inv[12];
+};
+
+static int read_viewpoint(struct viewpoint *vp, const struct fct_mesh *m, struct fct_err *err)
+{
+	memset(vp, 0, sizeof *vp);
+	double pose[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+	int rc = fct_header_camera(m, &vp->cam, err);
+	if (rc < 0 || fct_header_pose(m, pose, err) < 0)
+		return -1;
+	vp->known = rc == 1;
+	fct_pose_invert(pose, vp->inv);
+	return 0;
+}
+
+/* Depth z of world point p and the length of its ray per unit depth; 0 when
+ * p has no depth (behind a pinhole camera, on a cylinder's axis). */
+static int depth_of(const struct viewpoint *vp, const double p[3], double *z, double *ray_len,
+                    double dir[3])
+{
+	double q[3], u, v;
+	fct_pose_apply(vp->inv, p, q);
+	if (!fct_camera_project(&vp->cam, q, &u, &v, z) || !(*z > 0))
+		return 0;
+	double len = sqrt(fct_v3_dot(q, q));
+	*ray_len = len / *z;
+	for (int k = 0; k < 3; k++)   /* the ray's direction in the world */
+		dir[k] = (vp->inv[k] * q[0] + vp->inv[4 + k] * q[1] + vp->inv[8 + k] * q[2]) / len;
+	return 1;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* The median of v[0..n) (sorted in place; the lower middle for even n). */
+static double median(double *v, size_t n)
+{
+	qsort(v, n, sizeof *v, compare_double);
+	return v[(n - 1) / 2];
+}
+
+/* One seed's neighbourhood: the vertices within r of m's vertex s, reached
+ * through faces, into list (stamp marks them with s); returns how many. */
+static size_t neighbourhood(const struct fct_mesh *m, const uint32_t *vfs, const uint32_t *vf, size_t s,
+                            double r, uint32_t *stamp, uint32_t *list)
+{
+	const double *ps = m->xyz + 3 * s;
+	double r2 = r * r;
+	size_t head = 0, tail = 0;
+	list[tail++] = (uint32_t)s;
+	stamp[s] = (uint32_t)s;
+	while (head < tail) {
+		uint32_t u = list[head++];
+		for (uint32_t k = vfs[u]; k < vfs[u + 1]; k++) {
+			uint32_t f = vf[k];
+			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+				uint32_t v = m->fvert[c];
+				if (stamp[v] == (uint32_t)s)
+					continue;
+				stamp[v] = (uint32_t)s;
+				if (fct_v3_dist2(ps, m->xyz + 3 * (size_t)v) <= r2)
+					list[tail++] = v;
+			}
+		}
+	}
+	return tail;
+}
+
+/* The mean length of the edges from vertex s to the other corners of its
+ * faces; 0 when it has none. */
+static double mean_edge(const struct fct_mesh *m, const uint32_t *vfs, const uint32_t *vf, size_t s)
+{
+	double sum = 0;
+	size_t n = 0;
+	for (uint32_t k = vfs[s]; k < vfs[s + 1]; k++) {
+		uint32_t f = vf[k];
+		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++)
+			if (m->fvert[c] != s) {
+				sum += sqrt(fct_v3_dist2(m->xyz + 3 * s, m->xyz + 3 * (size_t)m->fvert[c]));
+				n++;
+			}
+	}
+	return n ? sum / (double)n : 0;
+}
+
+/* The rms of the plane fitted to the points list[0..n) (n - 3 degrees of
+ * freedom) and the plane's unit normal. */
+static double plane_rms(const struct fct_mesh *m, const uint32_t *list, size_t n, double normal[3],
+                        double centroid[3])
+{
+	double c[3] = {0, 0, 0}, s[6] = {0, 0, 0, 0, 0, 0};
+	for (size_t i = 0; i < n; i++)
+		for (int k = 0; k < 3; k++)
+			c[k] += m->xyz[3 * (size_t)list[i] + k] / (double)n;
+	for (size_t i = 0; i < n; i++) {
+		const double *p = m->xyz + 3 * (size_t)list[i];
+		double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+		s[0] += d[0] * d[0], s[1] += d[1] * d[1], s[2] += d[2] * d[2];
+		s[3] += d[0] * d[1], s[4] += d[1] * d[2], s[5] += d[0] * d[2];
+	}
+	struct fct_plane pl;
+	double lambda = fct_plane_fit(&pl, c, s);
+	memcpy(normal, pl.n, sizeof pl.n);
+	memcpy(centroid, c, sizeof c);
+	return sqrt((lambda > 0 ? lambda : 0) / (double)(n - 3));
+}
+
+/* The median absolute deviation of log(rms / z^p) over the seeds, for the
+ * choice of p; q gets the quotients. */
+static double log_spread(const double *rms, const double *z, const double *len, size_t n, int p,
+                         double *q, double *work)
+{
+	for (size_t i = 0; i < n; i++) {
+		q[i] = rms[i] / (pow(z[i], p) * len[i]);
+		work[i] = log(q[i]);
+	}
+	double mid = median(work, n);
+	for (size_t i = 0; i < n; i++)
+		work[i] = fabs(log(q[i]) - mid);
+	return median(work, n);
+}
+
+int fct_noise_fit(struct fct_noise_fit *fit, const struct fct_mesh *m, struct fct_err *err)
+{
+	memset(fit, 0, sizeof *fit);
+	struct viewpoint vp;
+	if (read_viewpoint(&vp, m, err))
+		return -1;
+	size_t nv = m->nv, stride = nv / FCT_NOISE_SEEDS + 1, nseeds = (nv + stride - 1) / stride;
+	uint32_t *vfs = NULL, *vf = NULL;
+	uint32_t *stamp = fct_alloc_array(nv, sizeof *stamp, err);
+	uint32_t *list = fct_alloc_array(nv, sizeof *list, err);
+	double *buf = fct_alloc_array(nseeds, 5 * sizeof *buf, err);
+	int rc = -1;
+	if (!stamp || !list || !buf || fct_vertex_faces(m, &vfs, &vf, err))
+		goto out;
+	double *rms = buf, *z = buf + nseeds, *len = buf + 2 * nseeds, *q = buf + 3 * nseeds, *work = buf + 4 * nseeds;
+	memset(stamp, 0xff, nv * sizeof *stamp);
+	size_t n = 0;
+	for (size_t s = 0; s < nv; s += stride) {
+		double r = FCT_NOISE_RADIUS * mean_edge(m, vfs, vf, s);
+		size_t k = r > 0 ? neighbourhood(m, vfs, vf, s, r, stamp, list) : 0;
+		if (k < 12)
+			continue;
+		double normal[3], c[3], dir[3];
+		double e = plane_rms(m, list, k, normal, c);
+		z[n] = len[n] = 1;
+		if (vp.known) {
+			if (!depth_of(&vp, c, &z[n], &len[n], dir))
+				continue;
+			double cosine = fabs(fct_v3_dot(dir, normal));
+			e /= cosine > 0.3 ? cosine : 0.3;
+		}
+		if (e > 0 && isfinite(e))
+			rms[n++] = e;
+	}
+	if (n < 20) {
+		rc = fct_fail(err, "noise estimate: %zu neighbourhoods with a plane, 20 needed", n);
+		goto out;
+	}
+	/* The law whose quotients spread least; ties to the lower power. */
+	int best = 0;
+	if (vp.known) {
+		double spread[3];
+		for (int p = 0; p < 3; p++)
+			spread[p] = log_spread(rms, z, len, n, p, q, work);
+		for (int p = 1; p < 3; p++)
+			if (spread[p] < spread[best])
+				best = p;
+	}
+	for (size_t i = 0; i < n; i++)
+		q[i] = rms[i] / (pow(z[i], best) * len[i]);
+	fit->c = median(q, n);
+	fit->p = best;
+	fit->camera = vp.known;
+	fit->seeds = n;
+	for (size_t i = 0; i < n; i++)
+		q[i] = fit->c * pow(z[i], best) * len[i];
+	fit->sigma = median(q, n);
+	rc = 0;
+out:
+	free(stamp);
+	free(list);
+	free(buf);
+	free(vfs);
+	free(vf);
+	return rc;
+}
+
+int fct_noise_estimate(double *sigma, const struct fct_mesh *m, struct fct_err *err)
+{
+	struct fct_noise_fit fit;
+	*sigma = 0;
+	if (fct_noise_fit(&fit, m, err))
+		return -1;
+	*sigma = fit.sigma;
+	return 0;
+}
+
+int fct_noise_estimate_vertices(float *sigma, const struct fct_mesh *m, struct fct_err *err)
+{
+	struct fct_noise_fit fit;
+	struct viewpoint vp;
+	if (fct_noise_fit(&fit, m, err) || read_viewpoint(&vp, m, err))
+		return -1;
+	for (size_t v = 0; v < m->nv; v++) {
+		double z, len, dir[3];
+		if (fit.camera && depth_of(&vp, m->xyz + 3 * v, &z, &len, dir))
+			sigma[v] = (float)(fit.c * pow(z, fit.p) * len);
+		else
+			sigma[v] = (float)(fit.camera ? fit.sigma : fit.c);
+	}
+	return 0;
 }

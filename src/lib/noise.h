@@ -38,6 +38,7 @@
 #include <stddef.h>
 
 #include "err.h"
+#include "mesh.h"
 
 enum fct_noise_model {
 	FCT_NOISE_UNKNOWN = 0,   /* no model: estimate from the data */
@@ -131,6 +132,10 @@ int fct_noise_read_file(const char *path, struct fct_noise *nz, struct fct_err *
  * (the ray's length when its z is 1). */
 double fct_noise_sigma(const struct fct_noise *nz, double depth);
 
+/* fct_noise_sigma of depth[0..n) into sigma[0..n), 0 where the depth is not
+ * positive: the loop over the pixels of a depth image. */
+void fct_noise_sigmas(const struct fct_noise *nz, const double *depth, float *sigma, size_t n);
+
 /* The Gaussian part alone (what a simulation draws before rounding). */
 double fct_noise_sigma_gaussian(const struct fct_noise *nz, double depth);
 
@@ -139,5 +144,50 @@ double fct_noise_sigma_gaussian(const struct fct_noise *nz, double depth);
  * (z^2 STEP / (F B), to first order), or the encoding's unit; 0 when the
  * data are not quantised. */
 double fct_noise_step(const struct fct_noise *nz, double depth);
+
+/* Estimating the noise of a mesh that carries no sigma (a fused scan,
+ * another tool's mesh, a depth mesh of an unknown sensor).
+ *
+ * One-ring residuals cannot tell noise: quantised depth comes in plateaus,
+ * exact planes along the optical axis whose one-ring residual is 0.  The
+ * estimate works at a scale above any plateau: about FCT_NOISE_SEEDS seed
+ * vertices spread evenly by index; at each, the plane of the vertices
+ * within FCT_NOISE_RADIUS times the seed's mean edge length (reached
+ * through faces, at least 12) and the rms of their distances from it
+ * (n - 3 degrees of freedom): the noise along the normal there.  With a
+ * camera comment (the mesh of one view), each rms is moved onto the seed's
+ * ray (divided by |cos| of the angle between the ray and the normal, at
+ * least 0.3) and the noise may grow with depth z: the rms are divided by
+ * z^p |ray| for p = 0, 1, 2 (constant, time of flight, disparity sensors)
+ * and the p whose quotients spread least (median absolute deviation of
+ * their logarithms) is taken.  Curvature inflates some fits and plateaus
+ * deflate others; the median quotient c is the estimate:
+ * sigma = c z^p |ray| along the ray (c alone without a camera, along the
+ * normal).  On mkscene's room it comes within 2% of the kinect model's
+ * median sigma and 13% of a Gaussian sigma, and on the 20 7-Scenes frames
+ * (as meshes without sigma) within 8% of their kinect model's median.
+ */
+#define FCT_NOISE_SEEDS 4000
+#define FCT_NOISE_RADIUS 7.0
+
+struct fct_noise_fit {
+	double c;        /* sigma = c z^p |ray|: metres per metre^p */
+	int p;           /* 0, 1 or 2; 0 without a camera */
+	int camera;      /* 1: along the rays of the mesh's camera, 0: along normals */
+	size_t seeds;    /* neighbourhoods that had a plane and a positive rms */
+	double sigma;    /* the median of the seeds' sigma: one figure for the mesh */
+};
+
+/* Fit the noise of m as above into fit.  0, or -1 (message set) when m
+ * gives fewer than 20 neighbourhoods with a fit (few vertices, no faces, a
+ * malformed camera or pose comment) or memory runs out. */
+int fct_noise_fit(struct fct_noise_fit *fit, const struct fct_mesh *m, struct fct_err *err);
+
+/* fit.sigma alone: the mesh's noise as one figure (metres). */
+int fct_noise_estimate(double *sigma, const struct fct_mesh *m, struct fct_err *err);
+
+/* Each vertex's sigma under the fitted law, into sigma[0 .. m->nv) (a vertex
+ * behind a pinhole camera gets the fit's sigma). */
+int fct_noise_estimate_vertices(float *sigma, const struct fct_mesh *m, struct fct_err *err);
 
 #endif

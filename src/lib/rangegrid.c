@@ -211,7 +211,7 @@ int fct_range_grid_mesh(struct fct_mesh *out, const struct fct_mesh *m,
 	double st = gaps[ng / 2];
 	if (step)
 		*step = st;
-	struct fct_range_grid g = { (int)w, (int)h, xyz, NULL, NULL, depth, st / DEPTH_OFFSET, 0 };
+	struct fct_range_grid g = { (int)w, (int)h, xyz, NULL, NULL, depth, st / DEPTH_OFFSET, 0, NULL, 0 };
 	if (fct_grid_mesh(&grid, &g, p, &cell_of, NULL, err))
 		goto done;
 	/* The scan's own vertices, in the order of the grid's, with all their

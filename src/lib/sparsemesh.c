@@ -134,7 +134,7 @@ static int edge_joined(const struct fct_image_points *pts, const struct fct_came
 	double du = pts->uv[2 * a] - pts->uv[2 * b], dv = pts->uv[2 * a + 1] - pts->uv[2 * b + 1];
 	if (cam->kind == FCT_CAMERA_CYLINDRICAL && fabs(du) > cam->width / 2.0)
 		du = cam->width - fabs(du);
-	return fct_depth_joined(da, db, limit, hypot(du, dv));
+	return fct_depth_joined(da, db, limit, hypot(du, dv), 0);
 }
 
 int fct_sparse_mesh(struct fct_mesh *m, const struct fct_image_points *pts,

@@ -1,14 +1,17 @@
 /* test_noise - the sensor noise models (noise.h): sigma of every model at a
  * few depths against values worked out by hand, the kinect model's depth
  * steps against ICL-NUIM's d = 35130 / z (z in cm), parse errors, the text
- * form read back, and the header comment. */
+ * form read back, the header comment; the estimate from the data against
+ * the noise mkscene's room was given. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
+#include "depthmesh.h"
 #include "header.h"
 #include "noise.h"
+#include "noisy_view.h"
 
 static struct fct_noise parsed(const char *text)
 {
@@ -193,11 +196,119 @@ static void test_round_trip(void)
 	fct_mesh_free(&m);
 }
 
+static int compare_float(const void *a, const void *b)
+{
+	float x = *(const float *)a, y = *(const float *)b;
+	return (x > y) - (x < y);
+}
+
+/* The median of v[0..n) (sorted in place). */
+static double median_float(float *v, size_t n)
+{
+	qsort(v, n, sizeof *v, compare_float);
+	return v[(n - 1) / 2];
+}
+
+/* View 0 of mkscene's room (640x480) with sensor's noise, meshed as dm2mesh
+ * does with that model (the true sigma of each vertex), the camera and
+ * pose in the header; then the estimate from the mesh without its sigma:
+ * the law (p), the one figure against the median true sigma within 15%,
+ * each vertex's estimate against its true sigma (median ratio within 15%).
+ * Quantised depth (kinect) comes in plateaus whose one-ring residuals are
+ * 0; the estimate's scale is above them. */
+static void check_estimate(const struct fct_scene *s, const char *model, double jitter, int want_p)
+{
+	struct fct_noise sensor = parsed(model);
+	struct fct_camera cam;
+	memset(&cam, 0, sizeof cam);
+	cam.kind = FCT_CAMERA_PINHOLE;
+	cam.width = 640, cam.height = 480;
+	cam.fx = cam.fy = 525, cam.cx = 319.5, cam.cy = 239.5;
+	double pose[12], *sampled;
+	fct_scene_view_pose(s, 0, 1, pose);
+	struct fct_image img;
+	noisy_view(s, &cam, pose, &sensor, jitter, &sampled, &img);
+	struct fct_depth_params p;
+	fct_depth_params_default(&p);
+	p.noise = sensor;
+	struct fct_mesh m;
+	struct fct_err err;
+	CHECK_INT(fct_depth_mesh(&m, &img, &cam, &p, NULL, &err), 0);
+	for (size_t v = 0; v < m.nv; v++)
+		fct_pose_apply(pose, m.xyz + 3 * v, m.xyz + 3 * v);
+	CHECK_INT(fct_header_set_camera(&m, &cam, &err), 0);
+	CHECK_INT(fct_header_set_pose(&m, pose, &err), 0);
+	const struct fct_prop *ps = fct_elem_find(&m.vertex, "sigma");
+	float *truth = malloc(m.nv * sizeof *truth), *est = malloc(m.nv * sizeof *est);
+	float *ratio = malloc(m.nv * sizeof *ratio);
+	if (!ps || !truth || !est || !ratio)
+		abort();
+	memcpy(truth, ps->data, m.nv * sizeof *truth);
+	fct_elem_remove(&m.vertex, "sigma");
+
+	struct fct_noise_fit fit;
+	CHECK_INT(fct_noise_fit(&fit, &m, &err), 0);
+	CHECK_INT(fit.camera, 1);
+	CHECK_MSG(fit.p == want_p, "%s: sigma grows as z^%d", model, fit.p);
+	CHECK_MSG(fit.seeds > 3500, "%s: %zu seeds", model, fit.seeds);
+	CHECK_INT(fct_noise_estimate_vertices(est, &m, &err), 0);
+	for (size_t v = 0; v < m.nv; v++)
+		ratio[v] = est[v] / truth[v];
+	double r = median_float(ratio, m.nv), t = median_float(truth, m.nv);
+	CHECK_MSG(fabs(fit.sigma / t - 1) < 0.15, "%s: estimate %g, true median %g", model, fit.sigma, t);
+	CHECK_MSG(fabs(r - 1) < 0.15, "%s: vertices' estimates %g of the truth", model, r);
+	double one;
+	CHECK_INT(fct_noise_estimate(&one, &m, &err), 0);
+	CHECK(one == fit.sigma);
+
+	/* Without the camera: one figure along the normals, smaller than along
+	 * the rays by the cosines of the view's incidence (here 0.66). */
+	CHECK_INT(fct_header_set_camera(&m, &(struct fct_camera){FCT_CAMERA_NONE, 0, 0, 0, 0, 0, 0, 0, 0}, &err), 0);
+	CHECK_INT(fct_noise_fit(&fit, &m, &err), 0);
+	CHECK(fit.camera == 0 && fit.p == 0 && fit.c == fit.sigma);
+	if (sensor.model == FCT_NOISE_POLY)
+		CHECK_MSG(fit.sigma > 0.5 * t && fit.sigma < t, "%s without camera: %g, true %g", model, fit.sigma, t);
+	fct_mesh_free(&m);
+	fct_image_free(&img);
+	free(sampled);
+	free(truth);
+	free(est);
+	free(ratio);
+}
+
+static void test_estimate(void)
+{
+	struct fct_scene s;
+	struct fct_err err;
+	CHECK_INT(fct_scene_build(&s, "room", &err), 0);
+	check_estimate(&s, "poly:0.01,0,0", 0, 0);
+	check_estimate(&s, "kinect", 0.5, 2);
+	fct_scene_free(&s);
+
+	/* Too little to estimate from: 12 faces of a cube. */
+	struct fct_mesh m;
+	fct_mesh_init(&m);
+	for (int i = 0; i < 8; i++)
+		fct_mesh_add_vertex(&m, i & 1, (i >> 1) & 1, i >> 2, &err);
+	static const uint32_t q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+	for (int f = 0; f < 6; f++) {
+		uint32_t t1[3] = {q[f][0], q[f][1], q[f][2]}, t2[3] = {q[f][0], q[f][2], q[f][3]};
+		fct_mesh_add_face(&m, t1, 3, &err);
+		fct_mesh_add_face(&m, t2, 3, &err);
+	}
+	double sigma = 1;
+	CHECK_INT(fct_noise_estimate(&sigma, &m, &err), -1);
+	CHECK_STR(err.msg, "noise estimate: 0 neighbourhoods with a plane, 20 needed");
+	CHECK(sigma == 0);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_sigma();
 	test_steps();
 	test_parse_errors();
 	test_round_trip();
+	test_estimate();
 	CHECK_DONE();
 }
