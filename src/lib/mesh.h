@@ -124,6 +124,13 @@ struct fct_elem *fct_mesh_find_elem(const struct fct_mesh *m, const char *name);
  * replaced otherwise.  Returns the column or NULL. */
 struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
                                      enum fct_type t, struct fct_err *err);
+/* Add a list column to the faces of m with per_corner zeroed values of type
+ * t for each corner of each face, in the face's vertex order (list uchar,
+ * as MeshLab's per-wedge "texcoord", 2 per corner; the PLY writer widens
+ * the count type when a face has too many corners for uchar); an existing
+ * property of that name is replaced.  Returns the column or NULL. */
+struct fct_prop *fct_mesh_add_corner_list(struct fct_mesh *m, const char *name, enum fct_type t,
+                                          unsigned per_corner, struct fct_err *err);
 /* Add a new element with no properties and count rows, after the others. */
 struct fct_elem *fct_mesh_add_elem(struct fct_mesh *m, const char *name, size_t count,
                                    struct fct_err *err);

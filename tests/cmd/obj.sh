@@ -10,10 +10,33 @@ top=$(pwd)
 for n in obj_cube obj_split obj_negative; do
 	run_case 0 "meshconv -a $D/$n.obj" "$D/$n.ply"
 done
-check_num "cube: 8 positions, each on 3 sides, make 24 vertices" \
-	"$(grep -c '^4 ' $D/obj_cube.ply)$(sed -n 's/^element vertex //p' $D/obj_cube.ply)" == 624
+# A vertex is its v line: normals and texture coordinates that differ round
+# a position go per corner, and the mesh stays connected (it was split into
+# 24 vertices, 6 pieces, before).
+info() { meshinfo "$1" | awk -v k="$2:" '$1 == k { print $2 }'; }
+check_num "cube: 8 positions are 8 vertices" "$(info $D/obj_cube.obj vertices)" == 8
+check_num "cube: one closed surface" "$(info $D/obj_cube.obj components)$(info $D/obj_cube.obj border_edges)" == 10
 check_true "cube: texture from the mtl, relative to the current folder" \
 	grep -q "^comment TextureFile tests/data/obj_wood.png$" $D/obj_cube.ply
+
+# Issue 24's reproduction: one normal value under two indices made 6
+# vertices in 2 pieces.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2//2 4//2 3//2\n' >"$TMP/t.obj"
+check_num "issue 24: 4 vertices" "$(info "$TMP/t.obj" vertices)" == 4
+check_num "issue 24: 1 component" "$(info "$TMP/t.obj" components)" == 1
+
+# Blender's default cube as its OBJ exporter writes it (normals on, UVs,
+# flat shading: every corner its own vt / vn pair) is one closed surface of
+# 8 vertices, and OBJ -> PLY -> OBJ gives back the same OBJ, vt and vn
+# indices per corner (the 14 vt and 6 vn of the file, in its order).
+B=$D/obj_blender_cube.obj
+check_num "blender cube: 8 vertices" "$(info $B vertices)" == 8
+check_num "blender cube: one closed surface" "$(info $B components)$(info $B border_edges)" == 10
+run_case 0 "meshconv -o $TMP/bc.obj $B && meshconv -o $TMP/bc.ply $B && meshconv -o $TMP/bc2.obj $TMP/bc.ply && cmp $TMP/bc.obj $TMP/bc2.obj"
+check_num "blender cube: 14 vt back" "$(grep -c '^vt ' $TMP/bc2.obj)" == 14
+check_num "blender cube: 6 vn back" "$(grep -c '^vn ' $TMP/bc2.obj)" == 6
+grep '^f ' $B >"$TMP/f.want"
+check_true "blender cube: the faces' indices as Blender wrote them" sh -c "grep '^f ' $TMP/bc2.obj | cmp -s - $TMP/f.want"
 
 # PLY -> OBJ -> PLY keeps vertex count, polygons, every property value bit
 # for bit, and the comments (camera, pose, TextureFile, provenance, obj_info).
