@@ -63,11 +63,39 @@ void fct_cli_init(const char *prog)
 	catch_fatal_signals();
 }
 
+/* "prog: TAG TEXT" and a newline on stderr in one write, with the control
+ * characters of text escaped (\n, \r, \t, \xHH): a file name holding a
+ * newline must not make a message two lines. */
+static void put_message(const char *tag, const char *text)
+{
+	char line[4 * 2048 + 256];
+	int n = snprintf(line, sizeof line - 8, "%s: %s", fct_prog, tag);
+	size_t at = n < 0 ? 0 : (size_t)n < sizeof line - 8 ? (size_t)n : sizeof line - 8;
+	for (const unsigned char *p = (const unsigned char *)text; *p && at < sizeof line - 8; p++) {
+		if (*p >= 0x20 && *p != 0x7f)
+			line[at++] = (char)*p;
+		else if (*p == '\n' || *p == '\r' || *p == '\t')
+			line[at++] = '\\', line[at++] = *p == '\n' ? 'n' : *p == '\r' ? 'r' : 't';
+		else
+			at += (size_t)snprintf(line + at, 5, "\\x%02x", *p);
+	}
+	line[at++] = '\n';
+	fwrite(line, 1, at, stderr);
+}
+
 static void vmessage(const char *tag, const char *fmt, va_list ap)
 {
 	char buf[2048];
 	vsnprintf(buf, sizeof buf, fmt, ap);
-	fprintf(stderr, "%s: %s%s\n", fct_prog, tag, buf);
+	put_message(tag, buf);
+}
+
+void fct_error(const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vmessage("", fmt, ap);
+	va_end(ap);
 }
 
 void fct_die(int status, const char *fmt, ...)
@@ -81,7 +109,7 @@ void fct_die(int status, const char *fmt, ...)
 
 void fct_die_err(const struct fct_err *err)
 {
-	fprintf(stderr, "%s: %s\n", fct_prog, err->msg);
+	put_message("", err->msg);
 	exit(1);
 }
 

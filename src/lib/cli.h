@@ -24,6 +24,11 @@ extern const char *fct_prog;
  * files (output.h). */
 void fct_cli_init(const char *prog);
 
+/* Every message below is one line: control characters in it (a file name
+ * with a newline) are escaped as \n, \r, \t or \xHH.
+ *
+ * "prog: message" on stderr, for a program that goes on (or exits itself). */
+void fct_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* "prog: message" on stderr and exit with status. */
 _Noreturn void fct_die(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* "prog: err->msg" and exit 1. */
