@@ -1,0 +1,63 @@
+# The README's example commands run as written: every indented code block
+# whose first word is one of facet's programs, in order, in one scratch
+# folder holding the tree's samples/ and tests/ and bunny/ (the Stanford
+# scans, ../shared/data/stanford_bunny) when present, with bash -e -o
+# pipefail.  Blocks that are not facet commands (make, a Makefile rule, GNU
+# parallel, a Slurm script, the layout) are named and left out; a block
+# that needs bunny/ without it is skipped with a message.
+. tests/lib.sh
+
+top=$(pwd)
+bunny=
+for d in ../shared/data/stanford_bunny /work/shared/data/stanford_bunny; do
+	[ -f "$d/data/bun.conf" ] && bunny=$(cd "$d" && pwd) && break
+done
+progs=" $(cd man/man1 && ls ./*.1 | sed 's|^\./||; s|\.1$||' | tr '\n' ' ')"
+
+# Expected to fail: the 2048x512 panorama through planarize ("4 faces ...
+# lie whole in no view"; issue 24 item 8), which cyl2planar's fix on
+# another branch addresses.  When this block passes, the test says so and
+# fails: delete this mark then.
+xfail='planarize --cylindrical ,,0 --pose room/pano.pose'
+
+dir=$TMP/readme
+mkdir -p "$dir"
+ln -s "$top/samples" "$top/tests" "$dir/"
+[ -z "$bunny" ] || ln -s "$bunny" "$dir/bunny"
+# Each indented block after a blank line to its own file, the indent gone.
+awk -v d="$dir" '
+	/^(    |\t)/ && (blank || inblock) { if (!inblock) f = d "/block" sprintf("%02d", ++n) ".sh";
+		inblock = 1; sub(/^(    |\t)/, ""); print > f; next }
+	{ inblock = 0; blank = ($0 ~ /^[ \t]*$/) }
+	' README.md
+n=0
+for b in "$dir"/block*.sh; do
+	first=$(head -n 1 "$b")
+	word=${first%% *}
+	case $progs in
+	*" $word "*) ;;
+	*) echo "readme_examples.sh: not a facet command, left out: $first" >&2; continue ;;
+	esac
+	n=$((n + 1))
+	if [ -z "$bunny" ] && grep -q 'bunny/' "$b"; then
+		echo "readme_examples.sh: skipped, no ../shared/data/stanford_bunny: $first" >&2
+		continue
+	fi
+	(cd "$dir" && timeout 300 bash -e -o pipefail "$b" >/dev/null 2>"$b.err")
+	st=$?
+	if grep -qF -- "$xfail" "$b"; then
+		if [ "$st" != 0 ]; then
+			echo "readme_examples.sh: expected failure: $(tail -n 1 "$b.err")" >&2
+			ok
+		else
+			not_ok "README block $n now passes: remove its expected-failure mark (xfail) in $0"
+		fi
+	elif [ "$st" = 0 ]; then
+		ok
+	else
+		not_ok "README block $n (exit $st): $(cat "$b")
+  stderr: $(tail -n 3 "$b.err")"
+	fi
+done
+check_num "README blocks run" "$n" ">=" 8
+finish
