@@ -38,6 +38,14 @@ check_num "blender cube: 6 vn back" "$(grep -c '^vn ' $TMP/bc2.obj)" == 6
 grep '^f ' $B >"$TMP/f.want"
 check_true "blender cube: the faces' indices as Blender wrote them" sh -c "grep '^f ' $TMP/bc2.obj | cmp -s - $TMP/f.want"
 
+# Per-corner texture coordinates from a PLY (cyl2planar's texcoord lists,
+# one texture per face by texnumber) become vt per corner and a material
+# per texture (meshconv wrote no vt for them before), and read back the same.
+cp $D/obj_corner_tex.ply "$TMP/"
+run_case 0 "cd $TMP && meshconv -o ct.obj obj_corner_tex.ply && meshconv -a ct.obj > ct.back.ply"
+check_true "texcoord lists: vt per corner, distinct values once" sh -c "grep '^vt\|^f\|^usemtl' $TMP/ct.obj | tr '\n' ';' | grep -qx 'vt 0 0;vt 1 0;vt 0 1;vt 0 0.5;vt 1 0.5;usemtl material_0;f 1/1 2/2 3/3;usemtl material_1;f 2/4 4/5 3/3;'"
+check_true "texcoord lists: OBJ -> PLY gives them back" sh -c "grep -v '^comment facet' $TMP/ct.back.ply | cmp -s - $D/obj_corner_tex.ply"
+
 # PLY -> OBJ -> PLY keeps vertex count, polygons, every property value bit
 # for bit, and the comments (camera, pose, TextureFile, provenance, obj_info).
 # Run in one folder so that TextureFile paths stay as written.
