@@ -53,6 +53,9 @@ cp -R $S $TMP/bad && printf 'junk' >$TMP/bad/view01.depth.pfm
 run_case 1 "TMPDIR=$TMP/tmpd sunfuse -o $TMP/x.ply $TMP/bad" "" "dm2mesh: $TMP/bad/view01.depth.pfm: "
 check_true "no temporary folder left after a failed stage" sh -c "[ -z \"\$(ls -A $TMP/tmpd)\" ]"
 check_true "no model written" test ! -e $TMP/x.ply
+run_case 0 "cd $TMP && TMPDIR=tmpd sunfuse -q --voxel 0.05 -o x.ply room"
+check_true "a relative TMPDIR: no temporary folder left" sh -c "[ -z \"\$(ls -A $TMP/tmpd)\" ]"
+rm -f $TMP/x.ply
 rm $TMP/bad/view01.pose
 run_case 1 "sunfuse -o $TMP/x.ply $TMP/bad" "" "sunfuse: $TMP/bad/view01.pose: missing"
 run_case 1 "sunfuse -o $TMP/x.ply $TMP/tmpd" "" "sunfuse: $TMP/tmpd: no viewNN.camera files"
