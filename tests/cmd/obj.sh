@@ -21,9 +21,8 @@ check_true "cube: texture from the mtl, relative to the current folder" \
 
 # Issue 24's reproduction: one normal value under two indices made 6
 # vertices in 2 pieces.
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//1 3//1\nf 2//2 4//2 3//2\n' >"$TMP/t.obj"
-check_num "issue 24: 4 vertices" "$(info "$TMP/t.obj" vertices)" == 4
-check_num "issue 24: 1 component" "$(info "$TMP/t.obj" components)" == 1
+check_num "issue 24: 4 vertices" "$(info $D/obj_shared_edge.obj vertices)" == 4
+check_num "issue 24: 1 component" "$(info $D/obj_shared_edge.obj components)" == 1
 
 # Blender's default cube as its OBJ exporter writes it (normals on, UVs,
 # flat shading: every corner its own vt / vn pair) is one closed surface of
