@@ -7,11 +7,6 @@
 # that needs bunny/ without it is skipped with a message.
 . tests/lib.sh
 
-top=$(pwd)
-bunny=
-for d in ../shared/data/stanford_bunny /work/shared/data/stanford_bunny; do
-	[ -f "$d/data/bun.conf" ] && bunny=$(cd "$d" && pwd) && break
-done
 progs=" $(cd man/man1 && ls ./*.1 | sed 's|^\./||; s|\.1$||' | tr '\n' ' ')"
 
 # Expected to fail: the 2048x512 panorama through planarize ("4 faces ...
@@ -21,9 +16,7 @@ progs=" $(cd man/man1 && ls ./*.1 | sed 's|^\./||; s|\.1$||' | tr '\n' ' ')"
 xfail='planarize --cylindrical ,,0 --pose room/pano.pose'
 
 dir=$TMP/readme
-mkdir -p "$dir"
-ln -s "$top/samples" "$top/tests" "$dir/"
-[ -z "$bunny" ] || ln -s "$bunny" "$dir/bunny"
+scratch_with_tree "$dir"
 # Each indented block after a blank line to its own file, the indent gone.
 awk -v d="$dir" '
 	/^(    |\t)/ && (blank || inblock) { if (!inblock) f = d "/block" sprintf("%02d", ++n) ".sh";
@@ -43,7 +36,7 @@ for b in "$dir"/block*.sh; do
 		echo "readme_examples.sh: skipped, no ../shared/data/stanford_bunny: $first" >&2
 		continue
 	fi
-	(cd "$dir" && timeout 300 bash -e -o pipefail "$b" >/dev/null 2>"$b.err")
+	run_example "$dir" "$b"
 	st=$?
 	if grep -qF -- "$xfail" "$b"; then
 		if [ "$st" != 0 ]; then
@@ -55,8 +48,7 @@ for b in "$dir"/block*.sh; do
 	elif [ "$st" = 0 ]; then
 		ok
 	else
-		not_ok "README block $n (exit $st): $(cat "$b")
-  stderr: $(tail -n 3 "$b.err")"
+		example_failed "README block $n (exit $st)" "$b"
 	fi
 done
 check_num "README blocks run" "$n" ">=" 8
