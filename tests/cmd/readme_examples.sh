@@ -9,12 +9,6 @@
 
 progs=" $(cd man/man1 && ls ./*.1 | sed 's|^\./||; s|\.1$||' | tr '\n' ' ')"
 
-# Expected to fail: the 2048x512 panorama through planarize ("4 faces ...
-# lie whole in no view"; issue 24 item 8), which cyl2planar's fix on
-# another branch addresses.  When this block passes, the test says so and
-# fails: delete this mark then.
-xfail='planarize --cylindrical ,,0 --pose room/pano.pose'
-
 dir=$TMP/readme
 scratch_with_tree "$dir"
 # Each indented block after a blank line to its own file, the indent gone.
@@ -38,14 +32,7 @@ for b in "$dir"/block*.sh; do
 	fi
 	run_example "$dir" "$b"
 	st=$?
-	if grep -qF -- "$xfail" "$b"; then
-		if [ "$st" != 0 ]; then
-			echo "readme_examples.sh: expected failure: $(tail -n 1 "$b.err")" >&2
-			ok
-		else
-			not_ok "README block $n now passes: remove its expected-failure mark (xfail) in $0"
-		fi
-	elif [ "$st" = 0 ]; then
+	if [ "$st" = 0 ]; then
 		ok
 	else
 		example_failed "README block $n (exit $st)" "$b"
