@@ -64,8 +64,20 @@ int fct_cylview_plan(const struct fct_camera *pano, const struct fct_cylview_par
 	double rc = 1 / cos(a), hmin, hmax;
 	pano_heights(pano, &hmin, &hmax);
 	double H = p->height > 0 ? p->height : ceil(F * (hmax - hmin) * rc - 1e-9);
-	if (!(W >= 1 && W <= FCT_IMAGE_MAX_SIDE && H >= 1 && H <= FCT_IMAGE_MAX_SIDE))
-		return fct_fail(err, "views of %.0fx%.0f pixels: too large or empty", W, H);
+	if (!(W >= 1 && H >= 1))
+		return fct_fail(err, "views of %.0fx%.0f pixels: empty", W, H);
+	/* A view's pixels beyond a few per panorama pixel only interpolate:
+	 * near 180 degrees its edges stretch without end (179.999 degrees of a
+	 * 1024 x 256 panorama asked 37351042 x 461 pixels), and a size may ask
+	 * gigabytes of a small picture. */
+	double most = fmax(FCT_CYLVIEW_MAX_ZOOM * pano->width * (double)pano->height, 1 << 20);
+	if (W * H > most)
+		return fct_fail(err, "views of %.0fx%.0f pixels from a %dx%d panorama: more than %d "
+		                "times its pixels%s", W, H, pano->width, pano->height, FCT_CYLVIEW_MAX_ZOOM,
+		                p->width > 0 ? "" : " (a field of view near 180 degrees stretches a "
+		                "view's edges without end)");
+	if (!(W <= FCT_IMAGE_MAX_SIDE && H <= FCT_IMAGE_MAX_SIDE))
+		return fct_fail(err, "views of %.0fx%.0f pixels: too large", W, H);
 	if (W * H > (double)FCT_IMAGE_MAX_PIXELS)
 		return fct_fail(err, "views of %.0fx%.0f pixels: too large", W, H);
 	/* The horizon's relative place: top edge -0.5 at hmin (scaled by the

@@ -91,6 +91,14 @@ check_num "README 2048x512: materials (views used)" "$(grep -c '^map_Kd .*room.v
 run_case 2 "cyl2planar --fov 180 -o $TMP/b $R/pano.color.png" "" "cyl2planar: --fov: "
 run_case 2 "cyl2planar --count 0 -o $TMP/b $R/pano.color.png" "" "cyl2planar: --count: "
 run_case 2 "cyl2planar $R/pano.color.png" "" "cyl2planar: -o dir is needed"
+# Stage attacks: a view the panorama cannot justify (37351042 x 461 pixels
+# at 179.999 degrees, and 6.4 GB for --size 65536x32768, once hung) is
+# refused with its size; --step names its value; a missing folder is one
+# line (and leaked under LeakSanitizer).
+run_case 1 "timeout 20 cyl2planar --fov 179.999 -o $TMP/b $R/pano.color.png" "" "cyl2planar: views of 37351042x461 pixels from a 1024x256 panorama: more than 16 times its pixels"
+run_case 1 "timeout 20 cyl2planar --size 65536x32768 -o $TMP/b $R/pano.color.png" "" "cyl2planar: views of 65536x32768 pixels from a 1024x256 panorama"
+run_case 2 "cyl2planar --step 0.001 -o $TMP/b $R/pano.color.png" "" "cyl2planar: --step: 0.001 degrees makes more than 3600 views"
+run_case 1 "cyl2planar -o $TMP/missing/views $R/pano.color.png" "" "cyl2planar: $TMP/missing/views: No such file or directory"
 head -c 3000 "$R/pano.color.png" >"$TMP/cut.png"
 run_case 1 "cyl2planar -o $TMP/b $TMP/cut.png" "" "cyl2planar: $TMP/cut.png: "
 # A camera that says 360 degrees are 2048 pixels, on a 1024-pixel picture.
