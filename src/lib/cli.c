@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "numparse.h"
@@ -203,6 +204,36 @@ void fct_opt_cylindrical(const char *arg, int width, int height, struct fct_came
 	cam->f = isnan(v[0]) ? width / (2 * M_PI) : v[0];
 	cam->cy = isnan(v[1]) ? (height - 1) / 2.0 : v[1];
 	cam->theta0 = v[2];
+}
+
+void fct_opt_camera(struct fct_camera *cam, double *named_scale, struct fct_stereo *stereo,
+                    const char *K, const char *file)
+{
+	struct fct_err err;
+	struct stat sb;
+	double k[4], scale = 0;
+	memset(cam, 0, sizeof *cam);
+	if (stereo)
+		stereo->baseline = stereo->doffs = 0;
+	if (K && file)
+		fct_usage_error("-K and --camera exclude each other");
+	if (file && fct_camera_read_stereo(cam, stereo, file, &err))
+		fct_die_err(&err);
+	if (K && fct_camera_named(K, cam, &scale)) {
+		if (!strchr(K, ',') && stat(K, &sb) == 0 && S_ISREG(sb.st_mode))
+			fct_usage_error("-K: \"%s\" is a file: give an intrinsics file with --camera "
+			                "(Open3D JSON, a 3x3 K, a camera line, Middlebury calib.txt)", K);
+		if (!strchr(K, ','))
+			fct_usage_error("-K: \"%s\" is neither fx,fy,cx,cy nor a camera name (%s)", K,
+			                fct_camera_names());
+		fct_opt_doubles("-K", K, k, 4);
+		if (!(k[0] > 0 && k[1] > 0))
+			fct_usage_error("-K: focal lengths must be positive");
+		cam->kind = FCT_CAMERA_PINHOLE;
+		cam->fx = k[0], cam->fy = k[1], cam->cx = k[2], cam->cy = k[3];
+	}
+	if (named_scale)
+		*named_scale = scale;
 }
 
 void fct_write_image_or_die(const struct fct_image *img, const char *path)

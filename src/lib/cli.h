@@ -60,6 +60,15 @@ void fct_opt_doubles(const char *opt, const char *arg, double *v, int n);
  * positive. */
 void fct_opt_cylindrical(const char *arg, int width, int height, struct fct_camera *cam);
 
+/* The camera of -K arg (fx,fy,cx,cy, or a dataset name of
+ * fct_camera_named) or of --camera file (fct_camera_read_stereo): cam (kind
+ * NONE when both are NULL), *named_scale (may be NULL) the named dataset's
+ * depth units per metre or 0, stereo (may be NULL) a stereo calibration's
+ * baseline and doffs.  Exit 2 when both are given or -K is malformed (a -K
+ * that names a file says to give it with --camera); exit 1 on a bad file. */
+void fct_opt_camera(struct fct_camera *cam, double *named_scale, struct fct_stereo *stereo,
+                    const char *K, const char *file);
+
 /* Write img to path atomically (output.h): PFM when it holds floats, else
  * PNG; exit 1 with the path in the message on failure. */
 void fct_write_image_or_die(const struct fct_image *img, const char *path);

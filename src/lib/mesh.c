@@ -623,3 +623,15 @@ int fct_mesh_add_comment(struct fct_mesh *m, const char *text, int obj_info, str
 	m->ncomments++;
 	return 0;
 }
+
+int fct_mesh_keep_precision(struct fct_mesh *m, double resolution)
+{
+	double most = 0;
+	for (size_t i = 0; i < 3 * m->nv; i++)
+		most = fmax(most, fabs(m->xyz[i]));
+	/* float's rounding error at |x| is at most |x| 2^-24 */
+	if (!(resolution > 0) || !(most * 0x1p-24 > resolution))
+		return 0;
+	m->xyz_type = FCT_FLOAT64;
+	return 1;
+}

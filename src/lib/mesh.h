@@ -164,6 +164,12 @@ int fct_mesh_gather_faces(struct fct_mesh *m, const size_t *src, size_t n, struc
  * past 2^32 - 1 vertices. */
 int fct_mesh_append(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err);
 
+/* Positions far from the origin (a georeferenced pose: float rounds
+ * coordinates of 4000 km to 0.25 m) stored as double on disk: m->xyz_type
+ * becomes FCT_FLOAT64 when float would move some coordinate by more than
+ * resolution (> 0).  Returns 1 when it did, 0 when float holds them. */
+int fct_mesh_keep_precision(struct fct_mesh *m, double resolution);
+
 /* Deep copy of src into dst (dst is overwritten without being freed). */
 int fct_mesh_copy(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err);
 
