@@ -283,7 +283,8 @@ int main(int argc, char **argv)
 				}
 			char msg[600];
 			snprintf(msg, sizeof msg, "%s: %zu face%s (%s%s) lie whole in no view: give more "
-			         "views (--count) or a wider --fov%s", mname, ast.uncovered,
+			         "views (--count) or a wider --fov%s (no view holds a face over the zenith or "
+			         "the nadir)", mname, ast.uncovered,
 			         ast.uncovered == 1 ? "" : "s", list, ast.uncovered > shown ? ", ..." : "",
 			         o.split ? "" : ", or let them be split");
 			free(view_of);
