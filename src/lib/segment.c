@@ -1177,9 +1177,18 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	/* The patches that remain, numbered afresh, with those planes. */
 	size_t np0 = np;
 	np = renumber(patch, nf, map);
-	for (size_t l = 0; l < np0; l++)
-		if (map[l] >= 0)
-			pl[map[l]] = pl[l];   /* map[l] <= l: both number by first face */
+	{
+		/* The planes, moved to their new numbers (peeling may have
+		 * reordered the patches' first faces). */
+		struct fct_plane *tmp = fct_alloc_array(np0 ? np0 : 1, sizeof *tmp, err);
+		if (!tmp)
+			goto fail;
+		memcpy(tmp, pl, np0 * sizeof *pl);
+		for (size_t l = 0; l < np0; l++)
+			if (map[l] >= 0)
+				pl[map[l]] = tmp[l];
+		free(tmp);
+	}
 	memset(wind, 0, 3 * (np ? np : 1) * sizeof *wind);
 	memset(res, 0, 2 * (np ? np : 1) * sizeof *res);
 	size_t nfaces_in = 0;
