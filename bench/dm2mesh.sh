@@ -29,9 +29,10 @@ row() { printf '%-56s %10s %12s\n' "$1" "$2" "$3"; }
 "$FCT_BENCH/gen_depth" -p 1000000 >"$dir/pts.txt"
 K640=512,512,319.5,239.5 K4k=3276.8,3276.8,2047.5,1535.5
 
-echo "dm2mesh: synthetic depth maps (bench/gen_depth: a wall with a box, 1 mm noise, 2% holes), the real TUM frame of samples/, 1M random sparse points; medians of $RUNS runs"
+echo "dm2mesh: synthetic depth maps (bench/gen_depth: a wall with a box, 1 mm noise, 2% holes), the real TUM frame of samples/ (-K tum implies the kinect noise model: sigma per vertex and the noise term of the jump test; numeric -K none), 1M random sparse points; medians of $RUNS runs"
 row "what" "seconds" "M faces/s"
 for case in "640x480 -K $K640 $dir/d640.png" "TUM 640x480 -K tum samples/tum/TUM_depth.png" \
+	"TUM no model -K 525,525,319.5,239.5 --depth-scale 5000 samples/tum/TUM_depth.png" \
 	"640x480/5 -K $K640 --step 5 $dir/d640.png" "4096x3072 -K $K4k $dir/d4k.png"; do
 	name=${case%% -*}
 	args=${case#"$name" }

@@ -1,7 +1,7 @@
 /* fuzz_depth - libFuzzer target: any bytes, read as a depth image, meshed
  * through a pinhole or a cylindrical camera of the image's size (dm2mesh's
- * path), then freed.  A crash, leak, sanitizer report or huge allocation is
- * a bug. */
+ * path; every other size with the kinect noise model), then freed.  A
+ * crash, leak, sanitizer report or huge allocation is a bug. */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -27,6 +27,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		struct fct_depth_params p;
 		fct_depth_params_default(&p);
 		p.step = 1 + (int)(size % 3);
+		if (size & 2)   /* sigma and the jump test's noise term */
+			fct_noise_kinect(&p.noise);
 		struct fct_mesh m;
 		if (fct_depth_mesh(&m, &img, &cam, &p, NULL, &err) == 0)
 			fct_mesh_free(&m);

@@ -23,7 +23,7 @@
 static const char usage[] =
 	"usage: dm2mesh [-aqv] [-o file] [-K fx,fy,cx,cy | name] [--camera file]\n"
 	"               [--cylindrical f,cy,theta0] [--depth-scale s] [--baseline b]\n"
-	"               [--focal f] [--range min,max] [--step n] [-j jump]\n"
+	"               [--focal f] [--doffs d] [--range min,max] [--step n] [-j jump]\n"
 	"               [--max-angle deg] [--min-faces n] [--noise model | file]\n"
 	"               [--pose file] [--image file] [depth-image]\n"
 	"       dm2mesh --points [-aqv] [-o file] [camera options] [--max-edge l]\n"
@@ -36,7 +36,8 @@ static const char usage[] =
 	"                     tum tum1 tum2 tum3 redwood primesense kinect icl-nuim\n"
 	"                     7scenes (which also sets its depth scale)\n"
 	"      --camera file  camera from a file: Open3D intrinsic JSON, a 3x3 K matrix,\n"
-	"                     or a line \"camera pinhole|cylindrical ...\"\n"
+	"                     a line \"camera pinhole|cylindrical ...\", or Middlebury's\n"
+	"                     calib.txt (then disparities with its baseline and doffs)\n"
 	"      --cylindrical f,cy,theta0\n"
 	"                     cylindrical panorama camera (depth = distance from the\n"
 	"                     vertical axis); f and cy may be empty for W/(2 pi) and\n"
@@ -46,6 +47,8 @@ static const char usage[] =
 	"                     it also divides PFM samples\n"
 	"      --baseline b   the image holds disparities: depth = b * focal / disparity\n"
 	"      --focal f      focal length for disparities (default the camera's)\n"
+	"      --doffs d      disparity offset: depth = b * focal / (disparity + d)\n"
+	"                     (Middlebury's doffs; default 0, or the calib.txt's)\n"
 	"      --range min,max\n"
 	"                     depths outside are no data (metres)\n"
 	"      --step n       use every n-th pixel of every n-th row (default 1)\n"
@@ -129,7 +132,7 @@ static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
 	struct fct_image img;
 	if (fct_image_read_file(&img, o->input, NULL, &err))
 		fct_die_err(&err);
-	fct_depth_opts_resolve(&o->d, cam, &img);
+	fct_depth_opts_resolve(&o->d, cam, &img, fct_path_display(o->input));
 	struct fct_mesh m;
 	fct_report("pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	struct fct_grid_stats st;
@@ -188,11 +191,14 @@ int main(int argc, char **argv)
 	struct fct_mesh m = o.points ? mesh_points(&o, &cam) : mesh_depth(&o, &cam);
 	double mesh_s = fct_now() - t0;
 
+	if (fct_depth_opts_finish(&o.d, &m, &cam, &err))
+		fct_die_err(&err);
+	if (o.d.double_xyz)
+		fct_report("double_xyz", "1");
 	char noise[256];
 	fct_noise_format(&o.d.depth.noise, noise, sizeof noise);
 	fct_report("noise", "%s", *noise ? noise : "unknown");
-	if (fct_depth_opts_finish(&o.d, &m, &cam, &err) ||
-	    fct_header_add_provenance(&m, "dm2mesh", argc - 1, argv + 1, &err) ||
+	if (fct_header_add_provenance(&m, "dm2mesh", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, o.out, o.ascii, &err))
 		fct_die_err(&err);
 	double total_s = fct_now() - t0, cpu_s = fct_cpu_time() - c0;

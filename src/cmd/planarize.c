@@ -258,7 +258,7 @@ static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct option
 	const char *name = fct_path_display(o->input);
 	if (fct_image_read_stream(&img, f, name, NULL, &err))
 		fct_die_err(&err);
-	fct_depth_opts_resolve(&o->d, cam, &img);
+	fct_depth_opts_resolve(&o->d, cam, &img, name);
 	struct fct_grid_stats st;
 	if (fct_depth_mesh(m, &img, cam, &o->d.depth, &st, &err)) {
 		fct_image_free(&img);
@@ -275,6 +275,7 @@ static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct option
 	o->d.image_file = o->image;
 	if (fct_depth_opts_finish(&o->d, m, cam, &err))
 		stage_die("dm2mesh", &err);
+	stage_report("dm2mesh", "double_xyz", "%d", o->d.double_xyz);
 }
 
 /* Stage 1 from a mesh: the mesh as it is, its camera if it has one; an

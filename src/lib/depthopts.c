@@ -25,6 +25,7 @@ static const char *opt_name(int c)
 	case FCT_DOPT_SCALE: return "--depth-scale";
 	case FCT_DOPT_BASELINE: return "--baseline";
 	case FCT_DOPT_FOCAL: return "--focal";
+	case FCT_DOPT_DOFFS: return "--doffs";
 	case FCT_DOPT_RANGE: return "--range";
 	case FCT_DOPT_STEP: return "--step";
 	case FCT_DOPT_ANGLE: return "--max-angle";
@@ -48,6 +49,10 @@ int fct_depth_opt(struct fct_depth_opts *o, int c, const char *arg)
 		break;
 	case FCT_DOPT_BASELINE: o->depth.baseline = fct_opt_double("--baseline", arg, 1e-300, 1e300); break;
 	case FCT_DOPT_FOCAL: o->focal = fct_opt_double("--focal", arg, 1e-300, 1e300); break;
+	case FCT_DOPT_DOFFS:
+		o->depth.doffs = fct_opt_double("--doffs", arg, -1e9, 1e9);
+		o->doffs_given = 1;
+		break;
 	case FCT_DOPT_RANGE:
 		fct_opt_doubles("--range", arg, r, 2);
 		if (!(r[0] >= 0 && r[1] > r[0]))
@@ -106,29 +111,21 @@ void fct_depth_opts_read_pose(struct fct_depth_opts *o)
 void fct_depth_opts_camera(struct fct_depth_opts *o, struct fct_camera *cam, int width, int height,
                            int required)
 {
-	struct fct_err err;
 	int given = !!o->K + !!o->camera_file + !!o->cylindrical;
 	memset(cam, 0, sizeof *cam);
 	if (given > 1)
 		fct_usage_error("-K, --camera and --cylindrical exclude each other");
-	if (o->K) {
-		double scale, k[4];
-		if (!fct_camera_named(o->K, cam, &scale)) {
-			if (!o->scale_given)
-				o->depth.depth_scale = scale;
-		} else if (strchr(o->K, ',')) {
-			fct_opt_doubles("-K", o->K, k, 4);
-			if (!(k[0] > 0 && k[1] > 0))
-				fct_usage_error("-K: focal lengths must be positive");
-			cam->kind = FCT_CAMERA_PINHOLE;
-			cam->fx = k[0], cam->fy = k[1], cam->cx = k[2], cam->cy = k[3];
-		} else {
-			fct_usage_error("-K: \"%s\" is neither fx,fy,cx,cy nor a camera name (%s)",
-			                o->K, fct_camera_names());
-		}
-	} else if (o->camera_file) {
-		if (fct_camera_read_file(o->camera_file, cam, &err))
-			fct_die_err(&err);
+	if (o->K || o->camera_file) {
+		double scale;
+		struct fct_stereo st;
+		fct_opt_camera(cam, &scale, &st, o->K, o->camera_file);
+		if (scale > 0 && !o->scale_given)
+			o->depth.depth_scale = scale;
+		/* a stereo calibration (Middlebury) makes the image disparities */
+		if (st.baseline > 0 && !(o->depth.baseline > 0))
+			o->depth.baseline = st.baseline;
+		if (st.baseline > 0 && !o->doffs_given)
+			o->depth.doffs = st.doffs;
 	} else if (o->cylindrical) {
 		fct_opt_cylindrical(o->cylindrical, width, height, cam);
 	} else if (required) {
@@ -154,21 +151,35 @@ static void resolve_noise(struct fct_depth_opts *o, const struct fct_image *img)
 }
 
 void fct_depth_opts_resolve(struct fct_depth_opts *o, struct fct_camera *cam,
-                            const struct fct_image *img)
+                            const struct fct_image *img, const char *name)
 {
 	fct_depth_opts_camera(o, cam, img->width, img->height, 1);
+	if (o->doffs_given && !(o->depth.baseline > 0))
+		fct_usage_error("--doffs is for disparities and needs --baseline");
 	if (o->depth.baseline > 0)
 		o->depth.focal = o->focal > 0 ? o->focal
 		               : cam->kind == FCT_CAMERA_CYLINDRICAL ? cam->f : cam->fx;
 	resolve_noise(o, img);
+	char why[300];
+	if (fct_depth_implausible(why, sizeof why, img, cam, &o->depth))
+		fct_warn("%s: %s", name, why);
 }
 
-int fct_depth_opts_finish(const struct fct_depth_opts *o, struct fct_mesh *m,
+int fct_depth_opts_finish(struct fct_depth_opts *o, struct fct_mesh *m,
                           const struct fct_camera *cam, struct fct_err *err)
 {
-	if (o->has_pose)
-		for (size_t v = 0; v < m->nv; v++)
+	o->double_xyz = 0;
+	if (o->has_pose) {
+		/* float holds world coordinates to 1/100 of the nearest vertex's
+		 * pixel footprint, or they are written as double */
+		double near = HUGE_VAL;
+		for (size_t v = 0; v < m->nv; v++) {
+			near = fmin(near, hypot(hypot(m->xyz[3 * v], m->xyz[3 * v + 1]), m->xyz[3 * v + 2]));
 			fct_pose_apply(o->pose, &m->xyz[3 * v], &m->xyz[3 * v]);
+		}
+		o->double_xyz = fct_mesh_keep_precision(m, 0.01 * near * o->depth.step *
+		                                           fct_camera_pixel_angle(cam));
+	}
 	if (fct_header_set_camera(m, cam, err) || fct_header_set_noise(m, &o->depth.noise, err) ||
 	    (o->has_pose && fct_header_set_pose(m, o->pose, err)) ||
 	    (o->image_file && fct_header_set_texture(m, 0, o->image_file, err)))

@@ -16,6 +16,7 @@ enum { FIRST = 1, SECOND = 2, DIAG_AD = 4 };
 struct grid {
 	const struct fct_range_grid *g;
 	double limit;            /* max_jump * footprint */
+	double noise;            /* noise_jump * sqrt(2) */
 	int w, h, wrap;
 };
 
@@ -42,8 +43,8 @@ static inline long cell_at(const struct grid *G, long i, long j)
  * apart, is within the limit. */
 static inline int joined(const struct grid *G, size_t a, size_t b, double steps)
 {
-	const float *al = G->g->allow;
-	double allow = al ? (al[a] > al[b] ? al[a] : al[b]) : 0;
+	const float *s = G->g->sigma;
+	double allow = s ? G->noise * (s[a] > s[b] ? s[a] : s[b]) : 0;
 	return fct_depth_joined(G->g->depth[a], G->g->depth[b], G->limit, steps, allow);
 }
 
@@ -91,11 +92,26 @@ static int position_at(const struct grid *G, long i, long j, double p[3])
 static int prefer_ad(const struct grid *G, long i, long j)
 {
 	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3];
-	position_at(G, i, j, a), position_at(G, i + 1, j, b);
-	position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
+	int around;
+	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h) {
+		/* Inside the grid: the same positions without the border's checks. */
+		size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i, I = (size_t)i, J = (size_t)j;
+		P(G, ca, I, J, a), P(G, ca + 1, I + 1, J, b);
+		P(G, ca + W, I, J + 1, c), P(G, ca + W + 1, I + 1, J + 1, d);
+		size_t caa = ca - W - 1, cdd = ca + 2 * W + 2, cbb = ca - W + 2, ccc = ca + 2 * W - 1;
+		around = has_data(G, caa) && has_data(G, cdd) && has_data(G, cbb) && has_data(G, ccc);
+		if (around) {
+			P(G, caa, I - 1, J - 1, aa), P(G, cdd, I + 2, J + 2, dd);
+			P(G, cbb, I + 2, J - 1, bb), P(G, ccc, I - 1, J + 2, cc);
+		}
+	} else {
+		position_at(G, i, j, a), position_at(G, i + 1, j, b);
+		position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
+		around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
+		         position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
+	}
 	double lad = fct_v3_dist2(a, d), lbc = fct_v3_dist2(b, c);
-	if (position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
-	    position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc)) {
+	if (around) {
 		double bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
 		double bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
 		/* Bends that are both rounding noise (a plane) decide nothing:
@@ -197,7 +213,8 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
                   const struct fct_grid_params *p, uint32_t **cell_of,
                   struct fct_grid_stats *stats, struct fct_err *err)
 {
-	struct grid G = { g, p->max_jump * g->footprint, g->width, g->height, g->wrap && g->width > 2 };
+	struct grid G = { g, p->max_jump * g->footprint, M_SQRT2 * g->noise_jump, g->width, g->height,
+	                  g->wrap && g->width > 2 };
 	size_t ncells, nsq;
 	if (cell_of)
 		*cell_of = NULL;
@@ -212,9 +229,13 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	unsigned char *code = fct_alloc_array(nsq, 1, err);
 	uint32_t *parent = pieces ? fct_alloc_array(ncells, sizeof *parent, err) : NULL;
 	uint32_t *vindex = fct_alloc_array(ncells, sizeof *vindex, err);
+	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
 	int rc = -1;
-	if (!code || (pieces && !parent) || !vindex)
+	if (!code || (pieces && !parent) || !vindex || !used) {
+		if (!used)
+			fct_fail(err, "out of memory");
 		goto out;
+	}
 
 	/* The triangles of every square, and the pieces they join. */
 	size_t possible = 0, made = 0;
@@ -235,6 +256,8 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 					if (pieces) {
 						unite(parent, t[0], t[1]);
 						unite(parent, t[0], t[2]);
+					} else {
+						used[t[0]] = used[t[1]] = used[t[2]] = 1;
 					}
 				}
 		}
@@ -260,33 +283,26 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 		for (long j = 0; j < sh; j++)
 			for (long i = 0; i < sw; i++) {
 				unsigned char *k = &code[j * sw + i];
+				if (!*k)
+					continue;
 				struct square q = square_at(&G, i, j);
 				if ((*k & FIRST) && vindex[parent[q.a]] < p->min_faces)
 					*k &= (unsigned char)~FIRST, nf--;
 				if ((*k & SECOND) && vindex[parent[q.b]] < p->min_faces)
 					*k &= (unsigned char)~SECOND, nf--;
+				for (unsigned which = FIRST; which <= SECOND; which <<= 1)
+					if (*k & which) {
+						uint32_t t[3];
+						square_triangle(q, *k, which, t);
+						used[t[0]] = used[t[1]] = used[t[2]] = 1;
+					}
 			}
 	}
 
 	/* Vertices: the cells used by a kept triangle, in cell order. */
-	memset(vindex, 0xff, ncells * sizeof *vindex);
-	for (long j = 0; j < sh; j++)
-		for (long i = 0; i < sw; i++) {
-			unsigned k = code[j * sw + i];
-			if (!k)
-				continue;
-			struct square q = square_at(&G, i, j);
-			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
-				if (k & which) {
-					uint32_t t[3];
-					square_triangle(q, k, which, t);
-					vindex[t[0]] = vindex[t[1]] = vindex[t[2]] = 0;
-				}
-		}
 	size_t nv = 0;
 	for (size_t c = 0; c < ncells; c++)
-		if (vindex[c] == 0)
-			vindex[c] = (uint32_t)nv++;
+		vindex[c] = used[c] ? (uint32_t)nv++ : UINT32_MAX;
 	if (fct_mesh_set_vertex_count(m, nv, err) || fct_mesh_set_triangle_count(m, nf, err))
 		goto out;
 	if (cell_of && !(*cell_of = fct_alloc_array(nv, sizeof **cell_of, err)))
@@ -321,5 +337,6 @@ out:
 	free(code);
 	free(parent);
 	free(vindex);
+	free(used);
 	return rc;
 }

@@ -10,11 +10,13 @@
  * - no triangle is made across a depth discontinuity: an edge between cells
  *   a and b, L grid steps apart, is cut when
  *       |depth_a - depth_b| > max_jump * L * footprint * min(depth_a, depth_b)
- *                             + max(allow_a, allow_b),
+ *                             + noise_jump * sqrt(2) * max(sigma_a, sigma_b),
  *   footprint * depth being the lateral size of one grid step at that depth,
  *   so max_jump is the largest depth change per lateral step that still
- *   counts as one surface (tan of the grazing angle), and allow the depth
- *   change the sensor's noise alone may make there (0 without a model);
+ *   counts as one surface (tan of the grazing angle), and the last term the
+ *   change the sensor's noise alone makes of one surface: noise_jump
+ *   deviations of the difference of two samples of deviation sigma (none
+ *   without per-cell sigma);
  * - of the two diagonals of a square, the one along which the surface bends
  *   less is chosen: for each diagonal, the distance of its end cells from the
  *   3-D lines through their neighbours along it (zero on any plane and along
@@ -55,7 +57,8 @@ struct fct_range_grid {
 	const double *depth;     /* per cell, along the sensor's ray; not > 0: no data */
 	double footprint;        /* lateral size of one grid step per unit depth */
 	int wrap;                /* the last column borders the first (360-degree cylinder) */
-	const float *allow;      /* per cell, the depth change noise may make; or NULL */
+	const float *sigma;      /* per cell, the deviation of its depth; or NULL */
+	double noise_jump;       /* deviations of noise allowed in a jump */
 };
 
 struct fct_grid_params {

@@ -248,12 +248,56 @@ static double disparity_step(const struct fct_noise *nz, double z)
 	return nz->model == FCT_NOISE_KINECT ? z * z * nz->step / nz->fb : 0;
 }
 
+/* sigma^2 as a polynomial in z, c[0] + c[1] z + ... + c[4] z^4: every
+ * model's Gaussian part is a polynomial of degree at most 2 and its
+ * quantisation steps constant or quadratic. */
+static void sigma2_polynomial(const struct fct_noise *nz, double c[5])
+{
+	memset(c, 0, 5 * sizeof *c);
+	double a = 0, b = 0, q = 0;   /* Gaussian part a + b z + q z^2 */
+	switch (nz->model) {
+	case FCT_NOISE_NONE:
+		b = FCT_NOISE_FLOOR;
+		break;
+	case FCT_NOISE_KINECT:
+	case FCT_NOISE_STEREO:
+		q = nz->sd / nz->fb;
+		break;
+	case FCT_NOISE_TOF:
+	case FCT_NOISE_POLY:
+		a = nz->coef[0], b = nz->coef[1], q = nz->coef[2];
+		break;
+	default:
+		return;
+	}
+	double step = disparity_step(nz, 1);
+	c[0] = a * a + nz->unit * nz->unit / 12;
+	c[1] = 2 * a * b;
+	c[2] = b * b + 2 * a * q;
+	c[3] = 2 * b * q;
+	c[4] = q * q + step * step / 12;
+}
+
+static double evaluate(const double c[5], double z)
+{
+	return (((c[4] * z + c[3]) * z + c[2]) * z + c[1]) * z + c[0];
+}
+
 double fct_noise_sigma(const struct fct_noise *nz, double z)
 {
-	if (nz->model == FCT_NOISE_UNKNOWN)
-		return 0;
-	double g = fct_noise_sigma_gaussian(nz, z), q = disparity_step(nz, z);
-	return sqrt(g * g + (q * q + nz->unit * nz->unit) / 12);
+	double c[5];
+	sigma2_polynomial(nz, c);
+	return sqrt(evaluate(c, z));
+}
+
+void fct_noise_sigmas(const struct fct_noise *nz, const double *depth, float *sigma, size_t n)
+{
+	double c[5];
+	sigma2_polynomial(nz, c);
+	for (size_t i = 0; i < n; i++) {
+		double z = depth[i] > 0 ? depth[i] : 0;
+		sigma[i] = depth[i] > 0 ? (float)sqrt(evaluate(c, z)) : 0;
+	}
 }
 
 double fct_noise_step(const struct fct_noise *nz, double z)

@@ -132,6 +132,10 @@ int fct_noise_read_file(const char *path, struct fct_noise *nz, struct fct_err *
  * (the ray's length when its z is 1). */
 double fct_noise_sigma(const struct fct_noise *nz, double depth);
 
+/* fct_noise_sigma of depth[0..n) into sigma[0..n), 0 where the depth is not
+ * positive: the loop over the pixels of a depth image. */
+void fct_noise_sigmas(const struct fct_noise *nz, const double *depth, float *sigma, size_t n);
+
 /* The Gaussian part alone (what a simulation draws before rounding). */
 double fct_noise_sigma_gaussian(const struct fct_noise *nz, double depth);
 

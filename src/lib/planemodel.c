@@ -27,6 +27,9 @@ static uint32_t uf_find(int32_t *parent, uint32_t x)
 	return x;
 }
 
+/* A patch of at least 1 / LARGE_PATCH of the faces is worth keeping a plane
+ * with its outline as sampled rather than made free-form. */
+#define LARGE_PATCH 50
 /* Narrower than this many samples, a piece of faces is a sliver. */
 #define SLIVER_WIDTH 3
 
@@ -120,6 +123,9 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
  * creases; a plane that noise or a sensor's distortion split has one or
  * two. */
 #define SHALLOW_NEIGHBOURS 3
+/* Planes within 3 degrees of parallel make no crease: a sheet of paper on a
+ * table, a door in its frame. */
+#define COS_PARALLEL 0.99862953475457383
 
 int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
@@ -144,14 +150,23 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 	for (size_t i = 0; i < nplanes * SHALLOW_NEIGHBOURS; i++)
 		nb[i] = -1;
 	for (size_t e = 0; e < adj.ne; e++) {
-		if (fct_adj_edge_nfaces(&adj, e) != 2)
-			continue;
-		int32_t a = patch[adj.edge_f[adj.edge_fstart[e]]], b = patch[adj.edge_f[adj.edge_fstart[e] + 1]];
-		if (a == b || a < 0 || b < 0)
+		/* Every edge of a patch's outline counts: to another patch, to the
+		 * free-form surface, to the outside. */
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		int32_t a = patch[adj.edge_f[adj.edge_fstart[e]]];
+		int32_t b = k == 2 ? patch[adj.edge_f[adj.edge_fstart[e] + 1]] : -1;
+		if (k > 2 || a == b)
 			continue;
 		double len = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
 		                               m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
-		int shallow = fct_v3_dot(planes[a].n, planes[b].n) >= cos_max;
+		if (a < 0 || b < 0) {
+			int32_t l = a >= 0 ? a : b;
+			if (l >= 0)
+				shared[2 * l + 1] += len;
+			continue;
+		}
+		double c = fct_v3_dot(planes[a].n, planes[b].n);
+		int shallow = c >= cos_max && c <= COS_PARALLEL;
 		for (int k = 0; k < 2; k++) {
 			int32_t l = k ? b : a, o = k ? a : b;
 			shared[2 * l] += shallow ? len : 0;
@@ -597,9 +612,11 @@ static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct
 	size_t n = 0, cap = 0, nv0 = m->nv;
 	for (size_t v = 0; v < nv0; v++) {
 		int32_t ls[8];
-		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls), other = k >= 2;
+		for (uint32_t j = vstart[v]; j < vstart[v + 1] && !other; j++)
+			other = patch[vf[j]] < 0;   /* beside the free-form surface */
 		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
-		if (k < 2 || !(e2 > 0))
+		if (k < 1 || !other || !(e2 > 0))
 			continue;
 		for (int i = 0; i < k; i++) {
 			const struct fct_plane *pl = &planes[ls[i]];
@@ -887,6 +904,73 @@ static struct fct_wire *outline_wires(const struct fct_chains *c, size_t *n, str
 	return w;
 }
 
+static int tri_cmp(const void *x, const void *y)
+{
+	const uint32_t *a = x, *b = y;
+	for (int i = 0; i < 4; i++)
+		if (a[i] != b[i])
+			return a[i] < b[i] ? -1 : 1;
+	return 0;
+}
+
+/* Drop each triangle of w (triangles only) with the corners of another,
+ * keeping the free-form one (or the first): a patch's polygon laid over an
+ * island of the free-form surface that its decimation left as one triangle
+ * there.  lab follows.  The count dropped into *dropped. */
+static int drop_duplicate_triangles(struct fct_mesh *w, int32_t *lab, size_t *dropped,
+                                    struct fct_err *err)
+{
+	uint32_t (*key)[4] = fct_alloc_array(w->nf ? w->nf : 1, sizeof *key, err);
+	size_t *keep = fct_alloc_array(w->nf ? w->nf : 1, sizeof *keep, err);
+	unsigned char *gone = calloc(w->nf ? w->nf : 1, 1);
+	int rc = -1;
+	if (!key || !keep || !gone) {
+		if (key && keep)
+			fct_fail(err, "out of memory");
+		goto out;
+	}
+	for (size_t f = 0; f < w->nf; f++) {
+		uint32_t v[3];
+		memcpy(v, w->fvert + w->fstart[f], sizeof v);
+		for (int i = 0; i < 2; i++)
+			for (int j = 0; j < 2 - i; j++)
+				if (v[j] > v[j + 1]) {
+					uint32_t t = v[j];
+					v[j] = v[j + 1], v[j + 1] = t;
+				}
+		/* free-form first among equals, then by face index */
+		key[f][0] = v[0], key[f][1] = v[1], key[f][2] = v[2];
+		key[f][3] = (uint32_t)f;
+	}
+	qsort(key, w->nf, sizeof *key, tri_cmp);
+	for (size_t i = 0; i < w->nf;) {
+		size_t j = i + 1;
+		while (j < w->nf && !memcmp(key[j], key[i], 3 * sizeof(uint32_t)))
+			j++;
+		if (j - i > 1) {
+			size_t best = i;
+			for (size_t k = i; k < j; k++)
+				if (lab[key[k][3]] < 0) {
+					best = k;
+					break;
+				}
+			for (size_t k = i; k < j; k++)
+				if (k != best)
+					gone[key[k][3]] = 1;
+		}
+		i = j;
+	}
+	size_t n = 0;
+	for (size_t f = 0; f < w->nf; f++)
+		if (!gone[f])
+			lab[n] = lab[f], keep[n++] = f;
+	*dropped = w->nf - n;
+	rc = n == w->nf ? 0 : fct_mesh_gather_faces(w, keep, n, err);
+out:
+	free(key), free(keep), free(gone);
+	return rc;
+}
+
 /* Flag (unclean) the patches of the faces on edges of w that three or more
  * faces share: a diagonal of a rebuilt patch that exists elsewhere already
  * (its ends are joined across a fold, or by the free-form faces). */
@@ -898,9 +982,11 @@ static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsign
 		return -1;
 	for (size_t e = 0; e < adj.ne; e++)
 		if (fct_adj_edge_nfaces(&adj, e) > 2) {
+		{
 			for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
 				if (lab[adj.edge_f[k]] >= 0)
 					unclean[lab[adj.edge_f[k]]] = 1;
+		}
 		}
 	fct_adj_free(&adj);
 	return 0;
@@ -915,7 +1001,8 @@ static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsign
 static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
-                       unsigned char *unclean, struct fct_planar_stats *st, struct fct_err *err)
+                       const unsigned char *dense, unsigned char *unclean,
+                       struct fct_planar_stats *st, struct fct_err *err)
 {
 	struct fct_chains c;
 	memset(&c, 0, sizeof c);
@@ -942,6 +1029,10 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	for (size_t i = 0; i < c.n; i++) {
 		corner[c.vert[c.start[i]]] = 1;
 		corner[c.vert[c.start[i + 1] - 1]] = 1;
+		/* A patch's whole outline stays as sampled (dense). */
+		if (dense[c.left[i]] || (c.right[i] >= 0 && dense[c.right[i]]))
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				corner[c.vert[q]] = 1;
 	}
 	for (size_t i = 0; i < c.n; i++) {
 		if (c.right[i] != -1 || c.closed[i])
@@ -968,7 +1059,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		goto out;
 	}
 	for (size_t i = 0; i < c.n; i++) {
-		if (c.right[i] != -1)
+		if (c.right[i] != -1 && !dense[c.left[i]] && !(c.right[i] >= 0 && dense[c.right[i]]))
 			continue;
 		c.frozen[i] = 1;
 		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
@@ -1015,8 +1106,11 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 			goto out;
 		lab[k] = -1;
 	}
-	if (fct_patches_set(w, lab, err) || flag_nonmanifold(w, lab, unclean, err))
+	size_t dup = 0;
+	if (drop_duplicate_triangles(w, lab, &dup, err) || fct_patches_set(w, lab, err) ||
+	    flag_nonmanifold(w, lab, unclean, err))
 		goto out;
+	st->duplicates_dropped += dup;
 	st->planar_triangles = nplanar;
 	st->free_faces = F.nf;
 	rc = 0;
@@ -1035,7 +1129,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t np = 0;
 	int32_t *patch = NULL;
 	double *sigma = NULL, *spacing = NULL;
-	unsigned char *unclean = NULL;
+	unsigned char *unclean = NULL, *dense = NULL;
+	size_t *nfaces = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
 	int present = 0, rc = -1;
@@ -1064,8 +1159,12 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
-	    !(unclean = calloc(np ? np : 1, 1)))
+	    !(unclean = calloc(np ? np : 1, 1)) || !(dense = calloc(np ? np : 1, 1)) ||
+	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)))
 		goto out;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0)
+			nfaces[patch[f]]++;
 	/* Rounds: a patch that does not triangulate cleanly from its outline
 	 * (its loops cross in its plane, or a diagonal exists elsewhere) becomes
 	 * free-form, until none is left. */
@@ -1073,10 +1172,15 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		memset(unclean, 0, np ? np : 1);
 		fct_mesh_free(&w);
 		fct_mesh_init(&w);
-		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, unclean,
-		                st, err))
+		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, dense,
+		                unclean, st, err))
 			goto out;
+		/* Unclean: a large patch keeps its outline as sampled, a small one
+		 * (or a large one still unclean) becomes free-form. */
 		size_t more = 0;
+		for (size_t l = 0; l < np; l++)
+			if (unclean[l] && !dense[l] && nfaces[l] >= m->nf / LARGE_PATCH)
+				dense[l] = 1, unclean[l] = 0, more++, st->dense_patches++;
 		for (size_t f = 0; f < m->nf; f++)
 			if (patch[f] >= 0 && unclean[patch[f]])
 				patch[f] = -1, more++;
@@ -1114,6 +1218,6 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	rc = 0;
 out:
 	fct_mesh_free(&w);
-	free(pl), free(patch), free(sigma), free(spacing), free(unclean);
+	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(dense), free(nfaces);
 	return rc;
 }

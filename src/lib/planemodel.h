@@ -34,10 +34,12 @@ struct fct_tidy_stats {
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
                      struct fct_tidy_stats *st, struct fct_err *err);
 
-/* Facets of curved surfaces become free-form: each patch whose boundary
- * with other patches runs, for at least min_share of its length, along
+/* Facets of curved surfaces become free-form: each patch whose outline
+ * (to other patches, the free-form surface and the outside) runs, for at
+ * least min_share of its length, along
  * creases shallower than max_angle degrees (the angle between the planes'
- * normals) with three or more patches.  Noise large enough lets planes fit
+ * normals; but 3 degrees at least: planes nearer parallel make no crease, a
+ * sheet of paper on a table) with three or more patches.  Noise large enough lets planes fit
  * a sphere piecewise; such facets meet several others at shallow creases
  * all round, which walls, floors and boxes, meeting at right angles or at
  * the image's edge, do not, nor a plane that noise split in two.  patch changes in place; *facets gets the count. */
@@ -83,7 +85,8 @@ struct fct_meet_stats {
  * are NULL; where creases meet is known to a sample); a move that
  * turns a face over (against its plane's normal) or leaves it a sliver is
  * taken back, in rounds: Kang et al.'s section 5.  A vertex then still off
- * one of its planes by more than its uncertainty is torn: that patch's
+ * one of its planes by more than its uncertainty (where patches meet, or
+ * where a patch meets the free-form surface) is torn: that patch's
  * faces get a copy of it on their plane (along its ray), so that no plane
  * is tilted by another's vertex; the surface has a crack there, as the
  * sensor saw it (an occlusion).  0, or -1 out of memory. */
@@ -119,7 +122,9 @@ struct fct_planar_stats {
 	struct fct_chain_stats chains;   /* the outlines' simplification */
 	struct fct_tripatch_stats tri;   /* their triangulation */
 	size_t planar_triangles, free_faces;
-	size_t rounds, unclean_patches;  /* patches made free-form, not clean */
+	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
+	size_t rounds, dense_patches;    /* patches whose outline was kept as sampled */
+	size_t unclean_patches;          /* ... and made free-form, still not clean */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
 };
@@ -143,8 +148,10 @@ void fct_planar_params_default(struct fct_planar_params *p);
  *  4. each patch the polygon of its outline, triangulated (tripatch.h), and
  *     the free-form faces beside them: one surface, edge for edge;
  *  5. a patch whose outline does not triangulate cleanly (its loops cross,
- *     or a diagonal would be an edge of three faces) becomes free-form and
- *     the model is made again, until none is left;
+ *     or a diagonal would be an edge of three faces) becomes free-form, or
+ *     when it holds a fiftieth of the faces or more, keeps its outline as
+ *     sampled (and free-form only if even that fails); the model is made
+ *     again, until none is left;
  *  6. fct_planes_meet: vertices onto the planes' lines and corners.
  * 0, or -1 (message set; m may be half done). */
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,

@@ -24,6 +24,9 @@
 enum { ALIVE = 1, BORDER = 2, LOCKED = 4, MOVED = 8 };
 /* Held borders: a vertex inside, on a border, at a corner (qem.h). */
 enum { INSIDE = 0, ON_BORDER = 1, CORNER = 2 };
+/* Held borders: the thinnest triangle a collapse may make (twice the area
+ * over the longest edge squared), unless it was as thin. */
+#define HELD_QUALITY 1e-4
 
 /* A quadric x^T A x + 2 b.x + c: a[0..5] = A00 A01 A02 A11 A12 A22,
  * a[6..8] = b, a[9] = c; w is the face area it carries. */
@@ -624,6 +627,32 @@ static int link_ok(struct qem *s, uint32_t a, uint32_t b, int *dying, uint32_t *
 	return 1;
 }
 
+/* The longest edge of triangle c, to the fourth power. */
+static double before_l4(const double *const c[3])
+{
+	double l2 = fct_v3_dist2(c[0], c[1]), m2 = fct_v3_dist2(c[1], c[2]), k2 = fct_v3_dist2(c[2], c[0]);
+	l2 = m2 > l2 ? m2 : l2;
+	l2 = k2 > l2 ? k2 : l2;
+	return l2 * l2;
+}
+
+/* Held borders with a viewpoint (one view's mesh): would the triangle with
+ * corners c before (normal n0) and n after (normal n1) turn to face the
+ * other way as seen from the viewpoint?  A depth map's surface is a height
+ * field over its image; so it must stay, or its triangles fold over its
+ * borders in the image, where the planes beside them are triangulated. */
+static int turns_from_view(const struct qem *s, const double *const c[3], const double *const n[3],
+                           const double n0[3], const double n1[3])
+{
+	double g0[3], g1[3];
+	for (int i = 0; i < 3; i++) {
+		g0[i] = (c[0][i] + c[1][i] + c[2][i]) / 3 - s->vp[i];
+		g1[i] = (n[0][i] + n[1][i] + n[2][i]) / 3 - s->vp[i];
+	}
+	double r0 = fct_v3_dot(n0, g0), r1 = fct_v3_dot(n1, g1);
+	return r0 != 0 && !(r0 * r1 > 0);
+}
+
 /* Would moving a and b to x turn or flatten a surviving triangle? */
 static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 {
@@ -655,6 +684,13 @@ static int flips(const struct qem *s, uint32_t a, uint32_t b, const double x[3])
 			if (!(fct_v3_dot(n1, n1) > 1e-24 * l2 * l2))
 				return 1;
 			if (fct_v3_dot(n0, n1) <= 0 && (n0[0] != 0 || n0[1] != 0 || n0[2] != 0))
+				return 1;
+			if (s->cls && s->has_vp && turns_from_view(s, c, n, n0, n1))
+				return 1;
+			/* Held borders: no sliver thinner than HELD_QUALITY (twice the
+			 * area over the longest edge squared) unless it was. */
+			if (s->cls && sqrt(fct_v3_dot(n1, n1)) < HELD_QUALITY * l2 &&
+			    fct_v3_dot(n1, n1) * before_l4(c) < fct_v3_dot(n0, n0) * l2 * l2)
 				return 1;
 		}
 	}

@@ -88,7 +88,9 @@
  * end of a border edge), onto the best point of that edge (its ends, its
  * midpoint, the minimum along it), so a border's vertices stay a subset of
  * its samples, each where it was or on a segment between two of them; an
- * inside vertex goes as usual, or into a border vertex or corner.  The
+ * inside vertex goes as usual, or into a border vertex or corner.  With a
+ * viewpoint (use_viewpoint), no triangle may turn to face the other way as
+ * seen from it: one view's surface is a height field over its image.  The
  * border planes then measure a border's distance in units of border_tol
  * edge lengths (of the edge each plane came from): a border is known to a
  * sample, not to the depth's noise.

@@ -31,6 +31,8 @@
 /* Faces narrower than this many times their noise are no plane's evidence
  * (see narrow). */
 #define PEEL_ROUNDS 2
+/* Fits and peels to make the guarantee hold (see finish). */
+#define FINAL_ROUNDS 4
 /* Rounding in the moments is of the order of 1e-16 times the scatter's
  * trace: an increase of the residual below 64 times that is no increase. */
 #define ROUNDING 1.4e-14
@@ -1151,15 +1153,44 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 			patch[f] = -1;
 			S->st.narrow_faces++;
 		}
+	/* The guarantee: the planes fitted again to what the patches now hold
+	 * (growing and settling judged faces by the planes before), and every
+	 * face beyond max_dev of them peeled, until a fit peels none (at most
+	 * FINAL_ROUNDS); the planes are those of the last fit, which every
+	 * face left lies within max_dev of, since peeling only takes faces. */
+	for (int round = 0; round < FINAL_ROUNDS; round++) {
+		patch_moments(S, patch, np, R, ray);
+		for (size_t l = 0; l < np; l++)
+			patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, vp);
+		size_t peeled = 0;
+		for (size_t f = 0; f < nf; f++)
+			if (max_dev > 0 && patch[f] >= 0 && face_deviation(S, f, &pl[patch[f]]) > max_dev) {
+				patch[f] = -1;
+				peeled++;
+			}
+		S->st.peeled += peeled;
+		if (!peeled)
+			break;
+	}
 	for (size_t f = 0; f < nf; f++)
 		S->st.free_faces += patch[f] < 0;
-	/* The patches that remain, numbered afresh, and their final planes. */
+	/* The patches that remain, numbered afresh, with those planes. */
+	size_t np0 = np;
 	np = renumber(patch, nf, map);
-	patch_moments(S, patch, np, R, ray);
+	{
+		/* The planes, moved to their new numbers (peeling may have
+		 * reordered the patches' first faces). */
+		struct fct_plane *tmp = fct_alloc_array(np0 ? np0 : 1, sizeof *tmp, err);
+		if (!tmp)
+			goto fail;
+		memcpy(tmp, pl, np0 * sizeof *pl);
+		for (size_t l = 0; l < np0; l++)
+			if (map[l] >= 0)
+				pl[map[l]] = tmp[l];
+		free(tmp);
+	}
 	memset(wind, 0, 3 * (np ? np : 1) * sizeof *wind);
 	memset(res, 0, 2 * (np ? np : 1) * sizeof *res);
-	for (size_t l = 0; l < np; l++)
-		patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, vp);
 	size_t nfaces_in = 0;
 	for (size_t f = 0; f < nf; f++) {
 		if (patch[f] < 0)

@@ -63,8 +63,8 @@
  * The guarantee, and free-form faces.  Each patch's plane is fitted again
  * to its faces, and a face whose distance from it (its centroid's, each
  * corner in units of its sigma) exceeds max_dev leaves the patch: free-form
- * (label -1, no plane fits it within the noise), for three rounds.  Then
- * the patches grow back into the free-form faces their planes fit within
+ * (label -1, no plane fits it within the noise), for two rounds.  Then the
+ * patches grow back into the free-form faces their planes fit within
  * max_dev (region growing leaves faces along a crease to whichever side got
  * there first), and each face on a boundary between two patches moves to
  * the one whose plane it is nearer (so that boundaries run along the
@@ -72,8 +72,10 @@
  * min_extent sigma (a strip a few samples wide fits any plane and says
  * nothing of the surface), and one of fewer than min_faces faces when some
  * patch reaches that size (a curved surface cut into facets), is free-form
- * too.  So no face of a patch lies farther than max_dev sigma from its
- * plane.
+ * too.  Last, the planes are fitted again and the faces beyond max_dev
+ * peeled, until a fit peels none (at most four times); the planes written
+ * are those of the last fit.  So no face of a patch lies farther than
+ * max_dev sigma from its plane.
  * * The queue is a radix heap with a prefetching front (see segment.c);
  * patches are a union-find, so no adjacency list is kept or merged and a
  * merge is O(1): the run is O(F log F) at worst, about a microsecond a face.

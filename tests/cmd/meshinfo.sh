@@ -70,12 +70,11 @@ fi
 
 # The noise model and the vertices' sigma: min, median (the lower middle of
 # four) and max; a malformed noise comment is reported, not fatal.
-printf 'ply\nformat ascii 1.0\ncomment noise tof 0.001 0.002\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float sigma\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 1 0.3\n1 0 1 0.1\n1 1 1 0.4\n0 1 1 0.2\n3 0 1 2\n3 0 2 3\n' >"$TMP/sig.ply"
-meshinfo "$TMP/sig.ply" >"$TMP/sig.txt"
+meshinfo $D/info_noise.ply >"$TMP/sig.txt"
 for l in "noise: tof 0.001 0.002" "sigma_min: 0.100000001" "sigma_median: 0.200000003" "sigma_max: 0.400000006"; do
 	line "$TMP/sig.txt" "$l"
 done
-sed 's/^comment noise .*/comment noise poly 1/' "$TMP/sig.ply" >"$TMP/badnoise.ply"
+sed 's/^comment noise .*/comment noise poly 1/' $D/info_noise.ply >"$TMP/badnoise.ply"
 meshinfo "$TMP/badnoise.ply" >"$TMP/badnoise.txt"
 line "$TMP/badnoise.txt" "noise: invalid: comment: noise: expected poly:A,B,C"
 check_true "no sigma lines without the property" sh -c "! grep -q '^sigma_m' $TMP/cube.txt"

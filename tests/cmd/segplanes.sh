@@ -1,8 +1,10 @@
 # segplanes: a hand-made cube (six exact patches), bad input and usage, and
 # mkscene rooms with exact ground truth: the automatic criterion recovers
 # every true plane big enough to be seen, as one patch, its normal within a
-# degree, with Kinect-class and Gaussian noise, at dm2mesh step 1 and 5;
-# noiseless scenes give exact planes.
+# degree, with Kinect-class (Gaussian and structured) and Gaussian noise, at
+# dm2mesh step 1 and 5, with the noise model or sigma estimated; noiseless
+# scenes give exact planes; no face of a patch farther than 3 sigma from its
+# plane, on the rooms and on real frames.
 . tests/lib.sh
 
 # report KEY FILE: a segplanes -v figure.
@@ -115,6 +117,8 @@ check_true "single face: one patch, n = -y" cmp -s "$TMP/tri.got" "$TMP/tri.want
 # of that size, and the majority of that patch), "extra E" (more such
 # patches than planes), "angle A" (the largest angle between a big plane's
 # normal and its patch's), "rms R" (the largest rms of those patches).
+# Free-form faces (patch -1) are no patch: a big plane left free-form is
+# not one patch.
 evaluate() {
 	awk -v frac="$4" '
 	function header() { if ($1 == "element") { el = $2; cnt[el] = $3 } }
@@ -135,7 +139,7 @@ evaluate() {
 		n = frac * nf
 		for (t in T) if (t >= 0 && T[t] >= n) big++
 		for (p in P) {
-			if (P[p] < n) continue
+			if (p + 0 < 0 || P[p] < n) continue
 			for (t in T) if (t >= 0 && T[t] >= n && 2 * C[t, p] > P[p]) {
 				cover[t]++
 				d = pn[p, 0] * tn[t, 0] + pn[p, 1] * tn[t, 1] + pn[p, 2] * tn[t, 2]
@@ -159,14 +163,20 @@ scene() {
 	run_case 0 "dm2mesh -a --camera $TMP/$name/view00.camera --depth-scale 1 -j 1e9 --min-faces 0 -o $TMP/$name.lab.ply $TMP/$name/view00.patch.png"
 	run_case 0 "meshconv -a -o $TMP/$name.scene.ply $TMP/$name/scene.ply"
 }
-# view NAME STEP FRACTION TAG [SEGPLANES-ARGS]: mesh the view at STEP,
-# segment, evaluate into $TMP/TAG.eval (and TAG.err: the -v figures).
+# view NAME STEP FRACTION TAG [SEGPLANES-ARGS]: mesh the view at STEP
+# with its noise model (STEP "est": at step 1 without it, so that segplanes
+# estimates sigma from the data), segment, evaluate into $TMP/TAG.eval (and
+# TAG.err: the -v figures).
 view() {
 	name=$1 step=$2 frac=$3 tag=$4
 	shift 4
 	d=$TMP/$name
-	[ -f "$d-$step.ply" ] ||
-		run_case 0 "dm2mesh --step $step --camera $d/view00.camera --pose $d/view00.pose --noise $d/view00.noise -o $d-$step.ply $d/view00.depth.pfm"
+	if [ ! -f "$d-$step.ply" ]; then
+		case $step in
+		est) run_case 0 "dm2mesh --camera $d/view00.camera --pose $d/view00.pose -o $d-$step.ply $d/view00.depth.pfm" ;;
+		*) run_case 0 "dm2mesh --step $step --camera $d/view00.camera --pose $d/view00.pose --noise $d/view00.noise -o $d-$step.ply $d/view00.depth.pfm" ;;
+		esac
+	fi
 	run_case 0 "segplanes -a -v $* -o $TMP/$tag.seg.ply $d-$step.ply 2>$TMP/$tag.err"
 	evaluate "$d.lab.ply" "$TMP/$tag.seg.ply" "$d.scene.ply" "$frac" >"$TMP/$tag.eval"
 }
@@ -178,6 +188,71 @@ recovered() {
 	check_num "$1: each big plane one patch" "$(figure one "$e")" == "$(figure big "$e")"
 	check_num "$1: no big plane split" "$(figure extra "$e")" == 0
 	check_num "$1: normals within $2 degree" "$(figure angle "$e")" "<" "$2"
+}
+
+# deviation SEG: how far the faces of patches in SEG (a segplanes ascii
+# output with the vertex property sigma) lie from their patch's plane, in
+# units of the noise as segment.h measures it: the mean over a face's
+# corners of (n.p + d) / sigma, in absolute value.  Prints "faces N" (faces
+# of patches), "max M" (the largest), "over K" (faces farther than 3).
+# Each face keeps only its corners' sums (x/sigma ... 1/sigma), since the
+# planes come after the faces.
+deviation() {
+	awk '/^element/ && !h { el = $2; cnt[el] = $3; np[el] = 0; next }
+	/^property list/ && !h { col[el, $5] = ++np[el]; next }
+	/^property/ && !h { col[el, $3] = ++np[el]; next }
+	/^end_header/ && !h { h = 1; vi = fi = pi = 0; cx = col["vertex", "x"]; cy = col["vertex", "y"]
+		cz = col["vertex", "z"]; cs = col["vertex", "sigma"]; next }
+	!h { next }
+	vi < cnt["vertex"] { w = 1 / $cs; X[vi] = $cx * w; Y[vi] = $cy * w; Z[vi] = $cz * w; W[vi++] = w; next }
+	fi < cnt["face"] { fi++; k = $1; if ($(k + 2) < 0) next
+		a = b = c = w = 0
+		for (i = 2; i <= k + 1; i++) { v = $i; a += X[v]; b += Y[v]; c += Z[v]; w += W[v] }
+		n++; FA[n] = a / k; FB[n] = b / k; FC[n] = c / k; FW[n] = w / k; FP[n] = $(k + 2); next }
+	pi < cnt["plane"] { nx[pi] = $1; ny[pi] = $2; nz[pi] = $3; d[pi++] = $4 }
+	END {
+		for (f = 1; f <= n; f++) {
+			p = FP[f]; e = nx[p] * FA[f] + ny[p] * FB[f] + nz[p] * FC[f] + d[p] * FW[f]
+			e = e < 0 ? -e : e; if (e > m) m = e; o += e > 3
+		}
+		printf "faces %d\nmax %.6f\nover %d\n", n, m, o
+	}' "$1"
+}
+# holds VALUE OP REF: the comparison of check_num, as a status.
+holds() { awk -v a="$1" -v b="$3" -v op="$2" 'BEGIN {
+	if (op == "<") exit !(a + 0 < b + 0); if (op == "<=") exit !(a + 0 <= b + 0)
+	if (op == "==") exit !(a + 0 == b + 0); exit 1 }'; }
+# xfail "description" command...: a check known to fail today, a bug
+# reported to the lead.  It counts as passed while it fails (saying so on
+# stderr), and fails once it holds: delete the mark then, and keep the
+# check.  The margins asserted beside it catch a worse failure.
+xfail() {
+	desc=$1
+	shift
+	if "$@"; then
+		not_ok "$desc now holds: remove its expected-failure mark (xfail) in $0"
+	else
+		echo "$(basename "$0"): expected failure: $desc" >&2
+		ok
+	fi
+}
+# guarantee TAG MAX SHARE: segplanes' promise on $TMP/TAG.seg.ply: no face
+# of a patch farther than --max-dev (3) sigma from its plane.  Where it is
+# known not to hold (MAX given), the largest deviation stays below MAX and
+# the faces beyond 3 sigma below SHARE of the patches' faces.
+guarantee() {
+	deviation "$TMP/$1.seg.ply" >"$TMP/$1.dev"
+	check_num "$1: faces of patches" "$(figure faces "$TMP/$1.dev")" ">" 0
+	if [ -z "${2:-}" ]; then
+		check_num "$1: no face of a patch farther than 3 sigma from its plane" \
+			"$(figure max "$TMP/$1.dev")" "<=" 3
+		return
+	fi
+	xfail "$1: no face of a patch farther than 3 sigma from its plane (max $(figure max "$TMP/$1.dev"), $(figure over "$TMP/$1.dev") faces beyond)" \
+		holds "$(figure max "$TMP/$1.dev")" "<=" 3
+	check_num "$1: largest deviation of a patch face, in sigma" "$(figure max "$TMP/$1.dev")" "<" "$2"
+	check_num "$1: share of patch faces beyond 3 sigma" \
+		"$(awk -v o="$(figure over "$TMP/$1.dev")" -v n="$(figure faces "$TMP/$1.dev")" 'BEGIN { print o / n }')" "<" "$3"
 }
 
 # A room (boxes, ramp, sphere, cylinder) with Kinect-class noise (sigma =
@@ -192,6 +267,32 @@ view rk 1 0.005 rk-1
 recovered rk-1 1 9
 check_num "rk-1: patches" "$(report patches "$TMP/rk-1.err")" "<" 100
 check_num "rk-1: noise figure" "$(report noise "$TMP/rk-1.err")" ">" 0.0005
+# The guarantee holds here (largest 2.99 sigma at planar d60fa92).
+guarantee rk-1
+# Without the noise model sigma is estimated from the data, and the planes
+# are found all the same (largest angle 0.36 degree).
+view rk est 0.005 rk-est
+recovered rk-est 1 9
+check_num "rk-est: sigma estimated" "$(report noise_estimated "$TMP/rk-est.err")" == 1
+# The same room with the structured noise of a Kinect as ICL-NUIM simulates
+# it: the sampled pixel jittered, Gaussian noise on the disparity, and the
+# disparity in 1/8-pixel steps, so that depth comes in plateaus.  The big
+# planes are 0.85% of the faces or more here (8 of them; largest angle 0.42
+# degree, 0.58 with sigma estimated): the next, the far side of box2 (0.8%,
+# 5.5 m away), is one patch 1.3 degrees off (its true faces alone fit within
+# 0.4 degree along the rays), and free-form at 640x480 or with mkscene
+# --seed 2 (narrower than --min-extent).
+scene rq --size 320x240 --fx 262.5 --noise kinect
+view rq 1 0.0085 rq-1
+recovered rq-1 1 8
+check_num "rq-1: patches" "$(report patches "$TMP/rq-1.err")" "<" 60
+guarantee rq-1
+evaluate "$TMP/rq.lab.ply" "$TMP/rq-1.seg.ply" "$TMP/rq.scene.ply" 0.005 >"$TMP/rq-1-all.eval"
+xfail "rq-1: every plane of 0.5% of the faces one patch within 1 degree (largest $(figure angle "$TMP/rq-1-all.eval"))" \
+	holds "$(figure angle "$TMP/rq-1-all.eval")" "<" 1
+view rq est 0.0085 rq-est
+recovered rq-est 1 8
+check_num "rq-est: sigma estimated" "$(report noise_estimated "$TMP/rq-est.err")" == 1
 scene rk6 --noise kinect-gauss:0.0012
 view rk6 5 0.01 rk6-5
 recovered rk6-5 1 7
@@ -200,6 +301,7 @@ check_num "rk6-5: patches" "$(report patches "$TMP/rk6-5.err")" "<" 60
 scene rg --size 320x240 --fx 262.5 --noise gaussian:0.003
 view rg 1 0.005 rg-1
 recovered rg-1 0.5 9
+guarantee rg-1
 view rg 5 0.01 rg-5
 recovered rg-5 1 5
 # Area weighting on the noisy room, and the orthogonal fit of eq. 1.
@@ -216,6 +318,27 @@ check_num "r0-1: rms of the planes" "$(figure rms "$TMP/r0-1.eval")" "<" 1e-6
 view r0 5 0.01 r0-5
 recovered r0-5 0.001 5
 check_num "r0-5: rms of the planes" "$(figure rms "$TMP/r0-5.eval")" "<" 1e-6
+# Real frames, with the Kinect noise model their camera names imply: the
+# TUM desk of samples/, and 7-Scenes' first kitchen frame when the shared
+# data are here; and the real 7-Scenes frame of samples/ (the guarantee once
+# failed on both: at planar d60fa92, TUM 1235 of 436611 patch faces beyond
+# 3 sigma, up to 5.82; 7-Scenes 217 of 485512, up to 3.57, before the
+# planes were fitted a last time after the boundaries settled).
+run_case 0 "dm2mesh -K tum samples/tum/TUM_depth.png | segplanes -a -o $TMP/tum.seg.ply"
+guarantee tum
+kitchen=
+for k in ../shared/data/7scenes_redkitchen /work/shared/data/7scenes_redkitchen; do
+	[ -f "$k/frames/frame-000000.depth.png" ] && kitchen=$k && break
+done
+if [ -n "$kitchen" ]; then
+	run_case 0 "dm2mesh -K 7scenes $kitchen/frames/frame-000000.depth.png | segplanes -a -o $TMP/7s.seg.ply"
+	guarantee 7s
+else
+	echo "segplanes.sh: no 7scenes_redkitchen in ../shared/data: its frame skipped" >&2
+fi
+run_case 0 "dm2mesh -K 7scenes samples/7scenes/frame-000000.depth.png | segplanes -a -o $TMP/7k.seg.ply"
+guarantee 7k
+
 # -n: the cube's six (above), and a fixed count on the room.
 run_case 0 "segplanes -v -n 12 -o $TMP/n12.ply $TMP/rk-1.ply 2>$TMP/n12.err"
 check_num "-n 12 on the room: 12 patches" "$(report patches "$TMP/n12.err")" == 12
@@ -223,7 +346,8 @@ check_num "-n 12 on the room: 12 patches" "$(report patches "$TMP/n12.err")" == 
 run_case 0 "segplanes <$TMP/rk6-5.ply >$TMP/again.ply"
 run_case 0 "segplanes <$TMP/rk6-5.ply >$TMP/again2.ply"
 check_true "the same bytes twice" cmp -s "$TMP/again.ply" "$TMP/again2.ply"
-# The man page example.
+# A small room through the pipe, segplanes reading standard input (the
+# man page's examples run in man_examples.sh).
 run_case 0 "mkscene --size 160x120 --fx 131.25 --noise kinect-gauss:0.0012 -o $TMP/ex && dm2mesh --camera $TMP/ex/view00.camera --pose $TMP/ex/view00.pose $TMP/ex/view00.depth.pfm | segplanes -v -o $TMP/ex.ply 2>$TMP/ex.err"
-check_num "man page example: patches" "$(report patches "$TMP/ex.err")" ">" 5
+check_num "pipe: patches" "$(report patches "$TMP/ex.err")" ">" 5
 finish

@@ -31,7 +31,7 @@ static void make_grid(struct test_grid *t, int w, int h, double (*depth_fn)(doub
 			t->depth[c] = d;
 			t->xyz[3 * c] = d * x, t->xyz[3 * c + 1] = d * y, t->xyz[3 * c + 2] = d;
 		}
-	t->g = (struct fct_range_grid){ w, h, t->xyz, NULL, NULL, t->depth, 0.01, 0, NULL };
+	t->g = (struct fct_range_grid){ w, h, t->xyz, NULL, NULL, t->depth, 0.01, 0, NULL, 0 };
 }
 
 static void free_grid(struct test_grid *t)
