@@ -3,9 +3,11 @@
 # with Gaussian and with structured (Kinect) noise, beside the dense mesh
 # and a quadric decimation (qemdecim) to the same face count; the real TUM
 # frame; a valid mesh (no non-manifold edge, degenerate or duplicate face);
-# the same bytes twice; the stages equal to the programs on a pipe; mesh
-# inputs with and without a camera; --keep; the C programs' grammar and
-# their error conventions.
+# dm2mesh's camera options (Middlebury's calib.txt, --doffs, the
+# implausible-depth warning, a georeferenced pose kept as double); the same
+# bytes twice; the stages equal to the programs on a pipe; mesh inputs with
+# and without a camera; --keep; the C programs' grammar and their error
+# conventions.
 . tests/lib.sh
 
 figure() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
@@ -104,6 +106,34 @@ if [ -d "$F" ]; then
 else
 	echo "planarize.sh: the 7-Scenes frames not found, skipped" >&2
 fi
+
+# dm2mesh's camera options are planarize's.  Middlebury's calib.txt as
+# --camera: the disparities of 20 px with its doffs 5 are 0.1 * 100 / 25 =
+# 0.4 m, as dm2mesh makes them (tests/cmd/dm2mesh.sh).
+D=tests/data
+run_case 0 "planarize --camera $D/dm_middlebury_calib.txt --keep $TMP/mb -o $TMP/mb.ply $D/dm_disp.pfm"
+run_case 0 "dm2mesh --camera $D/dm_middlebury_calib.txt -o $TMP/mb/dm2mesh.ply $D/dm_disp.pfm"
+check_true "calib.txt: 1-mesh.ply is dm2mesh's" test "$(bare "$TMP/mb/1-mesh.ply" | cksum)" = "$(bare "$TMP/mb/dm2mesh.ply" | cksum)"
+check_true "calib.txt: every depth 0.4" test "$(bare "$TMP/mb/1-mesh.ply" | awk '/^end_header/ { h = 1; next } h && NF == 5 { print $3 }' | sort -u)" = 0.4
+run_case 0 "planarize --camera $D/dm_middlebury_calib.txt --doffs 0 --keep $TMP/mb0 -o $TMP/mb0.ply $D/dm_disp.pfm"
+check_true "calib.txt, --doffs 0: every depth 0.5" test "$(bare "$TMP/mb0/1-mesh.ply" | awk '/^end_header/ { h = 1; next } h && NF == 5 { print $3 }' | sort -u)" = 0.5
+run_case 2 "planarize -K 100,100,3.5,2.5 --doffs 5 $D/dm_disp.pfm" "" "planarize: --doffs is for disparities and needs --baseline"
+run_case 2 "planarize -K $D/dm_middlebury_calib.txt $D/dm_disp.pfm" "" "planarize: -K: \"$D/dm_middlebury_calib.txt\" is a file: give an intrinsics file with --camera"
+# The TUM desk with fr3's K typed as numbers (depth read as millimetres, not
+# TUM's 1/5000 m): dm2mesh's warning, and the model is made all the same.
+run_case 0 "planarize --step 8 -K 535.4,539.2,320.1,247.6 -o $TMP/tum12.ply $S/TUM_depth.png 2>$TMP/tum12.err"
+check_true "implausible depth: dm2mesh's warning" grep -q "^planarize: warning: $S/TUM_depth.png: median depth 12.1 m: implausible" "$TMP/tum12.err"
+# A georeferenced pose (the room 500 km east, 4000 km north): positions
+# kept as double, and the model is the programs' on a pipe.
+G=$TMP/geo
+mkscene -q --views 1 --size 160x120 --fx 131.25 --noise kinect-gauss:0.0015 -o "$G" >/dev/null
+awk 'NR == 1 { $4 += 500000 } NR == 2 { $4 += 4000000 } { print }' "$G/view00.pose" >"$G/far.pose"
+run_case 0 "planarize -v --camera $G/view00.camera --pose $G/far.pose --keep $G/k -o $G/model.ply $G/view00.depth.pfm 2>$G/err"
+check_num "georeferenced: double positions reported" "$(sed -n 's/^planarize: dm2mesh: double_xyz=//p' "$G/err")" == 1
+check_true "georeferenced: x is double in the model" sh -c "meshinfo $G/model.ply | grep -q '^property: vertex double x'"
+gf=$(info faces "$G/k/1-mesh.ply")
+run_case 0 "dm2mesh --camera $G/view00.camera --pose $G/far.pose $G/view00.depth.pfm | segplanes --min-faces $((gf / 600)) | planedecim -o $G/pipe.ply"
+check_true "georeferenced: the programs' model" test "$(bare "$G/pipe.ply" | cksum)" = "$(bare "$G/model.ply" | cksum)"
 
 # A small room (320x240, Kinect noise) for what follows.
 V=$TMP/small
