@@ -56,14 +56,34 @@ check_true() {
 	if "$@"; then ok; else not_ok "$desc"; fi
 }
 
-# check_num "description" VALUE OP REF: numeric comparison with awk (OP: < <= > >= ==).
-check_num() {
-	if awk -v a="$2" -v b="$4" -v op="$3" 'BEGIN {
+# holds VALUE OP REF: numeric comparison with awk (OP: < <= > >= ==), as a
+# status; a VALUE that is not a number holds nothing.
+holds() {
+	awk -v a="$1" -v b="$3" -v op="$2" 'BEGIN {
 		if (a !~ /^[-+0-9.eEinfa]+$/) exit 1
 		if (op == "<") exit !(a + 0 < b + 0); if (op == "<=") exit !(a + 0 <= b + 0)
 		if (op == ">") exit !(a + 0 > b + 0); if (op == ">=") exit !(a + 0 >= b + 0)
-		if (op == "==") exit !(a + 0 == b + 0); exit 1 }'; then ok
-	else not_ok "$1: $2 $3 $4 does not hold"; fi
+		if (op == "==") exit !(a + 0 == b + 0); exit 1 }'
+}
+
+# check_num "description" VALUE OP REF: passes when holds VALUE OP REF.
+check_num() {
+	if holds "$2" "$3" "$4"; then ok; else not_ok "$1: $2 $3 $4 does not hold"; fi
+}
+
+# xfail "description" command...: a check known to fail today, a bug
+# reported to the lead.  It counts as passed while it fails (saying so on
+# stderr), and fails once it holds: delete the mark then, and keep the
+# check.  The margins asserted beside it catch a worse failure.
+xfail() {
+	desc=$1
+	shift
+	if "$@"; then
+		not_ok "$desc now holds: remove its expected-failure mark (xfail) in $0"
+	else
+		echo "$(basename "$0"): expected failure: $desc" >&2
+		ok
+	fi
 }
 
 # scratch_with_tree DIR: make DIR for documented examples, holding the

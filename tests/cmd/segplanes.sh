@@ -218,24 +218,6 @@ deviation() {
 		printf "faces %d\nmax %.6f\nover %d\n", n, m, o
 	}' "$1"
 }
-# holds VALUE OP REF: the comparison of check_num, as a status.
-holds() { awk -v a="$1" -v b="$3" -v op="$2" 'BEGIN {
-	if (op == "<") exit !(a + 0 < b + 0); if (op == "<=") exit !(a + 0 <= b + 0)
-	if (op == "==") exit !(a + 0 == b + 0); exit 1 }'; }
-# xfail "description" command...: a check known to fail today, a bug
-# reported to the lead.  It counts as passed while it fails (saying so on
-# stderr), and fails once it holds: delete the mark then, and keep the
-# check.  The margins asserted beside it catch a worse failure.
-xfail() {
-	desc=$1
-	shift
-	if "$@"; then
-		not_ok "$desc now holds: remove its expected-failure mark (xfail) in $0"
-	else
-		echo "$(basename "$0"): expected failure: $desc" >&2
-		ok
-	fi
-}
 # guarantee TAG MAX SHARE: segplanes' promise on $TMP/TAG.seg.ply: no face
 # of a patch farther than --max-dev (3) sigma from its plane.  Where it is
 # known not to hold (MAX given), the largest deviation stays below MAX and
