@@ -136,6 +136,8 @@ int main(int argc, char **argv)
 	fct_report("planar_triangles", "%zu", st.planar_triangles);
 	fct_report("rounds", "%zu", st.rounds);
 	fct_report("dense_patches", "%zu", st.dense_patches);
+	fct_report("pinned", "%zu", st.pinned);
+	fct_report("tightened", "%zu", st.tightened);
 	fct_report("unclean_patches", "%zu", st.unclean_patches);
 	fct_report("moved_line", "%zu", st.meet.lines);
 	fct_report("moved_corner", "%zu", st.meet.corners);

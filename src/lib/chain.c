@@ -21,6 +21,7 @@ void fct_chain_params_default(struct fct_chain_params *p)
 	p->keep_small_loops = 0;
 	p->scale = NULL;
 	p->scale_factor = 3;
+	p->tolerance = NULL;
 }
 
 void fct_chains_free(struct fct_chains *c)
@@ -1386,6 +1387,8 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 			double t = p->scale_factor * sum / (double)(c->start[i + 1] - c->start[i]);
 			t2 = t * t;
 		}
+		if (p->tolerance && p->tolerance[i] > 0)
+			t2 = p->tolerance[i] * p->tolerance[i];
 		if (simplify_chain(m, c, i, t2, stack, st, err)) {
 			free(stack);
 			return -1;

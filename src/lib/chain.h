@@ -129,6 +129,10 @@ struct fct_chain_params {
 	                          scale_factor times its points' mean scale, instead
 	                          of threshold mean edges of the whole mesh */
 	double scale_factor;
+	const double *tolerance;  /* NULL (default), or a tolerance for each chain of
+	                             c (a length; 0 keeps the one above): a crease
+	                             chain that will be moved onto its planes' line
+	                             anyway, say */
 };
 
 void fct_chain_params_default(struct fct_chain_params *p);

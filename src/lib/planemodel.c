@@ -971,25 +971,86 @@ out:
 	return rc;
 }
 
-/* Flag (unclean) the patches of the faces on edges of w that three or more
- * faces share: a diagonal of a rebuilt patch that exists elsewhere already
- * (its ends are joined across a fold, or by the free-form faces). */
-static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsigned char *unclean,
-                            struct fct_err *err)
+/* A chain is simplified to its tolerance halved k times, and kept as
+ * sampled from k = AS_SAMPLED on, where k is the largest of its patches'
+ * tight[] and its points' pin[]. */
+#define AS_SAMPLED 3
+
+static int chain_tightness(const struct fct_chains *c, size_t i, const unsigned char *tight,
+                           const unsigned char *pin)
+{
+	int k = tight[c->left[i]];
+	if (c->right[i] >= 0 && tight[c->right[i]] > k)
+		k = tight[c->right[i]];
+	for (size_t q = c->start[i]; q < c->start[i + 1]; q++)
+		if (pin[c->vert[q]] > k)
+			k = pin[c->vert[q]];
+	return k;
+}
+
+/* The edges of w that three or more faces share: a diagonal of a rebuilt
+ * patch that exists elsewhere already (its ends are joined across a fold, or
+ * by the free-form faces).  Their ends are pinned once more (the chains
+ * through them are simplified more tightly in the next try, which changes
+ * the patches' outlines there); when both ends were kept as sampled
+ * already, the patches of the faces on the edge are flagged unclean.
+ * *npinned counts the edges pinned. */
+static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsigned char *pin,
+                           unsigned char *unclean, size_t *npinned, struct fct_err *err)
 {
 	struct fct_adj adj;
 	if (fct_adj_build(&adj, w, err))
 		return -1;
-	for (size_t e = 0; e < adj.ne; e++)
-		if (fct_adj_edge_nfaces(&adj, e) > 2) {
-		{
-			for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
-				if (lab[adj.edge_f[k]] >= 0)
-					unclean[lab[adj.edge_f[k]]] = 1;
+	for (size_t e = 0; e < adj.ne; e++) {
+		if (fct_adj_edge_nfaces(&adj, e) <= 2)
+			continue;
+		uint32_t a = adj.edge_v[2 * e], b = adj.edge_v[2 * e + 1];
+		if (pin[a] < AS_SAMPLED || pin[b] < AS_SAMPLED) {
+			(*npinned)++;
+			pin[a] += pin[a] < AS_SAMPLED;
+			pin[b] += pin[b] < AS_SAMPLED;
+			continue;
 		}
-		}
+		for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
+			if (lab[adj.edge_f[k]] >= 0)
+				unclean[lab[adj.edge_f[k]]] = 1;
+	}
 	fct_adj_free(&adj);
 	return 0;
+}
+
+/* Each chain's own tolerance in tol[]: for a chain between two patches
+ * whose every point lies within max_move of its uncertainty of the planes'
+ * line (a crease), twice the largest such bound, as fct_planes_meet will
+ * move its points onto the line anyway and only its ends matter; 0 (the
+ * simplification's default) for the others. */
+static void crease_tolerances(double *tol, const struct fct_chains *c, const struct fct_mesh *m,
+                              const struct fct_plane *pl, const double *sigma,
+                              const double *spacing, double max_move, const double *vp)
+{
+	for (size_t i = 0; i < c->n; i++) {
+		tol[i] = 0;
+		if (c->right[i] < 0 || c->closed[i] || max_move <= 0)
+			continue;
+		int32_t pair[2] = {c->left[i], c->right[i]};
+		double worst = 0;
+		size_t q;
+		for (q = c->start[i]; q < c->start[i + 1]; q++) {
+			uint32_t v = c->vert[q];
+			const double *p = m->xyz + 3 * (size_t)v;
+			double x[3], bound = max_move * sqrt(sigma[v] * sigma[v] + spacing[v] * spacing[v]);
+			if (!onto_planes(pl, pair, 2, p, x))
+				break;
+			if (vp)
+				along_ray(pl, pair, 2, vp, p, x);
+			if (!(fct_v3_dist2(x, p) <= bound * bound))
+				break;
+			if (bound > worst)
+				worst = bound;
+		}
+		if (q == c->start[i + 1])
+			tol[i] = 2 * worst;
+	}
 }
 
 /* One try at the model from the dense m and its labels: the free-form faces
@@ -1001,8 +1062,9 @@ static int flag_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsign
 static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
-                       const unsigned char *dense, unsigned char *unclean,
-                       struct fct_planar_stats *st, struct fct_err *err)
+                       const unsigned char *tight, unsigned char *pin,
+                       unsigned char *unclean, size_t *npinned, struct fct_planar_stats *st,
+                       struct fct_err *err)
 {
 	struct fct_chains c;
 	memset(&c, 0, sizeof c);
@@ -1013,6 +1075,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	unsigned char *corner = calloc(m->nv ? m->nv : 1, 1), *alive = calloc(m->nv ? m->nv : 1, 1);
 	struct fct_wire *wires = NULL;
 	int32_t *lab = NULL;
+	double *tol = NULL;
 	int rc = -1;
 	if (!corner || !alive) {
 		fct_fail(err, "out of memory");
@@ -1026,13 +1089,19 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	 * patches joins too: with its inner points gone, the patch's outline
 	 * would run to and fro along one segment there (a sliver of the patch
 	 * between the free-form surface and the border, say). */
+	if (!(c.frozen = calloc(c.n ? c.n : 1, 1))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
 	for (size_t i = 0; i < c.n; i++) {
 		corner[c.vert[c.start[i]]] = 1;
 		corner[c.vert[c.start[i + 1] - 1]] = 1;
-		/* A patch's whole outline stays as sampled (dense). */
-		if (dense[c.left[i]] || (c.right[i] >= 0 && dense[c.right[i]]))
-			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
-				corner[c.vert[q]] = 1;
+		/* The chains tightened to the last stay as sampled. */
+		if (chain_tightness(&c, i, tight, pin) < AS_SAMPLED)
+			continue;
+		c.frozen[i] = 1;
+		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+			corner[c.vert[q]] = 1;
 	}
 	for (size_t i = 0; i < c.n; i++) {
 		if (c.right[i] != -1 || c.closed[i])
@@ -1054,12 +1123,8 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		alive[vmap[i]] = 1;
 	/* A chain against the free-form surface keeps what its decimation kept;
 	 * the others are simplified to their tolerance. */
-	if (!(c.frozen = calloc(c.n ? c.n : 1, 1))) {
-		fct_fail(err, "out of memory");
-		goto out;
-	}
 	for (size_t i = 0; i < c.n; i++) {
-		if (c.right[i] != -1 && !dense[c.left[i]] && !(c.right[i] >= 0 && dense[c.right[i]]))
+		if (c.right[i] != -1 && !c.frozen[i])
 			continue;
 		c.frozen[i] = 1;
 		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
@@ -1069,6 +1134,22 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	fct_chain_params_default(&cp);
 	cp.scale = spacing;
 	cp.scale_factor = p->outline_tol;
+	if (!(tol = fct_alloc_array(c.n ? c.n : 1, sizeof *tol, err)))
+		goto out;
+	crease_tolerances(tol, &c, m, pl, sigma, spacing, p->max_move, vp);
+	for (size_t i = 0; i < c.n; i++) {
+		int k = chain_tightness(&c, i, tight, pin);
+		if (!k)
+			continue;
+		if (!(tol[i] > 0)) {
+			double sum = 0;
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				sum += spacing[c.vert[q]];
+			tol[i] = p->outline_tol * sum / (double)(c.start[i + 1] - c.start[i]);
+		}
+		tol[i] = ldexp(tol[i], -k);
+	}
+	cp.tolerance = tol;
 	size_t ne;
 	if (fct_chains_simplify(&c, m, patch, pl, np, &cp, &st->chains, err) ||
 	    !(wires = outline_wires(&c, &ne, err)))
@@ -1108,7 +1189,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	}
 	size_t dup = 0;
 	if (drop_duplicate_triangles(w, lab, &dup, err) || fct_patches_set(w, lab, err) ||
-	    flag_nonmanifold(w, lab, unclean, err))
+	    pin_nonmanifold(w, lab, pin, unclean, npinned, err))
 		goto out;
 	st->duplicates_dropped += dup;
 	st->planar_triangles = nplanar;
@@ -1117,7 +1198,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 out:
 	fct_chains_free(&c);
 	fct_mesh_free(&F);
-	free(vmap), free(corner), free(alive), free(wires), free(lab);
+	free(vmap), free(corner), free(alive), free(wires), free(lab), free(tol);
 	return rc;
 }
 
@@ -1129,7 +1210,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t np = 0;
 	int32_t *patch = NULL;
 	double *sigma = NULL, *spacing = NULL;
-	unsigned char *unclean = NULL, *dense = NULL;
+	unsigned char *unclean = NULL, *tight = NULL, *pin = NULL;
 	size_t *nfaces = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
@@ -1159,28 +1240,36 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
-	    !(unclean = calloc(np ? np : 1, 1)) || !(dense = calloc(np ? np : 1, 1)) ||
+	    !(unclean = calloc(np ? np : 1, 1)) || !(tight = calloc(np ? np : 1, 1)) ||
+	    !(pin = calloc(m->nv ? m->nv : 1, 1)) ||
 	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)))
 		goto out;
 	for (size_t f = 0; f < m->nf; f++)
 		if (patch[f] >= 0)
 			nfaces[patch[f]]++;
-	/* Rounds: a patch that does not triangulate cleanly from its outline
-	 * (its loops cross in its plane, or a diagonal exists elsewhere) becomes
-	 * free-form, until none is left. */
+	/* Rounds, until every patch triangulates cleanly from its outline: a
+	 * diagonal that exists elsewhere pins its ends (their chains stay as
+	 * sampled); a patch whose loops cross in its plane, or that such a
+	 * diagonal spoils again, has its outline tightened if large, and
+	 * becomes free-form if small or still unclean. */
 	for (int round = 0;; round++) {
 		memset(unclean, 0, np ? np : 1);
 		fct_mesh_free(&w);
 		fct_mesh_init(&w);
-		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, dense,
-		                unclean, st, err))
-			goto out;
-		/* Unclean: a large patch keeps its outline as sampled, a small one
-		 * (or a large one still unclean) becomes free-form. */
 		size_t more = 0;
+		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight, pin,
+		                unclean, &more, st, err))
+			goto out;
+		st->pinned += more;
+		/* Unclean: a large patch's outline is tightened (halved, then
+		 * halved again, then kept as sampled), a small one (or a large
+		 * one still unclean) becomes free-form. */
 		for (size_t l = 0; l < np; l++)
-			if (unclean[l] && !dense[l] && nfaces[l] >= m->nf / LARGE_PATCH)
-				dense[l] = 1, unclean[l] = 0, more++, st->dense_patches++;
+			if (unclean[l] && tight[l] < AS_SAMPLED && nfaces[l] >= m->nf / LARGE_PATCH) {
+				tight[l]++, unclean[l] = 0, more++;
+				st->tightened++;
+				st->dense_patches += tight[l] == AS_SAMPLED;
+			}
 		for (size_t f = 0; f < m->nf; f++)
 			if (patch[f] >= 0 && unclean[patch[f]])
 				patch[f] = -1, more++;
@@ -1218,6 +1307,6 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	rc = 0;
 out:
 	fct_mesh_free(&w);
-	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(dense), free(nfaces);
+	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(pin), free(nfaces);
 	return rc;
 }

@@ -124,6 +124,8 @@ struct fct_planar_stats {
 	size_t planar_triangles, free_faces;
 	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
 	size_t rounds, dense_patches;    /* patches whose outline was kept as sampled */
+	size_t pinned;                   /* diagonals found elsewhere whose ends were pinned */
+	size_t tightened;                /* outlines simplified more tightly */
 	size_t unclean_patches;          /* ... and made free-form, still not clean */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */

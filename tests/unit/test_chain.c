@@ -200,6 +200,7 @@ static int simp(struct fct_mesh *m, double t, int topo, struct fct_chains *ch, s
 	fct_chain_params_default(&p);
 	p.threshold = t;
 	p.keep_topology = topo;
+	p.keep_small_loops = 1;  /* these cases test the simplification itself */
 	return fct_simpchain(m, &p, ch, st, &err);
 }
 
@@ -606,6 +607,54 @@ static void test_uneven(void)
 	fct_mesh_free(&m);
 }
 
+static int lab_wiggle(int x, int y)
+{
+	return x < 20 + 3 * ((y / 4) % 2) ? 0 : 1;
+}
+
+/* A boundary that wiggles by 3 units between two patches: the default
+ * threshold (1 mean edge) keeps its steps; a tolerance of its own for the
+ * chain between the patches (as planedecim gives a crease that will be
+ * moved onto its planes' line) keeps its two ends only, and the other
+ * chains keep the default. */
+static void test_chain_tolerance(void)
+{
+	struct fct_mesh m;
+	struct fct_chains c;
+	struct fct_chain_stats st;
+	grid(&m, 0, 0, 40, 24, 0, lab_wiggle, 2);
+	int32_t *patch = NULL;
+	int present = 0;
+	CHECK_INT(fct_patches_get(&m, &patch, &present, 2, &err), 0);
+	for (int own = 0; own < 2; own++) {
+		CHECK_INT(fct_chains_extract(&c, &m, patch, &err), 0);
+		double *tol = calloc(c.n, sizeof *tol);
+		size_t between = c.n;
+		for (size_t i = 0; i < c.n; i++)
+			if (c.left[i] >= 0 && c.right[i] >= 0)
+				between = i, tol[i] = own ? 10 : 0;
+		CHECK(between < c.n);
+		struct fct_chain_params p;
+		fct_chain_params_default(&p);
+		p.threshold = 1;
+		p.tolerance = tol;
+		CHECK_INT(fct_chains_simplify(&c, &m, patch, NULL, 0, &p, &st, &err), 0);
+		size_t kept = 0, kept_other = 0;
+		for (size_t i = 0; i < c.n; i++)
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				*(i == between ? &kept : &kept_other) += c.keep[q];
+		if (own)
+			CHECK_INT(kept, 2);
+		else
+			CHECK(kept > 10);
+		CHECK(kept_other >= 8);  /* the outer border's corners and junctions */
+		free(tol);
+		fct_chains_free(&c);
+	}
+	free(patch);
+	fct_mesh_free(&m);
+}
+
 /* A rendered view of mkscene's room with Kinect-class noise, meshed like
  * dm2mesh, each face labelled with the true patch of the majority of its
  * corners' pixels: the invariants on a real-sized boundary.  FCT_TEST_DUMP=
@@ -712,6 +761,7 @@ int main(void)
 	test_dip();
 	test_edge_cases();
 	test_uneven();
+	test_chain_tolerance();
 	test_room();
 	CHECK_DONE();
 }
