@@ -976,6 +976,10 @@ out:
  * tight[] and its points' pin[]. */
 #define AS_SAMPLED 3
 
+/* The rounds of build_model that may pin points and tighten outlines
+ * (enough for AS_SAMPLED steps and a few rounds of their consequences). */
+#define LAST_TIGHTENING 6
+
 static int chain_tightness(const struct fct_chains *c, size_t i, const unsigned char *tight,
                            const unsigned char *pin)
 {
@@ -993,9 +997,9 @@ static int chain_tightness(const struct fct_chains *c, size_t i, const unsigned 
  * by the free-form faces).  Their ends are pinned once more (the chains
  * through them are simplified more tightly in the next try, which changes
  * the patches' outlines there); when both ends were kept as sampled
- * already, the patches of the faces on the edge are flagged unclean.
- * *npinned counts the edges pinned. */
-static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsigned char *pin,
+ * already, or may_pin is 0, the patches of the faces on the edge are
+ * flagged unclean.  *npinned counts the edges pinned. */
+static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, int may_pin, unsigned char *pin,
                            unsigned char *unclean, size_t *npinned, struct fct_err *err)
 {
 	struct fct_adj adj;
@@ -1005,7 +1009,7 @@ static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, unsigne
 		if (fct_adj_edge_nfaces(&adj, e) <= 2)
 			continue;
 		uint32_t a = adj.edge_v[2 * e], b = adj.edge_v[2 * e + 1];
-		if (pin[a] < AS_SAMPLED || pin[b] < AS_SAMPLED) {
+		if (may_pin && (pin[a] < AS_SAMPLED || pin[b] < AS_SAMPLED)) {
 			(*npinned)++;
 			pin[a] += pin[a] < AS_SAMPLED;
 			pin[b] += pin[b] < AS_SAMPLED;
@@ -1062,7 +1066,7 @@ static void crease_tolerances(double *tol, const struct fct_chains *c, const str
 static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
-                       const unsigned char *tight, unsigned char *pin,
+                       const unsigned char *tight, int may_pin, unsigned char *pin,
                        unsigned char *unclean, size_t *npinned, struct fct_planar_stats *st,
                        struct fct_err *err)
 {
@@ -1189,7 +1193,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	}
 	size_t dup = 0;
 	if (drop_duplicate_triangles(w, lab, &dup, err) || fct_patches_set(w, lab, err) ||
-	    pin_nonmanifold(w, lab, pin, unclean, npinned, err))
+	    pin_nonmanifold(w, lab, may_pin, pin, unclean, npinned, err))
 		goto out;
 	st->duplicates_dropped += dup;
 	st->planar_triangles = nplanar;
@@ -1251,21 +1255,25 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	 * diagonal that exists elsewhere pins its ends (their chains stay as
 	 * sampled); a patch whose loops cross in its plane, or that such a
 	 * diagonal spoils again, has its outline tightened if large, and
-	 * becomes free-form if small or still unclean. */
+	 * becomes free-form if small or still unclean.  From round
+	 * LAST_TIGHTENING on nothing is pinned or tightened any more: each
+	 * round makes a patch free-form or ends, so the rounds end (a fused
+	 * scan's 50 patches were still pinning after 8). */
 	for (int round = 0;; round++) {
+		int may_tighten = round < LAST_TIGHTENING;
 		memset(unclean, 0, np ? np : 1);
 		fct_mesh_free(&w);
 		fct_mesh_init(&w);
 		size_t more = 0;
-		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight, pin,
-		                unclean, &more, st, err))
+		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
+		                may_tighten, pin, unclean, &more, st, err))
 			goto out;
 		st->pinned += more;
 		/* Unclean: a large patch's outline is tightened (halved, then
 		 * halved again, then kept as sampled), a small one (or a large
 		 * one still unclean) becomes free-form. */
 		for (size_t l = 0; l < np; l++)
-			if (unclean[l] && tight[l] < AS_SAMPLED && nfaces[l] >= m->nf / LARGE_PATCH) {
+			if (may_tighten && unclean[l] && tight[l] < AS_SAMPLED && nfaces[l] >= m->nf / LARGE_PATCH) {
 				tight[l]++, unclean[l] = 0, more++;
 				st->tightened++;
 				st->dense_patches += tight[l] == AS_SAMPLED;
@@ -1278,10 +1286,6 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		st->rounds++;
 		for (size_t l = 0; l < np; l++)
 			st->unclean_patches += unclean[l];
-		if (round == 8) {
-			fct_fail(err, "outlines: patches still not clean after 8 rounds");
-			goto out;
-		}
 	}
 	fct_mesh_free(m);
 	*m = w;
