@@ -120,20 +120,6 @@ static void resolve_camera(struct options *o, struct fct_camera *cam, int w, int
 		cam->width = w, cam->height = h;
 }
 
-/* Does arg start with the name of a noise model (rather than name a file)? */
-static int names_model(const char *arg)
-{
-	size_t n = strcspn(arg, ":, \t");
-	const char *m = fct_noise_models();
-	while (*m) {
-		size_t k = strcspn(m, " ");
-		if (k == n && !strncmp(arg, m, n))
-			return 1;
-		m += k + (m[k] == ' ');
-	}
-	return 0;
-}
-
 /* The noise model: --noise's (a model parsed with the options, or a file),
  * else the one a dataset's camera name implies; the unit of the image's
  * depth encoding when the model gives none. */
@@ -141,7 +127,7 @@ static void resolve_noise(struct options *o, const struct fct_image *img)
 {
 	struct fct_noise *nz = &o->depth.noise;
 	struct fct_err err;
-	if (o->noise && !names_model(o->noise) && fct_noise_read_file(o->noise, nz, &err))
+	if (o->noise && !fct_noise_names_model(o->noise) && fct_noise_read_file(o->noise, nz, &err))
 		fct_die_err(&err);
 	if (!o->noise && o->K)
 		fct_noise_named(o->K, nz);
@@ -222,7 +208,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		fct_usage_error("--max-edge is for --points");
 	if (o->points && o->noise)
 		fct_usage_error("--noise is for depth images");
-	if (o->noise && names_model(o->noise)) {
+	if (o->noise && fct_noise_names_model(o->noise)) {
 		struct fct_err err;
 		if (fct_noise_parse(&o->depth.noise, o->noise, &err))
 			fct_usage_error("--%s", err.msg);
