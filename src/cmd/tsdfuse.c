@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "depthmesh.h"
+#include "depthsmooth.h"
 #include "fuse.h"
 #include "header.h"
 #include "image.h"
@@ -29,7 +30,8 @@ static const char usage[] =
 	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"
 	"               [--carve] [--weight constant | incidence | depth2]\n"
 	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
-	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--poses file ...]\n"
+	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--noise model | file]\n"
+	"               [--smooth px] [--poses file ...]\n"
 	"               [--color] [--image file ...] [--conf file] [--threads n] [view ...]\n"
 	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
 	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
@@ -53,9 +55,16 @@ static const char usage[] =
 	"      --image file   colour image of the depth-image views, in their order\n"
 	"                     (repeated; implies --color)\n"
 	"      --min-weight w extract only voxels of at least this weight (default 0)\n"
+	"      --noise model  the depth images' noise: none, kinect[:F,B[,SD[,STEP]]],\n"
+	"                     tof[:A,B], poly:A,B,C, stereo:FB,SD[,DOFFS], or a file\n"
+	"                     holding a line \"noise ...\"; smooths and meshes them\n"
+	"                     with it and weighs true distance by it (default: kinect\n"
+	"                     for a -K dataset name, else none)\n"
 	"      --poses file   camera-to-world poses of the depth images: a TUM\n"
 	"                     trajectory, or one 4x4 or 3x4 file per image (repeated)\n"
 	"      --projective   Curless-Levoy depth difference instead of true distance\n"
+	"      --smooth px    half-width of the noise-aware smoothing of depth images\n"
+	"                     with a noise model (default 2; 0: none)\n"
 	"      --threads n    threads (default 0: one per processor)\n"
 	"      --trunc n      band half-width in voxels (default 3)\n"
 	"      --voxel size   voxel size in metres (default 0.01)\n"
@@ -65,15 +74,18 @@ static const char usage[] =
 	"      --version      print the version\n";
 
 enum { OPT_VOXEL = 256, OPT_TRUNC, OPT_BBOX, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW,
-       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION, OPT_COLOR, OPT_IMAGE };
+       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION, OPT_COLOR, OPT_IMAGE, OPT_NOISE,
+       OPT_SMOOTH };
 
 struct options {
-	const char *out, *K, *conf;
+	const char *out, *K, *conf, *noise;
 	const char **poses, **images;
 	size_t nposes, nimages;
 	int color;
 	int ascii, carve, flow, has_bbox, scale_given;
 	double voxel, trunc, min_weight, bbox[6], depth_scale;
+	struct fct_noise depth_noise;
+	struct fct_depth_smooth smooth;
 	struct fct_fuse_params fp;
 	char **views;
 	size_t nviews;
@@ -98,6 +110,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"threads", required_argument, NULL, OPT_THREADS},
 		{"color", no_argument, NULL, OPT_COLOR},
 		{"image", required_argument, NULL, OPT_IMAGE},
+		{"noise", required_argument, NULL, OPT_NOISE},
+		{"smooth", required_argument, NULL, OPT_SMOOTH},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ahK:o:qv";
@@ -106,6 +120,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 	o->voxel = 0.01;
 	o->trunc = 3;
 	o->depth_scale = 1000;
+	fct_depth_smooth_default(&o->smooth);
 	o->poses = calloc((size_t)argc + 1, sizeof *o->poses);
 	o->images = calloc((size_t)argc + 1, sizeof *o->images);
 	if (!o->poses || !o->images)
@@ -151,6 +166,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		case OPT_THREADS: o->fp.threads = (int)fct_opt_long("--threads", optarg, 0, 64); break;
 		case OPT_COLOR: o->color = 1; break;
 		case OPT_IMAGE: o->images[o->nimages++] = optarg, o->color = 1; break;
+		case OPT_NOISE: o->noise = optarg; break;
+		case OPT_SMOOTH: o->smooth.radius = (int)fct_opt_long("--smooth", optarg, 0, 64); break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
@@ -159,6 +176,12 @@ static void parse_options(int argc, char **argv, struct options *o)
 	if (!o->nviews && !o->conf)
 		fct_usage_error("no views: give meshes, depth images or --conf");
 	o->fp.band = o->trunc * o->voxel;
+	o->smooth.voxel = o->voxel;
+	if (o->noise && fct_noise_names_model(o->noise)) {
+		struct fct_err err;
+		if (fct_noise_parse(&o->depth_noise, o->noise, &err))
+			fct_usage_error("--%s", err.msg);
+	}
 }
 
 /* Is path an image (PNG or PFM) rather than a mesh? */
@@ -346,8 +369,23 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		if (cam.width != img.width || cam.height != img.height)
 			fct_die(1, "%s: image is %dx%d, the camera %dx%d", path, img.width, img.height,
 			        cam.width, cam.height);
+		/* With a noise model: smoothed in units of it, then meshed with
+		 * it (the jump test's noise term and each vertex's sigma, which
+		 * the fusion weighs by; depthsmooth.h, depthmesh.h). */
+		struct fct_depth_params vp = *dp;
+		if (vp.noise.model != FCT_NOISE_UNKNOWN && vp.noise.unit == 0)
+			vp.noise.unit = fct_depth_unit(&img, &vp);
+		if (o->smooth.radius > 0 && vp.noise.model != FCT_NOISE_UNKNOWN) {
+			struct fct_image sm;
+			if (fct_depth_smooth_image(&sm, &img, &cam, &vp, &o->smooth, &err)) {
+				fct_err_prefix(&err, "%s", path);
+				fct_die_err(&err);
+			}
+			fct_image_free(&img);
+			img = sm;
+		}
 		/* --projective reads the depths the mesh keeps (fuse.h). */
-		int rc = fct_depth_mesh_kept(&L->mesh, &img, &cam, dp, NULL,
+		int rc = fct_depth_mesh_kept(&L->mesh, &img, &cam, &vp, NULL,
 		                             o->fp.projective ? &L->depth : NULL, &err);
 		fct_image_free(&img);
 		if (rc) {
@@ -398,6 +436,11 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		      isfinite(L->mesh.xyz[3 * v + 2])))
 			fct_die(1, "%s: vertex %zu is not finite", L->name, v);
 	L->view.mesh = &L->mesh;
+	/* A view's noise, where its mesh carries it (a depth image meshed
+	 * with a model here, or dm2mesh's mesh of one): the fusion weighs by
+	 * it (fuse.h). */
+	struct fct_prop *sp = fct_elem_find(&L->mesh.vertex, "sigma");
+	L->view.sigma = sp && sp->type == FCT_FLOAT32 ? sp->data : NULL;
 }
 
 /* The views, read one at a time: each is loaded, used and freed before
@@ -651,6 +694,13 @@ int main(int argc, char **argv)
 			dcam.fx = k[0], dcam.fy = k[1], dcam.cx = k[2], dcam.cy = k[3];
 		}
 	}
+	/* The depth images' noise: --noise's (a model, or a file holding
+	 * one), else the one -K's dataset name implies; none without. */
+	dp.noise = o.depth_noise;
+	if (o.noise && !fct_noise_names_model(o.noise) && fct_noise_read_file(o.noise, &dp.noise, &err))
+		fct_die_err(&err);
+	if (!o.noise && o.K)
+		fct_noise_named(o.K, &dp.noise);
 	dp.depth_scale = o.depth_scale;
 	dp.scale_float = o.scale_given;
 	struct traj tr = { 0 };
