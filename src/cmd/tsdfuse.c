@@ -764,6 +764,8 @@ int main(int argc, char **argv)
 			fct_die_err(&err);
 		flow_s = fct_now() - tf;
 	}
+	struct rusage ru;   /* ru_maxrss: kilobytes on Linux and the BSDs */
+	long faults0 = getrusage(RUSAGE_SELF, &ru) ? 0 : ru.ru_minflt;
 	double tm = fct_now();
 	struct fct_mesh out;
 	int32_t mlo[3], mhi[3];
@@ -775,6 +777,9 @@ int main(int argc, char **argv)
 	                     o.fp.threads, &out, NULL, &err))
 		fct_die_err(&err);
 	double mc_s = fct_now() - tm, color_s = 0;
+	/* The pages marching cubes faulted in: its output where the memory
+	 * the views freed does not hold it (bench/NOTES.md). */
+	long mc_faults = getrusage(RUSAGE_SELF, &ru) ? 0 : ru.ru_minflt - faults0;
 	size_t nblocks = fct_voxgrid_count(g), gbytes = fct_voxgrid_bytes(g), ncolor = 0;
 	fct_voxgrid_free(g);    /* before the colour pass reads the views again */
 	if (o.color) {
@@ -802,12 +807,12 @@ int main(int argc, char **argv)
 	fct_report("carve_s", "%.4f", carve_s);
 	fct_report("flow_s", "%.4f", flow_s);
 	fct_report("mcubes_s", "%.4f", mc_s);
+	fct_report("mcubes_faults", "%ld", mc_faults);
 	if (o.color) {
 		fct_report("color_views", "%zu", ncolor);
 		fct_report("color_s", "%.4f", color_s);
 	}
 	fct_report("total_s", "%.4f", fct_now() - t0);
-	struct rusage ru;   /* ru_maxrss: kilobytes on Linux and the BSDs */
 	if (!getrusage(RUSAGE_SELF, &ru))
 		fct_report("peak_rss_mb", "%.1f", (double)ru.ru_maxrss / 1024);
 	fct_mesh_free(&out);
