@@ -92,7 +92,7 @@ static void smooth_pass(const struct pass *P, const float *ref, float *out)
 			}
 		for (size_t x = 0; x < w; x++) {
 			float z = P->z[(y + R) * pw + x + R];
-			out[r + x] = z > 0 ? (P->c[r + x] > 0 ? sw[x] / si[x] : z) : 0;
+			out[r + x] = z > 0 && P->c[r + x] > 0 && sw[x] > 0 ? sw[x] / si[x] : z;
 		}
 	}
 }
@@ -155,12 +155,15 @@ int fct_depth_smooth(float *out, const float *depth, size_t w, size_t h, double 
 	}
 	for (size_t i = 0; i < n; i++) {
 		/* The spatial weights j pixels off along an axis,
-		 * exp(-j^2 / (2 s^2)); 1 / (k sigma), 0 where sigma is 0
-		 * (nothing else is the same surface: the pixel keeps its
-		 * depth). */
+		 * exp(-j^2 / (2 s^2)), as powers of the first; 1 / (k sigma),
+		 * 0 where sigma is 0 (nothing else is the same surface: the
+		 * pixel keeps its depth). */
 		double zi = z[(i / w + R) * pw + i % w + R], s = spatial_sd(p, footprint, zi, sg[i]);
-		for (size_t j = 0; j <= R; j++)
-			g[j][i] = (float)exp(-0.5 * (double)(j * j) / (s * s));
+		double g1 = exp(-0.5 / (s * s)), odd = g1, gj = 1;   /* g1^(j^2) = g1^(1 + 3 + ... + 2j - 1) */
+		for (size_t j = 0; j <= R; j++) {
+			g[j][i] = (float)gj;
+			gj *= odd, odd *= g1 * g1;
+		}
 		c[i] = sg[i] > 0 ? (float)(1 / (p->range * sg[i])) : 0;
 	}
 	P.z = z, P.iv = iv, P.c = c;
