@@ -90,7 +90,7 @@ check: $(PROGS) $(SCRIPT_BIN) $(UNITS)
 	@FCT_BIN=$(O)/bin FCT_UNITS=$(O)/tests sh tests/run
 
 # ASan+UBSan build of everything, then the whole suite against it.
-SAN_FLAGS = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+SAN_FLAGS = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 sanitize:
 	FCT_SANITIZE=1 $(MAKE) O=build/san CFLAGS="$(SAN_FLAGS)" LDFLAGS="$(SAN_FLAGS)" check
 

@@ -66,6 +66,32 @@ check_num() {
 	else not_ok "$1: $2 $3 $4 does not hold"; fi
 }
 
+# scratch_with_tree DIR: make DIR for documented examples, holding the
+# tree's samples/ and tests/, and bunny/ (the Stanford scans of
+# ../shared/data/stanford_bunny, not in the repository) when present; sets
+# $bunny to that folder, or empty.
+scratch_with_tree() {
+	bunny=
+	for d in ../shared/data/stanford_bunny /work/shared/data/stanford_bunny; do
+		[ -f "$d/data/bun.conf" ] && bunny=$(cd "$d" && pwd) && break
+	done
+	mkdir -p "$1"
+	ln -s "$(pwd)/samples" "$(pwd)/tests" "$1/"
+	[ -z "$bunny" ] || ln -s "$bunny" "$1/bunny"
+}
+
+# run_example DIR SCRIPT: run a documented example in DIR with bash -e -o
+# pipefail (a stage failing inside a pipe counts), 300 s at most, stdout
+# dropped, stderr in SCRIPT.err; its status.  example_failed DESC SCRIPT
+# reports it failed, with its text and the end of its stderr.
+run_example() {
+	(cd "$1" && timeout 300 bash -e -o pipefail "$2" >/dev/null 2>"$2.err")
+}
+example_failed() {
+	not_ok "$1: $(cat "$2")
+  stderr: $(tail -n 3 "$2.err")"
+}
+
 # The closing line the runner sums.
 finish() {
 	echo "$(basename "$0"): $pass passed, $fail failed"

@@ -299,7 +299,7 @@ int main(int argc, char **argv)
 		struct fct_err err;
 		if (describe(nfiles ? argv[optind + i] : NULL, &printed, &err)) {
 			fflush(stdout);
-			fprintf(stderr, "meshinfo: %s\n", err.msg);
+			fct_error("%s", err.msg);
 			status = 1;
 		}
 	}

@@ -165,7 +165,7 @@ static int compare_lines(struct input *a, struct input *b)
 	int na = count_tokens(a), nb = count_tokens(b);
 	if (na != nb) {
 		if (!silent)
-			fprintf(stderr, "tolcmp: %s:%ld: %d tokens vs %d\n", a->name, a->lineno, na, nb);
+			fct_error("%s:%ld: %d tokens vs %d", a->name, a->lineno, na, nb);
 		return 0;
 	}
 	ssize_t pa = 0, pb = 0;
@@ -176,10 +176,10 @@ static int compare_lines(struct input *a, struct input *b)
 			continue;
 		if (!silent) {
 			if (d >= 0 || isnan(d))
-				fprintf(stderr, "tolcmp: %s:%ld: \"%s\" vs \"%s\" (difference %.3g)\n",
+				fct_error("%s:%ld: \"%s\" vs \"%s\" (difference %.3g)",
 				        a->name, a->lineno, ta, tb, d);
 			else
-				fprintf(stderr, "tolcmp: %s:%ld: \"%s\" vs \"%s\"\n", a->name, a->lineno, ta, tb);
+				fct_error("%s:%ld: \"%s\" vs \"%s\"", a->name, a->lineno, ta, tb);
 		}
 		return 0;
 	}
@@ -246,7 +246,7 @@ int main(int argc, char **argv)
 				while (next_line(lon))
 					;
 				if (!silent)
-					fprintf(stderr, "tolcmp: %s: %ld lines vs %ld in %s\n",
+					fct_error("%s: %ld lines vs %ld in %s",
 					        a.name, a.lineno, b.lineno, b.name);
 			}
 			break;

@@ -59,8 +59,8 @@ enum { OPT_CAMERA = 256, OPT_CYL, OPT_POSE, OPT_COUNT, OPT_STEP, OPT_FOV, OPT_YA
        OPT_MESH, OPT_NOSEAM, OPT_NOSPLIT, OPT_VERSION };
 
 struct options {
-	const char *out, *camera, *cylindrical, *pose, *mesh, *pano;
-	int ascii, seam_check, split, count_given, step_given;
+	const char *out, *camera, *cylindrical, *pose, *mesh, *pano, *step_arg;
+	int ascii, seam_check, split, count_given;
 	struct fct_cylview_params view;
 };
 
@@ -123,7 +123,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 			o->view.step = fct_opt_double("--step", optarg, 0, 360);
 			if (!(o->view.step > 0))
 				fct_usage_error("--step: must be above 0 degrees");
-			o->step_given = 1;
+			o->step_arg = optarg;
 			break;
 		case OPT_FOV:
 			o->view.fov = fct_opt_double("--fov", optarg, -HUGE_VAL, HUGE_VAL);
@@ -145,13 +145,24 @@ static void parse_options(int argc, char **argv, struct options *o)
 		fct_usage_error("a panorama is needed");
 	if (o->camera && o->cylindrical)
 		fct_usage_error("--camera and --cylindrical exclude each other");
-	if (o->step_given && !o->count_given) {
+	if (o->step_arg && !o->count_given) {
 		double n = ceil(360 / o->view.step - 1e-9);
 		if (n > FCT_CYLVIEW_MAX_COUNT)
-			fct_usage_error("--step: %s degrees makes more than %d views", optarg ? optarg : "",
+			fct_usage_error("--step: %s degrees makes more than %d views", o->step_arg,
 			                FCT_CYLVIEW_MAX_COUNT);
 		o->view.count = (int)n;
 	}
+}
+
+/* Create folder dir unless it is one already: 0, or -1 with errno set. */
+static int make_folder(const char *dir)
+{
+	struct stat sb;
+	if (mkdir(dir, 0777) == 0)
+		return 0;
+	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
+		return 0;
+	return -1;
 }
 
 static char *xprintf(const char *fmt, const char *a, int k, const char *ext)
@@ -234,8 +245,14 @@ int main(int argc, char **argv)
 	struct fct_cylview *views = calloc(nviews, sizeof *views);
 	if (!views)
 		fct_die(1, "out of memory");
-	if (fct_cylview_plan(&cam, &o.view, views, &err))
+	if (fct_cylview_plan(&cam, &o.view, views, &err)) {
+		free(views);
 		fct_die_err(&err);
+	}
+	if (!o.mesh && make_folder(o.out)) {
+		free(views);
+		fct_die(1, "%s: %s", o.out, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
+	}
 
 	/* Which views to write, and their names. */
 	char **names = calloc(nviews, sizeof *names);
@@ -266,7 +283,8 @@ int main(int argc, char **argv)
 				}
 			char msg[600];
 			snprintf(msg, sizeof msg, "%s: %zu face%s (%s%s) lie whole in no view: give more "
-			         "views (--count) or a wider --fov%s", mname, ast.uncovered,
+			         "views (--count) or a wider --fov%s (no view holds a face over the zenith or "
+			         "the nadir)", mname, ast.uncovered,
 			         ast.uncovered == 1 ? "" : "s", list, ast.uncovered > shown ? ", ..." : "",
 			         o.split ? "" : ", or let them be split");
 			free(view_of);
@@ -292,11 +310,6 @@ int main(int argc, char **argv)
 				names[k] = xprintf("%s.view%02d%s", base, (int)k, ".png");
 		free(base);
 	} else {
-		struct stat sb;
-		if (mkdir(o.out, 0777) != 0 &&
-		    (errno != EEXIST || stat(o.out, &sb) != 0 || !S_ISDIR(sb.st_mode)))
-			fct_die(1, "%s: %s", o.out, errno == EEXIST ? "exists and is not a folder"
-			                                            : strerror(errno));
 		const char *ext = img.type == FCT_PIX_F32 ? ".pfm" : ".png";
 		for (size_t k = 0; k < nviews; k++) {
 			want[k] = 1;

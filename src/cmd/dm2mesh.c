@@ -22,7 +22,7 @@
 static const char usage[] =
 	"usage: dm2mesh [-aqv] [-o file] [-K fx,fy,cx,cy | name] [--camera file]\n"
 	"               [--cylindrical f,cy,theta0] [--depth-scale s] [--baseline b]\n"
-	"               [--focal f] [--range min,max] [--step n] [-j jump]\n"
+	"               [--focal f] [--doffs d] [--range min,max] [--step n] [-j jump]\n"
 	"               [--max-angle deg] [--min-faces n] [--noise model | file]\n"
 	"               [--pose file] [--image file] [depth-image]\n"
 	"       dm2mesh --points [-aqv] [-o file] [camera options] [--max-edge l]\n"
@@ -35,7 +35,8 @@ static const char usage[] =
 	"                     tum tum1 tum2 tum3 redwood primesense kinect icl-nuim\n"
 	"                     7scenes (which also sets its depth scale)\n"
 	"      --camera file  camera from a file: Open3D intrinsic JSON, a 3x3 K matrix,\n"
-	"                     or a line \"camera pinhole|cylindrical ...\"\n"
+	"                     a line \"camera pinhole|cylindrical ...\", or Middlebury's\n"
+	"                     calib.txt (then disparities with its baseline and doffs)\n"
 	"      --cylindrical f,cy,theta0\n"
 	"                     cylindrical panorama camera (depth = distance from the\n"
 	"                     vertical axis); f and cy may be empty for W/(2 pi) and\n"
@@ -45,6 +46,8 @@ static const char usage[] =
 	"                     it also divides PFM samples\n"
 	"      --baseline b   the image holds disparities: depth = b * focal / disparity\n"
 	"      --focal f      focal length for disparities (default the camera's)\n"
+	"      --doffs d      disparity offset: depth = b * focal / (disparity + d)\n"
+	"                     (Middlebury's doffs; default 0, or the calib.txt's)\n"
 	"      --range min,max\n"
 	"                     depths outside are no data (metres)\n"
 	"      --step n       use every n-th pixel of every n-th row (default 1)\n"
@@ -73,13 +76,14 @@ static const char usage[] =
 
 enum {
 	OPT_CAMERA = 256, OPT_CYL, OPT_SCALE, OPT_BASELINE, OPT_FOCAL, OPT_RANGE, OPT_STEP,
-	OPT_ANGLE, OPT_MINFACES, OPT_NOISE, OPT_POINTS, OPT_MAXEDGE, OPT_POSE, OPT_IMAGE, OPT_VERSION
+	OPT_ANGLE, OPT_MINFACES, OPT_NOISE, OPT_POINTS, OPT_MAXEDGE, OPT_POSE, OPT_IMAGE, OPT_VERSION,
+	OPT_DOFFS
 };
 
 struct options {
 	const char *out, *camera_file, *pose_file, *image_file, *input;
 	const char *K, *cylindrical, *noise;
-	int ascii, points, scale_given;
+	int ascii, points, scale_given, doffs_given;
 	double focal, max_edge;
 	struct fct_depth_params depth;
 };
@@ -88,29 +92,21 @@ struct options {
  * from the image (w, h; 0 for sparse points without a size). */
 static void resolve_camera(struct options *o, struct fct_camera *cam, int w, int h)
 {
-	struct fct_err err;
 	int given = !!o->K + !!o->camera_file + !!o->cylindrical;
 	memset(cam, 0, sizeof *cam);
 	if (given > 1)
 		fct_usage_error("-K, --camera and --cylindrical exclude each other");
-	if (o->K) {
-		double scale, k[4];
-		if (!fct_camera_named(o->K, cam, &scale)) {
-			if (!o->scale_given)
-				o->depth.depth_scale = scale;
-		} else if (strchr(o->K, ',')) {
-			fct_opt_doubles("-K", o->K, k, 4);
-			if (!(k[0] > 0 && k[1] > 0))
-				fct_usage_error("-K: focal lengths must be positive");
-			cam->kind = FCT_CAMERA_PINHOLE;
-			cam->fx = k[0], cam->fy = k[1], cam->cx = k[2], cam->cy = k[3];
-		} else {
-			fct_usage_error("-K: \"%s\" is neither fx,fy,cx,cy nor a camera name (%s)",
-			                o->K, fct_camera_names());
-		}
-	} else if (o->camera_file) {
-		if (fct_camera_read_file(o->camera_file, cam, &err))
-			fct_die_err(&err);
+	if (o->K || o->camera_file) {
+		double scale;
+		struct fct_stereo st;
+		fct_opt_camera(cam, &scale, &st, o->K, o->camera_file);
+		if (scale > 0 && !o->scale_given)
+			o->depth.depth_scale = scale;
+		/* a stereo calibration (Middlebury) makes the image disparities */
+		if (st.baseline > 0 && !(o->depth.baseline > 0))
+			o->depth.baseline = st.baseline;
+		if (st.baseline > 0 && !o->doffs_given)
+			o->depth.doffs = st.doffs;
 	} else if (o->cylindrical) {
 		fct_opt_cylindrical(o->cylindrical, w, h, cam);
 	} else if (!o->points) {
@@ -145,6 +141,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"depth-scale", required_argument, NULL, OPT_SCALE},
 		{"baseline", required_argument, NULL, OPT_BASELINE},
 		{"focal", required_argument, NULL, OPT_FOCAL},
+		{"doffs", required_argument, NULL, OPT_DOFFS},
 		{"range", required_argument, NULL, OPT_RANGE},
 		{"step", required_argument, NULL, OPT_STEP},
 		{"max-angle", required_argument, NULL, OPT_ANGLE},
@@ -180,6 +177,10 @@ static void parse_options(int argc, char **argv, struct options *o)
 			break;
 		case OPT_BASELINE: o->depth.baseline = fct_opt_double("--baseline", optarg, 1e-300, 1e300); break;
 		case OPT_FOCAL: o->focal = fct_opt_double("--focal", optarg, 1e-300, 1e300); break;
+		case OPT_DOFFS:
+			o->depth.doffs = fct_opt_double("--doffs", optarg, -1e9, 1e9);
+			o->doffs_given = 1;
+			break;
 		case OPT_RANGE:
 			fct_opt_doubles("--range", optarg, r, 2);
 			if (!(r[0] >= 0 && r[1] > r[0]))
@@ -222,10 +223,15 @@ static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
 	if (fct_image_read_file(&img, o->input, NULL, &err))
 		fct_die_err(&err);
 	resolve_camera(o, cam, img.width, img.height);
+	if (o->doffs_given && !(o->depth.baseline > 0))
+		fct_usage_error("--doffs is for disparities and needs --baseline");
 	if (o->depth.baseline > 0)
 		o->depth.focal = o->focal > 0 ? o->focal
 		               : cam->kind == FCT_CAMERA_CYLINDRICAL ? cam->f : cam->fx;
 	resolve_noise(o, &img);
+	char why[300];
+	if (fct_depth_implausible(why, sizeof why, &img, cam, &o->depth))
+		fct_warn("%s: %s", fct_path_display(o->input), why);
 	struct fct_mesh m;
 	fct_report("pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	struct fct_grid_stats st;
@@ -286,9 +292,17 @@ int main(int argc, char **argv)
 	struct fct_mesh m = o.points ? mesh_points(&o, &cam) : mesh_depth(&o, &cam);
 	double mesh_s = fct_now() - t0;
 
-	if (o.pose_file)
-		for (size_t v = 0; v < m.nv; v++)
+	if (o.pose_file) {
+		/* float holds world coordinates to 1/100 of the nearest vertex's
+		 * pixel footprint, or they are written as double */
+		double near = HUGE_VAL;
+		for (size_t v = 0; v < m.nv; v++) {
+			near = fmin(near, hypot(hypot(m.xyz[3 * v], m.xyz[3 * v + 1]), m.xyz[3 * v + 2]));
 			fct_pose_apply(pose, &m.xyz[3 * v], &m.xyz[3 * v]);
+		}
+		if (fct_mesh_keep_precision(&m, 0.01 * near * o.depth.step * fct_camera_pixel_angle(&cam)))
+			fct_report("double_xyz", "1");
+	}
 	char noise[256];
 	fct_noise_format(&o.depth.noise, noise, sizeof noise);
 	fct_report("noise", "%s", *noise ? noise : "unknown");

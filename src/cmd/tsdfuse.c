@@ -18,11 +18,13 @@
 #include "depthmesh.h"
 #include "depthsmooth.h"
 #include "fuse.h"
+#include "geom.h"
 #include "header.h"
 #include "image.h"
 #include "mcubes.h"
 #include "meshio.h"
 #include "path.h"
+#include "poses.h"
 #include "rangegrid.h"
 #include "viewcolor.h"
 
@@ -30,14 +32,20 @@ static const char usage[] =
 	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"
 	"               [--carve] [--weight constant | incidence | depth2]\n"
 	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
-	"               [-K fx,fy,cx,cy | name] [--depth-scale s] [--noise model | file]\n"
-	"               [--smooth px] [--poses file ...]\n"
+	"               [-K fx,fy,cx,cy | name | --camera file] [--depth-scale s]\n"
+	"               [--baseline b] [--doffs d] [--noise model | file] [--smooth px]\n"
+	"               [--poses file ...] [--max-difference s]\n"
 	"               [--color] [--image file ...] [--conf file] [--threads n] [view ...]\n"
 	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
 	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
 	"the true signed distance to each view's surface, and extract the surface.\n"
 	"  -a                 write ascii PLY\n"
 	"  -K fx,fy,cx,cy     camera of the depth-image views (or a dataset name)\n"
+	"      --baseline b   the depth images hold disparities: depth = b * fx /\n"
+	"                     (disparity + doffs)\n"
+	"      --camera file  camera of the depth images from a file: Open3D intrinsic\n"
+	"                     JSON, a 3x3 K, a camera line, Middlebury's calib.txt\n"
+	"      --doffs d      disparity offset (Middlebury; default 0 or calib.txt's)\n"
 	"  -o file            output file (default standard output)\n"
 	"  -q                 quiet\n"
 	"  -v                 progress per view, then figures on stderr\n"
@@ -54,14 +62,18 @@ static const char usage[] =
 	"                     PNG depth units per metre (default 1000, or the -K name's)\n"
 	"      --image file   colour image of the depth-image views, in their order\n"
 	"                     (repeated; implies --color)\n"
+	"      --max-difference s\n"
+	"                     TUM trajectory: a depth image's pose is the nearest in\n"
+	"                     time to the timestamp in its name, within s (default 0.02)\n"
 	"      --min-weight w extract only voxels of at least this weight (default 0)\n"
 	"      --noise model  the depth images' noise: none, kinect[:F,B[,SD[,STEP]]],\n"
 	"                     tof[:A,B], poly:A,B,C, stereo:FB,SD[,DOFFS], or a file\n"
 	"                     holding a line \"noise ...\"; smooths and meshes them\n"
 	"                     with it and weighs true distance by it (default: kinect\n"
 	"                     for a -K dataset name, else none)\n"
-	"      --poses file   camera-to-world poses of the depth images: a TUM\n"
-	"                     trajectory, or one 4x4 or 3x4 file per image (repeated)\n"
+	"      --poses file   camera-to-world poses of the depth images: one file of\n"
+	"                     them all (TUM trajectory, Redwood .log, KITTI poses,\n"
+	"                     stacked 4x4), or a 4x4 or 3x4 file per image (repeated)\n"
 	"      --projective   Curless-Levoy depth difference instead of true distance\n"
 	"      --smooth px    half-width of the noise-aware smoothing of depth images\n"
 	"                     with a noise model (default 2; 0: none)\n"
@@ -73,17 +85,20 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
+/* Voxel indices from the origin each way (fuse.c's 21-bit block keys). */
+#define VOXEL_RANGE (1 << 23)
+
 enum { OPT_VOXEL = 256, OPT_TRUNC, OPT_BBOX, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW,
-       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION, OPT_COLOR, OPT_IMAGE, OPT_NOISE,
-       OPT_SMOOTH };
+       OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION, OPT_COLOR, OPT_IMAGE,
+       OPT_CAMERA, OPT_BASELINE, OPT_DOFFS, OPT_MAXDIFF, OPT_NOISE, OPT_SMOOTH };
 
 struct options {
-	const char *out, *K, *conf, *noise;
+	const char *out, *K, *camera, *conf, *noise;
 	const char **poses, **images;
 	size_t nposes, nimages;
 	int color;
-	int ascii, carve, flow, has_bbox, scale_given;
-	double voxel, trunc, min_weight, bbox[6], depth_scale;
+	int ascii, carve, flow, has_bbox, scale_given, doffs_given;
+	double voxel, trunc, min_weight, bbox[6], depth_scale, baseline, doffs, max_diff;
 	struct fct_noise depth_noise;
 	struct fct_depth_smooth smooth;
 	struct fct_fuse_params fp;
@@ -110,6 +125,10 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"threads", required_argument, NULL, OPT_THREADS},
 		{"color", no_argument, NULL, OPT_COLOR},
 		{"image", required_argument, NULL, OPT_IMAGE},
+		{"camera", required_argument, NULL, OPT_CAMERA},
+		{"baseline", required_argument, NULL, OPT_BASELINE},
+		{"doffs", required_argument, NULL, OPT_DOFFS},
+		{"max-difference", required_argument, NULL, OPT_MAXDIFF},
 		{"noise", required_argument, NULL, OPT_NOISE},
 		{"smooth", required_argument, NULL, OPT_SMOOTH},
 		{NULL, 0, NULL, 0},
@@ -120,6 +139,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 	o->voxel = 0.01;
 	o->trunc = 3;
 	o->depth_scale = 1000;
+	o->max_diff = 0.02;
 	fct_depth_smooth_default(&o->smooth);
 	o->poses = calloc((size_t)argc + 1, sizeof *o->poses);
 	o->images = calloc((size_t)argc + 1, sizeof *o->images);
@@ -166,6 +186,13 @@ static void parse_options(int argc, char **argv, struct options *o)
 		case OPT_THREADS: o->fp.threads = (int)fct_opt_long("--threads", optarg, 0, 64); break;
 		case OPT_COLOR: o->color = 1; break;
 		case OPT_IMAGE: o->images[o->nimages++] = optarg, o->color = 1; break;
+		case OPT_CAMERA: o->camera = optarg; break;
+		case OPT_BASELINE: o->baseline = fct_opt_double("--baseline", optarg, 1e-300, 1e300); break;
+		case OPT_DOFFS:
+			o->doffs = fct_opt_double("--doffs", optarg, -1e9, 1e9);
+			o->doffs_given = 1;
+			break;
+		case OPT_MAXDIFF: o->max_diff = fct_opt_double("--max-difference", optarg, 0, 1e9); break;
 		case OPT_NOISE: o->noise = optarg; break;
 		case OPT_SMOOTH: o->smooth.radius = (int)fct_opt_long("--smooth", optarg, 0, 64); break;
 		default: fct_bad_option(optstring, argv);
@@ -182,89 +209,14 @@ static void parse_options(int argc, char **argv, struct options *o)
 		if (fct_noise_parse(&o->depth_noise, o->noise, &err))
 			fct_usage_error("--%s", err.msg);
 	}
-}
-
-/* Is path an image (PNG or PFM) rather than a mesh? */
-static int is_image(const char *path)
-{
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return 0;
-	unsigned char b[4] = { 0 };
-	size_t n = fread(b, 1, 4, f);
-	fclose(f);
-	return n >= 3 && ((b[0] == 0x89 && b[1] == 'P' && b[2] == 'N') ||
-	                  (b[0] == 'P' && (b[1] == 'f' || b[1] == 'F') && (b[2] == '\n' || b[2] == '\r')));
-}
-
-/* A TUM trajectory: lines "timestamp tx ty tz qx qy qz qw", # comments. */
-struct traj {
-	size_t n;
-	double *t;          /* timestamps */
-	double *pose;       /* 12 per line */
-};
-
-static int traj_read(struct traj *tr, const char *path, struct fct_err *err)
-{
-	memset(tr, 0, sizeof *tr);
-	FILE *f = fopen(path, "r");
-	if (!f)
-		return fct_fail(err, "%s: cannot open", path);
-	char line[1024];
-	size_t cap = 0, pcap = 0;
-	long no = 0;
-	int rc = 0;
-	while (fgets(line, sizeof line, f)) {
-		no++;
-		double v[8];
-		char extra[2];
-		if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
-			continue;
-		int n = sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %lf %1s", &v[0], &v[1], &v[2], &v[3],
-		               &v[4], &v[5], &v[6], &v[7], extra);
-		if (n != 8) {
-			rc = fct_fail(err, "%s:%ld: expected timestamp tx ty tz qx qy qz qw", path, no);
-			break;
-		}
-		double qn = sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]);
-		if (!(fabs(qn - 1) < 1e-2)) {
-			rc = fct_fail(err, "%s:%ld: not a unit quaternion (norm %g)", path, no, qn);
-			break;
-		}
-		if (fct_grow((void **)&tr->t, &cap, tr->n + 1, sizeof *tr->t, err) ||
-		    fct_grow((void **)&tr->pose, &pcap, 12 * (tr->n + 1), sizeof *tr->pose, err)) {
-			rc = -1;
-			break;
-		}
-		double *p = &tr->pose[12 * tr->n];
-		fct_quat_pose(v[4] / qn, v[5] / qn, v[6] / qn, v[7] / qn, p);
-		p[3] = v[1], p[7] = v[2], p[11] = v[3];
-		tr->t[tr->n++] = v[0];
-	}
-	fclose(f);
-	if (!rc && !tr->n)
-		rc = fct_fail(err, "%s: no poses", path);
-	return rc;
-}
-
-/* Does the file hold a TUM trajectory (a first data line of 8 numbers)? */
-static int is_trajectory(const char *path)
-{
-	FILE *f = fopen(path, "r");
-	if (!f)
-		return 0;
-	char line[1024];
-	int yes = 0;
-	while (fgets(line, sizeof line, f)) {
-		if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
-			continue;
-		double v[9];
-		yes = sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3], &v[4],
-		             &v[5], &v[6], &v[7], &v[8]) == 8;
-		break;
-	}
-	fclose(f);
-	return yes;
+	/* Voxel indices are int32 (and the volume's blocks keep to 2^23 voxels
+	 * each way): a box beyond overflowed them into an empty model. */
+	for (int k = 0; o->has_bbox && k < 6; k++)
+		if (!(fabs(o->bbox[k]) / o->voxel < VOXEL_RANGE))
+			fct_usage_error("--bbox: %g m is %.3g voxels of %g m from the origin: beyond the "
+			                "volume's %d (%g m at this voxel size)", o->bbox[k],
+			                fabs(o->bbox[k]) / o->voxel, o->voxel, VOXEL_RANGE,
+			                VOXEL_RANGE * o->voxel);
 }
 
 static double mesh_area(const struct fct_mesh *m)
@@ -273,15 +225,8 @@ static double mesh_area(const struct fct_mesh *m)
 	for (size_t f = 0; f < m->nf; f++) {
 		const uint32_t *v = &m->fvert[m->fstart[f]];
 		for (uint32_t k = 2; k < fct_face_size(m, f); k++) {
-			double e1[3], e2[3], n[3];
-			for (int i = 0; i < 3; i++) {
-				e1[i] = m->xyz[3 * v[k - 1] + i] - m->xyz[3 * v[0] + i];
-				e2[i] = m->xyz[3 * v[k] + i] - m->xyz[3 * v[0] + i];
-			}
-			n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-			n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-			n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-			double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+			double l = fct_triangle_area2(&m->xyz[3 * (size_t)v[0]], &m->xyz[3 * (size_t)v[k - 1]],
+			                              &m->xyz[3 * (size_t)v[k]]);
 			if (isfinite(l))
 				a += l / 2;
 		}
@@ -307,9 +252,10 @@ struct loaded {
 	float *depth;
 };
 
-/* Load view number idx (operands first, then the .conf scans). */
+/* Load view number idx (operands first, then the .conf scans); dpose is
+ * the pose of a depth image. */
 static void load_view(struct options *o, size_t idx, const struct fct_conf *conf,
-                      const struct traj *tr, const struct fct_camera *dcam,
+                      const double *dpose, const struct fct_camera *dcam,
                       const struct fct_depth_params *dp, struct loaded *L)
 {
 	struct fct_err err;
@@ -332,34 +278,9 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		memcpy(L->view.pose, s->pose, sizeof s->pose);
 		L->view.cam.kind = FCT_CAMERA_NONE;
 		L->view.ortho_step = step;
-	} else if (is_image(o->views[idx])) {
+	} else if (dpose) {
 		const char *path = o->views[idx];
 		snprintf(L->name, sizeof L->name, "%s", path);
-		if (dcam->kind == FCT_CAMERA_NONE)
-			fct_usage_error("%s: a depth image needs -K", path);
-		double pose[12];
-		if (tr && tr->n) {
-			/* Match a TUM timestamp in the file name, else take the idx-th. */
-			const char *base = strrchr(path, '/');
-			base = base ? base + 1 : path;
-			char *end;
-			double ts = strtod(base, &end);
-			size_t best = idx;
-			if (end != base && (*end == '.' && (end[1] < '0' || end[1] > '9'))) {
-				double bd = HUGE_VAL;
-				for (size_t i = 0; i < tr->n; i++)
-					if (fabs(tr->t[i] - ts) < bd)
-						bd = fabs(tr->t[i] - ts), best = i;
-			}
-			if (best >= tr->n)
-				fct_die(1, "%s: no pose for it in the trajectory (%zu poses)", path, tr->n);
-			memcpy(pose, &tr->pose[12 * best], sizeof pose);
-		} else {
-			if (o->nposes != o->nviews)
-				fct_usage_error("%zu depth views but %zu --poses files", o->nviews, o->nposes);
-			if (fct_pose_read_file(o->poses[idx], pose, &err))
-				fct_die_err(&err);
-		}
 		struct fct_image img;
 		if (fct_image_read_file(&img, path, NULL, &err))
 			fct_die_err(&err);
@@ -369,6 +290,12 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		if (cam.width != img.width || cam.height != img.height)
 			fct_die(1, "%s: image is %dx%d, the camera %dx%d", path, img.width, img.height,
 			        cam.width, cam.height);
+		static int warned;      /* a wrong depth scale, once for all views */
+		char why[300];
+		if (!warned && fct_depth_implausible(why, sizeof why, &img, &cam, dp)) {
+			fct_warn("%s: %s", path, why);
+			warned = 1;
+		}
 		/* With a noise model: smoothed in units of it, then meshed with
 		 * it (the jump test's noise term and each vertex's sigma, which
 		 * the fusion weighs by; depthsmooth.h, depthmesh.h). */
@@ -393,8 +320,8 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 			fct_die_err(&err);
 		}
 		for (size_t v = 0; v < L->mesh.nv; v++)
-			fct_pose_apply(pose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
-		memcpy(L->view.pose, pose, sizeof pose);
+			fct_pose_apply(dpose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
+		memcpy(L->view.pose, dpose, sizeof L->view.pose);
 		L->view.cam = cam;
 		L->view.depth = L->depth;
 		L->depth_image = 1;
@@ -443,6 +370,64 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 	L->view.sigma = sp && sp->type == FCT_FLOAT32 ? sp->data : NULL;
 }
 
+/* The camera, depth and noise parameters of the depth-image operands. */
+static void depth_params(struct options *o, struct fct_camera *dcam, struct fct_depth_params *dp)
+{
+	double scale;
+	struct fct_stereo stereo;
+	fct_opt_camera(dcam, &scale, &stereo, o->K, o->camera);
+	if (scale > 0 && !o->scale_given)
+		o->depth_scale = scale;
+	fct_depth_params_default(dp);
+	dp->texcoords = 0;
+	dp->depth_scale = o->depth_scale;
+	dp->scale_float = o->scale_given;
+	/* disparities: from --baseline, or a stereo calibration's */
+	dp->baseline = o->baseline > 0 ? o->baseline : stereo.baseline;
+	dp->doffs = o->doffs_given ? o->doffs : stereo.doffs;
+	dp->focal = dcam->fx;
+	if (o->doffs_given && !(dp->baseline > 0))
+		fct_usage_error("--doffs is for disparities and needs --baseline");
+	/* Their noise: --noise's (a model, or a file holding one), else the
+	 * one -K's dataset name implies; none without. */
+	struct fct_err err;
+	dp->noise = o->depth_noise;
+	if (o->noise && !fct_noise_names_model(o->noise) && fct_noise_read_file(o->noise, &dp->noise, &err))
+		fct_die_err(&err);
+	if (!o->noise && o->K)
+		fct_noise_named(o->K, &dp->noise);
+}
+
+/* The volume holds voxels to 2^23 from the origin each way (fuse.c's block
+ * keys): say whether the views' span or their offset is beyond. */
+static _Noreturn void too_far(double vox, double lo, double hi)
+{
+	double span = (hi - lo) / vox, off = fmax(fabs(lo), fabs(hi));
+	if (span < VOXEL_RANGE)
+		fct_die(1, "--voxel %g: the views lie %g m from the origin, %.3g voxels: beyond the "
+		        "volume's %d each way (their span, %g m, fits: move the poses nearer the origin)",
+		        vox, off, off / vox, VOXEL_RANGE, hi - lo);
+	fct_die(1, "--voxel %g: the views span %g m, %.3g voxels: beyond the volume's %d each way",
+	        vox, hi - lo, span, VOXEL_RANGE);
+}
+
+/* A view that changed no voxel: say why, where it can be seen. */
+static void warn_unused(const struct loaded *L, int has_bbox)
+{
+	const double *t = &L->view.pose[3];
+	double near = HUGE_VAL;
+	if (L->view.cam.kind != FCT_CAMERA_NONE)
+		for (size_t v = 0; v < L->mesh.nv; v++) {
+			const double *p = &L->mesh.xyz[3 * v];
+			near = fmin(near, hypot(hypot(p[0] - t[0], p[1] - t[4]), p[2] - t[8]));
+		}
+	if (near > 1e6 && near < HUGE_VAL)
+		fct_warn("%s: the view adds nothing: its camera is %.3g m from its nearest point", L->name,
+		         near);
+	else
+		fct_warn("%s: the view adds nothing%s", L->name, has_bbox ? " inside --bbox" : "");
+}
+
 /* The views, read one at a time: each is loaded, used and freed before
  * the next (memory bounded by the volume, not the number of views), in as
  * many passes as the options need: the box carving needs first, the
@@ -450,11 +435,13 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 struct views {
 	struct options *o;
 	const struct fct_conf *conf;
-	const struct traj *tr;
 	const struct fct_camera *dcam;
 	const struct fct_depth_params *dp;
 	size_t n;
 	size_t *image;           /* per view: 1 + its --image, 0 for none */
+	size_t *depth;           /* per view: 1 + its place among the depth images, 0 for none */
+	size_t ndepth;
+	double *dposes;          /* 12 per depth image */
 	double read_s;           /* time spent reading them */
 };
 
@@ -464,14 +451,55 @@ static void views_init(struct views *vs, struct options *o, const struct fct_con
 	vs->o = o, vs->conf = conf;
 	vs->n = o->nviews + conf->n;
 	vs->image = calloc(vs->n ? vs->n : 1, sizeof *vs->image);
-	if (!vs->image)
+	vs->depth = calloc(vs->n ? vs->n : 1, sizeof *vs->depth);
+	if (!vs->image || !vs->depth)
 		fct_die(1, "out of memory");
 	size_t nimage = 0;
 	for (size_t i = 0; i < o->nviews; i++)
-		if (is_image(o->views[i]))
+		if (fct_path_is_image(o->views[i])) {
+			vs->depth[i] = ++vs->ndepth;
 			vs->image[i] = nimage < o->nimages ? ++nimage : (nimage++, 0);
+		}
 	if (o->nimages && o->nimages != nimage)
 		fct_usage_error("%zu depth views but %zu --image files", nimage, o->nimages);
+}
+
+/* The poses of the depth images among the operands (vs->depth), 12 per
+ * image in operand order (poses.h matches them to --poses), into
+ * vs->dposes (NULL when there are none). */
+static void depth_poses(struct views *vs, const struct fct_camera *dcam)
+{
+	const struct options *o = vs->o;
+	struct fct_err err;
+	const char **frames = calloc(vs->ndepth + 1, sizeof *frames);
+	if (!frames)
+		fct_die(1, "out of memory");
+	for (size_t i = 0; i < o->nviews; i++)
+		if (vs->depth[i])
+			frames[vs->depth[i] - 1] = o->views[i];
+	size_t n = vs->ndepth;
+	vs->dposes = NULL;
+	if (n == 0 && o->nposes)
+		fct_usage_error("--poses is for depth images, and no view is one");
+	if (n > 0) {
+		if (dcam->kind == FCT_CAMERA_NONE)
+			fct_usage_error("%s: a depth image needs -K or --camera", frames[0]);
+		if (!o->nposes)
+			fct_usage_error("%s: a depth image needs --poses", frames[0]);
+		if (o->nposes > 1 && o->nposes != n)
+			fct_usage_error("%zu depth images but %zu --poses files (give one per image, or one "
+			                "file of them all)", n, o->nposes);
+		struct fct_frame_poses_stats st;
+		if (!(vs->dposes = fct_alloc_array(n, 12 * sizeof *vs->dposes, &err)) ||
+		    fct_frame_poses(vs->dposes, &st, o->poses, o->nposes, frames, n, o->max_diff, &err))
+			fct_die_err(&err);
+		static const char *const by[] = { "files", "order", "timestamp", "frame number" };
+		fct_report("poses", "%s", fct_traj_format_name(st.format));
+		fct_report("poses_matched_by", "%s", by[st.match]);
+		if (st.match == FCT_MATCH_STAMP)
+			fct_report("poses_max_difference_s", "%.6f", st.max_diff);
+	}
+	free(frames);
 }
 
 static void view_open(struct views *vs, size_t i, struct loaded *L)
@@ -479,7 +507,8 @@ static void view_open(struct views *vs, size_t i, struct loaded *L)
 	double t = fct_now();
 	struct fct_err err;
 	memset(L, 0, sizeof *L);
-	load_view(vs->o, i, vs->conf, vs->tr, vs->dcam, vs->dp, L);
+	load_view(vs->o, i, vs->conf, vs->depth[i] ? &vs->dposes[12 * (vs->depth[i] - 1)] : NULL,
+	          vs->dcam, vs->dp, L);
 	if (L->depth_image && vs->image[i] && !(L->image = fct_strdup(vs->o->images[vs->image[i] - 1], &err)))
 		fct_die_err(&err);
 	vs->read_s += fct_now() - t;
@@ -532,9 +561,8 @@ static double volume_box(const struct options *o, const struct extent *e, int32_
 	double est = fmin(band_blocks, bbox_blocks) * (double)fct_voxgrid_block_bytes(0);
 	for (int k = 0; k < 3; k++) {
 		double a = floor((lo[k] - band) / vox) - 2, b = ceil((hi[k] + band) / vox) + 2;
-		if (!(fabs(a) < (1 << 23) && fabs(b) < (1 << 23)))
-			fct_die(1, "--voxel %g: the views span %g m, %.3g voxels: too many for 32-bit indices",
-			        vox, hi[k] - lo[k], (hi[k] - lo[k]) / vox);
+		if (!(fabs(a) < VOXEL_RANGE && fabs(b) < VOXEL_RANGE))
+			too_far(vox, lo[k], hi[k]);
 		clo[k] = (int32_t)a, chi[k] = (int32_t)b;
 	}
 	if (o->carve)
@@ -613,10 +641,13 @@ static void fuse_views(struct views *vs, struct fct_voxgrid *g, struct fct_carvi
 			volume_box(o, e, clo, chi);
 		}
 		double tv = fct_now();
+		size_t before = st->voxels;
 		if (fct_fuse_view(g, &L.view, &o->fp, st, &err)) {
 			fct_err_prefix(&err, "%s", L.name);
 			fct_die_err(&err);
 		}
+		if (st->voxels == before)
+			warn_unused(&L, o->has_bbox);
 		double dt = fct_now() - tv;
 		*fuse_s += dt;
 		if (fct_verbose)
@@ -677,38 +708,17 @@ int main(int argc, char **argv)
 	struct fct_conf conf = { 0 };
 	if (o.conf && fct_conf_read(&conf, o.conf, &err))
 		fct_die_err(&err);
-	struct fct_camera dcam = { 0 };
+	for (size_t i = 0; i < conf.nskipped; i++)
+		if (fct_verbose)
+			fprintf(stderr, "tsdfuse: %s:%ld: skipped \"%s\" (vrip fuses bmesh lines only)\n",
+			        o.conf, conf.skipped[i].line, conf.skipped[i].text);
+	fct_report("conf_skipped", "%zu", conf.nskipped);
+	struct fct_camera dcam;
 	struct fct_depth_params dp;
-	fct_depth_params_default(&dp);
-	dp.texcoords = 0;
-	if (o.K) {
-		double scale, k[4];
-		if (!fct_camera_named(o.K, &dcam, &scale)) {
-			if (!o.scale_given)
-				o.depth_scale = scale;
-		} else {
-			fct_opt_doubles("-K", o.K, k, 4);
-			if (!(k[0] > 0 && k[1] > 0))
-				fct_usage_error("-K: focal lengths must be positive");
-			dcam.kind = FCT_CAMERA_PINHOLE;
-			dcam.fx = k[0], dcam.fy = k[1], dcam.cx = k[2], dcam.cy = k[3];
-		}
-	}
-	/* The depth images' noise: --noise's (a model, or a file holding
-	 * one), else the one -K's dataset name implies; none without. */
-	dp.noise = o.depth_noise;
-	if (o.noise && !fct_noise_names_model(o.noise) && fct_noise_read_file(o.noise, &dp.noise, &err))
-		fct_die_err(&err);
-	if (!o.noise && o.K)
-		fct_noise_named(o.K, &dp.noise);
-	dp.depth_scale = o.depth_scale;
-	dp.scale_float = o.scale_given;
-	struct traj tr = { 0 };
-	if (o.nposes == 1 && is_trajectory(o.poses[0]) && traj_read(&tr, o.poses[0], &err))
-		fct_die_err(&err);
-
-	struct views vs = { .tr = &tr, .dcam = &dcam, .dp = &dp };
+	depth_params(&o, &dcam, &dp);
+	struct views vs = { .dcam = &dcam, .dp = &dp };
 	views_init(&vs, &o, &conf);
+	depth_poses(&vs, &dcam);
 	size_t nv = vs.n;
 	double t0 = fct_now();
 	struct extent e = { { HUGE_VAL, HUGE_VAL, HUGE_VAL }, { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL }, 0, 0 };
@@ -817,8 +827,8 @@ int main(int argc, char **argv)
 		fct_report("peak_rss_mb", "%.1f", (double)ru.ru_maxrss / 1024);
 	fct_mesh_free(&out);
 	free(vs.image);
-	free(tr.t);
-	free(tr.pose);
+	free(vs.depth);
+	free(vs.dposes);
 	free(o.poses);
 	free(o.images);
 	fct_conf_free(&conf);

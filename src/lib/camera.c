@@ -183,6 +183,25 @@ int fct_camera_named(const char *name, struct fct_camera *cam, double *depth_sca
 	return -1;
 }
 
+const char *fct_camera_known(const struct fct_camera *cam, double not_scale, double *depth_scale)
+{
+	if (cam->kind != FCT_CAMERA_PINHOLE || !((cam->width == 640 && cam->height == 480) ||
+	                                         (cam->width == 0 && cam->height == 0)))
+		return NULL;
+	const struct named_camera *found = NULL;
+	for (size_t i = 0; i < sizeof named_cameras / sizeof *named_cameras; i++) {
+		const struct named_camera *c = &named_cameras[i];
+		if (!(fabs(cam->fx - c->fx) <= 0.01 * c->fx && fabs(cam->fy - c->fy) <= 0.01 * c->fy &&
+		      fabs(cam->cx - c->cx) <= 0.01 * c->cx && fabs(cam->cy - c->cy) <= 0.01 * c->cy))
+			continue;
+		if (!found || (found->scale == not_scale && c->scale != not_scale))
+			found = c;
+	}
+	if (found && depth_scale)
+		*depth_scale = found->scale;
+	return found ? found->name : NULL;
+}
+
 const char *fct_camera_names(void)
 {
 	return "tum tum1 tum2 tum3 redwood primesense kinect icl-nuim 7scenes";
@@ -281,8 +300,72 @@ static const char *after_keyword(const char *text, const char *key)
 	return word_is(s, key, &rest) ? rest : NULL;
 }
 
+/* The number after "key=" at the start of a line of a Middlebury
+ * calib.txt; NULL when absent. */
+static const char *calib_value(const char *text, const char *key)
+{
+	size_t n = strlen(key);
+	for (const char *p = text; p; p = strchr(p, '\n')) {
+		p = skip_space(p);
+		if (!strncmp(p, key, n) && p[n] == '=')
+			return p + n + 1;
+	}
+	return NULL;
+}
+
+/* Middlebury's stereo calib.txt (2014 and later): cam0=[fx 0 cx; 0 fy cy;
+ * 0 0 1], doffs=, baseline= (mm), width=, height=; the disparity images
+ * are cam0's. */
+static int parse_middlebury(const char *text, const char *path, struct fct_camera *cam,
+                            struct fct_stereo *stereo, struct fct_err *err)
+{
+	const char *k = calib_value(text, "cam0"), *end;
+	const char *w = calib_value(text, "width"), *h = calib_value(text, "height");
+	const char *d = calib_value(text, "doffs"), *b = calib_value(text, "baseline");
+	double m[10], vw, vh, doffs, base;
+	if (!k || *k != '[' || !w || !h || !d || !b)
+		return fct_fail(err, "%s: a Middlebury calib.txt needs cam0, width, height, doffs and "
+		                "baseline", path);
+	/* the rows are separated by semicolons */
+	int n = 0;
+	for (const char *s = k + 1; n < 9;) {
+		int got = scan_numbers(s, m + n, 9 - n, &end);
+		n += got;
+		if (*end != ';' || got == 0)
+			break;
+		s = end + 1;
+	}
+	if (n != 9 || *end != ']')
+		return fct_fail(err, "%s: cam0: expected [fx 0 cx; 0 fy cy; 0 0 1]", path);
+	if (!(m[0] > 0 && m[4] > 0) || m[1] != 0 || m[3] != 0 || m[6] != 0 || m[7] != 0 || m[8] != 1)
+		return fct_fail(err, "%s: cam0 is not a pinhole K with positive focal lengths", path);
+	if (scan_numbers(w, &vw, 1, &end) != 1 || scan_numbers(h, &vh, 1, &end) != 1 ||
+	    scan_numbers(d, &doffs, 1, &end) != 1 || scan_numbers(b, &base, 1, &end) != 1)
+		return fct_fail(err, "%s: width, height, doffs and baseline must be numbers", path);
+	if (!(base > 0 && base < 1e9) || !(fabs(doffs) < 1e9))
+		return fct_fail(err, "%s: baseline %.17g mm, doffs %.17g: out of range", path, base, doffs);
+	memset(cam, 0, sizeof *cam);
+	cam->kind = FCT_CAMERA_PINHOLE;
+	cam->fx = m[0], cam->fy = m[4], cam->cx = m[2], cam->cy = m[5];
+	if (check_size(vw, vh, cam, err)) {
+		fct_err_prefix(err, "%s", path);
+		return -1;
+	}
+	if (stereo)
+		stereo->baseline = base / 1000, stereo->doffs = doffs;
+	return 0;
+}
+
 int fct_camera_read_file(const char *path, struct fct_camera *cam, struct fct_err *err)
 {
+	return fct_camera_read_stereo(cam, NULL, path, err);
+}
+
+int fct_camera_read_stereo(struct fct_camera *cam, struct fct_stereo *stereo, const char *path,
+                           struct fct_err *err)
+{
+	if (stereo)
+		stereo->baseline = stereo->doffs = 0;
 	char *text = fct_read_small_text(path, err);
 	if (!text)
 		return -1;
@@ -294,6 +377,8 @@ int fct_camera_read_file(const char *path, struct fct_camera *cam, struct fct_er
 	int rc;
 	if (*s == '{') {
 		rc = parse_open3d_json(s, path, cam, err);
+	} else if (calib_value(s, "cam0")) {
+		rc = parse_middlebury(s, path, cam, stereo, err);
 	} else if ((rest = after_keyword(s, "camera"))) {
 		rc = fct_camera_parse(rest, cam, err);
 		if (rc)

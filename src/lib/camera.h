@@ -56,9 +56,30 @@ int fct_camera_named(const char *name, struct fct_camera *cam, double *depth_sca
 /* The names fct_camera_named knows, blank-separated. */
 const char *fct_camera_names(void);
 
+/* The dataset camera of fct_camera_named whose intrinsics are cam's (a
+ * pinhole of 640 x 480, or of no size yet, with fx fy cx cy within 1%),
+ * preferring one whose depth scale is not_scale's other (several datasets
+ * share one K): its name, or NULL.  *depth_scale (may be NULL) gets its
+ * depth units per metre.  Knowing the sensor tells which depths are
+ * plausible (fct_depth_implausible). */
+const char *fct_camera_known(const struct fct_camera *cam, double not_scale, double *depth_scale);
+
+/* What a stereo calibration adds to the camera: disparity d (pixels) is
+ * depth = baseline * f / (d + doffs). */
+struct fct_stereo {
+	double baseline;         /* metres; 0: not a stereo calibration */
+	double doffs;            /* pixels: the difference of the two cameras' cx */
+};
+
 /* Read an intrinsics file: Open3D's PinholeCameraIntrinsic JSON, a 3x3 K
- * matrix as text (width and height then stay 0), or a camera line as in the
- * header comment (with or without "comment camera" before it).  0 or -1. */
+ * matrix as text (width and height then stay 0), a camera line as in the
+ * header comment (with or without "comment camera" before it), or a
+ * Middlebury stereo calib.txt (cam0=[fx 0 cx; 0 fy cy; 0 0 1], doffs,
+ * baseline in millimetres, width, height), whose baseline and doffs go to
+ * stereo (may be NULL; zero for the other forms).  0 or -1. */
+int fct_camera_read_stereo(struct fct_camera *cam, struct fct_stereo *stereo, const char *path,
+                           struct fct_err *err);
+/* fct_camera_read_stereo without the stereo part. */
 int fct_camera_read_file(const char *path, struct fct_camera *cam, struct fct_err *err);
 
 /* The whole of a small text file (at most 64 KB: a camera, pose or noise

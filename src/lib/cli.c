@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "numparse.h"
@@ -63,11 +64,39 @@ void fct_cli_init(const char *prog)
 	catch_fatal_signals();
 }
 
+/* "prog: TAG TEXT" and a newline on stderr in one write, with the control
+ * characters of text escaped (\n, \r, \t, \xHH): a file name holding a
+ * newline must not make a message two lines. */
+static void put_message(const char *tag, const char *text)
+{
+	char line[4 * 2048 + 256];
+	int n = snprintf(line, sizeof line - 8, "%s: %s", fct_prog, tag);
+	size_t at = n < 0 ? 0 : (size_t)n < sizeof line - 8 ? (size_t)n : sizeof line - 8;
+	for (const unsigned char *p = (const unsigned char *)text; *p && at < sizeof line - 8; p++) {
+		if (*p >= 0x20 && *p != 0x7f)
+			line[at++] = (char)*p;
+		else if (*p == '\n' || *p == '\r' || *p == '\t')
+			line[at++] = '\\', line[at++] = *p == '\n' ? 'n' : *p == '\r' ? 'r' : 't';
+		else
+			at += (size_t)snprintf(line + at, 5, "\\x%02x", *p);
+	}
+	line[at++] = '\n';
+	fwrite(line, 1, at, stderr);
+}
+
 static void vmessage(const char *tag, const char *fmt, va_list ap)
 {
 	char buf[2048];
 	vsnprintf(buf, sizeof buf, fmt, ap);
-	fprintf(stderr, "%s: %s%s\n", fct_prog, tag, buf);
+	put_message(tag, buf);
+}
+
+void fct_error(const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vmessage("", fmt, ap);
+	va_end(ap);
 }
 
 void fct_die(int status, const char *fmt, ...)
@@ -81,7 +110,7 @@ void fct_die(int status, const char *fmt, ...)
 
 void fct_die_err(const struct fct_err *err)
 {
-	fprintf(stderr, "%s: %s\n", fct_prog, err->msg);
+	put_message("", err->msg);
 	exit(1);
 }
 
@@ -175,6 +204,36 @@ void fct_opt_cylindrical(const char *arg, int width, int height, struct fct_came
 	cam->f = isnan(v[0]) ? width / (2 * M_PI) : v[0];
 	cam->cy = isnan(v[1]) ? (height - 1) / 2.0 : v[1];
 	cam->theta0 = v[2];
+}
+
+void fct_opt_camera(struct fct_camera *cam, double *named_scale, struct fct_stereo *stereo,
+                    const char *K, const char *file)
+{
+	struct fct_err err;
+	struct stat sb;
+	double k[4], scale = 0;
+	memset(cam, 0, sizeof *cam);
+	if (stereo)
+		stereo->baseline = stereo->doffs = 0;
+	if (K && file)
+		fct_usage_error("-K and --camera exclude each other");
+	if (file && fct_camera_read_stereo(cam, stereo, file, &err))
+		fct_die_err(&err);
+	if (K && fct_camera_named(K, cam, &scale)) {
+		if (!strchr(K, ',') && stat(K, &sb) == 0 && S_ISREG(sb.st_mode))
+			fct_usage_error("-K: \"%s\" is a file: give an intrinsics file with --camera "
+			                "(Open3D JSON, a 3x3 K, a camera line, Middlebury calib.txt)", K);
+		if (!strchr(K, ','))
+			fct_usage_error("-K: \"%s\" is neither fx,fy,cx,cy nor a camera name (%s)", K,
+			                fct_camera_names());
+		fct_opt_doubles("-K", K, k, 4);
+		if (!(k[0] > 0 && k[1] > 0))
+			fct_usage_error("-K: focal lengths must be positive");
+		cam->kind = FCT_CAMERA_PINHOLE;
+		cam->fx = k[0], cam->fy = k[1], cam->cx = k[2], cam->cy = k[3];
+	}
+	if (named_scale)
+		*named_scale = scale;
 }
 
 void fct_write_image_or_die(const struct fct_image *img, const char *path)

@@ -24,6 +24,11 @@ extern const char *fct_prog;
  * files (output.h). */
 void fct_cli_init(const char *prog);
 
+/* Every message below is one line: control characters in it (a file name
+ * with a newline) are escaped as \n, \r, \t or \xHH.
+ *
+ * "prog: message" on stderr, for a program that goes on (or exits itself). */
+void fct_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* "prog: message" on stderr and exit with status. */
 _Noreturn void fct_die(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* "prog: err->msg" and exit 1. */
@@ -54,6 +59,15 @@ void fct_opt_doubles(const char *opt, const char *arg, double *v, int n);
  * (height - 1) / 2) and theta0; exit 2 when malformed or f is not
  * positive. */
 void fct_opt_cylindrical(const char *arg, int width, int height, struct fct_camera *cam);
+
+/* The camera of -K arg (fx,fy,cx,cy, or a dataset name of
+ * fct_camera_named) or of --camera file (fct_camera_read_stereo): cam (kind
+ * NONE when both are NULL), *named_scale (may be NULL) the named dataset's
+ * depth units per metre or 0, stereo (may be NULL) a stereo calibration's
+ * baseline and doffs.  Exit 2 when both are given or -K is malformed (a -K
+ * that names a file says to give it with --camera); exit 1 on a bad file. */
+void fct_opt_camera(struct fct_camera *cam, double *named_scale, struct fct_stereo *stereo,
+                    const char *K, const char *file);
 
 /* Write img to path atomically (output.h): PFM when it holds floats, else
  * PNG; exit 1 with the path in the message on failure. */

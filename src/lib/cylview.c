@@ -64,8 +64,20 @@ int fct_cylview_plan(const struct fct_camera *pano, const struct fct_cylview_par
 	double rc = 1 / cos(a), hmin, hmax;
 	pano_heights(pano, &hmin, &hmax);
 	double H = p->height > 0 ? p->height : ceil(F * (hmax - hmin) * rc - 1e-9);
-	if (!(W >= 1 && W <= FCT_IMAGE_MAX_SIDE && H >= 1 && H <= FCT_IMAGE_MAX_SIDE))
-		return fct_fail(err, "views of %.0fx%.0f pixels: too large or empty", W, H);
+	if (!(W >= 1 && H >= 1))
+		return fct_fail(err, "views of %.0fx%.0f pixels: empty", W, H);
+	/* A view's pixels beyond a few per panorama pixel only interpolate:
+	 * near 180 degrees its edges stretch without end (179.999 degrees of a
+	 * 1024 x 256 panorama asked 37351042 x 461 pixels), and a size may ask
+	 * gigabytes of a small picture. */
+	double most = fmax(FCT_CYLVIEW_MAX_ZOOM * pano->width * (double)pano->height, 1 << 20);
+	if (W * H > most)
+		return fct_fail(err, "views of %.0fx%.0f pixels from a %dx%d panorama: more than %d "
+		                "times its pixels%s", W, H, pano->width, pano->height, FCT_CYLVIEW_MAX_ZOOM,
+		                p->width > 0 ? "" : " (a field of view near 180 degrees stretches a "
+		                "view's edges without end)");
+	if (!(W <= FCT_IMAGE_MAX_SIDE && H <= FCT_IMAGE_MAX_SIDE))
+		return fct_fail(err, "views of %.0fx%.0f pixels: too large", W, H);
 	if (W * H > (double)FCT_IMAGE_MAX_PIXELS)
 		return fct_fail(err, "views of %.0fx%.0f pixels: too large", W, H);
 	/* The horizon's relative place: top edge -0.5 at hmin (scaled by the
@@ -569,38 +581,6 @@ static int set_textures(struct fct_mesh *m, const char *used, size_t nviews, cha
 	return 0;
 }
 
-/* Append a list property "float texcoord" (list uchar, 6 per triangle,
- * 2 per corner) to the faces. */
-static struct fct_prop *add_texcoord_list(struct fct_mesh *m, struct fct_err *err)
-{
-	fct_elem_remove(&m->face, "texcoord");
-	size_t items = m->fstart[m->nf];
-	if (fct_mul_size(items, 2, &items))
-		return fct_fail(err, "too many faces"), NULL;
-	struct fct_prop np;
-	memset(&np, 0, sizeof np);
-	np.type = FCT_FLOAT32;
-	np.count_type = FCT_UINT8;
-	np.name = fct_strdup("texcoord", err);
-	np.data = fct_alloc_array(items, sizeof(float), err);
-	np.off = fct_alloc_array(m->nf + 1, sizeof(size_t), err);
-	struct fct_prop *props = np.name && np.data && np.off
-	                       ? realloc(m->face.props, (m->face.nprops + 1) * sizeof *props) : NULL;
-	if (!props) {
-		free(np.name);
-		free(np.data);
-		free(np.off);
-		return fct_fail(err, "out of memory"), NULL;
-	}
-	np.cap = items;
-	np.off_cap = m->nf + 1;
-	for (size_t f = 0; f <= m->nf; f++)
-		np.off[f] = 2 * (size_t)m->fstart[f];
-	m->face.props = props;
-	props[m->face.nprops] = np;
-	return &props[m->face.nprops++];
-}
-
 /* OBJ: one copy of each vertex per view that uses it (the first keeps the
  * vertex's index, others go after the vertices), faces renumbered, and
  * vertex s t set from each copy's view. */
@@ -710,7 +690,7 @@ int fct_cylview_texture(struct fct_mesh *m, const double *pano_pose,
 	for (size_t k = 0; k < nviews; k++)
 		rank[k] = used[k] ? r++ : -1;
 	if (per_face) {
-		struct fct_prop *tc = add_texcoord_list(m, err);
+		struct fct_prop *tc = fct_mesh_add_corner_list(m, "texcoord", FCT_FLOAT32, 2, err);
 		if (!tc)
 			goto out;
 		float *d = tc->data;

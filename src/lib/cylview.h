@@ -31,6 +31,8 @@
 #include "mesh.h"
 
 #define FCT_CYLVIEW_MAX_COUNT 3600
+/* A view holds at most this many times the panorama's pixels (or 2^20). */
+#define FCT_CYLVIEW_MAX_ZOOM 16
 
 struct fct_cylview_params {
 	int count;          /* views (default 8) */
@@ -59,7 +61,9 @@ struct fct_cylview {
  * between sectors lies inside one view; the horizon row at the panorama's
  * relative place.  A given height keeps that relative place at the same
  * F.  Fails (message set) on a count outside [1, FCT_CYLVIEW_MAX_COUNT], a
- * fov outside (0, 180), a non-cylindrical camera, sizes out of range. */
+ * fov outside (0, 180), a non-cylindrical camera, sizes out of range, and
+ * views of more than FCT_CYLVIEW_MAX_ZOOM times the panorama's pixels (and
+ * over 2^20): what the panorama cannot justify. */
 int fct_cylview_plan(const struct fct_camera *pano, const struct fct_cylview_params *p,
                      struct fct_cylview *views, struct fct_err *err);
 

@@ -21,7 +21,7 @@ void fct_depth_params_default(struct fct_depth_params *p)
 static inline double sample_depth(double v, const struct fct_depth_params *p)
 {
 	if (p->baseline > 0)
-		v = v > 0 ? p->baseline * p->focal / v : 0;
+		v = v > 0 && v + p->doffs > 0 ? p->baseline * p->focal / (v + p->doffs) : 0;
 	return v > 0 && v >= p->min_depth && v <= p->max_depth && isfinite(v) ? v : 0;
 }
 
@@ -123,6 +123,49 @@ static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int 
 			kept[j * st * w + i * st] = (float)depth[c];
 	}
 	return 0;
+}
+
+static int cmp_float(const void *a, const void *b)
+{
+	float x = *(const float *)a, y = *(const float *)b;
+	return (x > y) - (x < y);
+}
+
+int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
+                          const struct fct_camera *cam, const struct fct_depth_params *p)
+{
+	double scale = 0;
+	const char *name = fct_camera_known(cam, p->depth_scale, &scale);
+	if (!name || img->channels != 1)
+		return 0;
+	size_t n = 0, cap = ((size_t)img->width / 4 + 1) * ((size_t)img->height / 4 + 1);
+	float *d = malloc(cap * sizeof *d);
+	if (!d)
+		return 0;
+	for (int y = 0; y < img->height; y += 4)
+		for (int x = 0; x < img->width; x += 4) {
+			double v = fct_depth_at(img, x, y, p);
+			if (v > 0)
+				d[n++] = (float)v;
+		}
+	int bad = 0;
+	if (n > 0) {
+		qsort(d, n, sizeof *d, cmp_float);
+		double med = d[n / 2];
+		bad = !(med >= FCT_SENSOR_MIN_DEPTH && med <= FCT_SENSOR_MAX_DEPTH);
+		int integer = img->type != FCT_PIX_F32 || p->scale_float;
+		if (bad && integer && scale != p->depth_scale)
+			snprintf(msg, size, "median depth %.3g m: implausible for an RGB-D sensor (%g to %g "
+			         "m); the camera is %s's, whose depth units are %g a metre, not %g "
+			         "(--depth-scale)", med, FCT_SENSOR_MIN_DEPTH, FCT_SENSOR_MAX_DEPTH, name,
+			         scale, p->depth_scale);
+		else if (bad)
+			snprintf(msg, size, "median depth %.3g m: implausible for an RGB-D sensor (%g to %g "
+			         "m; the camera is %s's): is the depth scale right?", med,
+			         FCT_SENSOR_MIN_DEPTH, FCT_SENSOR_MAX_DEPTH, name);
+	}
+	free(d);
+	return bad;
 }
 
 int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,

@@ -6,7 +6,9 @@
  * scale_float is set).  Zero, non-finite and, in 16-bit images, 65535 (the
  * 7-Scenes and Kinect "no reading" mark) mean no data, as does a depth
  * outside [min_depth, max_depth].  With a baseline the samples are
- * disparities d in pixels and depth = baseline * focal / d.
+ * disparities d in pixels and depth = baseline * focal / (d + doffs), doffs
+ * the difference of the two cameras' principal points (Middlebury's
+ * calib.txt; 0 for rectified pairs that share them).
  *
  * Every step-th pixel of every step-th row (from pixel 0) is a grid cell of
  * gridmesh.h; s = (u + 0.5) / W and t = 1 - (v + 0.5) / H place the vertex
@@ -33,6 +35,7 @@ struct fct_depth_params {
 	double depth_scale;       /* units per metre; default 1000 */
 	int scale_float;          /* apply depth_scale to PFM samples as well */
 	double baseline, focal;   /* baseline > 0: disparity image */
+	double doffs;             /* disparity offset (Middlebury): depth = b f / (d + doffs) */
 	double min_depth, max_depth;
 	int step;                 /* sample every step-th pixel (>= 1) */
 	struct fct_grid_params grid;
@@ -61,6 +64,20 @@ double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_
 /* The step of img's depth encoding in metres: 1 / depth_scale for integer
  * (PNG) depth, 0 for floats and for disparities (whose depth steps vary). */
 double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params *p);
+
+/* Depths a known RGB-D sensor measures (metres): a median outside is a
+ * wrong depth scale, not a scene. */
+#define FCT_SENSOR_MIN_DEPTH 0.3
+#define FCT_SENSOR_MAX_DEPTH 8.0
+
+/* Is the depth image implausible for its camera?  When cam is a dataset's
+ * RGB-D camera (fct_camera_known) and the median of the image's depths
+ * (every 4th pixel of every 4th row) lies outside [FCT_SENSOR_MIN_DEPTH,
+ * FCT_SENSOR_MAX_DEPTH], returns 1 with why in msg (the median, the
+ * camera, and its dataset's depth scale when p's differs: TUM's frames in
+ * units of 1/5000 m read as millimetres give 7-45 m); 0 otherwise. */
+int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
+                          const struct fct_camera *cam, const struct fct_depth_params *p);
 
 /* Mesh the depth image seen by cam (whose size must be the image's) into m,
  * which is initialised here.  stats may be NULL.  0 or -1. */

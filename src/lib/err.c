@@ -32,6 +32,35 @@ void fct_err_prefix(struct fct_err *err, const char *fmt, ...)
 	snprintf(err->msg, sizeof err->msg, "%s: %s", head, old);
 }
 
+/* Bytes kept as they are in fct_escape. */
+static int plain(unsigned char c)
+{
+	return c >= ' ' && c < 0x7f && c != '\\';
+}
+
+char *fct_escape(char *buf, size_t size, const char *s, size_t len)
+{
+	size_t need = 0, o = 0;
+	for (size_t i = 0; i < len && s[i]; i++)
+		need += plain((unsigned char)s[i]) ? 1 : 4;
+	int cut = need >= size;
+	for (size_t i = 0; i < len && s[i]; i++) {
+		unsigned char c = (unsigned char)s[i];
+		size_t w = plain(c) ? 1 : 4;
+		if (cut && o + w + 3 >= size) {
+			memcpy(buf + o, "...", 3);
+			o += 3;
+			break;
+		}
+		if (w == 1)
+			buf[o++] = (char)c;
+		else
+			o += (size_t)snprintf(buf + o, size - o, "\\x%02x", c);
+	}
+	buf[o] = 0;
+	return buf;
+}
+
 int fct_mul_size(size_t a, size_t b, size_t *out)
 {
 	if (b && a > SIZE_MAX / b)

@@ -22,6 +22,12 @@ int fct_fail(struct fct_err *err, const char *fmt, ...)
 void fct_err_prefix(struct fct_err *err, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)));
 
+/* Up to len bytes of s (stopping at a NUL) made fit to quote in a one-line
+ * message: printable ASCII kept, every other byte as \xNN (so a binary
+ * file's bytes never reach the terminal raw), cut with "..." to fit size
+ * (at least 8) bytes with the terminator.  Returns buf. */
+char *fct_escape(char *buf, size_t size, const char *s, size_t len);
+
 /* Overflow-checked a*b and a+b for sizes: return 0 and store, or -1. */
 int fct_mul_size(size_t a, size_t b, size_t *out);
 int fct_add_size(size_t a, size_t b, size_t *out);

@@ -661,6 +661,18 @@ static int jpeg_decode(struct fct_image *img, const unsigned char *buf, size_t l
 
 /* ---- reading: detection ---------------------------------------------- */
 
+int fct_image_magic(const unsigned char *head, size_t n)
+{
+	if (n >= 8 && !memcmp(head, png_magic, 8))
+		return FCT_IMAGE_PNG;
+	if (n >= 3 && head[0] == 'P' && (head[1] == 'F' || head[1] == 'f') && is_space(head[2]))
+		return FCT_IMAGE_PFM;
+	/* SOI, then the first marker's 0xFF. */
+	if (n >= 3 && head[0] == 0xff && head[1] == 0xd8 && head[2] == 0xff)
+		return FCT_IMAGE_JPEG;
+	return -1;
+}
+
 /* The reader behind every entry point: detect, take in the rest, decode
  * (or only read the header), refusing more than max_pixels. */
 static int read_image(struct fct_image *img, FILE *f, const char *name, size_t max_pixels,
@@ -676,10 +688,8 @@ static int read_image(struct fct_image *img, FILE *f, const char *name, size_t m
 	if (n == 0)
 		return fct_fail(err, "%s: empty input, not a PNG, JPEG or PFM image", name);
 	int png = !memcmp(head, png_magic, n < 8 ? n : 8);
-	int pfm = n >= 3 && head[0] == 'P' && (head[1] == 'F' || head[1] == 'f') &&
-	          is_space(head[2]);
-	/* SOI, then the first marker's 0xFF. */
-	int jpeg = n >= 3 && head[0] == 0xff && head[1] == 0xd8 && head[2] == 0xff;
+	int pfm = fct_image_magic(head, n) == FCT_IMAGE_PFM;
+	int jpeg = fct_image_magic(head, n) == FCT_IMAGE_JPEG;
 	if (png && n < 8)
 		return fct_fail(err, "%s: byte %zu: PNG signature: unexpected end of file", name, n);
 	if (!png && !pfm && !jpeg)

@@ -54,6 +54,10 @@ size_t fct_pix_size(enum fct_pix type);
 const char *fct_pix_name(enum fct_pix type);
 /* "png", "pfm", "jpeg". */
 const char *fct_image_format_name(enum fct_image_format fmt);
+/* The format whose signature the first n bytes of a file start with (a
+ * PNG's 8 bytes, or 3: PFM's "Pf"/"PF" and a blank, JPEG's SOI and a
+ * marker), or -1. */
+int fct_image_magic(const unsigned char *head, size_t n);
 
 /* Number of samples (width*height*channels) of a valid image. */
 size_t fct_image_samples(const struct fct_image *img);

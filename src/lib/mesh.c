@@ -152,6 +152,39 @@ struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
 	return p;
 }
 
+struct fct_prop *fct_mesh_add_corner_list(struct fct_mesh *m, const char *name, enum fct_type t,
+                                          unsigned per_corner, struct fct_err *err)
+{
+	size_t items, corners = m->nf ? m->fstart[m->nf] : 0;
+	if (fct_mul_size(corners, per_corner, &items)) {
+		fct_fail(err, "too many face corners");
+		return NULL;
+	}
+	fct_elem_remove(&m->face, name);
+	struct fct_prop *p = fct_elem_add_scalar(&m->face, name, t, err);
+	if (!p)
+		return NULL;
+	/* The scalar column becomes a list: data of items values, rows by the
+	 * faces' corners. */
+	size_t sz = fct_type_size(t);
+	void *data = fct_alloc_array(items, sz, err);
+	size_t *off = fct_alloc_array(m->nf + 1, sizeof *off, err);
+	if (!data || !off) {
+		free(data);
+		free(off);
+		fct_elem_remove(&m->face, name);
+		return NULL;
+	}
+	memset(data, 0, (items ? items : 1) * sz);
+	for (size_t f = 0; f <= m->nf; f++)
+		off[f] = (size_t)per_corner * (m->nf ? m->fstart[f] : 0);
+	free(p->data);
+	p->data = data, p->cap = items ? items : 1;
+	p->off = off, p->off_cap = m->nf + 1;
+	p->count_type = FCT_UINT8;
+	return p;
+}
+
 struct fct_elem *fct_mesh_add_elem(struct fct_mesh *m, const char *name, size_t count,
                                    struct fct_err *err)
 {
@@ -589,4 +622,16 @@ int fct_mesh_add_comment(struct fct_mesh *m, const char *text, int obj_info, str
 	c[m->ncomments].obj_info = obj_info;
 	m->ncomments++;
 	return 0;
+}
+
+int fct_mesh_keep_precision(struct fct_mesh *m, double resolution)
+{
+	double most = 0;
+	for (size_t i = 0; i < 3 * m->nv; i++)
+		most = fmax(most, fabs(m->xyz[i]));
+	/* float's rounding error at |x| is at most |x| 2^-24 */
+	if (!(resolution > 0) || !(most * 0x1p-24 > resolution))
+		return 0;
+	m->xyz_type = FCT_FLOAT64;
+	return 1;
 }

@@ -124,6 +124,13 @@ struct fct_elem *fct_mesh_find_elem(const struct fct_mesh *m, const char *name);
  * replaced otherwise.  Returns the column or NULL. */
 struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
                                      enum fct_type t, struct fct_err *err);
+/* Add a list column to the faces of m with per_corner zeroed values of type
+ * t for each corner of each face, in the face's vertex order (list uchar,
+ * as MeshLab's per-wedge "texcoord", 2 per corner; the PLY writer widens
+ * the count type when a face has too many corners for uchar); an existing
+ * property of that name is replaced.  Returns the column or NULL. */
+struct fct_prop *fct_mesh_add_corner_list(struct fct_mesh *m, const char *name, enum fct_type t,
+                                          unsigned per_corner, struct fct_err *err);
 /* Add a new element with no properties and count rows, after the others. */
 struct fct_elem *fct_mesh_add_elem(struct fct_mesh *m, const char *name, size_t count,
                                    struct fct_err *err);
@@ -156,6 +163,12 @@ int fct_mesh_gather_faces(struct fct_mesh *m, const size_t *src, size_t n, struc
  * the first difference named (dst then unchanged) or when out of memory or
  * past 2^32 - 1 vertices. */
 int fct_mesh_append(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err);
+
+/* Positions far from the origin (a georeferenced pose: float rounds
+ * coordinates of 4000 km to 0.25 m) stored as double on disk: m->xyz_type
+ * becomes FCT_FLOAT64 when float would move some coordinate by more than
+ * resolution (> 0).  Returns 1 when it did, 0 when float holds them. */
+int fct_mesh_keep_precision(struct fct_mesh *m, double resolution);
 
 /* Deep copy of src into dst (dst is overwritten without being freed). */
 int fct_mesh_copy(struct fct_mesh *dst, const struct fct_mesh *src, struct fct_err *err);

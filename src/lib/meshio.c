@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "header.h"
+#include "image.h"
 #include "obj.h"
 #include "output.h"
 #include "path.h"
@@ -66,6 +67,17 @@ int fct_mesh_read_stream(struct fct_mesh *m, FILE *f, const char *name, const ch
 	if (!rc && fmt)
 		*fmt = got;
 	return rc;
+}
+
+int fct_path_is_image(const char *path)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return 0;
+	unsigned char head[8];
+	size_t n = fread(head, 1, sizeof head, f);
+	fclose(f);
+	return fct_image_magic(head, n) >= 0;
 }
 
 int fct_mesh_read_file(struct fct_mesh *m, const char *path, enum fct_format *fmt,

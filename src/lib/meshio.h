@@ -24,6 +24,11 @@ enum fct_format {
 /* "ply ascii", "ply binary_little_endian", "ply binary_big_endian", "obj". */
 const char *fct_format_name(enum fct_format fmt);
 
+/* Does the file at path start like an image (PNG, PFM or JPEG) rather than
+ * a mesh?  0 when it does not or cannot be read.  For programs that take
+ * meshes and depth images as operands alike (tsdfuse). */
+int fct_path_is_image(const char *path);
+
 /* Read from path ("-" or NULL: stdin, named "<stdin>"); m is initialised
  * here.  fmt (may be NULL) gets the format read. */
 int fct_mesh_read_file(struct fct_mesh *m, const char *path, enum fct_format *fmt,

@@ -1,9 +1,10 @@
 /* obj.c - Wavefront OBJ reader and writer (see obj.h).
  *
  * The reader is one pass over the lines: positions, texture coordinates and
- * normals go to flat arrays of their own, each face corner (v, vt, vn) is
- * unified to one mesh vertex as it is read (so split vertices are numbered in
- * order of first use), and the mesh's columns are filled once at the end.
+ * normals go to flat arrays of their own, each face corner keeps its
+ * position as its vertex and its vt / vn in per-corner arrays, and the
+ * mesh's columns are filled once at the end: vertex columns when every
+ * corner of each position agrees, per-corner face lists otherwise.
  * Numbers go through fct_parse_double; indices are parsed by hand, since a
  * triangle mesh file is mostly indices. */
 #include "obj.h"
@@ -26,10 +27,7 @@
 /* A corner's vt or vn is stored as index + 1, 0 meaning "none"; a position
  * not yet used by a face has UNUSED as its first vt. */
 #define UNUSED UINT32_MAX
-/* Face corners that refer to split vertices are stored as EXTRA | k while
- * reading, because the number of positions is known only at the end. */
-#define EXTRA UINT32_C(0x80000000)
-#define MAX_COUNT (EXTRA - 1)
+#define MAX_COUNT (UINT32_MAX - 1)
 
 static inline int is_blank(char c)
 {
@@ -149,11 +147,10 @@ struct obj {
 
 	uint32_t *first;        /* per position: vt+1, vn+1 of its first use by a face */
 	size_t nfirst, first_cap;
-	uint32_t *extra;        /* per split vertex: position, vt+1, vn+1 */
-	size_t nextra, extra_cap;
-	uint32_t *xhash;        /* open addressing over extra, slots hold k+1 */
-	size_t xhash_cap;
+	uint32_t *ct, *cn;      /* per face corner: vt+1, vn+1 (NULL while all are 0) */
+	size_t ct_cap, cn_cap;
 	int corner_vt, corner_vn;  /* some corner refers to a vt / a vn */
+	int split_vt, split_vn;    /* some position's corners refer to different ones */
 
 	int32_t *ftex;          /* per face TextureFile index, once one is textured */
 	size_t ftex_cap;
@@ -410,59 +407,24 @@ static inline const char *fast_index(const char *p, size_t count, uint32_t *out)
 	return p;
 }
 
-/* The split vertex (position p, vt+1, vn+1), made when new: EXTRA | k. */
-static int64_t extra_vertex(struct obj *o, uint32_t p, uint32_t t, uint32_t n)
+/* Set entry i of a per-corner array to v, growing it (new entries 0). */
+static int corner_store(struct obj *o, uint32_t **a, size_t *cap, size_t i, uint32_t v)
 {
-	uint64_t h = ((uint64_t)p * UINT64_C(0x9E3779B97F4A7C15)) ^ ((uint64_t)t * UINT64_C(0xC2B2AE3D27D4EB4F)) ^
-	             ((uint64_t)n * UINT64_C(0x165667B19E3779F9));
-	h ^= h >> 29;
-	size_t mask = o->xhash_cap - 1, i = o->xhash_cap ? (size_t)h & mask : 0;
-	if (o->xhash_cap)
-		for (; o->xhash[i]; i = (i + 1) & mask) {
-			const uint32_t *e = o->extra + 3 * (o->xhash[i] - 1);
-			if (e[0] == p && e[1] == t && e[2] == n)
-				return (int64_t)(EXTRA | (o->xhash[i] - 1));
-		}
-	if (o->npos + o->nextra >= MAX_COUNT) {
-		fail_at(o, "too many vertices");
-		return -1;
-	}
-	if (fct_grow((void **)&o->extra, &o->extra_cap, 3 * (o->nextra + 1), sizeof *o->extra, o->err))
-		return -1;
-	uint32_t *e = o->extra + 3 * o->nextra;
-	e[0] = p, e[1] = t, e[2] = n;
-	o->nextra++;
-	if (2 * o->nextra > o->xhash_cap) {
-		size_t ncap = o->xhash_cap ? 2 * o->xhash_cap : 64;
-		uint32_t *nh = calloc(ncap, sizeof *nh);
-		if (!nh) {
-			fct_fail(o->err, "out of memory");
+	if (i >= *cap) {
+		size_t had = *cap;
+		if (fct_grow((void **)a, cap, i + 1, sizeof **a, o->err))
 			return -1;
-		}
-		free(o->xhash);
-		o->xhash = nh;
-		o->xhash_cap = ncap;
-		mask = ncap - 1;
-		for (size_t k = 0; k < o->nextra; k++) {
-			const uint32_t *x = o->extra + 3 * k;
-			uint64_t g = ((uint64_t)x[0] * UINT64_C(0x9E3779B97F4A7C15)) ^
-			             ((uint64_t)x[1] * UINT64_C(0xC2B2AE3D27D4EB4F)) ^
-			             ((uint64_t)x[2] * UINT64_C(0x165667B19E3779F9));
-			g ^= g >> 29;
-			size_t j = (size_t)g & mask;
-			while (nh[j])
-				j = (j + 1) & mask;
-			nh[j] = (uint32_t)k + 1;
-		}
-	} else {
-		o->xhash[i] = (uint32_t)o->nextra;
+		memset(*a + had, 0, (*cap - had) * sizeof **a);
 	}
-	return (int64_t)(EXTRA | (o->nextra - 1));
+	(*a)[i] = v;
+	return 0;
 }
 
-/* The mesh vertex of corner (position p, vt+1, vn+1): the position itself on
- * its first use and whenever used the same way again, a split vertex else. */
-static inline int64_t corner_vertex(struct obj *o, uint32_t p, uint32_t t, uint32_t n)
+/* Corner i of the faces uses position p with vt+1 t and vn+1 n.  The
+ * position stays the corner's vertex whatever t and n are (splitting it
+ * would disconnect the mesh); a pair that differs from the position's first
+ * one makes vt or vn per-corner. */
+static inline int note_corner(struct obj *o, uint32_t p, uint32_t t, uint32_t n, size_t i)
 {
 	if (p >= o->nfirst) {
 		if (fct_grow((void **)&o->first, &o->first_cap, 2 * o->npos, sizeof *o->first, o->err))
@@ -473,11 +435,15 @@ static inline int64_t corner_vertex(struct obj *o, uint32_t p, uint32_t t, uint3
 	uint32_t *f = o->first + 2 * (size_t)p;
 	if (f[0] == UNUSED) {
 		f[0] = t, f[1] = n;
-		return p;
+	} else {
+		o->split_vt |= f[0] != t;
+		o->split_vn |= f[1] != n;
 	}
-	if (f[0] == t && f[1] == n)
-		return p;
-	return extra_vertex(o, p, t, n);
+	if ((t || o->ct) && corner_store(o, &o->ct, &o->ct_cap, i, t))
+		return -1;
+	if ((n || o->cn) && corner_store(o, &o->cn, &o->cn_cap, i, n))
+		return -1;
+	return 0;
 }
 
 /* Append path to the TextureFile list (whose order is that of the mesh's
@@ -577,10 +543,9 @@ static int parse_f(struct obj *o, const char *p)
 		if (base + k >= m->fvert_cap &&
 		    fct_grow((void **)&m->fvert, &m->fvert_cap, base + k + 1, sizeof *m->fvert, o->err))
 			return -1;
-		int64_t mv = corner_vertex(o, v, t, n);
-		if (mv < 0)
+		if (note_corner(o, v, t, n, base + k))
 			return -1;
-		m->fvert[base + k] = (uint32_t)mv;
+		m->fvert[base + k] = v;
 	}
 	o->end = p;
 	if (k < 3)
@@ -842,32 +807,21 @@ other:
 	return check_keyword(o, s);
 }
 
-/* Mesh vertex j's position, vt+1 and vn+1 (vt UNUSED for a position no
- * face uses). */
-static void vertex_source(const struct obj *o, size_t j, uint32_t *p, uint32_t *t, uint32_t *n)
-{
-	if (j < o->npos) {
-		*p = (uint32_t)j;
-		*t = j < o->nfirst ? o->first[2 * j] : UNUSED;
-		*n = j < o->nfirst ? o->first[2 * j + 1] : 0;
-	} else {
-		const uint32_t *e = o->extra + 3 * (j - o->npos);
-		*p = e[0], *t = e[1], *n = e[2];
-	}
-}
-
-/* Fill the vertex columns from the corners.  A position no face uses takes
- * the vt / vn of its own index when there are as many as positions (the
+/* Fill the vertex columns: a position takes the vt / vn of the faces that
+ * use it when, for every position, they all agree (else the faces carry them
+ * per corner: build_corner_lists).  A position no face uses takes the vt /
+ * vn of its own index when there are as many as positions (the
  * matching-index files facet writes); a file whose faces name no vn at all
- * but has one per position (point clouds, some scanners) gets them by index. */
+ * but has one per position (point clouds, some scanners) gets them by
+ * index. */
 static int build_vertex_columns(struct obj *o)
 {
 	struct fct_mesh *m = o->m;
 	size_t nv = m->nv;
 	int by_index_vn = !o->corner_vn && o->nvn == o->npos;
 	int by_index_vt = !o->corner_vt && o->nvt == o->npos;
-	int want_vn = o->nvn && (o->corner_vn || by_index_vn);
-	int want_vt = o->nvt && (o->corner_vt || by_index_vt);
+	int want_vn = o->nvn && !o->split_vn && (o->corner_vn || by_index_vn);
+	int want_vt = o->nvt && !o->split_vt && (o->corner_vt || by_index_vt);
 	struct fct_prop *c[8] = {0};
 	static const char *names[8] = {"nx", "ny", "nz", "s", "t", "red", "green", "blue"};
 	for (int k = 0; k < 8; k++) {
@@ -879,12 +833,12 @@ static int build_vertex_columns(struct obj *o)
 	for (int k = 0; k < 8; k++)
 		c[k] = fct_elem_find(&m->vertex, names[k]);
 	for (size_t j = 0; j < nv; j++) {
-		uint32_t p, t, n;
-		vertex_source(o, j, &p, &t, &n);
+		uint32_t t = j < o->nfirst ? o->first[2 * j] : UNUSED;
+		uint32_t n = j < o->nfirst ? o->first[2 * j + 1] : 0;
 		if (want_vn) {
 			const float *src = NULL;
 			if (by_index_vn || (t == UNUSED && o->nvn == o->npos))
-				src = o->vn + 3 * (size_t)p;
+				src = o->vn + 3 * j;
 			else if (n && t != UNUSED)
 				src = o->vn + 3 * (size_t)(n - 1);
 			for (int k = 0; k < 3 && src; k++)
@@ -893,7 +847,7 @@ static int build_vertex_columns(struct obj *o)
 		if (want_vt) {
 			const float *src = NULL;
 			if (by_index_vt || (t == UNUSED && o->nvt == o->npos))
-				src = o->vt + 2 * (size_t)p;
+				src = o->vt + 2 * j;
 			else if (t && t != UNUSED)
 				src = o->vt + 2 * (size_t)(t - 1);
 			for (int k = 0; k < 2 && src; k++)
@@ -901,8 +855,36 @@ static int build_vertex_columns(struct obj *o)
 		}
 		if (o->rgb)
 			for (int k = 0; k < 3; k++)
-				((unsigned char *)c[5 + k]->data)[j] = o->rgb[3 * (size_t)p + (size_t)k];
+				((unsigned char *)c[5 + k]->data)[j] = o->rgb[3 * j + (size_t)k];
 	}
+	return 0;
+}
+
+/* A face list column name of dim floats per corner from the corners'
+ * indices idx (index + 1 into src; 0, a corner without one: zeros). */
+static int corner_list(struct obj *o, const char *name, unsigned dim, const uint32_t *idx,
+                       const float *src)
+{
+	struct fct_mesh *m = o->m;
+	struct fct_prop *p = fct_mesh_add_corner_list(m, name, FCT_FLOAT32, dim, o->err);
+	if (!p)
+		return -1;
+	float *d = p->data;
+	for (size_t i = 0; i < m->fstart[m->nf]; i++)
+		if (idx[i])
+			memcpy(d + dim * i, src + dim * (size_t)(idx[i] - 1), dim * sizeof *d);
+	return 0;
+}
+
+/* The faces' own texture coordinates and normals where the corners of some
+ * position disagree: MeshLab's per-wedge "texcoord" (2 per corner) and
+ * "corner_normal" (3 per corner). */
+static int build_corner_lists(struct obj *o)
+{
+	if (o->split_vt && corner_list(o, "texcoord", 2, o->ct, o->vt))
+		return -1;
+	if (o->split_vn && corner_list(o, "corner_normal", 3, o->cn, o->vn))
+		return -1;
 	return 0;
 }
 
@@ -934,11 +916,7 @@ static int finish(struct obj *o)
 	struct fct_mesh *m = o->m;
 	if (!o->npos)
 		return fail_no_vertex(o);
-	size_t nv = o->npos + o->nextra;
-	if (fct_grow((void **)&o->pos, &o->pos_cap, 3 * nv, sizeof *o->pos, o->err))
-		return -1;
-	for (size_t k = 0; k < o->nextra; k++)
-		memcpy(o->pos + 3 * (o->npos + k), o->pos + 3 * (size_t)o->extra[3 * k], 3 * sizeof *o->pos);
+	size_t nv = o->npos;
 	if (o->xyz_double) {
 		m->xyz_type = FCT_FLOAT64;
 	} else {
@@ -954,11 +932,7 @@ static int finish(struct obj *o)
 	m->fstart[0] = 0;
 	m->face.count = m->nf;
 	m->has_faces = m->nf > 0;
-	if (o->nextra)
-		for (size_t k = 0; k < m->fstart[m->nf]; k++)
-			if (m->fvert[k] & EXTRA)
-				m->fvert[k] = (uint32_t)(o->npos + (m->fvert[k] & ~EXTRA));
-	if (build_vertex_columns(o) || build_texnumber(o))
+	if (build_vertex_columns(o) || build_corner_lists(o) || build_texnumber(o))
 		return -1;
 	return 0;
 }
@@ -966,7 +940,7 @@ static int finish(struct obj *o)
 static void obj_free(struct obj *o)
 {
 	free(o->pos), free(o->rgb), free(o->vt), free(o->vn);
-	free(o->first), free(o->extra), free(o->xhash), free(o->ftex);
+	free(o->first), free(o->ct), free(o->cn), free(o->ftex);
 	for (size_t i = 0; i < o->nmat; i++)
 		free(o->mat[i].name), free(o->mat[i].map);
 	free(o->mat);
@@ -1110,6 +1084,106 @@ static int write_mtl(const struct fct_mesh *m, FILE *mtl, int untextured)
 	return ferror(mtl) ? -1 : 0;
 }
 
+/* The distinct values of a per-corner face list (dim values a corner, or
+ * none for a face whose list is empty), in order of first use: the vt or
+ * vn lines, and each corner's index among them. */
+#define NO_VALUE UINT32_MAX
+struct corner_values {
+	size_t *first;     /* per distinct value: the list index of its first corner */
+	size_t n;
+	uint32_t *of;      /* per corner: the index of its value, or NO_VALUE */
+};
+
+static uint64_t corner_hash(const struct fct_prop *p, size_t at, unsigned dim)
+{
+	uint64_t h = UINT64_C(14695981039346656037);
+	for (unsigned j = 0; j < dim; j++) {
+		double v = fct_prop_get(p, at + j);
+		uint64_t b;
+		memcpy(&b, &v, sizeof b);
+		h = (h ^ b) * UINT64_C(0x100000001B3);
+		h ^= h >> 31;
+	}
+	return h;
+}
+
+/* Are the values at list indices a and b the same, bit for bit? */
+static int same_corner(const struct fct_prop *p, size_t a, size_t b, unsigned dim)
+{
+	for (unsigned j = 0; j < dim; j++) {
+		double x = fct_prop_get(p, a + j), y = fct_prop_get(p, b + j);
+		if (memcmp(&x, &y, sizeof x))
+			return 0;
+	}
+	return 1;
+}
+
+/* Collect the distinct values of p (fct_corner_list's, dim per corner) over
+ * m's corners. */
+static int corner_values_build(struct corner_values *cv, const struct fct_mesh *m, const struct fct_prop *p,
+                               unsigned dim, struct fct_err *err)
+{
+	size_t corners = m->nf ? m->fstart[m->nf] : 0, nslot = 16;
+	while (nslot < 2 * corners)
+		nslot *= 2;
+	uint32_t *slot = calloc(nslot, sizeof *slot);
+	cv->first = fct_alloc_array(corners, sizeof *cv->first, err);
+	cv->of = fct_alloc_array(corners, sizeof *cv->of, err);
+	cv->n = 0;
+	if (!slot || !cv->first || !cv->of) {
+		free(slot);
+		return fct_fail(err, "out of memory");
+	}
+	for (size_t f = 0; f < m->nf; f++) {
+		int none = p->off[f + 1] == p->off[f];
+		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+			if (none) {
+				cv->of[c] = NO_VALUE;
+				continue;
+			}
+			size_t at = p->off[f] + (size_t)dim * (c - m->fstart[f]);
+			size_t i = (size_t)corner_hash(p, at, dim) & (nslot - 1);
+			for (; slot[i]; i = (i + 1) & (nslot - 1))
+				if (same_corner(p, cv->first[slot[i] - 1], at, dim))
+					break;
+			if (!slot[i]) {
+				cv->first[cv->n++] = at;
+				slot[i] = (uint32_t)cv->n;
+			}
+			cv->of[c] = slot[i] - 1;
+		}
+	}
+	free(slot);
+	return 0;
+}
+
+static void corner_values_free(struct corner_values *cv)
+{
+	free(cv->first);
+	free(cv->of);
+}
+
+/* The vt (dim 2) or vn (dim 3) lines: the distinct values of the
+ * per-corner list when there is one, else one a vertex from the vertex
+ * columns col[0..dim). */
+static void w_attribute_lines(struct wbuf *w, const char *kw, const struct fct_prop *list,
+                              const struct corner_values *cv, const struct fct_prop *const *col,
+                              int dim, size_t nv)
+{
+	size_t n = list ? cv->n : nv;
+	for (size_t i = 0; i < n; i++) {
+		w_str(w, kw);
+		for (int k = 0; k < dim; k++) {
+			w_str(w, " ");
+			if (list)
+				w_value(w, list, cv->first[i] + (size_t)k);
+			else
+				w_value(w, col[k], i);
+		}
+		w_str(w, "\n");
+	}
+}
+
 int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE *mtl,
                   struct fct_err *err)
 {
@@ -1120,12 +1194,14 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 		NULL, NULL,
 		scalar(&m->vertex, "red"), scalar(&m->vertex, "green"), scalar(&m->vertex, "blue"),
 	};
-	/* Texture coordinates per face corner (a face list texcoord) win over
-	 * per vertex ones: they hold seams. */
-	const struct fct_prop *corner = fct_texcoord_face(m);
-	if (!corner)
+	/* Texture coordinates and normals per face corner (face lists texcoord
+	 * and corner_normal: seams, and what the OBJ reader makes when the
+	 * corners round a vertex disagree) win over per vertex ones. */
+	const struct fct_prop *corner_vt = fct_texcoord_face(m);
+	const struct fct_prop *corner_vn = fct_corner_list(m, "corner_normal", 3);
+	if (!corner_vt)
 		fct_texcoord_vertex(m, &c.s, &c.t);
-	int has_vn = c.nx && c.ny && c.nz, has_vt = c.s && c.t;
+	int vertex_vt = c.s && c.t, vertex_vn = !corner_vn && c.nx && c.ny && c.nz;
 	int has_rgb = c.r && c.g && c.b && c.r->type == FCT_UINT8 && c.g->type == FCT_UINT8 &&
 	              c.b->type == FCT_UINT8;
 	int textured = fct_obj_wants_mtl(m);
@@ -1135,9 +1211,15 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 	for (size_t i = 0; tn && i < m->nf; i++)
 		untextured |= face_material(tn, i, ntex) < 0;
 
+	struct corner_values vtv = {0}, vnv = {0};
 	struct wbuf *w = malloc(sizeof *w);
-	if (!w)
+	if (!w || (corner_vt && corner_values_build(&vtv, m, corner_vt, 2, err)) ||
+	    (corner_vn && corner_values_build(&vnv, m, corner_vn, 3, err))) {
+		free(w);
+		corner_values_free(&vtv);
+		corner_values_free(&vnv);
 		return fct_fail(err, "out of memory");
+	}
 	w->f = f, w->len = 0;
 	w_str(w, "# facet\n");
 	for (size_t i = 0; i < m->ncomments; i++) {
@@ -1171,22 +1253,13 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 		}
 		w_str(w, "\n");
 	}
-	for (size_t i = 0; has_vt && i < m->nv; i++) {
-		w_str(w, "vt "), w_value(w, c.s, i);
-		w_str(w, " "), w_value(w, c.t, i);
-		w_str(w, "\n");
+	if (corner_vt || vertex_vt) {
+		const struct fct_prop *st[2] = {c.s, c.t};
+		w_attribute_lines(w, "vt", corner_vt, &vtv, st, 2, m->nv);
 	}
-	for (size_t i = 0; corner && i < corner->off[m->nf]; i += 2) {
-		w_str(w, "vt "), w_value(w, corner, i);
-		w_str(w, " "), w_value(w, corner, i + 1);
-		w_str(w, "\n");
-	}
-	uint64_t vt_next = 1;     /* the next face corner's vt, per corner */
-	for (size_t i = 0; has_vn && i < m->nv; i++) {
-		w_str(w, "vn "), w_value(w, c.nx, i);
-		w_str(w, " "), w_value(w, c.ny, i);
-		w_str(w, " "), w_value(w, c.nz, i);
-		w_str(w, "\n");
+	if (corner_vn || vertex_vn) {
+		const struct fct_prop *n[3] = {c.nx, c.ny, c.nz};
+		w_attribute_lines(w, "vn", corner_vn, &vnv, n, 3, m->nv);
 	}
 	long cur = -2;
 	for (size_t i = 0; i < m->nf; i++) {
@@ -1203,18 +1276,19 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 			}
 		}
 		w_str(w, "f");
-		int face_vt = has_vt || (corner && corner->off[i + 1] > corner->off[i]);
 		for (uint32_t k = m->fstart[i]; k < m->fstart[i + 1]; k++) {
-			uint64_t v = (uint64_t)m->fvert[k] + 1;
+			uint32_t v = m->fvert[k];
+			uint32_t t = corner_vt ? vtv.of[k] : vertex_vt ? v : NO_VALUE;
+			uint32_t n = corner_vn ? vnv.of[k] : vertex_vn ? v : NO_VALUE;
 			w_str(w, " ");
-			w_uint(w, v);
-			if (face_vt || has_vn) {
+			w_uint(w, (uint64_t)v + 1);
+			if (t != NO_VALUE || n != NO_VALUE) {
 				w_str(w, "/");
-				if (face_vt)
-					w_uint(w, has_vt ? v : vt_next++);
-				if (has_vn) {
+				if (t != NO_VALUE)
+					w_uint(w, (uint64_t)t + 1);
+				if (n != NO_VALUE) {
 					w_str(w, "/");
-					w_uint(w, v);
+					w_uint(w, (uint64_t)n + 1);
 				}
 			}
 		}
@@ -1222,6 +1296,8 @@ int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE 
 	}
 	w_flush(w);
 	free(w);
+	corner_values_free(&vtv);
+	corner_values_free(&vnv);
 	if (textured && mtl && write_mtl(m, mtl, untextured))
 		return fct_fail(err, "material library: write error: %s", strerror(errno ? errno : EIO));
 	if (ferror(f))

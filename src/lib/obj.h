@@ -7,18 +7,21 @@
  * their line), '#' comments and a UTF-8 BOM; other statements (l, p, curv,
  * ...) are ignored.
  *
- * OBJ indexes positions, texture coordinates and normals separately; facet's
- * meshes have one index per vertex, so a position used with two different
- * vt/vn becomes two vertices: the first use keeps the position's own index,
- * other combinations are appended after the positions in order of first use,
- * and positions no face uses are kept.  So a file that uses matching indices
- * -- as facet writes them -- keeps its vertex order and count.
- *
- * vt becomes float vertex columns s t, vn float nx ny nz, v colours (0..1)
- * uchar red green blue (rounded; a v without colour is black).  A position no
- * face uses takes vt / vn of its own index when the file has one per
- * position; when no face names a vn (or vt) at all and there is one per
- * position, they are taken by index for every vertex (point clouds).
+ * OBJ indexes positions, texture coordinates and normals separately; a
+ * facet vertex is a position (its v line, in file order, used by a face or
+ * not), never split by the vt / vn its corners name, since splitting would
+ * disconnect the mesh (Blender's default export names a vn per face).
+ * Where every position's corners name one vt (one vn) -- as files facet
+ * writes, smooth-shaded exports and matching-index files do -- they become
+ * vertex columns: vt float s t, vn float nx ny nz.  Where some position's
+ * corners disagree, all faces carry them per corner instead, in the face's
+ * vertex order: the face list "float texcoord" (2 per corner, MeshLab's
+ * per-wedge texture coordinates) and "float corner_normal" (3 per corner);
+ * a corner without one gets zeros.  v colours (0..1) become uchar red green
+ * blue (rounded; a v without colour is black).  A position no face uses
+ * takes vt / vn of its own index when the file has one per position; when
+ * no face names a vn (or vt) at all and there is one per position, they are
+ * taken by index for every vertex (point clouds).
  * Positions are float on disk (rounded to float) unless a coordinate has more
  * than 9 significant digits, which makes xyz_type double.
  *
@@ -57,16 +60,19 @@ int fct_obj_read(struct fct_mesh *m, struct fct_reader *r, const char *dir, stru
 
 /* Write m as OBJ to f: "# facet", the comments as "# comment TEXT" /
  * "# obj_info TEXT", v (with r g b as float/255 when the mesh has uchar red
- * green blue), vt from the texture coordinates (texcoord.h: one vt per face
- * corner from a face list texcoord, else one per vertex from s t or its
- * other names), vn from nx ny nz, and f with matching indices i/i/i (the
- * corner's own vt when per corner).  Numbers are the shortest that read
- * back to the same float (or double, for double positions).  When m has
- * texture coordinates and a TextureFile, a material library is written to
- * mtl (which may be NULL to skip it) and referred to as mtl_name (a file
- * name relative to the OBJ file; NULL writes no mtllib or usemtl): one
- * material_K per TextureFile with map_Kd the path unchanged, faces choosing
- * theirs by texnumber (an invalid texnumber uses a material "untextured"). */
+ * green blue), vt from the texture coordinates (texcoord.h: per face corner
+ * from a face list texcoord, else one per vertex from s t or its other
+ * names), vn from nx ny nz (per corner from a face list corner_normal), and
+ * f with matching indices i/i/i.  Per-corner values are written once each,
+ * in order of first use, and each corner names its own (f i/a/b), so that
+ * what the reader made of an OBJ is written back as it was.  Numbers are
+ * the shortest that read back to the same float (or double, for double
+ * positions).  When m has texture coordinates and a TextureFile, a material
+ * library is written to mtl (which may be NULL to skip it) and referred to
+ * as mtl_name (a file name relative to the OBJ file; NULL writes no mtllib
+ * or usemtl): one material_K per TextureFile with map_Kd the path
+ * unchanged, faces choosing theirs by texnumber (an invalid texnumber uses
+ * a material "untextured"). */
 int fct_obj_write(const struct fct_mesh *m, FILE *f, const char *mtl_name, FILE *mtl,
                   struct fct_err *err);
 

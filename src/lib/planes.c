@@ -2,6 +2,7 @@
 #include "planes.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,7 +34,13 @@ int fct_planes_get(const struct fct_mesh *m, struct fct_plane **planes, size_t *
 		for (int k = 0; k < 3; k++)
 			pl[i].n[k] = fct_prop_get(p[k], i);
 		pl[i].d = fct_prop_get(p[3], i);
-		pl[i].count = count ? (long)fct_prop_get(count, i) : 0;
+		/* Checked before the cast: a NaN or 1e300 count is undefined as a long. */
+		double c = count ? fct_prop_get(count, i) : 0;
+		if (!(c >= 0 && c <= INT32_MAX && c == floor(c))) {
+			free(pl);
+			return fct_fail(err, "element plane %zu: count %.9g is not a count of points", i, c);
+		}
+		pl[i].count = (long)c;
 		pl[i].rms = rms ? fct_prop_get(rms, i) : 0;
 		double len = sqrt(pl[i].n[0] * pl[i].n[0] + pl[i].n[1] * pl[i].n[1] + pl[i].n[2] * pl[i].n[2]);
 		if (!(fabs(len - 1) <= 1e-6) || !isfinite(pl[i].d)) {

@@ -10,6 +10,7 @@
 #include "depthmesh.h"
 #include "geom.h"
 #include "path.h"
+#include "reader.h"
 
 void fct_quat_pose(double x, double y, double z, double w, double pose[12])
 {
@@ -31,85 +32,106 @@ void fct_conf_free(struct fct_conf *c)
 		return;
 	for (size_t i = 0; i < c->n; i++)
 		free(c->scans[i].path);
+	for (size_t i = 0; i < c->nskipped; i++)
+		free(c->skipped[i].text);
 	free(c->scans);
-	c->n = 0;
-	c->scans = NULL;
+	free(c->skipped);
+	memset(c, 0, sizeof *c);
 }
 
 #define CONF_MAX (1L << 20)
+#define CONF_LINE 4096
+
+/* Keep line no (len bytes) among the skipped ones. */
+static int conf_skip(struct fct_conf *c, size_t *cap, long no, const char *line, size_t len,
+                     struct fct_err *err)
+{
+	char q[80];
+	if (fct_grow((void **)&c->skipped, cap, c->nskipped + 1, sizeof *c->skipped, err))
+		return -1;
+	struct fct_conf_skip *k = &c->skipped[c->nskipped];
+	if (!(k->text = fct_strdup(fct_escape(q, sizeof q, line, len), err)))
+		return -1;
+	k->line = no;
+	c->nskipped++;
+	return 0;
+}
+
+/* One line of a .conf: 0 (a scan added or the line skipped) or -1. */
+static int conf_line(struct fct_conf *c, size_t *cap, size_t *skip_cap, const char *dir,
+                     const char *path, long no, const char *line, size_t len, struct fct_err *err)
+{
+	char kw[32], name[CONF_LINE], q[64];
+	double v[7];
+	char extra[2];
+	if (memchr(line, 0, len))
+		return fct_fail(err, "%s:%ld: binary data (a NUL byte): not a .conf file", path, no);
+	if (len >= CONF_LINE)
+		return fct_fail(err, "%s:%ld: line too long (%zu bytes): not a .conf file", path, no, len);
+	int n = sscanf(line, "%31s %4095s %lf %lf %lf %lf %lf %lf %lf %1s", kw, name,
+	               &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], extra);
+	if (n <= 0 || kw[0] == '#' || !strcmp(kw, "camera"))
+		return 0;
+	if (!strcmp(kw, "mesh"))
+		return conf_skip(c, skip_cap, no, line, len, err);
+	if (strcmp(kw, "bmesh"))
+		return fct_fail(err, "%s:%ld: \"%s\": expected camera, bmesh or mesh", path, no,
+		                fct_escape(q, sizeof q, kw, strlen(kw)));
+	if (n != 9)
+		return fct_fail(err, "%s:%ld: expected bmesh FILE tx ty tz qx qy qz qw", path, no);
+	int finite = 1;
+	for (int k = 0; k < 7; k++)
+		finite &= isfinite(v[k]);
+	double qn = sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
+	if (!finite || !(fabs(qn - 1) <= 1e-3))
+		return fct_fail(err, "%s:%ld: the quaternion is not a unit quaternion (norm %g)", path, no, qn);
+	if (fct_grow((void **)&c->scans, cap, c->n + 1, sizeof *c->scans, err))
+		return -1;
+	struct fct_conf_scan *s = &c->scans[c->n];
+	if (!(s->path = fct_path_join(dir, name, err)))
+		return -1;
+	c->n++;
+	s->line = no;
+	/* The scanalyze/VRIP quaternion is applied conjugated (checked on
+	 * the bunny: the other way round puts bun045 40 mm off). */
+	fct_quat_pose(-v[3] / qn, -v[4] / qn, -v[5] / qn, v[6] / qn, s->pose);
+	s->pose[3] = v[0], s->pose[7] = v[1], s->pose[11] = v[2];
+	return 0;
+}
 
 int fct_conf_read(struct fct_conf *c, const char *path, struct fct_err *err)
 {
-	c->n = 0;
-	c->scans = NULL;
-	size_t cap = 0;
+	memset(c, 0, sizeof *c);
+	size_t cap = 0, skip_cap = 0;
 	FILE *f = fopen(path, "rb");
 	if (!f)
 		return fct_fail(err, "%s: %s", path, strerror(errno));
 	char *dir = fct_path_dir(path, err);
-	if (!dir) {
+	struct fct_reader r;
+	if (!dir || fct_reader_init(&r, f, path, err)) {
+		free(dir);
 		fclose(f);
 		return -1;
 	}
-	char line[4096];
-	long lineno = 0, total = 0;
 	int rc = 0;
-	while (fgets(line, sizeof line, f)) {
-		lineno++;
-		size_t len = strlen(line);
-		total += (long)len;
-		if (total > CONF_MAX) {
-			rc = fct_fail(err, "%s:%ld: longer than %ld bytes: not a .conf file", path, lineno, CONF_MAX);
-			break;
-		}
-		if (len == sizeof line - 1 && line[len - 1] != '\n') {
-			rc = fct_fail(err, "%s:%ld: line too long", path, lineno);
-			break;
-		}
-		char kw[32], name[4000];
-		double v[7];
-		char extra[2];
-		int n = sscanf(line, "%31s %3999s %lf %lf %lf %lf %lf %lf %lf %1s", kw, name,
-		               &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], extra);
-		if (n <= 0 || kw[0] == '#' || !strcmp(kw, "camera"))
-			continue;
-		if (strcmp(kw, "bmesh") && strcmp(kw, "mesh")) {
-			rc = fct_fail(err, "%s:%ld: \"%s\": expected camera, bmesh or mesh", path, lineno, kw);
-			break;
-		}
-		if (n != 9) {
-			rc = fct_fail(err, "%s:%ld: expected %s FILE tx ty tz qx qy qz qw", path, lineno, kw);
-			break;
-		}
-		int finite = 1;
-		for (int k = 0; k < 7; k++)
-			finite &= isfinite(v[k]);
-		double qn = sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6]);
-		if (!finite || !(fabs(qn - 1) <= 1e-3)) {
-			rc = fct_fail(err, "%s:%ld: the quaternion is not a unit quaternion (norm %g)", path, lineno, qn);
-			break;
-		}
-		if (fct_grow((void **)&c->scans, &cap, c->n + 1, sizeof *c->scans, err)) {
-			rc = -1;
-			break;
-		}
-		struct fct_conf_scan *s = &c->scans[c->n];
-		s->path = fct_path_join(dir, name, err);
-		if (!s->path) {
-			rc = -1;
-			break;
-		}
-		c->n++;
-		s->line = lineno;
-		/* The scanalyze/VRIP quaternion is applied conjugated (checked on
-		 * the bunny: the other way round puts bun045 40 mm off). */
-		fct_quat_pose(-v[3] / qn, -v[4] / qn, -v[5] / qn, v[6] / qn, s->pose);
-		s->pose[3] = v[0], s->pose[7] = v[1], s->pose[11] = v[2];
+	char *line;
+	size_t len;
+	/* lines are read whole (up to the reader's 16 MB) before their length
+	 * is judged: an endless line, as /dev/zero, ends there */
+	while (!rc && (line = fct_reader_line(&r, &len, err))) {
+		if (fct_reader_offset(&r) > CONF_MAX)
+			rc = fct_fail(err, "%s:%llu: longer than %ld bytes: not a .conf file", path,
+			              (unsigned long long)r.line, CONF_MAX);
+		else
+			rc = conf_line(c, &cap, &skip_cap, dir, path, (long)r.line, line, len, err);
 	}
-	if (!rc && ferror(f))
-		rc = fct_fail(err, "%s: read error", path);
+	if (!rc && err->msg[0])
+		rc = -1;
 	if (!rc && c->n == 0)
-		rc = fct_fail(err, "%s: no bmesh line: not a .conf file", path);
+		rc = c->nskipped ? fct_fail(err, "%s: no bmesh line, only mesh lines, which are not fused "
+		                            "(as vrip fuses bmesh lines only)", path)
+		                 : fct_fail(err, "%s: no bmesh line: not a .conf file", path);
+	fct_reader_free(&r);
 	fclose(f);
 	free(dir);
 	if (rc)

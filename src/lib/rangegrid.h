@@ -4,12 +4,16 @@
  * A .conf file lists scans with their poses, one per line:
  *
  *   camera tx ty tz qx qy qz qw        (the viewer's camera; ignored)
- *   bmesh FILE tx ty tz qx qy qz qw    (also "mesh"): the scan FILE, placed
- *                                      in the world by the rotation of the
- *                                      conjugate of the unit quaternion
- *                                      (qx, qy, qz, qw), then the
- *                                      translation t (what puts the bunny
- *                                      scans together)
+ *   bmesh FILE tx ty tz qx qy qz qw    the scan FILE, placed in the world by
+ *                                      the rotation of the conjugate of the
+ *                                      unit quaternion (qx, qy, qz, qw),
+ *                                      then the translation t (what puts
+ *                                      the bunny scans together)
+ *   mesh FILE ...                      a mesh scanalyze shows (the dragon
+ *                                      archive's dragonStandRight_cybcyl,
+ *                                      a file it does not hold): vrip fuses
+ *                                      bmesh lines only, and so do we; the
+ *                                      line is kept in skipped
  *
  * A range-grid scan (Turk's ply tools, the Stanford 3-D Scanning Repository)
  * holds its points in the scan frame as the vertex element and, as element
@@ -29,14 +33,23 @@ struct fct_conf_scan {
 	long line;               /* line of the .conf it came from */
 };
 
+/* A line read but not fused. */
+struct fct_conf_skip {
+	long line;
+	char *text;              /* its first 80 bytes, escaped (fct_escape) */
+};
+
 struct fct_conf {
 	size_t n;
 	struct fct_conf_scan *scans;
+	size_t nskipped;
+	struct fct_conf_skip *skipped;
 };
 
-/* Read a .conf file (at most 1 MB): c is set up here (fct_conf_free).
- * Quaternions must have a norm within 1e-3 of 1 and are normalised.  0 or
- * -1 with "FILE:LINE: what". */
+/* Read a .conf file (at most 1 MB, lines of at most 4 KB, no NUL bytes):
+ * c is set up here (fct_conf_free).  Quaternions must have a norm within
+ * 1e-3 of 1 and are normalised.  0 or -1 with "FILE:LINE: what", where
+ * any bytes of the file are escaped. */
 int fct_conf_read(struct fct_conf *c, const char *path, struct fct_err *err);
 void fct_conf_free(struct fct_conf *c);
 

@@ -21,15 +21,20 @@ int fct_texcoord_vertex(const struct fct_mesh *m, const struct fct_prop **s,
 	return 0;
 }
 
-const struct fct_prop *fct_texcoord_face(const struct fct_mesh *m)
+const struct fct_prop *fct_corner_list(const struct fct_mesh *m, const char *name, unsigned dim)
 {
-	const struct fct_prop *p = fct_elem_find(&m->face, "texcoord");
+	const struct fct_prop *p = fct_elem_find(&m->face, name);
 	if (!p || p->count_type == FCT_NONE)
 		return NULL;
 	for (size_t f = 0; f < m->nf; f++) {
 		size_t n = p->off[f + 1] - p->off[f];
-		if (n && n != 2 * (size_t)fct_face_size(m, f))
+		if (n && n != dim * (size_t)fct_face_size(m, f))
 			return NULL;
 	}
 	return p;
+}
+
+const struct fct_prop *fct_texcoord_face(const struct fct_mesh *m)
+{
+	return fct_corner_list(m, "texcoord", 2);
 }

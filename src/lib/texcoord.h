@@ -22,4 +22,9 @@ int fct_texcoord_vertex(const struct fct_mesh *m, const struct fct_prop **s,
  * corner, or none (a face without texture); NULL otherwise. */
 const struct fct_prop *fct_texcoord_face(const struct fct_mesh *m);
 
+/* The same for any per-corner face list: the list called name when every
+ * face's holds dim numbers per corner, or none; NULL otherwise (the OBJ
+ * reader's corner_normal, 3 per corner). */
+const struct fct_prop *fct_corner_list(const struct fct_mesh *m, const char *name, unsigned dim);
+
 #endif

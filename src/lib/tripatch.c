@@ -45,6 +45,7 @@ struct work {
 	double *xy[2];           /* the two frames: s t and plane */
 	size_t xy_cap[2];
 	int have[2];             /* frame usable */
+	int wraps;               /* s is an azimuth that wraps round (cylindrical camera) */
 	/* chaining */
 	uint32_t *ostart, *oedge, *path;
 	int32_t *pos;
@@ -268,6 +269,16 @@ static int make_frame(struct work *w, const struct fct_mesh *m, int f, const str
 			xy[2 * i] = W == 1 ? fct_prop_get(ps, w->gl[i]) : fct_snap_pixel_centre(fct_prop_get(ps, w->gl[i]) * W);
 			xy[2 * i + 1] = H == 1 ? fct_prop_get(pt, w->gl[i]) : fct_snap_pixel_centre(fct_prop_get(pt, w->gl[i]) * H);
 		}
+		/* On a cylindrical panorama an edge that crosses the 0/360 seam
+		 * goes the long way round in s: the loops of a patch round the
+		 * camera (a ceiling, a floor) or across the seam are no polygons
+		 * in s t.  Dropped there, a ceiling's hole (the unseen disc
+		 * overhead) once left two triangles over the zenith, which no
+		 * planar view of cyl2planar can hold. */
+		if (w->wraps)
+			for (size_t h = 0; h < w->nh; h++)
+				if (fabs(xy[2 * (size_t)w->hf[h]] - xy[2 * (size_t)w->ht[h]]) > W / 2)
+					return 0;
 	} else {
 		double e1[3], e2[3];
 		fct_plane_frame(n, e1, e2);
@@ -604,6 +615,7 @@ int fct_tripatch(struct fct_mesh *m, const struct fct_tripatch_params *p,
 	struct fct_err cerr;
 	if (fct_header_camera(m, &cam, &cerr) == 1 && cam.width > 0 && cam.height > 0)
 		W = cam.width, H = cam.height;
+	w.wraps = cam.kind == FCT_CAMERA_CYLINDRICAL;
 	w.loc = fct_alloc_array(m->nv, sizeof *w.loc, err);
 	if (!w.loc)
 		goto out;

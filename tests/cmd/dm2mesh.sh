@@ -67,6 +67,19 @@ check_num "disparity faces" "$(info faces $TMP/disp.ply)" == 62
 check_num "disparity depth" "$(verts < $TMP/disp.ply | awk '$3 != 0.5 { n++ } END { print n + 0 }')" == 0
 run_case 0 "dm2mesh -a -K 100,100,3.5,2.5 --baseline 0.1 $D/dm_disp.pfm | grep -v '^comment facet' > $TMP/disp2.ply"
 run_case 0 "grep -v '^comment facet' $TMP/disp.ply | cmp -s - $TMP/disp2.ply"
+# Middlebury: depth = b f / (d + doffs).  The same disparities with doffs 5
+# are 0.1 * 100 / 25 = 0.4 m, not 0.5 m; from --doffs, or from a calib.txt
+# given as --camera (baseline in millimetres, cam0's K, doffs), whose doffs
+# --doffs overrides.
+depths() { verts < "$1" | awk '{ if ($3 < lo || !n) lo = $3; if ($3 > hi || !n) hi = $3; n++ } END { print lo, hi }'; }
+run_case 0 "dm2mesh -a -K 100,100,3.5,2.5 --baseline 0.1 --doffs 5 $D/dm_disp.pfm > $TMP/doffs.ply"
+check_true "--doffs 5: every depth 0.4" test "$(depths $TMP/doffs.ply)" = "0.4 0.4"
+run_case 0 "dm2mesh -a --camera $D/dm_middlebury_calib.txt $D/dm_disp.pfm > $TMP/mb.ply"
+check_true "calib.txt: every depth 0.4" test "$(depths $TMP/mb.ply)" = "0.4 0.4"
+check_num "calib.txt: faces" "$(info faces $TMP/mb.ply)" == 62
+run_case 0 "dm2mesh -a --camera $D/dm_middlebury_calib.txt --doffs 0 $D/dm_disp.pfm > $TMP/mb0.ply"
+check_true "calib.txt, --doffs 0: every depth 0.5" test "$(depths $TMP/mb0.ply)" = "0.5 0.5"
+run_case 2 "dm2mesh -K 100,100,3.5,2.5 --doffs 5 $D/dm_disp.pfm" "" "dm2mesh: --doffs is for disparities and needs --baseline"
 
 # A pose: x_world = z + 1, y_world = y + 2, z_world = -x + 3; the same from
 # a 4x4 file and from a pose line.
@@ -98,6 +111,14 @@ run_case 2 "dm2mesh -K 1,2,3 $D/dm_plane16.png" "" "dm2mesh: -K: "
 run_case 2 "dm2mesh -K nokinect $D/dm_plane16.png" "" "dm2mesh: -K: \"nokinect\" is neither"
 run_case 2 "dm2mesh -K 10,-10,3.5,2.5 $D/dm_plane16.png" "" "dm2mesh: -K: focal lengths must be positive"
 run_case 2 "dm2mesh -K tum --camera $D/dm_K.txt $D/dm_plane16.png" "" "dm2mesh: -K, --camera and --cylindrical exclude each other"
+# -K with an intrinsics file says where it goes.
+run_case 2 "dm2mesh -K $D/dm_K.txt $D/dm_plane16.png" "" "dm2mesh: -K: \"$D/dm_K.txt\" is a file: give an intrinsics file with --camera"
+# TUM's freiburg3 K typed as numbers leaves the depth scale at 1000: the
+# desk's depths come out 7-45 m (median 12.1), and dm2mesh says so.
+T=samples/tum/TUM_depth.png
+run_case 0 "dm2mesh -K 535.4,539.2,320.1,247.6 -o $TMP/t3.ply $T" "" "dm2mesh: warning: $T: median depth 12.1 m: implausible for an RGB-D sensor (0.3 to 8 m); the camera is tum3's, whose depth units are 5000 a metre, not 1000"
+run_case 0 "dm2mesh -K 535.4,539.2,320.1,247.6 --depth-scale 5000 -o $TMP/t3.ply $T 2>&1 | wc -c | grep -qx 0"
+run_case 0 "dm2mesh -K tum3 -o $TMP/t3.ply $T 2>&1 | wc -c | grep -qx 0"
 run_case 2 "dm2mesh -K tum --focal 5 $D/dm_plane16.png" "" "dm2mesh: --focal is for disparities"
 run_case 2 "dm2mesh -K tum --step 0 $D/dm_plane16.png" "" "dm2mesh: --step: "
 run_case 2 "dm2mesh -K tum --range 3,1 $D/dm_plane16.png" "" "dm2mesh: --range: "

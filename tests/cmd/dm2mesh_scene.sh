@@ -79,4 +79,19 @@ run_case 0 "dm2mesh --camera $TMP/png/view00.camera --pose $TMP/png/view00.pose 
 run_case 0 "meshdist $TMP/png.ply $TMP/png/scene.ply > $TMP/png.dist"
 check_num "png16: within 0.5 mm along z" "$(figure max $TMP/png.dist)" "<" 0.000626
 
+# A georeferenced pose (the room moved 500 km east, 4000 km north): float
+# rounded the world coordinates to 0.25 m and segplanes found 87 patches
+# and no noise where the room at home has 28; written as double, the
+# planes are the same.
+G=$TMP/geo
+mkscene -q --views 1 --size 160x120 --fx 131.25 --noise kinect-gauss:0.0015 -o "$G"
+awk 'NR == 1 { $4 += 500000 } NR == 2 { $4 += 4000000 } { print }' "$G/view00.pose" >"$G/far.pose"
+run_case 0 "dm2mesh -v --camera $G/view00.camera --pose $G/far.pose -o $G/far.ply $G/view00.depth.pfm 2>$G/far.err"
+check_num "georeferenced: double positions reported" "$(report double_xyz "$G/far.err")" == 1
+check_true "georeferenced: x is double on disk" sh -c "meshinfo $G/far.ply | grep -q '^property: vertex double x'"
+run_case 0 "dm2mesh --camera $G/view00.camera --pose $G/view00.pose -o $G/near.ply $G/view00.depth.pfm"
+check_true "at home: x stays float" sh -c "meshinfo $G/near.ply | grep -q '^property: vertex float x'"
+segfig() { segplanes -v -o /dev/null "$1" 2>&1 | sed -n "s/^segplanes: $2=//p"; }
+check_num "georeferenced: segplanes' patches as at home" "$(segfig "$G/far.ply" patches)" == "$(segfig "$G/near.ply" patches)"
+check_num "georeferenced: segplanes' noise as at home" "$(segfig "$G/far.ply" noise)" == "$(segfig "$G/near.ply" noise)"
 finish

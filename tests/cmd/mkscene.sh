@@ -296,16 +296,9 @@ check_true "no folder made by a usage error" test ! -e "$TMP/x"
 run_case 1 "mkscene -o $TMP/file" "" "mkscene: $TMP/file: exists and is not a folder"
 run_case 1 "mkscene -o $TMP/no/such/dir" "" "mkscene: $TMP/no/such/dir: No such file or directory"
 
-# The man page's examples run (tests/cmd/manpages.sh checks --help against
-# its synopsis).
+# The usage (tests/cmd/manpages.sh checks --help against the man page's
+# synopsis, tests/cmd/man_examples.sh runs its examples).
 run_case 0 "mkscene --help | head -n 1 | grep -q '^usage: mkscene \[-qv\] \[-K fx,fy,cx,cy\] '"
 run_case 0 "mkscene --version | grep -q '^mkscene (facet) '"
-man=man/man1/mkscene.1
-grep '^\.Dl \$ ' $man | sed 's/^\.Dl \$ //; s/\\&//g' >"$TMP/examples"
-check_num "examples in mkscene.1" "$(wc -l <"$TMP/examples")" == 3
-mkdir "$TMP/ex"
-while IFS= read -r ex; do
-	run_case 0 "cd $TMP/ex && $ex >/dev/null"
-done <"$TMP/examples"
 
 finish

@@ -10,10 +10,40 @@ top=$(pwd)
 for n in obj_cube obj_split obj_negative; do
 	run_case 0 "meshconv -a $D/$n.obj" "$D/$n.ply"
 done
-check_num "cube: 8 positions, each on 3 sides, make 24 vertices" \
-	"$(grep -c '^4 ' $D/obj_cube.ply)$(sed -n 's/^element vertex //p' $D/obj_cube.ply)" == 624
+# A vertex is its v line: normals and texture coordinates that differ round
+# a position go per corner, and the mesh stays connected (it was split into
+# 24 vertices, 6 pieces, before).
+info() { meshinfo "$1" | awk -v k="$2:" '$1 == k { print $2 }'; }
+check_num "cube: 8 positions are 8 vertices" "$(info $D/obj_cube.obj vertices)" == 8
+check_num "cube: one closed surface" "$(info $D/obj_cube.obj components)$(info $D/obj_cube.obj border_edges)" == 10
 check_true "cube: texture from the mtl, relative to the current folder" \
 	grep -q "^comment TextureFile tests/data/obj_wood.png$" $D/obj_cube.ply
+
+# Issue 24's reproduction: one normal value under two indices made 6
+# vertices in 2 pieces.
+check_num "issue 24: 4 vertices" "$(info $D/obj_shared_edge.obj vertices)" == 4
+check_num "issue 24: 1 component" "$(info $D/obj_shared_edge.obj components)" == 1
+
+# Blender's default cube as its OBJ exporter writes it (normals on, UVs,
+# flat shading: every corner its own vt / vn pair) is one closed surface of
+# 8 vertices, and OBJ -> PLY -> OBJ gives back the same OBJ, vt and vn
+# indices per corner (the 14 vt and 6 vn of the file, in its order).
+B=$D/obj_blender_cube.obj
+check_num "blender cube: 8 vertices" "$(info $B vertices)" == 8
+check_num "blender cube: one closed surface" "$(info $B components)$(info $B border_edges)" == 10
+run_case 0 "meshconv -o $TMP/bc.obj $B && meshconv -o $TMP/bc.ply $B && meshconv -o $TMP/bc2.obj $TMP/bc.ply && cmp $TMP/bc.obj $TMP/bc2.obj"
+check_num "blender cube: 14 vt back" "$(grep -c '^vt ' $TMP/bc2.obj)" == 14
+check_num "blender cube: 6 vn back" "$(grep -c '^vn ' $TMP/bc2.obj)" == 6
+grep '^f ' $B >"$TMP/f.want"
+check_true "blender cube: the faces' indices as Blender wrote them" sh -c "grep '^f ' $TMP/bc2.obj | cmp -s - $TMP/f.want"
+
+# Per-corner texture coordinates from a PLY (cyl2planar's texcoord lists,
+# one texture per face by texnumber) become vt per corner and a material
+# per texture (meshconv wrote no vt for them before), and read back the same.
+cp $D/obj_corner_tex.ply "$TMP/"
+run_case 0 "cd $TMP && meshconv -o ct.obj obj_corner_tex.ply && meshconv -a ct.obj > ct.back.ply"
+check_true "texcoord lists: vt per corner, distinct values once" sh -c "grep '^vt\|^f\|^usemtl' $TMP/ct.obj | tr '\n' ';' | grep -qx 'vt 0 0;vt 1 0;vt 0 1;vt 0 0.5;vt 1 0.5;usemtl material_0;f 1/1 2/2 3/3;usemtl material_1;f 2/4 4/5 3/3;'"
+check_true "texcoord lists: OBJ -> PLY gives them back" sh -c "grep -v '^comment facet' $TMP/ct.back.ply | cmp -s - $D/obj_corner_tex.ply"
 
 # PLY -> OBJ -> PLY keeps vertex count, polygons, every property value bit
 # for bit, and the comments (camera, pose, TextureFile, provenance, obj_info).

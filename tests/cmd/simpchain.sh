@@ -131,4 +131,11 @@ check_num "none with --keep-small-loops" "$(sed -n 's/^simpchain: loops_dropped=
 edges() { meshinfo "$1" | awk '$1 == "element:" && $2 == "edge" { print $3 }'; }
 check_num "at least three edges fewer per dropped loop" "$(($(edges $L/keep.ply) - $(edges $L/drop.ply)))" ">=" "$((3 * dropped))"
 
+# A plane count of NaN or 1e300 was cast to long unchecked (undefined, caught
+# by -fsanitize=float-cast-overflow): one line naming the plane and the value.
+run_case 1 "simpchain tests/bad/planes_count_nan.ply" "" \
+	"simpchain: tests/bad/planes_count_nan.ply: element plane 0: count nan is not a count of points"
+run_case 1 "projverts tests/bad/planes_count_1e300.ply" "" \
+	"projverts: tests/bad/planes_count_1e300.ply: element plane 0: count 1e+300 is not a count of points"
+
 finish

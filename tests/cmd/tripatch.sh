@@ -148,16 +148,8 @@ run_case 2 "tripatch $D/tri_L.ply $D/tri_L.ply" "" "tripatch: too many operands"
 run_case 2 "tripatch -o" "" "tripatch: -o: option requires an argument"
 run_case 0 "tripatch --version | grep -q '^tripatch (facet) '"
 
-# The man page's examples run (tests/cmd/manpages.sh checks --help against
-# its synopsis).
+# The usage (tests/cmd/manpages.sh checks --help against the man page's
+# synopsis, tests/cmd/man_examples.sh runs its examples).
 run_case 0 "tripatch --help | head -n 1 | grep -q '^usage: tripatch \[-aqv\] \[-o file\] \[--cdt\] \[--plane\] \[input\]$'"
-man=man/man1/tripatch.1
-grep '^\.Dl \$ ' $man | sed 's/^\.Dl \$ //; s/\\&//g' >"$TMP/examples"
-check_num "examples in tripatch.1" "$(wc -l <"$TMP/examples")" == 3
-mkdir "$TMP/ex"
-cp $D/tri_two_holes.ply "$TMP/ex/wire.ply"
-while IFS= read -r ex; do
-	run_case 0 "cd $TMP/ex && $ex >/dev/null"
-done <"$TMP/examples"
 
 finish

@@ -91,6 +91,27 @@ static void test_seam(void)
 	CHECK(fct_cylview_plan(&pc, &p, v, &err) == -1);
 	p.fov = 90, p.count = 0;
 	CHECK(fct_cylview_plan(&pc, &p, v, &err) == -1);
+
+	/* Views the panorama cannot justify: at most 16 times its pixels (here
+	 * 1024 x 256, so 4096 x 1024 passes and one column more does not); a
+	 * field of view of 179.999 degrees asked 37351042 x 461 pixels. */
+	struct fct_camera big = cyl(1024, 256, 0);
+	struct fct_cylview bv[8];
+	fct_cylview_params_default(&p);
+	p.fov = 179.999;
+	CHECK(fct_cylview_plan(&big, &p, bv, &err) == -1);
+	CHECK(strstr(err.msg, "views of 37351042x461 pixels from a 1024x256 panorama: more than 16") != NULL);
+	p.fov = 170;
+	CHECK(fct_cylview_plan(&big, &p, bv, &err) == 0);
+	p.fov = 90, p.width = 4096, p.height = 1024;
+	CHECK(fct_cylview_plan(&big, &p, bv, &err) == 0);
+	p.width = 4097;
+	CHECK(fct_cylview_plan(&big, &p, bv, &err) == -1);
+	/* a small panorama still gets views of up to 2^20 pixels */
+	p.width = 1024;
+	CHECK(fct_cylview_plan(&pc, &p, bv, &err) == 0);
+	p.width = 1025;
+	CHECK(fct_cylview_plan(&pc, &p, bv, &err) == -1);
 }
 
 /* The distance from the axis to the walls of a box room x in [-2, 2], z in

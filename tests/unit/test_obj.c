@@ -1,5 +1,6 @@
 /* OBJ reader and writer: every face corner form, negative indices, vertex
- * splitting in order of first use, colours, materials and texnumber,
+ * identity kept with per-corner vt / vn where they differ, colours,
+ * materials and texnumber,
  * comments, continuation lines, exact errors, and bit-exact round trips of
  * floats through the writer and the reader. */
 #include <math.h>
@@ -66,7 +67,28 @@ static const char *face_str(const struct fct_mesh *m, size_t f)
 	return buf;
 }
 
-static void test_forms_and_splitting(void)
+/* Value k of face f's list column name (NAN when absent). */
+static float corner(const struct fct_mesh *m, const char *name, size_t f, size_t k)
+{
+	const struct fct_prop *p = fct_elem_find(&m->face, name);
+	if (!p || !p->count_type || p->off[f] + k >= p->off[f + 1])
+		return NAN;
+	return (float)fct_prop_get(p, p->off[f] + k);
+}
+
+/* Face f's list column name as "a b c ..." for comparison. */
+static const char *corner_str(const struct fct_mesh *m, const char *name, size_t f)
+{
+	static char buf[512];
+	const struct fct_prop *p = fct_elem_find(&m->face, name);
+	size_t n = 0;
+	buf[0] = 0;
+	for (size_t k = p ? p->off[f] : 0; p && k < p->off[f + 1] && n < sizeof buf - 32; k++)
+		n += (size_t)snprintf(buf + n, sizeof buf - n, k > p->off[f] ? " %g" : "%g", fct_prop_get(p, k));
+	return buf;
+}
+
+static void test_forms_and_corners(void)
 {
 	struct fct_err err;
 	struct fct_mesh m;
@@ -77,24 +99,26 @@ static void test_forms_and_splitting(void)
 		"f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4//1\n"
 		"f 1/2/1 3/3/2 4/1/1\nf 1/2/1 2 4//1\n";
 	CHECK_MSG(read_str(&m, text, &err) == 0, "%s", err.msg);
-	CHECK_INT(m.nv, 9);
+	/* A vertex is its v line, whatever vt / vn its corners name. */
+	CHECK_INT(m.nv, 5);
 	CHECK_INT(m.nf, 4);
 	CHECK_STR(face_str(&m, 0), "0 1 2");
 	CHECK_STR(face_str(&m, 1), "0 2 3");
-	CHECK_STR(face_str(&m, 2), "5 6 7");
-	CHECK_STR(face_str(&m, 3), "5 8 3");
-	/* Split vertices copy their position and take their own vt / vn. */
-	CHECK(m.xyz[15] == 0 && m.xyz[16] == 0 && m.xyz[17] == 0);
-	CHECK(m.xyz[18] == 1 && m.xyz[19] == 1 && m.xyz[20] == 0);
-	CHECK(m.xyz[24] == 1 && m.xyz[25] == 0 && m.xyz[26] == 0);
-	CHECK(col(&m, "s", 5) == 1 && col(&m, "t", 5) == 0 && col(&m, "nz", 5) == 1);
-	CHECK(col(&m, "s", 6) == 1 && col(&m, "t", 6) == 1 && col(&m, "nz", 6) == -1);
-	CHECK(col(&m, "s", 7) == 0 && col(&m, "nz", 7) == 1);
-	CHECK(col(&m, "s", 8) == 0 && col(&m, "nz", 8) == 0);
-	/* Position 4 has no vt / vn: "4//1" keeps nz 1, s t 0. */
-	CHECK(col(&m, "s", 3) == 0 && col(&m, "t", 3) == 0 && col(&m, "nz", 3) == 1);
-	/* The unused position 5 is kept, with zeros (3 vt, 2 vn for 5 positions). */
-	CHECK(m.xyz[12] == 5 && col(&m, "s", 4) == 0 && col(&m, "nz", 4) == 0);
+	CHECK_STR(face_str(&m, 2), "0 2 3");
+	CHECK_STR(face_str(&m, 3), "0 1 3");
+	/* Positions 1, 2, 4 have two vt each, 2 and 3 two vn: both per corner,
+	 * none as vertex columns; a corner without one has zeros. */
+	CHECK(!fct_elem_find(&m.vertex, "s") && !fct_elem_find(&m.vertex, "nx"));
+	CHECK_STR(corner_str(&m, "texcoord", 0), "0 0 1 0 1 1");
+	CHECK_STR(corner_str(&m, "texcoord", 1), "0 0 1 1 0 0");
+	CHECK_STR(corner_str(&m, "texcoord", 2), "1 0 1 1 0 0");
+	CHECK_STR(corner_str(&m, "texcoord", 3), "1 0 0 0 0 0");
+	CHECK_STR(corner_str(&m, "corner_normal", 2), "0 0 1 0 0 -1 0 0 1");
+	CHECK_STR(corner_str(&m, "corner_normal", 3), "0 0 1 0 0 0 0 0 1");
+	const struct fct_prop *tc = fct_elem_find(&m.face, "texcoord");
+	CHECK(tc && tc->type == FCT_FLOAT32 && tc->count_type == FCT_UINT8);
+	/* The unused position 5 is kept. */
+	CHECK(m.xyz[12] == 5);
 	CHECK(m.xyz_type == FCT_FLOAT32);
 	CHECK(!fct_elem_find(&m.vertex, "red"));
 	CHECK(!fct_elem_find(&m.face, "texnumber"));
@@ -107,6 +131,27 @@ static void test_forms_and_splitting(void)
 	CHECK_STR(face_str(&m, 1), "1 3 2");
 	CHECK(col(&m, "s", 3) == 0.7f && col(&m, "t", 3) == 0.8f);
 	CHECK(!fct_elem_find(&m.vertex, "nx"));
+	CHECK(!fct_elem_find(&m.face, "texcoord"));
+	fct_mesh_free(&m);
+
+	/* Issue 24's reproduction: two normals of the same value under two
+	 * indices do not split the shared edge: 4 vertices, one piece.  The
+	 * normals differ by index only, so they go per corner (values equal). */
+	CHECK(read_str(&m, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 0 1\n"
+	                   "f 1//1 2//1 3//1\nf 2//2 4//2 3//2\n", &err) == 0);
+	CHECK_INT(m.nv, 4);
+	CHECK_STR(face_str(&m, 1), "1 3 2");
+	CHECK(corner(&m, "corner_normal", 1, 2) == 1);
+	fct_mesh_free(&m);
+
+	/* Indices that differ from the v indices but agree round every position
+	 * (a smooth-shaded export): vertex columns, no per-corner list. */
+	CHECK(read_str(&m, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 -1\nvn 0 0 1\nvn 0 1 0\n"
+	                   "vt 0.5 0.5\nvt 1 1\nf 1/2/2 2/1/3 3/1/2\nf 2/1/3 4/1/1 3/1/2\n", &err) == 0);
+	CHECK_INT(m.nv, 4);
+	CHECK(!fct_elem_find(&m.face, "texcoord") && !fct_elem_find(&m.face, "corner_normal"));
+	CHECK(col(&m, "nz", 0) == 1 && col(&m, "ny", 1) == 1 && col(&m, "nz", 3) == -1);
+	CHECK(col(&m, "s", 0) == 1 && col(&m, "s", 1) == 0.5f && col(&m, "t", 3) == 0.5f);
 	fct_mesh_free(&m);
 }
 
@@ -116,10 +161,11 @@ static void test_negative_and_polygons(void)
 	struct fct_mesh m;
 	CHECK(read_str(&m, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nvt 0 0\nvt 1 0\nvt 0 1\nv 0 0 1\n"
 	                   "f -4/-3 -2/-2 -1/-1\n", &err) == 0);
-	CHECK_INT(m.nv, 6);
+	CHECK_INT(m.nv, 4);
 	CHECK_STR(face_str(&m, 0), "0 1 2");
-	CHECK_STR(face_str(&m, 1), "4 5 3");
-	CHECK(col(&m, "t", 3) == 1 && col(&m, "s", 5) == 1 && col(&m, "s", 4) == 0);
+	CHECK_STR(face_str(&m, 1), "0 2 3");
+	CHECK_STR(corner_str(&m, "texcoord", 0), "0 0 0 0 0 0");
+	CHECK_STR(corner_str(&m, "texcoord", 1), "0 0 1 0 0 1");
 	fct_mesh_free(&m);
 
 	/* Polygons are kept whole; "+1" and the "1/" form are accepted. */
@@ -485,9 +531,74 @@ static void test_round_trip(void)
 	fct_mesh_free(&m);
 }
 
+/* Per-corner texcoord and corner_normal lists are written as vt / vn
+ * indices per corner (distinct values once, in order of first use), and
+ * read back as the same lists: OBJ -> mesh -> OBJ is a fixed point. */
+static void test_corner_writer(void)
+{
+	struct fct_err err;
+	struct fct_mesh m, back;
+	/* Blender's default cube as its OBJ exporter writes it (normals on,
+	 * UVs, flat shading): 8 v, 6 vn, 14 vt, every corner its own pair. */
+	const char *cube =
+		"# Blender 5.0.1\n# www.blender.org\nmtllib untitled.mtl\no Cube\n"
+		"v 1.000000 1.000000 -1.000000\nv 1.000000 -1.000000 -1.000000\n"
+		"v 1.000000 1.000000 1.000000\nv 1.000000 -1.000000 1.000000\n"
+		"v -1.000000 1.000000 -1.000000\nv -1.000000 -1.000000 -1.000000\n"
+		"v -1.000000 1.000000 1.000000\nv -1.000000 -1.000000 1.000000\n"
+		"vn -0.0000 1.0000 -0.0000\nvn -0.0000 -0.0000 1.0000\nvn -1.0000 -0.0000 -0.0000\n"
+		"vn -0.0000 -1.0000 -0.0000\nvn 1.0000 -0.0000 -0.0000\nvn -0.0000 -0.0000 -1.0000\n"
+		"vt 0.625000 0.500000\nvt 0.875000 0.500000\nvt 0.875000 0.750000\nvt 0.625000 0.750000\n"
+		"vt 0.375000 0.750000\nvt 0.625000 1.000000\nvt 0.375000 1.000000\nvt 0.375000 0.000000\n"
+		"vt 0.625000 0.000000\nvt 0.625000 0.250000\nvt 0.375000 0.250000\nvt 0.125000 0.500000\n"
+		"vt 0.375000 0.500000\nvt 0.125000 0.750000\n"
+		"s 0\nusemtl Material\n"
+		"f 1/1/1 5/2/1 7/3/1 3/4/1\nf 4/5/2 3/4/2 7/6/2 8/7/2\nf 8/8/3 7/9/3 5/10/3 6/11/3\n"
+		"f 6/12/4 2/13/4 4/5/4 8/14/4\nf 2/13/5 1/1/5 3/4/5 4/5/5\nf 6/11/6 5/10/6 1/1/6 2/13/6\n";
+	CHECK_MSG(read_str(&m, cube, &err) == 0, "%s", err.msg);
+	CHECK_INT(m.nv, 8);
+	CHECK_INT(m.nf, 6);
+	CHECK_STR(corner_str(&m, "texcoord", 1), "0.375 0.75 0.625 0.75 0.625 1 0.375 1");
+	CHECK_STR(corner_str(&m, "corner_normal", 2), "-1 -0 -0 -1 -0 -0 -1 -0 -0 -1 -0 -0");
+	char *obj = write_obj(&m, NULL, NULL);
+	/* The distinct values only, in order of first use: Blender's own. */
+	const char *want_tail =
+		"vt 0.625 0.5\nvt 0.875 0.5\nvt 0.875 0.75\nvt 0.625 0.75\nvt 0.375 0.75\nvt 0.625 1\n"
+		"vt 0.375 1\nvt 0.375 0\nvt 0.625 0\nvt 0.625 0.25\nvt 0.375 0.25\nvt 0.125 0.5\n"
+		"vt 0.375 0.5\nvt 0.125 0.75\n"
+		"vn -0 1 -0\nvn -0 -0 1\nvn -1 -0 -0\nvn -0 -1 -0\nvn 1 -0 -0\nvn -0 -0 -1\n"
+		"f 1/1/1 5/2/1 7/3/1 3/4/1\nf 4/5/2 3/4/2 7/6/2 8/7/2\nf 8/8/3 7/9/3 5/10/3 6/11/3\n"
+		"f 6/12/4 2/13/4 4/5/4 8/14/4\nf 2/13/5 1/1/5 3/4/5 4/5/5\nf 6/11/6 5/10/6 1/1/6 2/13/6\n";
+	CHECK_MSG(strstr(obj, want_tail) != NULL, "%s", obj);
+	CHECK_MSG(read_str(&back, obj, &err) == 0, "%s", err.msg);
+	char *again = write_obj(&back, NULL, NULL);
+	CHECK_STR(again, obj);
+	free(again);
+	free(obj);
+	fct_mesh_free(&back);
+
+	/* Vertex s t with per-corner normals: vt by vertex, vn by corner. */
+	struct fct_prop *s = fct_elem_add_scalar(&m.vertex, "s", FCT_FLOAT32, &err);
+	fct_prop_set(s, 7, 0.5);
+	CHECK(fct_elem_add_scalar(&m.vertex, "t", FCT_FLOAT32, &err) != NULL);
+	fct_elem_remove(&m.face, "texcoord");
+	obj = write_obj(&m, NULL, NULL);
+	CHECK(strstr(obj, "vt 0 0\nvt 0 0\nvt 0 0\nvt 0 0\nvt 0 0\nvt 0 0\nvt 0 0\nvt 0.5 0\nvn -0 1 -0\n") != NULL);
+	CHECK(strstr(obj, "\nf 8/8/3 7/7/3 5/5/3 6/6/3\n") != NULL);
+	free(obj);
+	/* A list of the wrong length for some face is not per-corner data. */
+	struct fct_prop *cn = fct_elem_find(&m.face, "corner_normal");
+	cn->off[6] -= 1;
+	obj = write_obj(&m, NULL, NULL);
+	CHECK(!strstr(obj, "vn ") && strstr(obj, "\nf 8/8 7/7 5/5 6/6\n"));
+	free(obj);
+	fct_mesh_free(&m);
+}
+
 /* A hostile face list: one position with a new texture coordinate at every
- * corner must stay linear (hash, not a chain) and give exact counts. */
-static void test_many_splits(void)
+ * corner stays one vertex, with every corner's own value, and the writer's
+ * table of distinct values stays linear (hash, not a chain). */
+static void test_many_corners(void)
 {
 	enum { N = 30000 };
 	size_t cap = (size_t)N * 40 + 100, n = 0;
@@ -500,16 +611,23 @@ static void test_many_splits(void)
 	struct fct_mesh m;
 	struct fct_err err;
 	CHECK(read_str_dir(&m, text, n, NULL, &err) == 0);
-	CHECK_INT(m.nv, 3 + N - 1);
-	CHECK_STR(face_str(&m, N - 1), "30001 1 2");
-	CHECK(col(&m, "s", 30001) == N - 1);
+	CHECK_INT(m.nv, 3);
+	CHECK_STR(face_str(&m, N - 1), "0 1 2");
+	CHECK(corner(&m, "texcoord", N - 1, 0) == N - 1 && corner(&m, "texcoord", N - 1, 2) == 0);
+	char *obj = write_obj(&m, NULL, NULL);
+	size_t vts = 0;
+	for (const char *p = obj; (p = strstr(p, "\nvt ")); p++)
+		vts++;
+	CHECK_INT(vts, N);
+	CHECK(strstr(obj, "\nf 1/30000 2/1 3/1\n") != NULL);
+	free(obj);
 	fct_mesh_free(&m);
 	free(text);
 }
 
 int main(void)
 {
-	test_forms_and_splitting();
+	test_forms_and_corners();
 	test_negative_and_polygons();
 	test_cube_with_material();
 	test_colours_and_numbers();
@@ -517,6 +635,7 @@ int main(void)
 	test_errors();
 	test_writer();
 	test_round_trip();
-	test_many_splits();
+	test_many_corners();
+	test_corner_writer();
 	CHECK_DONE();
 }

@@ -1,6 +1,8 @@
 /* test_planes.c - the patch property and plane element round trip, and
  * malformed ones are refused. */
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "planes.h"
@@ -50,6 +52,18 @@ int main(void)
 	CHECK_INT(fct_planes_set(&m, in, 2, &err), 0);
 	CHECK_INT(fct_planes_get(&m, &out, &n, &err), -1);
 	CHECK(strstr(err.msg, "element plane 1") != NULL);
+	/* A count that no long holds (NaN, 1e300, negative, fractional) is
+	 * refused before the cast, not cast. */
+	in[1].n[0] = 0.6;
+	CHECK_INT(fct_planes_set(&m, in, 2, &err), 0);
+	const double bad[4] = { NAN, 1e300, -1, 2.5 };
+	for (int k = 0; k < 4; k++) {
+		struct fct_elem *e = fct_mesh_find_elem(&m, "plane");
+		struct fct_prop *c = fct_elem_add_scalar(e, "count", FCT_FLOAT64, &err);
+		fct_prop_set(c, 1, bad[k]);
+		CHECK_INT(fct_planes_get(&m, &out, &n, &err), -1);
+		CHECK_MSG(strstr(err.msg, "element plane 1: count ") != NULL, "%s", err.msg);
+	}
 	fct_mesh_free(&m);
 	CHECK_DONE();
 }

@@ -179,6 +179,32 @@ static void test_conf(void)
 	fclose(f);
 	CHECK(fct_conf_read(&c, path, &err) == -1);
 	CHECK_MSG(strstr(err.msg, ":1: ") != NULL, "%s", err.msg);
+	/* The dragon_stand archive's form: a mesh line (a file the archive
+	 * does not hold) before the bmesh lines is kept aside, as vrip leaves
+	 * it; it stopped tsdfuse. */
+	rc = fct_conf_read(&c, "tests/data/conf_dragon_stand.conf", &err);
+	CHECK_MSG(rc == 0, "%s", err.msg);
+	if (!rc) {
+		CHECK_INT(c.n, 2);
+		CHECK_STR(c.scans[1].path, "tests/data/dragonStandRight_24.ply");
+		CHECK_INT(c.scans[0].line, 3);
+		CHECK_INT(c.nskipped, 1);
+		CHECK_INT(c.skipped[0].line, 2);
+		CHECK_STR(c.skipped[0].text, "mesh dragonStandRight_cybcyl 0 0 0 0 0 0 1");
+		fct_conf_free(&c);
+	}
+	/* NUL bytes, and a binary keyword quoted escaped */
+	f = fopen(path, "wb");
+	fwrite("bmesh a.ply 0 0 0\0 0 0 0 1\n", 1, 28, f);
+	fclose(f);
+	CHECK(fct_conf_read(&c, path, &err) == -1);
+	CHECK_MSG(strstr(err.msg, ":1: binary data (a NUL byte)") != NULL, "%s", err.msg);
+	f = fopen(path, "wb");
+	fputs("\x1b]0;x\x07 1 2\n", f);
+	fclose(f);
+	CHECK(fct_conf_read(&c, path, &err) == -1);
+	CHECK_MSG(strstr(err.msg, ":1: \"\\x1b]0;x\\x07\": expected camera, bmesh or mesh") != NULL,
+	          "%s", err.msg);
 	remove(path);
 	rmdir(dir);
 }

@@ -1003,6 +1003,69 @@ static void test_wire_random(void)
 	CHECK_INT(loops_ok, 150);
 }
 
+/* A ceiling seen by a cylindrical panorama (64 x 16, f = 64 / 2 pi, the
+ * seam at +x, the ceiling 1 above the camera, y down): the room's corners
+ * (the outer loop, in s t a simple sliver between rows 4.66 and 4.67)
+ * and the panorama's top row (the hole: the disc overhead that no row
+ * sees, in s t a line without area) both go round the camera, so in s t
+ * neither is the polygon it is on the ceiling.  The 2048 x 512 room's
+ * ceiling came out in s t as the corners' sliver without its hole: two
+ * triangles over the zenith, which no planar view holds (cyl2planar
+ * failed).  Triangulated in its plane it keeps the hole: 4 + 8 corners,
+ * 12 triangles. */
+static void test_wire_cylinder(void)
+{
+	const double W = 64, H = 16, f = W / (2 * M_PI), cy = 7.5;
+	static const double corner[4][2] = { { 3, -2 }, { 3, 2 }, { -2.9, 2.1 }, { -2.9, -2.1 } };
+	double v[12 * 5];
+	for (int i = 0; i < 12; i++) {
+		double x, z;
+		if (i < 4) {
+			x = corner[i][0], z = corner[i][1];
+		} else {
+			/* the top row's pixel edge: h = (-0.5 - cy) / f */
+			double rho = -1 / ((-0.5 - cy) / f), th = 2 * M_PI * ((i - 4) * 8 + 0.5) / W;
+			x = rho * sin(th), z = rho * cos(th);
+		}
+		double th = atan2(x, z), rho = hypot(x, z);
+		double u = (th - M_PI / 2) * W / (2 * M_PI), row = cy + f * -1 / rho;
+		u -= W * floor((u + 0.5) / W);
+		v[5 * i] = x, v[5 * i + 1] = -1, v[5 * i + 2] = z;
+		v[5 * i + 3] = (u + 0.5) / W, v[5 * i + 4] = 1 - (row + 0.5) / H;
+	}
+	/* outer: the corners in turn, clockwise in (x, z); hole: the octagon
+	 * the other way round */
+	int e[12 * 4], ne = 0;
+	for (int i = 0; i < 4; i++) {
+		int a[4] = { i, (i + 1) % 4, 0, -1 };
+		memcpy(e + 4 * ne++, a, sizeof a);
+	}
+	for (int i = 0; i < 8; i++) {
+		int a[4] = { 4 + i, 4 + (i + 1) % 8, 0, -1 };
+		memcpy(e + 4 * ne++, a, sizeof a);
+	}
+	static const double pl[] = { 0, 1, 0, 1 };
+	struct fct_mesh m;
+	struct fct_err err;
+	struct fct_tripatch_params p;
+	struct fct_tripatch_stats s;
+	wire_w(&m, v, 5, 12, 1, e, (size_t)ne, pl, 1);
+	fct_mesh_add_comment(&m, "camera cylindrical 64 16 10.185916357881302 7.5 1.5707963267948966", 0, &err);
+	fct_tripatch_params_default(&p);
+	CHECK_INT(fct_tripatch(&m, &p, &s, &err), 0);
+	CHECK_INT(s.holes, 1);
+	CHECK_INT(s.in_plane, 1);
+	CHECK_INT(m.nf, 12);
+	double area, n[3] = { 0, 1, 0 };
+	double rho = -1 / ((-0.5 - cy) / f);
+	double octagon = 8 * 0.5 * rho * rho * sin(M_PI / 4), room = 0;
+	for (int i = 0; i < 4; i++)
+		room += corner[i][0] * corner[(i + 1) % 4][1] - corner[(i + 1) % 4][0] * corner[i][1];
+	patch_dot(&m, 0, n, &area);
+	CHECK_NEAR(area, fabs(room) / 2 - octagon, 1e-9);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_quad();
@@ -1017,5 +1080,6 @@ int main(void)
 	test_wire_random();
 	test_wire_snap();
 	test_wire_sliver();
+	test_wire_cylinder();
 	CHECK_DONE();
 }
