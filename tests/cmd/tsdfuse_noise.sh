@@ -7,8 +7,9 @@
 # complete (completeness: the views' true surfaces to the fused mesh) than
 # --projective on the same views, with fewer connected components; and
 # better on all three than the same views fused without the model.
-# Gaussian noise (mkscene gaussian:) is no worse with its model.  Bad
-# --noise and --smooth arguments.
+# Gaussian noise (mkscene gaussian:) is no worse with its model.  The
+# model with --camera and one file of stacked poses.  Bad --noise and
+# --smooth arguments.
 . tests/lib.sh
 
 info() { meshinfo "$1" | awk -v k="$2:" '$1 == k { print $2 }'; }
@@ -65,6 +66,13 @@ run_case 0 "tsdfuse -a --voxel 0.04 --noise '$(sed 's/^noise //' "$S/view00.nois
 grep -v '^comment' "$TMP/file.ply" >"$TMP/a"
 grep -v '^comment' "$TMP/text.ply" >"$TMP/b"
 check_true "--noise file and text give the same volume" cmp -s "$TMP/a" "$TMP/b"
+# With the camera from a file (--camera) and the 24 poses stacked in one
+# file (poses.h), the model gives the same volume as with -K and a pose
+# file per view.
+cat "$S"/view*.pose >"$TMP/stacked.txt"
+run_case 0 "tsdfuse -a --voxel 0.04 --noise $S/view00.noise --camera $S/view00.camera --poses $TMP/stacked.txt -o $TMP/stacked.ply $(ls "$S"/view*.depth.pfm | tr '\n' ' ')"
+grep -v '^comment' "$TMP/stacked.ply" >"$TMP/b"
+check_true "--camera and stacked --poses with the model: the same volume" cmp -s "$TMP/a" "$TMP/b"
 # --smooth 0: meshed and weighed with the model, not smoothed: in between.
 run_case 0 "tsdfuse --voxel 0.04 --smooth 0 --noise $S/view00.noise -o $TMP/nosm.ply $A"
 check_num "kinect: components without smoothing" "$(info "$TMP/nosm.ply" components)" ">" "$c_true"
