@@ -1,12 +1,14 @@
 /* fuzz_depth - libFuzzer target: any bytes, read as a depth image, meshed
  * through a pinhole or a cylindrical camera of the image's size (dm2mesh's
- * path; every other size with the kinect noise model), then freed.  A
- * crash, leak, sanitizer report or huge allocation is a bug. */
+ * path; every other size with the kinect noise model, and of those every
+ * other smoothed first as tsdfuse smooths it), then freed.  A crash, leak,
+ * sanitizer report or huge allocation is a bug. */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
 #include "depthmesh.h"
+#include "depthsmooth.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -29,6 +31,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		p.step = 1 + (int)(size % 3);
 		if (size & 2)   /* sigma and the jump test's noise term */
 			fct_noise_kinect(&p.noise);
+		struct fct_image sm;
+		if ((size & 6) == 6) {   /* smoothed in units of that noise, for 4 cm voxels */
+			struct fct_depth_smooth sp;
+			fct_depth_smooth_default(&sp);
+			sp.voxel = 0.04;
+			if (fct_depth_smooth_image(&sm, &img, &cam, &p, &sp, &err) == 0) {
+				fct_image_free(&img);
+				img = sm;
+			}
+		}
 		struct fct_mesh m;
 		if (fct_depth_mesh(&m, &img, &cam, &p, NULL, &err) == 0)
 			fct_mesh_free(&m);

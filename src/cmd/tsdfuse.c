@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "depthmesh.h"
+#include "depthsmooth.h"
 #include "fuse.h"
 #include "geom.h"
 #include "header.h"
@@ -32,7 +33,8 @@ static const char usage[] =
 	"               [--carve] [--weight constant | incidence | depth2]\n"
 	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
 	"               [-K fx,fy,cx,cy | name | --camera file] [--depth-scale s]\n"
-	"               [--baseline b] [--doffs d] [--poses file ...] [--max-difference s]\n"
+	"               [--baseline b] [--doffs d] [--noise model | file] [--smooth px]\n"
+	"               [--poses file ...] [--max-difference s]\n"
 	"               [--color] [--image file ...] [--conf file] [--threads n] [view ...]\n"
 	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
 	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
@@ -64,10 +66,17 @@ static const char usage[] =
 	"                     TUM trajectory: a depth image's pose is the nearest in\n"
 	"                     time to the timestamp in its name, within s (default 0.02)\n"
 	"      --min-weight w extract only voxels of at least this weight (default 0)\n"
+	"      --noise model  the depth images' noise: none, kinect[:F,B[,SD[,STEP]]],\n"
+	"                     tof[:A,B], poly:A,B,C, stereo:FB,SD[,DOFFS], or a file\n"
+	"                     holding a line \"noise ...\"; smooths and meshes them\n"
+	"                     with it and weighs true distance by it (default: kinect\n"
+	"                     for a -K dataset name, else none)\n"
 	"      --poses file   camera-to-world poses of the depth images: one file of\n"
 	"                     them all (TUM trajectory, Redwood .log, KITTI poses,\n"
 	"                     stacked 4x4), or a 4x4 or 3x4 file per image (repeated)\n"
 	"      --projective   Curless-Levoy depth difference instead of true distance\n"
+	"      --smooth px    half-width of the noise-aware smoothing of depth images\n"
+	"                     with a noise model (default 2; 0: none)\n"
 	"      --threads n    threads (default 0: one per processor)\n"
 	"      --trunc n      band half-width in voxels (default 3)\n"
 	"      --voxel size   voxel size in metres (default 0.01)\n"
@@ -81,15 +90,17 @@ static const char usage[] =
 
 enum { OPT_VOXEL = 256, OPT_TRUNC, OPT_BBOX, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW,
        OPT_PROJ, OPT_SCALE, OPT_POSES, OPT_CONF, OPT_THREADS, OPT_VERSION, OPT_COLOR, OPT_IMAGE,
-       OPT_CAMERA, OPT_BASELINE, OPT_DOFFS, OPT_MAXDIFF };
+       OPT_CAMERA, OPT_BASELINE, OPT_DOFFS, OPT_MAXDIFF, OPT_NOISE, OPT_SMOOTH };
 
 struct options {
-	const char *out, *K, *camera, *conf;
+	const char *out, *K, *camera, *conf, *noise;
 	const char **poses, **images;
 	size_t nposes, nimages;
 	int color;
 	int ascii, carve, flow, has_bbox, scale_given, doffs_given;
 	double voxel, trunc, min_weight, bbox[6], depth_scale, baseline, doffs, max_diff;
+	struct fct_noise depth_noise;
+	struct fct_depth_smooth smooth;
 	struct fct_fuse_params fp;
 	char **views;
 	size_t nviews;
@@ -118,6 +129,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"baseline", required_argument, NULL, OPT_BASELINE},
 		{"doffs", required_argument, NULL, OPT_DOFFS},
 		{"max-difference", required_argument, NULL, OPT_MAXDIFF},
+		{"noise", required_argument, NULL, OPT_NOISE},
+		{"smooth", required_argument, NULL, OPT_SMOOTH},
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ahK:o:qv";
@@ -127,6 +140,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 	o->trunc = 3;
 	o->depth_scale = 1000;
 	o->max_diff = 0.02;
+	fct_depth_smooth_default(&o->smooth);
 	o->poses = calloc((size_t)argc + 1, sizeof *o->poses);
 	o->images = calloc((size_t)argc + 1, sizeof *o->images);
 	if (!o->poses || !o->images)
@@ -179,6 +193,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 			o->doffs_given = 1;
 			break;
 		case OPT_MAXDIFF: o->max_diff = fct_opt_double("--max-difference", optarg, 0, 1e9); break;
+		case OPT_NOISE: o->noise = optarg; break;
+		case OPT_SMOOTH: o->smooth.radius = (int)fct_opt_long("--smooth", optarg, 0, 64); break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
@@ -187,6 +203,12 @@ static void parse_options(int argc, char **argv, struct options *o)
 	if (!o->nviews && !o->conf)
 		fct_usage_error("no views: give meshes, depth images or --conf");
 	o->fp.band = o->trunc * o->voxel;
+	o->smooth.voxel = o->voxel;
+	if (o->noise && fct_noise_names_model(o->noise)) {
+		struct fct_err err;
+		if (fct_noise_parse(&o->depth_noise, o->noise, &err))
+			fct_usage_error("--%s", err.msg);
+	}
 	/* Voxel indices are int32 (and the volume's blocks keep to 2^23 voxels
 	 * each way): a box beyond overflowed them into an empty model. */
 	for (int k = 0; o->has_bbox && k < 6; k++)
@@ -274,8 +296,23 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 			fct_warn("%s: %s", path, why);
 			warned = 1;
 		}
+		/* With a noise model: smoothed in units of it, then meshed with
+		 * it (the jump test's noise term and each vertex's sigma, which
+		 * the fusion weighs by; depthsmooth.h, depthmesh.h). */
+		struct fct_depth_params vp = *dp;
+		if (vp.noise.model != FCT_NOISE_UNKNOWN && vp.noise.unit == 0)
+			vp.noise.unit = fct_depth_unit(&img, &vp);
+		if (o->smooth.radius > 0 && vp.noise.model != FCT_NOISE_UNKNOWN) {
+			struct fct_image sm;
+			if (fct_depth_smooth_image(&sm, &img, &cam, &vp, &o->smooth, &err)) {
+				fct_err_prefix(&err, "%s", path);
+				fct_die_err(&err);
+			}
+			fct_image_free(&img);
+			img = sm;
+		}
 		/* --projective reads the depths the mesh keeps (fuse.h). */
-		int rc = fct_depth_mesh_kept(&L->mesh, &img, &cam, dp, NULL,
+		int rc = fct_depth_mesh_kept(&L->mesh, &img, &cam, &vp, NULL,
 		                             o->fp.projective ? &L->depth : NULL, &err);
 		fct_image_free(&img);
 		if (rc) {
@@ -326,9 +363,14 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		      isfinite(L->mesh.xyz[3 * v + 2])))
 			fct_die(1, "%s: vertex %zu is not finite", L->name, v);
 	L->view.mesh = &L->mesh;
+	/* A view's noise, where its mesh carries it (a depth image meshed
+	 * with a model here, or dm2mesh's mesh of one): the fusion weighs by
+	 * it (fuse.h). */
+	struct fct_prop *sp = fct_elem_find(&L->mesh.vertex, "sigma");
+	L->view.sigma = sp && sp->type == FCT_FLOAT32 ? sp->data : NULL;
 }
 
-/* The camera and depth parameters of the depth-image operands. */
+/* The camera, depth and noise parameters of the depth-image operands. */
 static void depth_params(struct options *o, struct fct_camera *dcam, struct fct_depth_params *dp)
 {
 	double scale;
@@ -346,6 +388,14 @@ static void depth_params(struct options *o, struct fct_camera *dcam, struct fct_
 	dp->focal = dcam->fx;
 	if (o->doffs_given && !(dp->baseline > 0))
 		fct_usage_error("--doffs is for disparities and needs --baseline");
+	/* Their noise: --noise's (a model, or a file holding one), else the
+	 * one -K's dataset name implies; none without. */
+	struct fct_err err;
+	dp->noise = o->depth_noise;
+	if (o->noise && !fct_noise_names_model(o->noise) && fct_noise_read_file(o->noise, &dp->noise, &err))
+		fct_die_err(&err);
+	if (!o->noise && o->K)
+		fct_noise_named(o->K, &dp->noise);
 }
 
 /* The volume holds voxels to 2^23 from the origin each way (fuse.c's block
@@ -724,6 +774,8 @@ int main(int argc, char **argv)
 			fct_die_err(&err);
 		flow_s = fct_now() - tf;
 	}
+	struct rusage ru;   /* ru_maxrss: kilobytes on Linux and the BSDs */
+	long faults0 = getrusage(RUSAGE_SELF, &ru) ? 0 : ru.ru_minflt;
 	double tm = fct_now();
 	struct fct_mesh out;
 	int32_t mlo[3], mhi[3];
@@ -735,6 +787,9 @@ int main(int argc, char **argv)
 	                     o.fp.threads, &out, NULL, &err))
 		fct_die_err(&err);
 	double mc_s = fct_now() - tm, color_s = 0;
+	/* The pages marching cubes faulted in: its output where the memory
+	 * the views freed does not hold it (bench/NOTES.md). */
+	long mc_faults = getrusage(RUSAGE_SELF, &ru) ? 0 : ru.ru_minflt - faults0;
 	size_t nblocks = fct_voxgrid_count(g), gbytes = fct_voxgrid_bytes(g), ncolor = 0;
 	fct_voxgrid_free(g);    /* before the colour pass reads the views again */
 	if (o.color) {
@@ -762,12 +817,12 @@ int main(int argc, char **argv)
 	fct_report("carve_s", "%.4f", carve_s);
 	fct_report("flow_s", "%.4f", flow_s);
 	fct_report("mcubes_s", "%.4f", mc_s);
+	fct_report("mcubes_faults", "%ld", mc_faults);
 	if (o.color) {
 		fct_report("color_views", "%zu", ncolor);
 		fct_report("color_s", "%.4f", color_s);
 	}
 	fct_report("total_s", "%.4f", fct_now() - t0);
-	struct rusage ru;   /* ru_maxrss: kilobytes on Linux and the BSDs */
 	if (!getrusage(RUSAGE_SELF, &ru))
 		fct_report("peak_rss_mb", "%.1f", (double)ru.ru_maxrss / 1024);
 	fct_mesh_free(&out);

@@ -438,9 +438,37 @@ int fct_pose_read_file(const char *path, double pose[12], struct fct_err *err)
 
 void fct_pose_invert(const double pose[12], double inv[12])
 {
+	/* R^T when R is a rotation to rounding; else the inverse of the
+	 * matrix itself, so that a pose whose R has drifted off a rotation
+	 * (7-Scenes' are 1e-4 off) still maps its own points back onto their
+	 * pixels. */
+	const double *r0 = &pose[0], *r1 = &pose[4], *r2 = &pose[8];
+	double off = 0;
+	for (int i = 0; i < 3; i++)
+		for (int j = i; j < 3; j++) {
+			double d = pose[i] * pose[j] + pose[4 + i] * pose[4 + j] + pose[8 + i] * pose[8 + j] - (i == j);
+			off = fabs(d) > off ? fabs(d) : off;
+		}
+	if (!(off > 1e-12)) {
+		for (int i = 0; i < 3; i++) {
+			for (int j = 0; j < 3; j++)
+				inv[4 * i + j] = pose[4 * j + i];
+			inv[4 * i + 3] = -(pose[i] * pose[3] + pose[4 + i] * pose[7] + pose[8 + i] * pose[11]);
+		}
+		return;
+	}
+	/* The adjugate over the determinant: rows of the inverse are the
+	 * cross products of the columns' rows, divided by det. */
+	double c0[3] = { r1[1] * r2[2] - r1[2] * r2[1], r1[2] * r2[0] - r1[0] * r2[2], r1[0] * r2[1] - r1[1] * r2[0] };
+	double det = r0[0] * c0[0] + r0[1] * c0[1] + r0[2] * c0[2];
+	double m[3][3] = {
+		{ c0[0], r0[2] * r2[1] - r0[1] * r2[2], r0[1] * r1[2] - r0[2] * r1[1] },
+		{ c0[1], r0[0] * r2[2] - r0[2] * r2[0], r0[2] * r1[0] - r0[0] * r1[2] },
+		{ c0[2], r0[1] * r2[0] - r0[0] * r2[1], r0[0] * r1[1] - r0[1] * r1[0] },
+	};
 	for (int i = 0; i < 3; i++) {
 		for (int j = 0; j < 3; j++)
-			inv[4 * i + j] = pose[4 * j + i];
-		inv[4 * i + 3] = -(pose[i] * pose[3] + pose[4 + i] * pose[7] + pose[8 + i] * pose[11]);
+			inv[4 * i + j] = m[i][j] / det;
+		inv[4 * i + 3] = -(inv[4 * i] * pose[3] + inv[4 * i + 1] * pose[7] + inv[4 * i + 2] * pose[11]);
 	}
 }

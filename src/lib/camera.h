@@ -103,7 +103,9 @@ static inline void fct_pose_apply(const double pose[12], const double p[3], doub
 	for (int i = 0; i < 3; i++)
 		out[i] = pose[4 * i] * x + pose[4 * i + 1] * y + pose[4 * i + 2] * z + pose[4 * i + 3];
 }
-/* The inverse pose [R^T | -R^T t]. */
+/* The inverse pose: [R^T | -R^T t] when R is a rotation to rounding, else
+ * the inverse of the 3x4 matrix as it is (a pose whose R has drifted off
+ * a rotation, as 7-Scenes' have, still maps its points back). */
 void fct_pose_invert(const double pose[12], double inv[12]);
 
 #endif

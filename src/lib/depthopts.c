@@ -73,25 +73,11 @@ int fct_depth_opt(struct fct_depth_opts *o, int c, const char *arg)
 	return 1;
 }
 
-/* Does arg start with the name of a noise model (rather than name a file)? */
-static int names_model(const char *arg)
-{
-	size_t n = strcspn(arg, ":, \t");
-	const char *m = fct_noise_models();
-	while (*m) {
-		size_t k = strcspn(m, " ");
-		if (k == n && !strncmp(arg, m, n))
-			return 1;
-		m += k + (m[k] == ' ');
-	}
-	return 0;
-}
-
 void fct_depth_opts_check(struct fct_depth_opts *o)
 {
 	if (o->focal > 0 && !(o->depth.baseline > 0))
 		fct_usage_error("--focal is for disparities and needs --baseline");
-	if (o->noise && names_model(o->noise)) {
+	if (o->noise && fct_noise_names_model(o->noise)) {
 		struct fct_err err;
 		if (fct_noise_parse(&o->depth.noise, o->noise, &err))
 			fct_usage_error("--%s", err.msg);
@@ -142,7 +128,7 @@ static void resolve_noise(struct fct_depth_opts *o, const struct fct_image *img)
 {
 	struct fct_noise *nz = &o->depth.noise;
 	struct fct_err err;
-	if (o->noise && !names_model(o->noise) && fct_noise_read_file(o->noise, nz, &err))
+	if (o->noise && !fct_noise_names_model(o->noise) && fct_noise_read_file(o->noise, nz, &err))
 		fct_die_err(&err);
 	if (!o->noise && o->K)
 		fct_noise_named(o->K, nz);

@@ -50,13 +50,24 @@
  * depths through the pose and back, and some more in front of the surface
  * (truncated at +band), except voxels written only through the inside of
  * triangles over four voxels across, which no pixel measured (fuse.c,
- * image_cells). */
+ * image_cells).
+ *
+ * sigma, for a view whose sensor noise is known (NULL otherwise): per
+ * vertex of the mesh, the standard deviation of its position along its
+ * ray in metres (depthmesh.h's vertex property sigma).  True distance
+ * weighs each voxel's distance by 1 / (1 + (2 s / voxel)^2) besides the
+ * view's weight, s the mean sigma of the corners of the triangle nearest
+ * it: inverse-variance weights, the sensor's variance plus (voxel / 2)^2
+ * (what the volume resolves anyway) over the latter, so that data far
+ * more precise than the voxels weigh 1 and a noisy far wall weighs less
+ * than a near view of it.  Projective fusion, the baseline, ignores it. */
 struct fct_fuse_view {
 	const struct fct_mesh *mesh;
 	struct fct_camera cam;
 	double pose[12];
 	double ortho_step;
 	const float *depth;
+	const float *sigma;
 };
 
 enum fct_fuse_weight {

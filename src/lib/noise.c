@@ -23,6 +23,19 @@ const char *fct_noise_models(void)
 	return "none kinect tof poly stereo";
 }
 
+int fct_noise_names_model(const char *text)
+{
+	size_t n = strcspn(text, ":, \t");
+	const char *m = fct_noise_models();
+	while (*m) {
+		size_t k = strcspn(m, " ");
+		if (k == n && !strncmp(text, m, n))
+			return 1;
+		m += k + (m[k] == ' ');
+	}
+	return 0;
+}
+
 void fct_noise_kinect(struct fct_noise *nz)
 {
 	memset(nz, 0, sizeof *nz);

@@ -108,6 +108,10 @@ void fct_noise_format(const struct fct_noise *nz, char *buf, size_t size);
 /* The names of the models, blank-separated. */
 const char *fct_noise_models(void);
 
+/* Does text start with the name of a model (as --noise's argument, which
+ * may also name a file holding one)?  1 or 0. */
+int fct_noise_names_model(const char *text);
+
 /* The kinect model with the defaults above (unit 0). */
 void fct_noise_kinect(struct fct_noise *nz);
 

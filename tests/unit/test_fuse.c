@@ -118,6 +118,51 @@ static void test_plane(void)
 	fct_mesh_free(&m);
 }
 
+/* A view with per-vertex sigma: true distance weighs each voxel by
+ * 1 / (1 + (2 s / voxel)^2), s the mean of its nearest triangle's
+ * corners, and two views of the same square with different noise
+ * average their distances by those weights (fuse.h); projective fusion
+ * ignores sigma. */
+static void test_sigma_weight(void)
+{
+	struct fct_err err;
+	struct fct_mesh near, far;
+	square(&near, 40, 0.503);
+	square(&far, 40, 0.513);
+	float sn[41 * 41], sf[41 * 41];
+	for (int i = 0; i < 41 * 41; i++)
+		sn[i] = 0.002f, sf[i] = 0.01f;
+	struct fct_fuse_view v;
+	view_of(&v, &near);
+	v.sigma = sn;
+	struct fct_voxgrid *g = fct_voxgrid_new(0.01, 0, &err);
+	struct fct_fuse_params p = { 0.03, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, 0 };
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	float s, w;
+	double wn = 1 / (1 + (2 * 0.002 / 0.01) * (2 * 0.002 / 0.01)), wf = 1 / (1 + 2.0 * 2.0);
+	CHECK(fct_voxgrid_get(g, 3, -7, 51, &s, &w));
+	CHECK_NEAR(s, 0.503 - 0.51, 1e-6);
+	CHECK_NEAR(w, wn, 1e-6);   /* 0.862 */
+	/* The far square, five times noisier, weighs 0.2: the voxel's
+	 * distance moves a fifth of the way (weights 0.862 and 0.2). */
+	view_of(&v, &far);
+	v.sigma = sf;
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	CHECK(fct_voxgrid_get(g, 3, -7, 51, &s, &w));
+	CHECK_NEAR(w, wn + wf, 1e-6);
+	CHECK_NEAR(s, (wn * (0.503 - 0.51) + wf * (0.513 - 0.51)) / (wn + wf), 1e-6);
+	fct_voxgrid_free(g);
+	/* Projective: the baseline weighs 1 whatever the noise. */
+	g = fct_voxgrid_new(0.01, 0, &err);
+	p.projective = 1;
+	CHECK(fct_fuse_view(g, &v, &p, NULL, &err) == 0);
+	CHECK(fct_voxgrid_get(g, 3, -7, 51, &s, &w));
+	CHECK_NEAR(w, 1, 0);
+	fct_voxgrid_free(g);
+	fct_mesh_free(&near);
+	fct_mesh_free(&far);
+}
+
 /* Voxel l of block vb: its indices. */
 static void voxel_index(const struct fct_voxblock *vb, int l, int32_t ijk[3])
 {
@@ -698,6 +743,7 @@ static void test_quat(void)
 int main(void)
 {
 	test_plane();
+	test_sigma_weight();
 	test_grid();
 	test_corner();
 	test_band_edge();

@@ -146,6 +146,19 @@ static void test_parse_errors(void)
 	expect_error("tof units 1", "noise: expected tof[:A,B], then optionally \"unit U\"");
 }
 
+/* A --noise argument names a model, or a file holding one. */
+static void test_names_model(void)
+{
+	CHECK(fct_noise_names_model("kinect"));
+	CHECK(fct_noise_names_model("kinect:585,0.075"));
+	CHECK(fct_noise_names_model("poly 0 0 0.0012"));
+	CHECK(fct_noise_names_model("none"));
+	CHECK(!fct_noise_names_model("kinectx"));
+	CHECK(!fct_noise_names_model("view00.noise"));
+	CHECK(!fct_noise_names_model("dir/kinect"));
+	CHECK(!fct_noise_names_model(""));
+}
+
 /* The header form reads back to the same model, for every model, and the
  * command-line and header spellings agree. */
 static void test_round_trip(void)
@@ -308,6 +321,7 @@ int main(void)
 	test_sigma();
 	test_steps();
 	test_parse_errors();
+	test_names_model();
 	test_round_trip();
 	test_estimate();
 	CHECK_DONE();

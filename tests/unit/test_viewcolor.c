@@ -180,7 +180,7 @@ static void test_room(void)
 		fct_image_free(&depth);
 		for (size_t k = 0; k < meshes[i].nv; k++)
 			fct_pose_apply(pose, &meshes[i].xyz[3 * k], &meshes[i].xyz[3 * k]);
-		views[i] = (struct fct_fuse_view){ &meshes[i], cam, { 0 }, 0, NULL };
+		views[i] = (struct fct_fuse_view){ .mesh = &meshes[i], .cam = cam };
 		memcpy(views[i].pose, pose, sizeof pose);
 		CHECK(fct_fuse_view(g, &views[i], &fp, NULL, &err) == 0);
 	}
