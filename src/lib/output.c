@@ -2,6 +2,7 @@
 #include "output.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -81,15 +82,23 @@ int fct_out_open(struct fct_out *o, const char *path, struct fct_err *err)
 	}
 	snprintf(o->tmp, n, "%s/.%.*s.XXXXXX", dir, keep, base);
 	free(dir);
+	/* Signals wait while the file is made and remembered: killed between
+	 * the two, a program left its temporary behind (a test that kills as
+	 * soon as the file shows caught it there under load). */
+	sigset_t all, before;
+	sigfillset(&all);
+	sigprocmask(SIG_BLOCK, &all, &before);
 	int fd = mkstemp(o->tmp);
+	int e = errno;
+	if (fd >= 0)
+		remember_temporary(o->tmp);
+	sigprocmask(SIG_SETMASK, &before, NULL);
 	if (fd < 0) {
-		int e = errno;
 		free(o->tmp);
 		o->tmp = NULL;
 		fct_out_abort(o);
 		return fct_fail(err, "%s: %s", path, strerror(e));
 	}
-	remember_temporary(o->tmp);
 	/* mkstemp makes 0600; give the file the permissions a plain create would. */
 	mode_t mask = umask(0);
 	umask(mask);
