@@ -194,6 +194,22 @@ int fct_raster_init(struct fct_raster *r, int width, int height, struct fct_err 
 		r->id[i] = FCT_RASTER_EMPTY;
 	r->width = width;
 	r->height = height;
+	r->cap = n;
+	return 0;
+}
+
+int fct_raster_reset(struct fct_raster *r, int width, int height, struct fct_err *err)
+{
+	if (width < 1 || height < 1 || (size_t)width * (size_t)height > r->cap)
+		return fct_fail(err, "picture size %dx%d beyond the buffer's %zu pixels", width, height,
+		                r->cap);
+	size_t n = (size_t)width * (size_t)height;
+	memset(r->w, 0, n * sizeof *r->w);
+	memset(r->b, 0, 2 * n * sizeof *r->b);
+	for (size_t i = 0; i < n; i++)
+		r->id[i] = FCT_RASTER_EMPTY;
+	r->width = width;
+	r->height = height;
 	return 0;
 }
 

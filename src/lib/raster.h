@@ -73,6 +73,7 @@ struct fct_raster {
 	float *w;
 	uint32_t *id;
 	float *b;       /* 2 per pixel */
+	size_t cap;     /* pixels allocated */
 };
 
 /* Allocate an empty buffer (sides 1 .. FCT_IMAGE_MAX_SIDE, at most
@@ -80,6 +81,10 @@ struct fct_raster {
 int fct_raster_init(struct fct_raster *r, int width, int height, struct fct_err *err);
 /* Free what r owns; r may be NULL. */
 void fct_raster_free(struct fct_raster *r);
+/* Empty r again as a buffer of width x height pixels, within the pixels
+ * it was allocated with (a buffer reused for pictures of several sizes).
+ * 0, or -1 when they do not fit. */
+int fct_raster_reset(struct fct_raster *r, int width, int height, struct fct_err *err);
 
 /* Draw the triangle with camera-frame corners q0 q1 q2 (see
  * fct_view_to_camera) as triangle id: clipped to z >= v->near and to a

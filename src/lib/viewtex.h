@@ -1,0 +1,152 @@
+/* viewtex.h - texture a mesh from registered colour photographs: one photo
+ * per face, chosen by a graph cut, the faces' texture packed into atlas
+ * images, the colour levelled across the seams.  Waechter, Moehrle and
+ * Goesele, "Let There Be Color! Large-Scale Texturing of 3D
+ * Reconstructions" (ECCV 2014) is the method; Kang, Johnson and Szeliski
+ * (DEC CRL 95/7) sec. 9 name it as the step after their planar models, and
+ * sec. 6-7 texture each face from the one image in which it lies whole.
+ *
+ * 1. Candidates (fct_viewtex_add_view, one photo at a time).  The mesh is
+ *    rasterised into the photo's camera (raster.h): the visibility buffer
+ *    tells, per pixel, the face the photo sees there.  A photo is a
+ *    candidate for a face when the face lies whole in the picture, in
+ *    front of the camera, seen at most acos(min_cos) from its normal, no
+ *    surface of the mesh lies in front of its centre and corners (by more
+ *    than depth_tol of their depth), and at least 60% of its projected
+ *    area is visible pixels.  Its quality is the sum over those pixels of
+ *    (gradient magnitude + 4 levels) x (distance weight), times the cosine
+ *    and the visible fraction squared: the gradient magnitude integral of
+ *    Waechter et al. (large, close, sharp views win), with pixels within
+ *    edge_px of a depth edge of the mesh or of the picture's border
+ *    weighing less ((1 + d) / (1 + edge_px)).  Each face keeps its best
+ *    `candidates` photos.
+ * 2. Labels (fct_viewtex_label): E = sum_f A_f (1 - q_f(l) / max q_f) +
+ *    smooth * sum_{f~g} L_fg [l_f != l_g], with A_f the face's largest
+ *    projected area and L_fg the shared edge's length, both in pixels of
+ *    the faces' best photos: a seam costs `smooth` per pixel of its length,
+ *    a worse photo its loss of quality over the face's area.  Minimised by
+ *    alpha-expansion (graphcut.h), started from each face's best photo.
+ * 3. Charts (fct_viewtex_layout): connected faces with the same photo
+ *    (and, with rectify, the same planar patch) form a chart.  A chart is
+ *    parametrised by its photo's projection at texel_scale texels per
+ *    pixel; a chart on a planar patch (face property patch, element plane)
+ *    whose faces lie within 25 degrees of the plane is parametrised in the
+ *    plane's own frame instead, metric and undistorted, at the photo's
+ *    finest resolution over the chart (focal length over the depth of the
+ *    nearest face, times texel_scale), its axes along the photo's.  Charts
+ *    get `padding` texels on every side and are packed on shelves (tallest
+ *    first) into square power-of-two pages no larger than atlas_max (the
+ *    last page shortened to the power of two that holds it), at most
+ *    max_pages of them: the texel scale shrinks until they fit.  Faces no
+ *    photo sees share one block of the fill colour.
+ * 4. Texels (fct_viewtex_sample_view, one photo at a time): each chart's
+ *    faces are rasterised into its place in the atlas (raster.h again,
+ *    with flat z), every texel's barycentrics give its 3-D point, the point
+ *    is projected into the chart's photo and sampled bilinearly, so the
+ *    texture is right under any parametrisation.  Seam edges are sampled
+ *    in both photos along their length.
+ * 5. Levelling (fct_viewtex_finish): with level >= 1 a gain and offset per
+ *    photo and channel, by least squares over the seam samples (each
+ *    photo's gain held towards 1 and offset towards 0 by a weak prior);
+ *    with level 2 also Waechter et al.'s global seam levelling: an offset
+ *    per vertex and chart, interpolated over the faces, that makes the two
+ *    sides of every seam sample agree and varies smoothly inside charts
+ *    (least squares, conjugate gradients).  Then the padding: texels beside
+ *    a chart take the mean of their filled neighbours, `padding` rings deep.
+ *
+ * Memory is bounded by the mesh (candidates per face, charts, seams) and
+ * the atlas pages; one photo is held at a time.  The same inputs give the
+ * same texture, bit for bit. */
+#ifndef FCT_VIEWTEX_H
+#define FCT_VIEWTEX_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "camera.h"
+#include "err.h"
+#include "image.h"
+#include "mesh.h"
+
+struct fct_viewtex_params {
+	double smooth;        /* seam cost per pixel of seam, in pixels of area (default 1) */
+	double min_cos;       /* most oblique view accepted, cosine (default 0.1) */
+	double depth_tol;     /* occlusion test, relative depth (default 0.02) */
+	double edge_px;       /* falloff near depth edges and borders, pixels (default 8) */
+	double texel_scale;   /* texels per photo pixel (default 1) */
+	int padding;          /* texels around each chart (default 4) */
+	int atlas_max;        /* largest page side, a power of two in [64, 16384] (default 4096) */
+	int max_pages;        /* (default 16) */
+	int level;            /* 0 none, 1 gain and offset per photo, 2 and seam levelling (default 2) */
+	int rectify;          /* planar patches in their plane's frame (default 1) */
+	int candidates;       /* photos kept per face, 1 to 32 (default 6) */
+	int max_cycles;       /* alpha-expansion cycles (default 8) */
+	uint8_t fill[3];      /* colour of faces no photo sees (default 128 128 128) */
+};
+
+void fct_viewtex_params_default(struct fct_viewtex_params *p);
+
+struct fct_viewtex_stats {
+	size_t faces;
+	size_t unseen;            /* faces no photo sees (fill colour) */
+	size_t candidates;        /* (face, photo) pairs kept */
+	size_t views_used;        /* photos that texture some face */
+	size_t charts, rectified; /* charts, and those in their plane's frame */
+	size_t seam_edges;        /* edges between charts */
+	int cycles;               /* alpha-expansion cycles run */
+	double energy_start, energy;
+	size_t pages;
+	int page_width, page_height;   /* of the first page */
+	double fill_ratio;        /* texels of faces over the pages' texels */
+	double scale;             /* texel scale used */
+	double seam_rms_before;   /* RMS colour difference of the seam samples, levels */
+	double seam_rms_after;    /* the same after levelling */
+};
+
+struct fct_viewtex;
+
+/* A texturer of m (kept by pointer: it must outlive the texturer and keep
+ * its faces and vertices until fct_viewtex_apply) from nviews photos.
+ * Fails (message set) on a mesh without faces, a non-finite vertex, more
+ * than 2^31 faces or photos, bad parameters, out of memory. */
+struct fct_viewtex *fct_viewtex_new(const struct fct_mesh *m, size_t nviews,
+                                    const struct fct_viewtex_params *p, struct fct_err *err);
+void fct_viewtex_free(struct fct_viewtex *T);
+
+/* Step 1 for photo k (each k once, any order): cam a pinhole of rgb's
+ * size, pose camera-to-world, rgb RGB U8.  *seen (may be NULL) gets the
+ * faces it is a candidate for.  0 or -1. */
+int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camera *cam,
+                         const double pose[12], const struct fct_image *rgb, size_t *seen,
+                         struct fct_err *err);
+
+/* Steps 2 and 3, after every photo was added.  0 or -1. */
+int fct_viewtex_label(struct fct_viewtex *T, struct fct_err *err);
+int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err);
+
+/* Faces textured from photo k (after labelling); 0: its image need not be
+ * read again. */
+size_t fct_viewtex_view_faces(const struct fct_viewtex *T, size_t k);
+
+/* Step 4 for photo k (the same image as was added), for every photo with
+ * faces.  0 or -1. */
+int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_image *rgb,
+                            struct fct_err *err);
+
+/* Step 5.  0 or -1. */
+int fct_viewtex_finish(struct fct_viewtex *T, struct fct_err *err);
+
+/* The atlas pages (RGB U8), after finish. */
+size_t fct_viewtex_npages(const struct fct_viewtex *T);
+const struct fct_image *fct_viewtex_page(const struct fct_viewtex *T, size_t i);
+
+/* Write the mapping into m (the mesh given to new): texture coordinates
+ * per corner (texmap.h: face lists with per_face, else vertex s t with
+ * vertices copied at chart borders), texnumber the page, and TextureFile
+ * comments names[0 .. npages) replacing any there.  0 or -1. */
+int fct_viewtex_apply(struct fct_viewtex *T, struct fct_mesh *m, char *const *names, int per_face,
+                      struct fct_err *err);
+
+void fct_viewtex_get_stats(const struct fct_viewtex *T, struct fct_viewtex_stats *st);
+
+#endif
