@@ -71,12 +71,13 @@ struct options {
 
 static void parse_options(int argc, char **argv, struct options *o)
 {
-	enum { CAMERA = 256, POSES, IMAGE, ATLAS, FILL, LEVEL, MAXPAGES, MINANGLE, NORECT, PADDING,
-	       PERVERTEX, SMOOTH, SCALE, VERSION };
+	enum { CAMERA = 256, POSES, IMAGE, ATLAS, BLEND, CANDIDATES, FILL, LEVEL, MAXPAGES, MINANGLE,
+	       NORECT, PADDING, PERVERTEX, SMOOTH, SCALE, VERSION };
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, VERSION},
 		{"camera", required_argument, NULL, CAMERA}, {"poses", required_argument, NULL, POSES},
 		{"image", required_argument, NULL, IMAGE}, {"atlas-size", required_argument, NULL, ATLAS},
+		{"blend", no_argument, NULL, BLEND}, {"candidates", required_argument, NULL, CANDIDATES},
 		{"fill", required_argument, NULL, FILL}, {"level", required_argument, NULL, LEVEL},
 		{"max-pages", required_argument, NULL, MAXPAGES},
 		{"min-angle", required_argument, NULL, MINANGLE},
@@ -111,6 +112,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 				fct_usage_error("--atlas-size: %ld is not a power of two", n);
 			o->p.atlas_max = (int)n;
 			break;
+		case BLEND: o->p.blend = 1; break;
+		case CANDIDATES: o->p.candidates = (int)fct_opt_long("--candidates", optarg, 1, 32); break;
 		case FILL:
 			fct_opt_doubles("--fill", optarg, v, 3);
 			for (int k = 0; k < 3; k++) {
@@ -236,7 +239,7 @@ int main(int argc, char **argv)
 	/* Texels, one photo at a time, each photo that textures faces. */
 	t1 = fct_now();
 	for (size_t i = 0; i < o.nimages; i++) {
-		if (!fct_viewtex_view_faces(T, i))
+		if (!fct_viewtex_needs_view(T, i))
 			continue;
 		struct fct_image rgb;
 		struct fct_camera pc;
@@ -274,6 +277,7 @@ int main(int argc, char **argv)
 	fct_report("faces", "%zu", st.faces);
 	fct_report("faces_unseen", "%zu", st.unseen);
 	fct_report("candidates", "%zu", st.candidates);
+	fct_report("outliers", "%zu", st.outliers);
 	fct_report("cycles", "%d", st.cycles);
 	fct_report("energy_start", "%.6g", st.energy_start);
 	fct_report("energy", "%.6g", st.energy);

@@ -18,14 +18,14 @@
 
 #define TILE 1024            /* atlas texels rasterised at a time, per side */
 #define GRAD_FLOOR 4.0       /* levels added to the gradient: flat faces still prefer area */
-#define MIN_VISIBLE 0.6      /* visible fraction of a candidate's projected area */
+#define MIN_VISIBLE 0.3      /* visible fraction of a candidate's projected area */
 #define PLANAR_COS 0.906     /* cos 25 degrees: faces that rectify with their plane */
 #define SEAM_SAMPLES 16      /* most samples along one seam edge */
 
 void fct_viewtex_params_default(struct fct_viewtex_params *p)
 {
 	memset(p, 0, sizeof *p);
-	p->smooth = 1;
+	p->smooth = 10;
 	p->min_cos = 0.1;
 	p->depth_tol = 0.02;
 	p->edge_px = 8;
@@ -43,6 +43,8 @@ void fct_viewtex_params_default(struct fct_viewtex_params *p)
 struct cand {                /* a photo that can texture a face */
 	float q;                 /* quality (see viewtex.h) */
 	float area;              /* projected area, pixels */
+	float col[3];            /* mean colour of its visible pixels */
+	float npix;              /* those pixels (at least 1) */
 	int32_t view;
 };
 
@@ -52,6 +54,7 @@ struct vt_view {
 	struct fct_view v;
 	int added;
 	size_t faces;            /* labelled with it */
+	size_t cands;            /* faces it is a candidate of */
 };
 
 struct chart {
@@ -101,9 +104,14 @@ struct fct_viewtex {
 	struct seam *seams;
 	size_t nseams, nsamples;
 	float *seam_col;         /* 6 per sample: side 0 RGB, side 1 RGB */
-	double *gain, *offset;   /* 3 per view */
+	uint8_t *seam_flat;      /* per sample: bit s when side s lies in a flat part of its photo */
+	double *gain;            /* 3 per view */
 	float *voff;             /* 3 per corner: levelling offsets */
 	struct fct_raster tile;
+	uint16_t **bsum;         /* blending: 3 colour sums per texel, per page */
+	uint8_t **bcount;        /* and the photos summed */
+	float *bdepth;           /* the depth seen by the photo being blended */
+	size_t bview;
 	struct fct_viewtex_stats st;
 	size_t texels;           /* covered by faces */
 };
@@ -261,10 +269,17 @@ void fct_viewtex_free(struct fct_viewtex *T)
 	free(T->mask);
 	free(T->seams);
 	free(T->seam_col);
+	free(T->seam_flat);
 	free(T->gain);
-	free(T->offset);
 	free(T->voff);
 	fct_raster_free(&T->tile);
+	for (size_t i = 0; T->bsum && i < T->npages; i++)
+		free(T->bsum[i]);
+	for (size_t i = 0; T->bcount && i < T->npages; i++)
+		free(T->bcount[i]);
+	free(T->bsum);
+	free(T->bcount);
+	free(T->bdepth);
 	free(T);
 }
 
@@ -315,20 +330,45 @@ static float *gradient(const struct fct_image *rgb, struct fct_err *err)
 
 /* Keep (q, area, view) among face f's best candidates (by quality, ties
  * to the lower view). */
-static void keep_candidate(struct fct_viewtex *T, size_t f, float q, float area, int32_t view)
+static void keep_candidate(struct fct_viewtex *T, size_t f, const struct cand *nc)
 {
 	size_t K = (size_t)T->p.candidates;
 	struct cand *c = T->cand + K * f;
 	size_t n = T->ncand[f], at = n;
-	while (at > 0 && (c[at - 1].q < q || (c[at - 1].q == q && c[at - 1].view > view)))
+	while (at > 0 && (c[at - 1].q < nc->q || (c[at - 1].q == nc->q && c[at - 1].view > nc->view)))
 		at--;
 	if (at >= K)
 		return;
 	if (n == K)
 		n--;
 	memmove(c + at + 1, c + at, (n - at) * sizeof *c);
-	c[at].q = q, c[at].area = area, c[at].view = view;
+	c[at] = *nc;
 	T->ncand[f] = (uint8_t)(n + 1);
+}
+
+/* The mesh seen by view V: r (set up here) gets its visibility buffer,
+ * *depth (malloc'd, W*H, 0 where nothing) the depth of what it sees.
+ * 0 or -1. */
+static int view_raster(const struct fct_viewtex *T, const struct vt_view *V, struct fct_raster *r,
+                       float **depth, struct fct_err *err)
+{
+	*depth = NULL;
+	if (fct_raster_init(r, V->cam.width, V->cam.height, err))
+		return -1;
+	for (size_t t = 0; t < T->ntri; t++) {
+		double q[3][3];
+		for (int j = 0; j < 3; j++)
+			fct_view_to_camera(&V->v, T->m->xyz + 3 * (size_t)T->tri[3 * t + (size_t)j], q[j]);
+		fct_raster_triangle(r, &V->v, q[0], q[1], q[2], (uint32_t)t);
+	}
+	size_t np = (size_t)V->cam.width * (size_t)V->cam.height;
+	if (!(*depth = fct_alloc_array(np, sizeof **depth, err))) {
+		fct_raster_free(r);
+		return -1;
+	}
+	for (size_t i = 0; i < np; i++)
+		(*depth)[i] = r->w[i] > 0 ? 1 / r->w[i] : 0;
+	return 0;
 }
 
 int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camera *cam,
@@ -352,23 +392,16 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 	int W = cam->width, H = cam->height;
 	size_t np = (size_t)W * (size_t)H, nf = m->nf;
 	struct fct_raster r;
-	if (fct_raster_init(&r, W, H, err))
+	float *depth;
+	if (view_raster(T, V, &r, &depth, err))
 		return -1;
-	for (size_t t = 0; t < T->ntri; t++) {
-		double q[3][3];
-		for (int j = 0; j < 3; j++)
-			fct_view_to_camera(&V->v, m->xyz + 3 * (size_t)T->tri[3 * t + (size_t)j], q[j]);
-		fct_raster_triangle(&r, &V->v, q[0], q[1], q[2], (uint32_t)t);
-	}
-	float *depth = fct_alloc_array(np, sizeof *depth, err);
-	float *G = depth ? gradient(rgb, err) : NULL;
-	float *E = NULL, *qsum = NULL;
+	float *G = gradient(rgb, err);
+	float *E = NULL, *qsum = NULL, *csum = NULL;
 	uint32_t *cnt = NULL;
+	const unsigned char *pix = rgb->data;
 	int rc = -1;
 	if (!G)
 		goto out;
-	for (size_t i = 0; i < np; i++)
-		depth[i] = r.w[i] > 0 ? 1 / r.w[i] : 0;
 	/* Distance to depth edges and to the picture's border. */
 	double slope = FCT_DEFAULT_MAX_JUMP * fct_camera_pixel_angle(cam);
 	if (T->p.edge_px > 0) {
@@ -386,7 +419,8 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 	}
 	cnt = calloc(nf, sizeof *cnt);
 	qsum = calloc(nf, sizeof *qsum);
-	if (!cnt || !qsum) {
+	csum = calloc(3 * nf, sizeof *csum);
+	if (!cnt || !qsum || !csum) {
 		fct_fail(err, "out of memory");
 		goto out;
 	}
@@ -396,25 +430,27 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 		uint32_t f = T->tface[r.id[i]];
 		cnt[f]++;
 		qsum[f] += (float)((G[i] + GRAD_FLOOR) * (E ? E[i] : 1));
+		for (int j = 0; j < 3; j++)
+			csum[3 * (size_t)f + (size_t)j] += pix[3 * i + (size_t)j];
 	}
 	const double centre[3] = { pose[3], pose[7], pose[11] };
 	size_t nseen = 0;
 	for (size_t f = 0; f < nf; f++) {
-		/* Whole in the picture, in front. */
+		/* In front; its projected area, in the picture or not. */
 		uint32_t s = m->fstart[f], n = fct_face_size(m, f);
-		double area2 = 0, u0 = 0, w0 = 0, up = 0, wp = 0, z;
-		int inside = n >= 3;
-		for (uint32_t i = 0; i < n && inside; i++) {
+		double area2 = 0, u0 = 0, w0 = 0, up = 0, wp = 0, z = 0;
+		int front = n >= 3, inside = 1;
+		for (uint32_t i = 0; i < n && front; i++) {
 			double u = 0, w = 0;
-			inside = project(&V->v, m->xyz + 3 * (size_t)m->fvert[s + i], &u, &w, &z) &&
-			         u >= 0 && w >= 0 && u <= W - 1 && w <= H - 1;
+			front = project(&V->v, m->xyz + 3 * (size_t)m->fvert[s + i], &u, &w, &z);
+			inside &= u >= 0 && w >= 0 && u <= W - 1 && w <= H - 1;
 			if (i == 0)
 				u0 = u, w0 = w;
 			else
 				area2 += (up - u0) * (w - w0) - (wp - w0) * (u - u0);
 			up = u, wp = w;
 		}
-		if (!inside)
+		if (!front || (!inside && !cnt[f]))
 			continue;
 		double area = 0.5 * fabs(area2);
 		/* Seen from not too far off its normal. */
@@ -422,39 +458,32 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 		fct_v3_sub(ray, centre, T->fc + 3 * f);
 		double len = sqrt(fct_v3_dot(ray, ray));
 		double cs = len > 0 ? fabs(fct_v3_dot(ray, T->fn + 3 * f)) / len : 0;
-		if (!(cs >= T->p.min_cos) || !(area > 0))
+		if (!(cs > 0) || !(area > 0))
 			continue;
-		/* Nothing of the mesh in front of its centre, nor of its
-		 * corners pulled a fifth of the way in. */
-		int clear = 1;
-		for (uint32_t i = 0; i <= n && clear; i++) {
-			double x[3], u = 0, w = 0;
-			const double *c = T->fc + 3 * f;
-			if (i == n) {
-				memcpy(x, c, sizeof x);
-			} else {
-				const double *p = m->xyz + 3 * (size_t)m->fvert[s + i];
-				for (int j = 0; j < 3; j++)
-					x[j] = p[j] + 0.2 * (c[j] - p[j]);
-			}
-			if (!project(&V->v, x, &u, &w, &z))
-				clear = 0;
-			else {
-				int px = (int)floor(u + 0.5), py = (int)floor(w + 0.5);
-				px = px < 0 ? 0 : px >= W ? W - 1 : px;
-				py = py < 0 ? 0 : py >= H ? H - 1 : py;
-				float d = depth[(size_t)py * (size_t)W + (size_t)px];
-				clear = !(d > 0 && d < z * (1 - T->p.depth_tol));
-			}
+		/* The part of it the photo sees: its visible pixels, or for a
+		 * face of a few pixels, nothing of the mesh in front of its
+		 * centre. */
+		double vis;
+		if (area >= 8) {
+			vis = fmin(1, cnt[f] / area);
+		} else {
+			double u = 0, w = 0;
+			project(&V->v, T->fc + 3 * f, &u, &w, &z);
+			int px = (int)floor(u + 0.5), py = (int)floor(w + 0.5);
+			px = px < 0 ? 0 : px >= W ? W - 1 : px;
+			py = py < 0 ? 0 : py >= H ? H - 1 : py;
+			float d = depth[(size_t)py * (size_t)W + (size_t)px];
+			vis = inside && !(d > 0 && d < z * (1 - T->p.depth_tol));
 		}
-		if (!clear)
+		if (!(vis > 0))
 			continue;
-		double vis = area >= 8 ? fmin(1, cnt[f] / area) : 1;
-		if (vis < MIN_VISIBLE)
-			continue;
+		struct cand nc;
 		double q;
 		if (cnt[f] > 0) {
 			q = qsum[f];
+			for (int j = 0; j < 3; j++)
+				nc.col[j] = csum[3 * f + (size_t)j] / (float)cnt[f];
+			nc.npix = (float)cnt[f];
 		} else {       /* smaller than a pixel: its centre's pixel, times its area */
 			double u = 0, w = 0;
 			project(&V->v, T->fc + 3 * f, &u, &w, &z);
@@ -463,9 +492,17 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 			py = py < 0 ? 0 : py >= H ? H - 1 : py;
 			size_t i = (size_t)py * (size_t)W + (size_t)px;
 			q = area * (G[i] + GRAD_FLOOR) * (E ? E[i] : 1);
+			for (int j = 0; j < 3; j++)
+				nc.col[j] = pix[3 * i + (size_t)j];
+			nc.npix = 1;
 		}
-		q *= cs * vis * vis;
-		keep_candidate(T, f, (float)q, (float)area, (int32_t)k);
+		/* Seen too obliquely or too little: a last resort, for faces no
+		 * photo sees well. */
+		int poor = !(cs >= T->p.min_cos) || vis < MIN_VISIBLE;
+		nc.q = (float)(q * cs * vis * vis * (poor ? 1e-3 : 1));
+		nc.area = (float)area;
+		nc.view = (int32_t)k;
+		keep_candidate(T, f, &nc);
 		nseen++;
 	}
 	if (seen)
@@ -478,15 +515,163 @@ out:
 	free(E);
 	free(cnt);
 	free(qsum);
+	free(csum);
 	return rc;
 }
 
-/* ---- step 2: labels ------------------------------------------------------------ */
+/* ---- step 2: photometry, labels ------------------------------------------------- */
+
+/* The colour of candidate c after its photo's gain. */
+static inline double corrected(const struct fct_viewtex *T, const struct cand *c, int ch)
+{
+	return T->gain[3 * (size_t)c->view + (size_t)ch] * c->col[ch];
+}
+
+/* The weight of a candidate's colour: its visible pixels, at most 256, so
+ * that large faces do not decide alone. */
+static inline double colour_weight(const struct cand *c)
+{
+	return fmin(c->npix, 256);
+}
+
+/* Each face's consensus colour mu (3 per face): the weighted mean of its
+ * candidates' corrected colours, each also weighted by rw. */
+static void consensus(const struct fct_viewtex *T, const float *rw, double *mu)
+{
+	size_t K = (size_t)T->p.candidates;
+	for (size_t f = 0; f < T->m->nf; f++) {
+		const struct cand *c = T->cand + K * f;
+		for (int ch = 0; ch < 3; ch++) {
+			double sw = 0, sx = 0;
+			for (size_t i = 0; i < T->ncand[f]; i++) {
+				double w = colour_weight(&c[i]) * rw[K * f + i];
+				sw += w, sx += w * corrected(T, &c[i], ch);
+			}
+			mu[3 * f + (size_t)ch] = sw > 0 ? sx / sw : 0;
+		}
+	}
+}
+
+/* Distance of candidate c of face f from the face's consensus, levels. */
+static double deviation(const struct fct_viewtex *T, const struct cand *c, const double *mu)
+{
+	double r2 = 0;
+	for (int ch = 0; ch < 3; ch++) {
+		double r = corrected(T, c, ch) - mu[ch];
+		r2 += r * r;
+	}
+	return sqrt(r2);
+}
+
+/* One gain per photo and channel against the consensus: least squares
+ * over the faces seen by two or more photos, held towards 1 by a prior of
+ * a hundredth of the photo's weight; then all scaled so that the corrected
+ * colours' weighted sum is the raw colours' (the faces fix only ratios:
+ * the texture keeps the photos' mean level). */
+static void fit_gains(struct fct_viewtex *T, const float *rw, const double *mu, double *acc)
+{
+	size_t nf = T->m->nf, V = T->nviews, K = (size_t)T->p.candidates;
+	for (int ch = 0; ch < 3; ch++) {
+		memset(acc, 0, V * 3 * sizeof *acc);        /* sum w, w x x, w x y */
+		double mean = 0, tot = 0, raw = 0, cor = 0;
+		for (size_t f = 0; f < nf; f++) {
+			if (T->ncand[f] < 2)
+				continue;
+			const struct cand *c = T->cand + K * f;
+			for (size_t i = 0; i < T->ncand[f]; i++) {
+				double w = colour_weight(&c[i]) * rw[K * f + i], x = c[i].col[ch];
+				double *a = acc + 3 * (size_t)c[i].view;
+				a[0] += w, a[1] += w * x * x, a[2] += w * x * mu[3 * f + (size_t)ch];
+				mean += w * x, tot += w;
+			}
+		}
+		mean = tot > 0 ? fmax(mean / tot, 1) : 128;
+		for (size_t k = 0; k < V; k++) {
+			const double *a = acc + 3 * k;
+			double lam = 0.01 * a[0] * mean * mean + 1e-9;
+			double g = (a[2] + lam) / (a[1] + lam);
+			T->gain[3 * k + (size_t)ch] = g > 0.05 && g < 20 ? g : 1;
+		}
+		for (size_t f = 0; f < nf; f++)
+			for (size_t i = 0; i < T->ncand[f]; i++) {
+				const struct cand *c = T->cand + K * f + i;
+				raw += colour_weight(c) * c->col[ch];
+				cor += colour_weight(c) * corrected(T, c, ch);
+			}
+		double sc = cor > 0 ? raw / cor : 1;
+		for (size_t k = 0; k < V; k++)
+			T->gain[3 * k + (size_t)ch] *= sc;
+	}
+}
+
+/* Photometric calibration (level >= 1): a gain per photo and channel (the
+ * cameras' exposure and white balance) that makes the mean colours of each
+ * face in its candidate photos agree, by alternating between each face's
+ * consensus colour and each photo's gain, the consensus Huber-weighted
+ * (HUBER levels) against the last residuals.  Then, choosing one photo per
+ * face, the photo-consistency check of Waechter et al.: for faces with
+ * three or more candidates, those whose corrected colour lies farther than
+ * OUTLIER levels from the consensus are dropped (the photo saw something
+ * in front of the face that the mesh does not hold, or misregistered it).
+ * Blending keeps them all: the mean takes care of a stray photo. */
+#define HUBER 8.0
+#define OUTLIER 40.0
+static int calibrate(struct fct_viewtex *T, struct fct_err *err)
+{
+	size_t nf = T->m->nf, K = (size_t)T->p.candidates;
+	double *mu = fct_alloc_array(nf, 3 * sizeof *mu, err);
+	double *acc = fct_alloc_array(T->nviews, 3 * sizeof *acc, err);
+	float *rw = fct_alloc_array(nf * K, sizeof *rw, err);       /* robust weights */
+	if (!mu || !acc || !rw) {
+		free(mu);
+		free(acc);
+		free(rw);
+		return -1;
+	}
+	for (size_t i = 0; i < nf * K; i++)
+		rw[i] = 1;
+	int iters = T->p.level >= 1 ? 12 : 1;
+	for (int it = 0; it < iters; it++) {
+		consensus(T, rw, mu);
+		for (size_t f = 0; f < nf; f++)
+			for (size_t i = 0; i < T->ncand[f]; i++) {
+				double r = deviation(T, &T->cand[K * f + i], mu + 3 * f);
+				rw[K * f + i] = (float)(r <= HUBER ? 1 : HUBER / r);
+			}
+		if (it + 1 < iters)
+			fit_gains(T, rw, mu, acc);
+	}
+	for (size_t f = 0; f < nf && !T->p.blend; f++) {
+		if (T->ncand[f] < 3)
+			continue;
+		struct cand *c = T->cand + K * f;
+		size_t n = 0;
+		for (size_t i = 0; i < T->ncand[f]; i++) {
+			if (deviation(T, &c[i], mu + 3 * f) <= OUTLIER)
+				c[n++] = c[i];
+			else
+				T->st.outliers++;
+		}
+		if (n)
+			T->ncand[f] = (uint8_t)n;
+	}
+	free(mu);
+	free(acc);
+	free(rw);
+	return 0;
+}
 
 int fct_viewtex_label(struct fct_viewtex *T, struct fct_err *err)
 {
 	const struct fct_mesh *m = T->m;
-	size_t nf = m->nf, K = (size_t)T->p.candidates;
+	size_t nf = m->nf, K = (size_t)T->p.candidates, V = T->nviews;
+	T->gain = fct_alloc_array(V, 3 * sizeof *T->gain, err);
+	if (!T->gain)
+		return -1;
+	for (size_t i = 0; i < 3 * V; i++)
+		T->gain[i] = 1;
+	if (calibrate(T, err))
+		return -1;
 	size_t *start = fct_alloc_array(nf + 1, sizeof *start, err);
 	size_t *nb_start = fct_alloc_array(nf + 1, sizeof *nb_start, err);
 	double *ppm = fct_alloc_array(nf, sizeof *ppm, err);       /* pixels per metre */
@@ -568,6 +753,9 @@ int fct_viewtex_label(struct fct_viewtex *T, struct fct_err *err)
 	}
 	for (size_t k = 0; k < T->nviews; k++)
 		T->st.views_used += T->views[k].faces > 0;
+	for (size_t f = 0; f < nf; f++)
+		for (size_t i = 0; i < T->ncand[f]; i++)
+			T->views[T->cand[K * f + i].view].cands++;
 	rc = 0;
 out:
 	free(start);
@@ -583,6 +771,11 @@ out:
 size_t fct_viewtex_view_faces(const struct fct_viewtex *T, size_t k)
 {
 	return k < T->nviews ? T->views[k].faces : 0;
+}
+
+int fct_viewtex_needs_view(const struct fct_viewtex *T, size_t k)
+{
+	return k < T->nviews && (T->views[k].faces || (T->p.blend && T->views[k].cands));
 }
 
 /* ---- step 3: charts, parametrisation, packing ------------------------------------ */
@@ -896,7 +1089,9 @@ int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err)
 		T->nsamples += (size_t)sm->n;
 	}
 	T->st.seam_edges = T->nseams;
-	if (!(T->seam_col = calloc(T->nsamples ? T->nsamples : 1, 6 * sizeof *T->seam_col)))
+	T->seam_flat = calloc(T->nsamples ? T->nsamples : 1, 1);
+	if (!T->seam_flat ||
+	    !(T->seam_col = calloc(T->nsamples ? T->nsamples : 1, 6 * sizeof *T->seam_col)))
 		return fct_fail(err, "out of memory");
 	return fct_raster_init(&T->tile, TILE, TILE, err);
 }
@@ -983,6 +1178,106 @@ static void fill_texel(struct fct_viewtex *T, const struct chart *c, uint32_t tr
 	T->mask[c->page][at] = 1;
 }
 
+/* Is the photo flat around world point x (colour col there): within
+ * FLAT levels, in every channel, at 2 pixels up, down, left and right?
+ * Seam samples elsewhere differ between two photos because the edges of
+ * the texture fall apart on imperfect geometry, not because of exposure,
+ * and levelling must not follow them. */
+#define FLAT 12.0
+static int flat_at(const struct fct_view *v, const struct fct_image *rgb, const double x[3],
+                   const double col[3])
+{
+	double u, w, z;
+	if (!project(v, x, &u, &w, &z))
+		return 0;
+	static const int d[4][2] = { { 2, 0 }, { -2, 0 }, { 0, 2 }, { 0, -2 } };
+	for (int k = 0; k < 4; k++) {
+		double c[3];
+		fct_texture_sample(rgb, (u + d[k][0] + 0.5) / rgb->width, 1 - (w + d[k][1] + 0.5) / rgb->height, c);
+		for (int j = 0; j < 3; j++)
+			if (!(fabs(c[j] - col[j]) <= FLAT))
+				return 0;
+	}
+	return 1;
+}
+
+/* Blending: add photo T->bview's colour (after its gain) of the texel's
+ * point to the texel's sums, when the photo is a candidate of the face
+ * and sees the point (inside, nothing of the mesh in front of it). */
+static void blend_texel(struct fct_viewtex *T, const struct chart *c, uint32_t tri, double b1,
+                        double b2, size_t at, void *ctx)
+{
+	const struct fct_image *rgb = ctx;
+	uint32_t f = T->tface[tri];
+	const struct cand *cd = T->cand + (size_t)T->p.candidates * f;
+	size_t i = 0;
+	while (i < T->ncand[f] && cd[i].view != (int32_t)T->bview)
+		i++;
+	if (i == T->ncand[f])
+		return;
+	const struct vt_view *V = &T->views[T->bview];
+	double x[3], u, v, z, col[3];
+	tri_point(T, tri, b1, b2, x);
+	if (!project(&V->v, x, &u, &v, &z) || u < 0 || v < 0 || u > V->cam.width - 1 ||
+	    v > V->cam.height - 1)
+		return;
+	int px = (int)floor(u + 0.5), py = (int)floor(v + 0.5);
+	float d = T->bdepth[(size_t)py * (size_t)V->cam.width + (size_t)px];
+	if (d > 0 && d < z * (1 - T->p.depth_tol))
+		return;
+	fct_texture_sample(rgb, (u + 0.5) / rgb->width, 1 - (v + 0.5) / rgb->height, col);
+	uint16_t *sum = T->bsum[c->page] + 3 * at;
+	for (int j = 0; j < 3; j++) {
+		double g = floor(T->gain[3 * T->bview + (size_t)j] * col[j] + 0.5);
+		sum[j] = (uint16_t)(sum[j] + (g < 0 ? 0 : g > 255 ? 255 : g));
+	}
+	T->bcount[c->page][at]++;
+}
+
+/* Does chart c hold a face that photo k is a candidate of? */
+static int chart_sees(const struct fct_viewtex *T, const struct chart *c, size_t k)
+{
+	for (uint32_t i = 0; i < c->count; i++) {
+		uint32_t f = T->chart_faces[c->first + i];
+		const struct cand *cd = T->cand + (size_t)T->p.candidates * f;
+		for (size_t j = 0; j < T->ncand[f]; j++)
+			if (cd[j].view == (int32_t)k)
+				return 1;
+	}
+	return 0;
+}
+
+/* Blending: photo k's part of every texel it sees. */
+static int blend_view(struct fct_viewtex *T, size_t k, const struct fct_image *rgb,
+                      struct fct_err *err)
+{
+	if (!T->bsum) {
+		T->bsum = calloc(T->npages, sizeof *T->bsum);
+		T->bcount = calloc(T->npages, sizeof *T->bcount);
+		if (!T->bsum || !T->bcount)
+			return fct_fail(err, "out of memory");
+		for (size_t i = 0; i < T->npages; i++) {
+			size_t n = (size_t)T->pages[i].width * (size_t)T->pages[i].height;
+			T->bsum[i] = calloc(n, 3 * sizeof **T->bsum);
+			T->bcount[i] = calloc(n, 1);
+			if (!T->bsum[i] || !T->bcount[i])
+				return fct_fail(err, "out of memory");
+		}
+	}
+	struct fct_raster r;
+	if (view_raster(T, &T->views[k], &r, &T->bdepth, err))
+		return -1;
+	fct_raster_free(&r);
+	T->bview = k;
+	int rc = 0;
+	for (size_t i = 0; i < T->ncharts && !rc; i++)
+		if (chart_sees(T, &T->charts[i], k))
+			rc = chart_texels(T, &T->charts[i], blend_texel, (void *)rgb, err);
+	free(T->bdepth);
+	T->bdepth = NULL;
+	return rc;
+}
+
 int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_image *rgb,
                             struct fct_err *err)
 {
@@ -992,6 +1287,8 @@ int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_im
 	if (rgb->type != FCT_PIX_U8 || rgb->channels != 3 || rgb->width != V->cam.width ||
 	    rgb->height != V->cam.height)
 		return fct_fail(err, "photo %zu: not the image that was added", k);
+	if (T->p.blend && T->views[k].cands && blend_view(T, k, rgb, err))
+		return -1;
 	for (size_t i = 0; i < T->ncharts; i++)
 		if (T->charts[i].view == (int32_t)k &&
 		    chart_texels(T, &T->charts[i], fill_texel, (void *)rgb, err))
@@ -1006,10 +1303,13 @@ int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_im
 				double t = (j + 0.5) / sm->n, x[3], col[3];
 				for (int d = 0; d < 3; d++)
 					x[d] = a[d] + t * (b[d] - a[d]);
+				size_t at = (size_t)sm->first + (size_t)j;
 				photo_colour(&V->v, rgb, x, col);
-				float *out = T->seam_col + 6 * ((size_t)sm->first + (size_t)j) + 3 * (size_t)side;
+				float *out = T->seam_col + 6 * at + 3 * (size_t)side;
 				for (int d = 0; d < 3; d++)
 					out[d] = (float)col[d];
+				if (flat_at(&V->v, rgb, x, col))
+					T->seam_flat[at] |= (uint8_t)(1 << side);
 			}
 		}
 	}
@@ -1111,60 +1411,6 @@ out:
 	return rc;
 }
 
-/* Gain and offset per photo and channel from the seam samples. */
-static int level_views(struct fct_viewtex *T, struct fct_err *err)
-{
-	size_t V = T->nviews;
-	double *x = fct_alloc_array(2 * V, sizeof *x, err);
-	double *n = calloc(V ? V : 1, sizeof *n);
-	if (!x || !n) {
-		free(x);
-		free(n);
-		return n ? -1 : fct_fail(err, "out of memory");
-	}
-	for (size_t i = 0; i < T->nseams; i++)
-		for (int side = 0; side < 2; side++)
-			n[T->label[T->seams[i].f[side]]] += T->seams[i].n;
-	int rc = 0;
-	for (int ch = 0; ch < 3 && !rc; ch++) {
-		struct lsq L;
-		memset(&L, 0, sizeof L);
-		L.ncols = 2 * V;
-		double mean = 0, cnt = 0;
-		for (size_t i = 0; i < T->nseams && !rc; i++) {
-			const struct seam *sm = &T->seams[i];
-			uint32_t a = (uint32_t)T->label[sm->f[0]], b = (uint32_t)T->label[sm->f[1]];
-			for (int j = 0; j < sm->n && !rc; j++) {
-				const float *c = T->seam_col + 6 * ((size_t)sm->first + (size_t)j);
-				uint32_t cols[4] = { a, b, (uint32_t)V + a, (uint32_t)V + b };
-				double vals[4] = { c[ch], -c[3 + ch], 1, -1 };
-				rc = lsq_row(&L, cols, vals, 4, 0, err);
-				mean += c[ch] + c[3 + ch], cnt += 2;
-			}
-		}
-		/* The prior: gain 1 and offset 0, weighed as a hundredth of each
-		 * photo's samples (the gain at the mean level, so that both are
-		 * in levels). */
-		mean = cnt > 0 ? mean / cnt : 128;
-		for (size_t k = 0; k < V && !rc; k++) {
-			double w = sqrt(0.01 * n[k] + 1e-3);
-			uint32_t cg = (uint32_t)k, co = (uint32_t)(V + k);
-			double vg = w * fmax(mean, 1), vo = w;
-			rc = lsq_row(&L, &cg, &vg, 1, vg, err) || lsq_row(&L, &co, &vo, 1, 0, err);
-		}
-		if (!rc)
-			rc = lsq_solve(&L, x, 200, err);
-		for (size_t k = 0; k < V && !rc; k++) {
-			T->gain[3 * k + (size_t)ch] = x[k];
-			T->offset[3 * k + (size_t)ch] = x[V + k];
-		}
-		lsq_free(&L);
-	}
-	free(x);
-	free(n);
-	return rc;
-}
-
 /* Waechter et al.'s seam levelling: an offset per (vertex, chart), one
  * unknown per distinct chart around each vertex, making the two sides of
  * each seam sample agree and adjacent vertices of a chart alike. */
@@ -1219,13 +1465,15 @@ static int level_seams(struct fct_viewtex *T, struct fct_err *err)
 							u[side][e] = unk[k];
 				}
 			const double *g0 = T->gain + 3 * (size_t)T->label[sm->f[0]];
-			const double *o0 = T->offset + 3 * (size_t)T->label[sm->f[0]];
 			const double *g1 = T->gain + 3 * (size_t)T->label[sm->f[1]];
-			const double *o1 = T->offset + 3 * (size_t)T->label[sm->f[1]];
 			for (int j = 0; j < sm->n && !rc; j++) {
+				if (T->seam_flat[(size_t)sm->first + (size_t)j] != 3) {
+					rc = lsq_row(&L, NULL, NULL, 0, 0, err);    /* keeps rows and samples aligned */
+					continue;
+				}
 				const float *c = T->seam_col + 6 * ((size_t)sm->first + (size_t)j);
 				double t = (j + 0.5) / sm->n;
-				double c0 = g0[ch] * c[ch] + o0[ch], c1 = g1[ch] * c[3 + ch] + o1[ch];
+				double c0 = g0[ch] * c[ch], c1 = g1[ch] * c[3 + ch];
 				uint32_t cols[4] = { u[0][0], u[0][1], u[1][0], u[1][1] };
 				double vals[4] = { 1 - t, t, -(1 - t), -t };
 				rc = lsq_row(&L, cols, vals, 4, c1 - c0, err);
@@ -1244,8 +1492,42 @@ static int level_seams(struct fct_viewtex *T, struct fct_err *err)
 				rc = lsq_row(&L, cols, vals, 2, 0, err);
 			}
 		}
-		if (!rc)
+		/* Each offset held towards 0, so that a small chart cannot take
+		 * a seam's whole difference alone. */
+		for (size_t k = 0; k < nu && !rc; k++) {
+			uint32_t col = (uint32_t)k;
+			double val = 0.5;
+			rc = lsq_row(&L, &col, &val, 1, 0, err);
+		}
+		/* Iteratively reweighted: seam samples that still disagree by
+		 * more than HUBER after a solve (an edge of the texture that the
+		 * two photos place apart, or two surfaces, not a change of
+		 * exposure) weigh HUBER / |residual|, and nothing beyond three
+		 * times that. */
+		size_t nseam_rows = 0;
+		for (size_t i = 0; i < T->nseams; i++)
+			nseam_rows += (size_t)T->seams[i].n;
+		size_t nent = nseam_rows ? L.start[nseam_rows] : 0;
+		double *w = rc ? NULL : fct_alloc_array(nseam_rows + nent, sizeof *w, err);
+		rc = rc || !w ? -1 : 0;
+		double *base = w ? w + nseam_rows : NULL;      /* the rows' unweighted values */
+		for (size_t e = 0; e < nent && !rc; e++)
+			base[e] = L.val[e];
+		for (size_t r = 0; r < nseam_rows && !rc; r++)
+			w[r] = L.rhs[r];                          /* unweighted right-hand sides */
+		for (int it = 0; it < 4 && !rc; it++) {
 			rc = lsq_solve(&L, x, 500, err);
+			for (size_t r = 0; r < nseam_rows && !rc && it < 3; r++) {
+				double v = -w[r];
+				for (size_t e = L.start[r]; e < L.start[r + 1]; e++)
+					v += base[e] * x[L.col[e]];
+				double res = fabs(v), nw = res <= HUBER ? 1 : res <= 3 * HUBER ? HUBER / res : 0;
+				for (size_t e = L.start[r]; e < L.start[r + 1]; e++)
+					L.val[e] = nw * base[e];
+				L.rhs[r] = nw * w[r];
+			}
+		}
+		free(w);
 		for (size_t k = 0; k < nc && !rc; k++)
 			T->voff[3 * k + (size_t)ch] = unk[k] == UINT32_MAX ? 0 : (float)x[unk[k]];
 		lsq_free(&L);
@@ -1255,20 +1537,19 @@ static int level_seams(struct fct_viewtex *T, struct fct_err *err)
 	return rc;
 }
 
-/* RMS difference of the seam samples after gains and offsets (and the
- * seam offsets when with_offsets). */
+/* RMS difference of the seam samples, raw or levelled (after the gains
+ * and the seam offsets). */
 static double seam_rms(const struct fct_viewtex *T, int levelled)
 {
 	const struct fct_mesh *m = T->m;
 	double sum = 0, n = 0;
 	for (size_t i = 0; i < T->nseams; i++) {
 		const struct seam *sm = &T->seams[i];
-		double g[2][3], o[2][3], vo[2][2][3];
+		double g[2][3], vo[2][2][3];
 		for (int side = 0; side < 2; side++) {
 			size_t k = (size_t)T->label[sm->f[side]];
 			for (int ch = 0; ch < 3; ch++) {
 				g[side][ch] = levelled ? T->gain[3 * k + (size_t)ch] : 1;
-				o[side][ch] = levelled ? T->offset[3 * k + (size_t)ch] : 0;
 			}
 			for (int e = 0; e < 2; e++)
 				for (uint32_t c = m->fstart[sm->f[side]]; c < m->fstart[sm->f[side] + 1]; c++)
@@ -1280,8 +1561,8 @@ static double seam_rms(const struct fct_viewtex *T, int levelled)
 			const float *c = T->seam_col + 6 * ((size_t)sm->first + (size_t)j);
 			double t = (j + 0.5) / sm->n;
 			for (int ch = 0; ch < 3; ch++) {
-				double a = g[0][ch] * c[ch] + o[0][ch] + (1 - t) * vo[0][0][ch] + t * vo[0][1][ch];
-				double b = g[1][ch] * c[3 + ch] + o[1][ch] + (1 - t) * vo[1][0][ch] + t * vo[1][1][ch];
+				double a = g[0][ch] * c[ch] + (1 - t) * vo[0][0][ch] + t * vo[0][1][ch];
+				double b = g[1][ch] * c[3 + ch] + (1 - t) * vo[1][0][ch] + t * vo[1][1][ch];
 				sum += (a - b) * (a - b);
 				n++;
 			}
@@ -1294,13 +1575,21 @@ static void correct_texel(struct fct_viewtex *T, const struct chart *c, uint32_t
                           double b2, size_t at, void *ctx)
 {
 	(void)ctx;
-	const double *g = T->gain + 3 * (size_t)c->view, *o = T->offset + 3 * (size_t)c->view;
+	unsigned char *out = (unsigned char *)T->pages[c->page].data + 3 * at;
+	if (T->bsum && T->bcount[c->page][at]) {
+		const uint16_t *sum = T->bsum[c->page] + 3 * at;
+		unsigned n = T->bcount[c->page][at];
+		for (int j = 0; j < 3; j++)
+			out[j] = (unsigned char)((sum[j] + n / 2) / n);
+		return;
+	}
+	const double *g = T->gain + 3 * (size_t)c->view;
 	const float *v0 = T->voff + 3 * (size_t)T->tcorner[3 * (size_t)tri];
 	const float *v1 = T->voff + 3 * (size_t)T->tcorner[3 * (size_t)tri + 1];
 	const float *v2 = T->voff + 3 * (size_t)T->tcorner[3 * (size_t)tri + 2];
 	unsigned char *px = (unsigned char *)T->pages[c->page].data + 3 * at;
 	for (int j = 0; j < 3; j++) {
-		double v = g[j] * px[j] + o[j] + (1 - b1 - b2) * v0[j] + b1 * v1[j] + b2 * v2[j];
+		double v = g[j] * px[j] + (1 - b1 - b2) * v0[j] + b1 * v1[j] + b2 * v2[j];
 		v = floor(v + 0.5);
 		px[j] = (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v);
 	}
@@ -1375,21 +1664,17 @@ int fct_viewtex_finish(struct fct_viewtex *T, struct fct_err *err)
 	const struct fct_mesh *m = T->m;
 	if (!T->pages)
 		return fct_fail(err, "finish before the layout");
-	size_t V = T->nviews, nc = m->fstart[m->nf];
-	T->gain = fct_alloc_array(V, 3 * sizeof *T->gain, err);
-	T->offset = fct_alloc_array(V, 3 * sizeof *T->offset, err);
+	size_t nc = m->fstart[m->nf];
 	T->voff = calloc(nc ? 3 * nc : 1, sizeof *T->voff);
-	if (!T->gain || !T->offset || !T->voff)
-		return T->voff ? -1 : fct_fail(err, "out of memory");
-	for (size_t i = 0; i < 3 * V; i++)
-		T->gain[i] = 1, T->offset[i] = 0;
+	if (!T->voff)
+		return fct_fail(err, "out of memory");
 	T->st.seam_rms_before = seam_rms(T, 0);
-	if (T->p.level >= 1 && T->nseams && level_views(T, err))
-		return -1;
-	if (T->p.level >= 2 && T->nseams && level_seams(T, err))
+	if (T->p.level >= 2 && !T->p.blend && T->nseams && level_seams(T, err))
 		return -1;
 	T->st.seam_rms_after = seam_rms(T, 1);
-	if (T->p.level >= 1 && T->nseams)
+	/* Texels from one photo take its gain and the seam offsets; blended
+	 * ones are the mean of their photos' corrected colours. */
+	if (T->p.level >= 1 || T->bsum)
 		for (size_t i = 0; i < T->ncharts; i++)
 			if (chart_texels(T, &T->charts[i], correct_texel, NULL, err))
 				return -1;

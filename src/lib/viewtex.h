@@ -80,6 +80,7 @@ struct fct_viewtex_params {
 	int level;            /* 0 none, 1 gain and offset per photo, 2 and seam levelling (default 2) */
 	int rectify;          /* planar patches in their plane's frame (default 1) */
 	int candidates;       /* photos kept per face, 1 to 32 (default 6) */
+	int blend;            /* texels the mean of the face's candidates (default 0: its one photo) */
 	int max_cycles;       /* alpha-expansion cycles (default 8) */
 	uint8_t fill[3];      /* colour of faces no photo sees (default 128 128 128) */
 };
@@ -90,6 +91,7 @@ struct fct_viewtex_stats {
 	size_t faces;
 	size_t unseen;            /* faces no photo sees (fill colour) */
 	size_t candidates;        /* (face, photo) pairs kept */
+	size_t outliers;          /* candidates dropped by the photo-consistency check */
 	size_t views_used;        /* photos that texture some face */
 	size_t charts, rectified; /* charts, and those in their plane's frame */
 	size_t seam_edges;        /* edges between charts */
@@ -124,9 +126,10 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 int fct_viewtex_label(struct fct_viewtex *T, struct fct_err *err);
 int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err);
 
-/* Faces textured from photo k (after labelling); 0: its image need not be
- * read again. */
+/* Faces textured from photo k (after labelling). */
 size_t fct_viewtex_view_faces(const struct fct_viewtex *T, size_t k);
+/* Must photo k be sampled (step 4)?  It textures faces, or is blended. */
+int fct_viewtex_needs_view(const struct fct_viewtex *T, size_t k);
 
 /* Step 4 for photo k (the same image as was added), for every photo with
  * faces.  0 or -1. */
