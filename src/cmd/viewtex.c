@@ -92,7 +92,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 	o->images = calloc((size_t)argc + 1, sizeof *o->images);
 	if (!o->poses || !o->images)
 		fct_die(1, "out of memory");
-	int c;
+	int c, level_given = 0;
 	double v[3];
 	long n;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
@@ -123,6 +123,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 			}
 			break;
 		case LEVEL:
+			level_given = 1;
 			if (!strcmp(optarg, "none"))
 				o->p.level = 0;
 			else if (!strcmp(optarg, "gain"))
@@ -145,6 +146,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
+	if (o->p.blend && !level_given)
+		o->p.level = 0;         /* the mean of the photos is level enough */
 	if (optind >= argc)
 		fct_usage_error("no mesh");
 	o->mesh = argv[optind++];

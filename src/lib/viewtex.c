@@ -45,6 +45,7 @@ struct cand {                /* a photo that can texture a face */
 	float area;              /* projected area, pixels */
 	float col[3];            /* mean colour of its visible pixels */
 	float npix;              /* those pixels (at least 1) */
+	float vis;               /* the part of the face they are */
 	int32_t view;
 };
 
@@ -110,6 +111,7 @@ struct fct_viewtex {
 	struct fct_raster tile;
 	uint16_t **bsum;         /* blending: 3 colour sums per texel, per page */
 	uint8_t **bcount;        /* and the photos summed */
+	uint8_t **hole;          /* texels their chart's photo does not see */
 	float *bdepth;           /* the depth seen by the photo being blended */
 	size_t bview;
 	struct fct_viewtex_stats st;
@@ -277,6 +279,9 @@ void fct_viewtex_free(struct fct_viewtex *T)
 		free(T->bsum[i]);
 	for (size_t i = 0; T->bcount && i < T->npages; i++)
 		free(T->bcount[i]);
+	for (size_t i = 0; T->hole && i < T->npages; i++)
+		free(T->hole[i]);
+	free(T->hole);
 	free(T->bsum);
 	free(T->bcount);
 	free(T->bdepth);
@@ -501,6 +506,7 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 		int poor = !(cs >= T->p.min_cos) || vis < MIN_VISIBLE;
 		nc.q = (float)(q * cs * vis * vis * (poor ? 1e-3 : 1));
 		nc.area = (float)area;
+		nc.vis = (float)vis;
 		nc.view = (int32_t)k;
 		keep_candidate(T, f, &nc);
 		nseen++;
@@ -527,11 +533,20 @@ static inline double corrected(const struct fct_viewtex *T, const struct cand *c
 	return T->gain[3 * (size_t)c->view + (size_t)ch] * c->col[ch];
 }
 
+/* Does candidate c see its face (nearly) whole, over 16 pixels or more?
+ * Only then is its mean colour the face's, comparable with the other
+ * photos' (a face of a pixel or two takes the colour of whatever its
+ * pixels' centres hit). */
+static inline int whole(const struct cand *c)
+{
+	return c->vis >= 0.9 && c->npix >= 16;
+}
+
 /* The weight of a candidate's colour: its visible pixels, at most 256, so
- * that large faces do not decide alone. */
+ * that large faces do not decide alone; 0 for a face seen in part. */
 static inline double colour_weight(const struct cand *c)
 {
-	return fmin(c->npix, 256);
+	return whole(c) ? fmin(c->npix, 256) : 0;
 }
 
 /* Each face's consensus colour mu (3 per face): the weighted mean of its
@@ -645,9 +660,13 @@ static int calibrate(struct fct_viewtex *T, struct fct_err *err)
 		if (T->ncand[f] < 3)
 			continue;
 		struct cand *c = T->cand + K * f;
-		size_t n = 0;
+		size_t n = 0, nwhole = 0;
+		for (size_t i = 0; i < T->ncand[f]; i++)
+			nwhole += (size_t)whole(&c[i]);
+		if (nwhole < 3)
+			continue;
 		for (size_t i = 0; i < T->ncand[f]; i++) {
-			if (deviation(T, &c[i], mu + 3 * f) <= OUTLIER)
+			if (!whole(&c[i]) || deviation(T, &c[i], mu + 3 * f) <= OUTLIER)
 				c[n++] = c[i];
 			else
 				T->st.outliers++;
@@ -775,7 +794,7 @@ size_t fct_viewtex_view_faces(const struct fct_viewtex *T, size_t k)
 
 int fct_viewtex_needs_view(const struct fct_viewtex *T, size_t k)
 {
-	return k < T->nviews && (T->views[k].faces || (T->p.blend && T->views[k].cands));
+	return k < T->nviews && (T->views[k].faces || T->views[k].cands);
 }
 
 /* ---- step 3: charts, parametrisation, packing ------------------------------------ */
@@ -887,7 +906,7 @@ static void parametrise(struct fct_viewtex *T, struct chart *c, double s)
 	double amin = INFINITY, amax = -INFINITY, bmin = INFINITY, bmax = -INFINITY;
 	double limit = T->p.atlas_max - 2 * T->p.padding - 2;
 	for (int pass = 0; pass < 2; pass++) {
-		double k = c->planar ? s * density : s;
+		double k = c->planar ? s * density : s, n = 0, sa = 0, sb = 0;
 		for (uint32_t i = 0; i < c->count; i++) {
 			uint32_t f = T->chart_faces[c->first + i];
 			for (uint32_t j = m->fstart[f]; j < m->fstart[f + 1]; j++) {
@@ -904,8 +923,28 @@ static void parametrise(struct fct_viewtex *T, struct chart *c, double s)
 					b = k * (w + 0.5);
 				}
 				T->ab[2 * (size_t)j] = (float)a, T->ab[2 * (size_t)j + 1] = (float)b;
-				amin = fmin(amin, a), amax = fmax(amax, a);
-				bmin = fmin(bmin, b), bmax = fmax(bmax, b);
+				n++, sa += a, sb += b;
+			}
+		}
+		/* Turned so that its principal axis runs along the rows: a long
+		 * thin chart slanted in its photo would waste its box. */
+		double ma = sa / n, mb = sb / n, caa = 0, cbb = 0, cab = 0;
+		for (uint32_t i = 0; i < c->count; i++) {
+			uint32_t f = T->chart_faces[c->first + i];
+			for (uint32_t j = m->fstart[f]; j < m->fstart[f + 1]; j++) {
+				double a = T->ab[2 * (size_t)j] - ma, b = T->ab[2 * (size_t)j + 1] - mb;
+				caa += a * a, cbb += b * b, cab += a * b;
+			}
+		}
+		double th = 0.5 * atan2(2 * cab, caa - cbb), cs = cos(th), sn = sin(th);
+		for (uint32_t i = 0; i < c->count; i++) {
+			uint32_t f = T->chart_faces[c->first + i];
+			for (uint32_t j = m->fstart[f]; j < m->fstart[f + 1]; j++) {
+				double a = T->ab[2 * (size_t)j], b = T->ab[2 * (size_t)j + 1];
+				double ra = cs * a + sn * b, rb = -sn * a + cs * b;
+				T->ab[2 * (size_t)j] = (float)ra, T->ab[2 * (size_t)j + 1] = (float)rb;
+				amin = fmin(amin, ra), amax = fmax(amax, ra);
+				bmin = fmin(bmin, rb), bmax = fmax(bmax, rb);
 			}
 		}
 		/* A chart larger than a page is drawn smaller. */
@@ -1164,12 +1203,33 @@ static void photo_colour(const struct fct_view *v, const struct fct_image *rgb, 
 	fct_texture_sample(rgb, (u + 0.5) / rgb->width, 1 - (w + 0.5) / rgb->height, col);
 }
 
+/* Does the photo being sampled (T->bview, its depth in T->bdepth) see
+ * world point x: inside the picture, nothing of the mesh in front of it?
+ * (u, v) gets its pixel. */
+static int sees_point(const struct fct_viewtex *T, const double x[3], double *u, double *v)
+{
+	const struct vt_view *V = &T->views[T->bview];
+	double z;
+	if (!project(&V->v, x, u, v, &z) || *u < 0 || *v < 0 || *u > V->cam.width - 1 ||
+	    *v > V->cam.height - 1)
+		return 0;
+	int px = (int)floor(*u + 0.5), py = (int)floor(*v + 0.5);
+	float d = T->bdepth[(size_t)py * (size_t)V->cam.width + (size_t)px];
+	return !(d > 0 && d < z * (1 - T->p.depth_tol));
+}
+
+/* A texel of a chart of the photo being sampled: its colour there; where
+ * the photo does not see the point (a face partly outside it, or partly
+ * hidden), the texel is a hole that the other photos fill (blend_texel),
+ * the clamped colour only the last resort. */
 static void fill_texel(struct fct_viewtex *T, const struct chart *c, uint32_t tri, double b1,
                        double b2, size_t at, void *ctx)
 {
 	const struct fct_image *rgb = ctx;
-	double x[3], col[3];
+	double x[3], col[3], u, v;
 	tri_point(T, tri, b1, b2, x);
+	if (!sees_point(T, x, &u, &v))
+		T->hole[c->page][at] = 1;
 	photo_colour(&T->views[c->view].v, rgb, x, col);
 	unsigned char *px = (unsigned char *)T->pages[c->page].data + 3 * at;
 	for (int j = 0; j < 3; j++)
@@ -1213,17 +1273,9 @@ static void blend_texel(struct fct_viewtex *T, const struct chart *c, uint32_t t
 	size_t i = 0;
 	while (i < T->ncand[f] && cd[i].view != (int32_t)T->bview)
 		i++;
-	if (i == T->ncand[f])
-		return;
-	const struct vt_view *V = &T->views[T->bview];
-	double x[3], u, v, z, col[3];
+	double x[3], u, v, col[3];
 	tri_point(T, tri, b1, b2, x);
-	if (!project(&V->v, x, &u, &v, &z) || u < 0 || v < 0 || u > V->cam.width - 1 ||
-	    v > V->cam.height - 1)
-		return;
-	int px = (int)floor(u + 0.5), py = (int)floor(v + 0.5);
-	float d = T->bdepth[(size_t)py * (size_t)V->cam.width + (size_t)px];
-	if (d > 0 && d < z * (1 - T->p.depth_tol))
+	if (i == T->ncand[f] || !sees_point(T, x, &u, &v))
 		return;
 	fct_texture_sample(rgb, (u + 0.5) / rgb->width, 1 - (v + 0.5) / rgb->height, col);
 	uint16_t *sum = T->bsum[c->page] + 3 * at;
@@ -1247,35 +1299,23 @@ static int chart_sees(const struct fct_viewtex *T, const struct chart *c, size_t
 	return 0;
 }
 
-/* Blending: photo k's part of every texel it sees. */
-static int blend_view(struct fct_viewtex *T, size_t k, const struct fct_image *rgb,
-                      struct fct_err *err)
+/* The per-texel sums over photos (blending, and the holes' fill). */
+static int blend_alloc(struct fct_viewtex *T, struct fct_err *err)
 {
-	if (!T->bsum) {
-		T->bsum = calloc(T->npages, sizeof *T->bsum);
-		T->bcount = calloc(T->npages, sizeof *T->bcount);
-		if (!T->bsum || !T->bcount)
+	T->bsum = calloc(T->npages, sizeof *T->bsum);
+	T->bcount = calloc(T->npages, sizeof *T->bcount);
+	T->hole = calloc(T->npages, sizeof *T->hole);
+	if (!T->bsum || !T->bcount || !T->hole)
+		return fct_fail(err, "out of memory");
+	for (size_t i = 0; i < T->npages; i++) {
+		size_t n = (size_t)T->pages[i].width * (size_t)T->pages[i].height;
+		T->bsum[i] = calloc(n, 3 * sizeof **T->bsum);
+		T->bcount[i] = calloc(n, 1);
+		T->hole[i] = calloc(n, 1);
+		if (!T->bsum[i] || !T->bcount[i] || !T->hole[i])
 			return fct_fail(err, "out of memory");
-		for (size_t i = 0; i < T->npages; i++) {
-			size_t n = (size_t)T->pages[i].width * (size_t)T->pages[i].height;
-			T->bsum[i] = calloc(n, 3 * sizeof **T->bsum);
-			T->bcount[i] = calloc(n, 1);
-			if (!T->bsum[i] || !T->bcount[i])
-				return fct_fail(err, "out of memory");
-		}
 	}
-	struct fct_raster r;
-	if (view_raster(T, &T->views[k], &r, &T->bdepth, err))
-		return -1;
-	fct_raster_free(&r);
-	T->bview = k;
-	int rc = 0;
-	for (size_t i = 0; i < T->ncharts && !rc; i++)
-		if (chart_sees(T, &T->charts[i], k))
-			rc = chart_texels(T, &T->charts[i], blend_texel, (void *)rgb, err);
-	free(T->bdepth);
-	T->bdepth = NULL;
-	return rc;
+	return 0;
 }
 
 int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_image *rgb,
@@ -1287,12 +1327,25 @@ int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_im
 	if (rgb->type != FCT_PIX_U8 || rgb->channels != 3 || rgb->width != V->cam.width ||
 	    rgb->height != V->cam.height)
 		return fct_fail(err, "photo %zu: not the image that was added", k);
-	if (T->p.blend && T->views[k].cands && blend_view(T, k, rgb, err))
+	if (!T->bsum && blend_alloc(T, err))
 		return -1;
-	for (size_t i = 0; i < T->ncharts; i++)
-		if (T->charts[i].view == (int32_t)k &&
-		    chart_texels(T, &T->charts[i], fill_texel, (void *)rgb, err))
-			return -1;
+	struct fct_raster r;
+	if (view_raster(T, V, &r, &T->bdepth, err))
+		return -1;
+	fct_raster_free(&r);
+	T->bview = k;
+	int rc = 0;
+	for (size_t i = 0; i < T->ncharts && !rc; i++) {
+		const struct chart *c = &T->charts[i];
+		if (c->view == (int32_t)k)
+			rc = chart_texels(T, c, fill_texel, (void *)rgb, err);
+		if (!rc && chart_sees(T, c, k))
+			rc = chart_texels(T, c, blend_texel, (void *)rgb, err);
+	}
+	free(T->bdepth);
+	T->bdepth = NULL;
+	if (rc)
+		return -1;
 	for (size_t i = 0; i < T->nseams; i++) {
 		const struct seam *sm = &T->seams[i];
 		for (int side = 0; side < 2; side++) {
@@ -1576,7 +1629,7 @@ static void correct_texel(struct fct_viewtex *T, const struct chart *c, uint32_t
 {
 	(void)ctx;
 	unsigned char *out = (unsigned char *)T->pages[c->page].data + 3 * at;
-	if (T->bsum && T->bcount[c->page][at]) {
+	if (T->bsum && T->bcount[c->page][at] && (T->p.blend || T->hole[c->page][at])) {
 		const uint16_t *sum = T->bsum[c->page] + 3 * at;
 		unsigned n = T->bcount[c->page][at];
 		for (int j = 0; j < 3; j++)
@@ -1674,7 +1727,7 @@ int fct_viewtex_finish(struct fct_viewtex *T, struct fct_err *err)
 	T->st.seam_rms_after = seam_rms(T, 1);
 	/* Texels from one photo take its gain and the seam offsets; blended
 	 * ones are the mean of their photos' corrected colours. */
-	if (T->p.level >= 1 || T->bsum)
+	if (T->bsum)
 		for (size_t i = 0; i < T->ncharts; i++)
 			if (chart_texels(T, &T->charts[i], correct_texel, NULL, err))
 				return -1;
