@@ -23,8 +23,8 @@
 
 static const char usage[] =
 	"usage: viewjudge [-qv] [-K fx,fy,cx,cy | name] [--camera file] [-m mode]\n"
-	"                 [--poses file ...] [--image file ...] [--render dir]\n"
-	"                 model [image ...]\n"
+	"                 [--poses file ...] [--image file ...]\n"
+	"                 [--render dir] model [image ...]\n"
 	"Render a textured or vertex-coloured model from each photo's camera and\n"
 	"compare it with the photo: PSNR over the pixels the model covers and the\n"
 	"fraction of the photo it covers, per photo and over all, on standard output.\n"

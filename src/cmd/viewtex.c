@@ -18,10 +18,10 @@
 
 static const char usage[] =
 	"usage: viewtex [-aqv] [-K fx,fy,cx,cy | name] [--camera file] [--poses file ...]\n"
-	"               [--image file ...] [--atlas-size n] [--fill r,g,b]\n"
-	"               [--level none | gain | seams] [--max-pages n] [--min-angle deg]\n"
-	"               [--no-rectify] [--padding n] [--per-vertex] [--smooth w]\n"
-	"               [--texel-scale s] -o model mesh [image ...]\n"
+	"               [--image file ...] [--atlas-size n] [--blend] [--candidates n]\n"
+	"               [--fill r,g,b] [--level none | gain | seams] [--max-pages n]\n"
+	"               [--min-angle deg] [--no-rectify] [--padding n] [--per-vertex]\n"
+	"               [--smooth w] [--texel-scale s] -o model mesh [image ...]\n"
 	"Texture a mesh (PLY or OBJ) from registered colour photos: each face from\n"
 	"one photo chosen for visibility, resolution, sharpness and distance from\n"
 	"depth edges, neighbours kept on the same photo by a graph cut; the faces'\n"
@@ -30,24 +30,29 @@ static const char usage[] =
 	"texture in their plane's frame.\n"
 	"  -a                 write ascii PLY\n"
 	"  -K fx,fy,cx,cy     the photos' camera (or a dataset name)\n"
-	"  -o model           the model: name.obj (with name.mtl) or name.ply (per-face\n"
-	"                     texcoord and texnumber); the atlas beside it as\n"
-	"                     name_atlasN.png\n"
+	"  -o model           the model: name.obj (with name.mtl, a vt per face\n"
+	"                     corner) or name.ply (per-face texcoord and texnumber);\n"
+	"                     the atlas beside it as name_atlasN.png\n"
 	"  -q                 quiet\n"
 	"  -v                 progress per photo, then figures on stderr\n"
 	"      --atlas-size n largest atlas side, a power of two, 64 to 16384\n"
 	"                     (default 4096)\n"
+	"      --blend        each texel the mean of its face's candidate photos that\n"
+	"                     see it, instead of its one photo: softer, robust to\n"
+	"                     misregistered photos (implies --level none unless given)\n"
 	"      --camera file  the photos' camera: an intrinsics file (see dm2mesh)\n"
+	"      --candidates n photos kept per face, 1 to 32 (default 6)\n"
 	"      --fill r,g,b   colour of faces no photo sees (default 128,128,128)\n"
 	"      --image file   a photo (repeated; or as operands after the mesh)\n"
-	"      --level how    colour levelling across seams: none, gain (a gain and\n"
-	"                     offset per photo), seams (and offsets per vertex that\n"
-	"                     close each seam; the default)\n"
+	"      --level how    colour levelling: none, gain (a gain per photo and\n"
+	"                     channel, from the faces' colours in all photos), seams\n"
+	"                     (and offsets per vertex that close each seam; the\n"
+	"                     default)\n"
 	"      --max-pages n  most atlas images (default 16); the texture is drawn\n"
 	"                     smaller until it fits\n"
 	"      --min-angle deg\n"
-	"                     least angle between a face and a photo's line of sight\n"
-	"                     (default 5.7: cosine 0.1)\n"
+	"                     photos seeing a face at less than this angle to its\n"
+	"                     plane are a last resort (default 5.7: cosine 0.1)\n"
 	"      --no-rectify   texture planar patches from the photo's projection too\n"
 	"      --padding n    texels padded around each chart (default 4)\n"
 	"      --per-vertex   PLY with vertex s t (vertices copied at chart borders)\n"
@@ -55,9 +60,9 @@ static const char usage[] =
 	"      --poses file   camera-to-world poses: one file per photo (4x4 or 3x4),\n"
 	"                     or one TUM trajectory\n"
 	"      --smooth w     cost of a seam per pixel of its length, in pixels of\n"
-	"                     lost quality (default 1)\n"
+	"                     lost quality (default 10)\n"
 	"      --texel-scale s\n"
-	"                     texels per photo pixel (default 1)\n"
+	"                     texels per photo pixel, 0.01 to 4 (default 1)\n"
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
@@ -141,7 +146,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		case PADDING: o->p.padding = (int)fct_opt_long("--padding", optarg, 0, 64); break;
 		case PERVERTEX: o->per_vertex = 1; break;
 		case SMOOTH: o->p.smooth = fct_opt_double("--smooth", optarg, 0, 1e6); break;
-		case SCALE: o->p.texel_scale = fct_opt_double("--texel-scale", optarg, 0.01, 16); break;
+		case SCALE: o->p.texel_scale = fct_opt_double("--texel-scale", optarg, 0.01, 4); break;
 		case VERSION: puts("viewtex (facet) " FCT_VERSION); exit(0);
 		default: fct_bad_option(optstring, argv);
 		}
@@ -264,7 +269,7 @@ int main(int argc, char **argv)
 		fct_write_image_or_die(fct_viewtex_page(T, i), names[i]);
 	struct fct_viewtex_stats st;
 	fct_viewtex_get_stats(T, &st);
-	int per_face = !fct_path_has_suffix(o.out, ".obj") && !o.per_vertex;
+	int per_face = fct_path_has_suffix(o.out, ".obj") || !o.per_vertex;
 	if (fct_viewtex_apply(T, &m, names, per_face, &err) ||
 	    fct_header_add_provenance(&m, "viewtex", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, o.out, o.ascii, &err))

@@ -49,8 +49,9 @@ int fct_photo_read(const struct fct_photo *p, int max_side, struct fct_image *rg
 	int W = raw.width, H = raw.height;
 	*cam = p->cam;
 	int rc = 0;
-	if (W > max_side || H > max_side) {
-		rc = fct_fail(err, "%s: image of %dx%d pixels: larger than %d", p->path, W, H, max_side);
+	if (W > max_side || H > max_side || (size_t)W * (size_t)H > FCT_PHOTO_MAX_PIXELS) {
+		rc = fct_fail(err, "%s: image of %dx%d pixels: larger than %d on a side or %zu in all",
+		              p->path, W, H, max_side, (size_t)FCT_PHOTO_MAX_PIXELS);
 	} else if (cam->width <= 0 || cam->height <= 0) {
 		cam->width = W, cam->height = H;
 	} else if (cam->width != W || cam->height != H) {

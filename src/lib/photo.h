@@ -28,11 +28,16 @@ int fct_photos_make(struct fct_photo **out, const struct fct_camera *cam,
                     const char *const *images, size_t n, const char *const *pose_files,
                     size_t npose_files, struct fct_err *err);
 
+/* Most pixels of a photo: 64 M (an 8K x 8K picture); its visibility
+ * buffer takes 16 bytes a pixel. */
+#define FCT_PHOTO_MAX_PIXELS ((size_t)1 << 26)
+
 /* Read photo p's image as RGB U8 into rgb (set up here, fct_image_free),
  * and its camera fitted to the image into cam: a camera without a size
  * takes the image's; a camera of another size with the same aspect (to
  * 1%) is scaled to it, the field of view kept; any other is refused.
- * Sides are bounded by max_side.  0 or -1 ("PATH: ..."). */
+ * Sides are bounded by max_side, pixels by FCT_PHOTO_MAX_PIXELS.  0 or
+ * -1 ("PATH: ..."). */
 int fct_photo_read(const struct fct_photo *p, int max_side, struct fct_image *rgb,
                    struct fct_camera *cam, struct fct_err *err);
 

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "texcoord.h"
 #include "texmap.h"
 
 int fct_texmap_corners(const struct fct_mesh *m, float **st, int32_t **texnum,
@@ -10,16 +11,10 @@ int fct_texmap_corners(const struct fct_mesh *m, float **st, int32_t **texnum,
 {
 	*st = NULL;
 	*texnum = NULL;
-	const struct fct_prop *tc = fct_elem_find(&m->face, "texcoord");
-	const struct fct_prop *ps = fct_elem_find(&m->vertex, "s");
-	const struct fct_prop *pt = fct_elem_find(&m->vertex, "t");
+	const struct fct_prop *tc = fct_elem_find(&m->face, "texcoord"), *ps, *pt;
 	if (tc && tc->count_type == FCT_NONE)
 		tc = NULL;
-	if (ps && ps->count_type != FCT_NONE)
-		ps = NULL;
-	if (pt && pt->count_type != FCT_NONE)
-		pt = NULL;
-	if (!tc && !(ps && pt))
+	if (!tc && !fct_texcoord_vertex(m, &ps, &pt))
 		return 0;
 	size_t nc = m->fstart[m->nf];
 	float *c = fct_alloc_array(nc, 2 * sizeof *c, err);

@@ -1,4 +1,5 @@
-/* texmap.h - a mesh's texture mapping in the two forms facet writes:
+/* texmap.h - a mesh's texture mapping as one array of coordinates per
+ * face corner, read from and written to the two forms facet writes:
  * texture coordinates per face corner (the face list property "float
  * texcoord", 2 numbers per corner, as MeshLab reads and writes PLY), or per
  * vertex (s t, as OBJ's matching v/vt indices and dm2mesh's PLY carry
@@ -14,7 +15,8 @@
 
 /* The texture coordinates of every face corner: *st (malloc'd, 2 floats
  * per corner, corner c of the face rows being m->fvert[c]) from the face
- * list texcoord when present, else from the vertices' s t; *texnum
+ * list texcoord when present, else from the vertices' s t (or another name
+ * of texcoord.h); *texnum
  * (malloc'd, one per face) from texnumber, 0 for every face without it.
  * Returns 1, or 0 when the mesh has neither form (*st and *texnum NULL),
  * or -1: a texcoord list whose length is not twice its face's size, or

@@ -124,7 +124,7 @@ static int check_params(const struct fct_viewtex_params *p, struct fct_err *err)
 {
 	if (!(p->smooth >= 0 && p->smooth <= 1e6) || !(p->min_cos >= 0 && p->min_cos < 1) ||
 	    !(p->depth_tol > 0 && p->depth_tol < 1) || !(p->edge_px >= 0 && p->edge_px <= 1000) ||
-	    !(p->texel_scale > 0 && p->texel_scale <= 16) || p->padding < 0 || p->padding > 64 ||
+	    !(p->texel_scale > 0 && p->texel_scale <= 4) || p->padding < 0 || p->padding > 64 ||
 	    p->atlas_max < 64 || p->atlas_max > 16384 || (p->atlas_max & (p->atlas_max - 1)) ||
 	    p->max_pages < 1 || p->max_pages > 1024 || p->level < 0 || p->level > 2 ||
 	    p->candidates < 1 || p->candidates > 32 || p->max_cycles < 1 || p->max_cycles > 1000)
@@ -790,6 +790,17 @@ out:
 size_t fct_viewtex_view_faces(const struct fct_viewtex *T, size_t k)
 {
 	return k < T->nviews ? T->views[k].faces : 0;
+}
+
+int32_t fct_viewtex_face_photo(const struct fct_viewtex *T, size_t f)
+{
+	return T->label && f < T->m->nf ? T->label[f] : -1;
+}
+
+void fct_viewtex_photo_gain(const struct fct_viewtex *T, size_t k, double gain[3])
+{
+	for (int j = 0; j < 3; j++)
+		gain[j] = T->gain && k < T->nviews ? T->gain[3 * k + (size_t)j] : 1;
 }
 
 int fct_viewtex_needs_view(const struct fct_viewtex *T, size_t k)
@@ -1590,8 +1601,9 @@ static int level_seams(struct fct_viewtex *T, struct fct_err *err)
 	return rc;
 }
 
-/* RMS difference of the seam samples, raw or levelled (after the gains
- * and the seam offsets). */
+/* RMS difference of the seam samples where both photos are flat (those
+ * levelling works on), raw or levelled (after the gains and the seam
+ * offsets). */
 static double seam_rms(const struct fct_viewtex *T, int levelled)
 {
 	const struct fct_mesh *m = T->m;
@@ -1611,6 +1623,8 @@ static double seam_rms(const struct fct_viewtex *T, int levelled)
 							vo[side][e][ch] = levelled ? T->voff[3 * (size_t)c + (size_t)ch] : 0;
 		}
 		for (int j = 0; j < sm->n; j++) {
+			if (T->seam_flat[(size_t)sm->first + (size_t)j] != 3)
+				continue;
 			const float *c = T->seam_col + 6 * ((size_t)sm->first + (size_t)j);
 			double t = (j + 0.5) / sm->n;
 			for (int ch = 0; ch < 3; ch++) {

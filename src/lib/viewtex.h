@@ -9,54 +9,71 @@
  * 1. Candidates (fct_viewtex_add_view, one photo at a time).  The mesh is
  *    rasterised into the photo's camera (raster.h): the visibility buffer
  *    tells, per pixel, the face the photo sees there.  A photo is a
- *    candidate for a face when the face lies whole in the picture, in
- *    front of the camera, seen at most acos(min_cos) from its normal, no
- *    surface of the mesh lies in front of its centre and corners (by more
- *    than depth_tol of their depth), and at least 60% of its projected
- *    area is visible pixels.  Its quality is the sum over those pixels of
- *    (gradient magnitude + 4 levels) x (distance weight), times the cosine
- *    and the visible fraction squared: the gradient magnitude integral of
- *    Waechter et al. (large, close, sharp views win), with pixels within
- *    edge_px of a depth edge of the mesh or of the picture's border
- *    weighing less ((1 + d) / (1 + edge_px)).  Each face keeps its best
- *    `candidates` photos.
- * 2. Labels (fct_viewtex_label): E = sum_f A_f (1 - q_f(l) / max q_f) +
- *    smooth * sum_{f~g} L_fg [l_f != l_g], with A_f the face's largest
- *    projected area and L_fg the shared edge's length, both in pixels of
- *    the faces' best photos: a seam costs `smooth` per pixel of its length,
- *    a worse photo its loss of quality over the face's area.  Minimised by
- *    alpha-expansion (graphcut.h), started from each face's best photo.
- * 3. Charts (fct_viewtex_layout): connected faces with the same photo
+ *    candidate for a face in front of it that it sees some of: its
+ *    visible fraction is the face's visible pixels over its projected area
+ *    (a face under 8 pixels: whether nothing of the mesh lies in front of
+ *    its centre, by more than depth_tol of its depth).  Its quality is the
+ *    sum over those pixels of (gradient magnitude + 4 levels) x (distance
+ *    weight), times the cosine of the viewing angle and the visible
+ *    fraction squared: the gradient magnitude integral of Waechter et al.
+ *    (large, close, sharp views win), pixels within edge_px of a depth edge
+ *    of the mesh or of the picture's border weighing (1 + d) / (1 +
+ *    edge_px).  A view more oblique than acos(min_cos) or seeing under 60%
+ *    of the face is a last resort (quality x 1e-3).  Each face keeps its
+ *    best `candidates` photos, with the mean colour of its visible pixels.
+ * 2. Photometry (fct_viewtex_label, level >= 1): a gain per photo and
+ *    channel (exposure, white balance) that makes the faces' mean colours
+ *    agree across photos, alternating between each face's consensus colour
+ *    (Huber-weighted) and each photo's least-squares gain, the gains then
+ *    scaled so that the texture keeps the photos' mean level.  Only photos
+ *    that see a face whole (90%, 16 pixels or more) speak for its colour.
+ *    Choosing one photo per face, a photo whose corrected colour of such a
+ *    face lies more than 40 levels from the consensus of three or more is
+ *    dropped (the photo-consistency check of Waechter et al.: something the
+ *    mesh does not hold stood in front of the face, or it is misregistered).
+ * 3. Labels: E = sum_f A_f (1 - q_f(l) / max q_f) + smooth * sum_{f~g}
+ *    L_fg [l_f != l_g], with A_f the face's largest projected area and L_fg
+ *    the shared edge's length, both in pixels of the faces' best photos: a
+ *    seam costs `smooth` per pixel of its length, a worse photo its loss of
+ *    quality over the face's area.  Minimised by alpha-expansion
+ *    (graphcut.h), started from each face's best photo.
+ * 4. Charts (fct_viewtex_layout): connected faces with the same photo
  *    (and, with rectify, the same planar patch) form a chart.  A chart is
  *    parametrised by its photo's projection at texel_scale texels per
  *    pixel; a chart on a planar patch (face property patch, element plane)
  *    whose faces lie within 25 degrees of the plane is parametrised in the
  *    plane's own frame instead, metric and undistorted, at the photo's
  *    finest resolution over the chart (focal length over the depth of the
- *    nearest face, times texel_scale), its axes along the photo's.  Charts
- *    get `padding` texels on every side and are packed on shelves (tallest
- *    first) into square power-of-two pages no larger than atlas_max (the
- *    last page shortened to the power of two that holds it), at most
- *    max_pages of them: the texel scale shrinks until they fit.  Faces no
- *    photo sees share one block of the fill colour.
- * 4. Texels (fct_viewtex_sample_view, one photo at a time): each chart's
- *    faces are rasterised into its place in the atlas (raster.h again,
- *    with flat z), every texel's barycentrics give its 3-D point, the point
+ *    nearest face, times texel_scale).  Each chart is turned so that its
+ *    principal axis runs along the rows, gets `padding` texels on every
+ *    side, and the charts are packed on shelves (tallest first) into square
+ *    power-of-two pages no larger than atlas_max (the last page shortened
+ *    to the power of two that holds it), at most max_pages of them: the
+ *    texel scale shrinks until they fit; a chart larger than a page is
+ *    drawn smaller.  Faces no photo sees share one block of the fill colour.
+ * 5. Texels (fct_viewtex_sample_view, one photo at a time): each chart's
+ *    faces are rasterised into its place in the atlas (raster.h again, at
+ *    flat depth), every texel's barycentrics give its 3-D point, the point
  *    is projected into the chart's photo and sampled bilinearly, so the
- *    texture is right under any parametrisation.  Seam edges are sampled
- *    in both photos along their length.
- * 5. Levelling (fct_viewtex_finish): with level >= 1 a gain and offset per
- *    photo and channel, by least squares over the seam samples (each
- *    photo's gain held towards 1 and offset towards 0 by a weak prior);
- *    with level 2 also Waechter et al.'s global seam levelling: an offset
- *    per vertex and chart, interpolated over the faces, that makes the two
- *    sides of every seam sample agree and varies smoothly inside charts
- *    (least squares, conjugate gradients).  Then the padding: texels beside
- *    a chart take the mean of their filled neighbours, `padding` rings deep.
+ *    texture is right under any parametrisation.  A texel the chart's photo
+ *    does not see (outside it, or hidden by the mesh) takes the mean of the
+ *    face's other candidate photos that see it; with blend, every texel
+ *    does (all its face's candidates that see it, each after its gain).
+ *    Seam edges are sampled in both photos along their length.
+ * 6. Levelling and padding (fct_viewtex_finish): the gains; with level 2
+ *    (one photo per face) Waechter et al.'s global seam levelling: an
+ *    offset per vertex and chart, interpolated over the faces, that makes
+ *    the two sides of each seam sample agree, varies smoothly inside charts
+ *    and is held towards 0 (least squares by conjugate gradients), from the
+ *    seam samples where both photos are flat (texture edges that the two
+ *    photos place apart on imperfect geometry are not exposure), iteratively
+ *    reweighted (Huber, cut at three times).  Then the padding: texels
+ *    beside a chart take the mean of their filled neighbours, `padding`
+ *    rings deep, each ring reading only the rings before it.
  *
  * Memory is bounded by the mesh (candidates per face, charts, seams) and
- * the atlas pages; one photo is held at a time.  The same inputs give the
- * same texture, bit for bit. */
+ * the atlas pages (RGB, and 8 bytes a texel while sampling); one photo is
+ * held at a time.  The same inputs give the same texture, bit for bit. */
 #ifndef FCT_VIEWTEX_H
 #define FCT_VIEWTEX_H
 
@@ -69,15 +86,15 @@
 #include "mesh.h"
 
 struct fct_viewtex_params {
-	double smooth;        /* seam cost per pixel of seam, in pixels of area (default 1) */
+	double smooth;        /* seam cost per pixel of seam, in pixels of area (default 10) */
 	double min_cos;       /* most oblique view accepted, cosine (default 0.1) */
 	double depth_tol;     /* occlusion test, relative depth (default 0.02) */
 	double edge_px;       /* falloff near depth edges and borders, pixels (default 8) */
-	double texel_scale;   /* texels per photo pixel (default 1) */
+	double texel_scale;   /* texels per photo pixel, at most 4 (default 1) */
 	int padding;          /* texels around each chart (default 4) */
 	int atlas_max;        /* largest page side, a power of two in [64, 16384] (default 4096) */
 	int max_pages;        /* (default 16) */
-	int level;            /* 0 none, 1 gain and offset per photo, 2 and seam levelling (default 2) */
+	int level;            /* 0 none, 1 a gain per photo, 2 and seam levelling (default 2) */
 	int rectify;          /* planar patches in their plane's frame (default 1) */
 	int candidates;       /* photos kept per face, 1 to 32 (default 6) */
 	int blend;            /* texels the mean of the face's candidates (default 0: its one photo) */
@@ -101,7 +118,7 @@ struct fct_viewtex_stats {
 	int page_width, page_height;   /* of the first page */
 	double fill_ratio;        /* texels of faces over the pages' texels */
 	double scale;             /* texel scale used */
-	double seam_rms_before;   /* RMS colour difference of the seam samples, levels */
+	double seam_rms_before;   /* RMS colour difference of the flat seam samples, levels */
 	double seam_rms_after;    /* the same after levelling */
 };
 
@@ -122,21 +139,26 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
                          const double pose[12], const struct fct_image *rgb, size_t *seen,
                          struct fct_err *err);
 
-/* Steps 2 and 3, after every photo was added.  0 or -1. */
+/* Steps 2-4, after every photo was added.  0 or -1. */
 int fct_viewtex_label(struct fct_viewtex *T, struct fct_err *err);
 int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err);
 
 /* Faces textured from photo k (after labelling). */
 size_t fct_viewtex_view_faces(const struct fct_viewtex *T, size_t k);
-/* Must photo k be sampled (step 4)?  It textures faces, or is blended. */
+/* Must photo k be sampled (step 5)?  It textures faces, or is a candidate
+ * of some. */
 int fct_viewtex_needs_view(const struct fct_viewtex *T, size_t k);
+/* The photo face f is textured from (after labelling), -1 for none. */
+int32_t fct_viewtex_face_photo(const struct fct_viewtex *T, size_t f);
+/* Photo k's gain per channel (after labelling; 1 without levelling). */
+void fct_viewtex_photo_gain(const struct fct_viewtex *T, size_t k, double gain[3]);
 
-/* Step 4 for photo k (the same image as was added), for every photo with
- * faces.  0 or -1. */
+/* Step 5 for photo k (the same image as was added), for every photo that
+ * fct_viewtex_needs_view.  0 or -1. */
 int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_image *rgb,
                             struct fct_err *err);
 
-/* Step 5.  0 or -1. */
+/* Step 6.  0 or -1. */
 int fct_viewtex_finish(struct fct_viewtex *T, struct fct_err *err);
 
 /* The atlas pages (RGB U8), after finish. */
