@@ -566,15 +566,7 @@ static void texcoord(const struct fct_cylview *v, const double p[3], float st[2]
 static int set_textures(struct fct_mesh *m, const char *used, size_t nviews, char *const *names,
                         struct fct_err *err)
 {
-	size_t j = 0;
-	for (size_t i = 0; i < m->ncomments; i++) {
-		if (fct_comment_texture(&m->comments[i])) {
-			free(m->comments[i].text);
-			continue;
-		}
-		m->comments[j++] = m->comments[i];
-	}
-	m->ncomments = j;
+	fct_header_remove_textures(m);
 	size_t t = 0;
 	for (size_t k = 0; k < nviews; k++)
 		if (used[k] && fct_header_set_texture(m, t++, names[k], err))

@@ -1794,15 +1794,7 @@ int fct_viewtex_apply(struct fct_viewtex *T, struct fct_mesh *m, char *const *na
 		}
 	}
 	/* TextureFile comments: the pages, replacing any there. */
-	size_t j = 0;
-	for (size_t i = 0; i < m->ncomments; i++) {
-		if (fct_comment_texture(&m->comments[i])) {
-			free(m->comments[i].text);
-			continue;
-		}
-		m->comments[j++] = m->comments[i];
-	}
-	m->ncomments = j;
+	fct_header_remove_textures(m);
 	for (size_t i = 0; i < T->npages; i++)
 		if (fct_header_set_texture(m, i, names[i], err))
 			goto out;
