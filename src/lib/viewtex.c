@@ -376,6 +376,93 @@ static int view_raster(const struct fct_viewtex *T, const struct vt_view *V, str
 	return 0;
 }
 
+/* What one photo saw, per pixel and per face, for judge_face. */
+struct seen_maps {
+	const struct vt_view *V;
+	const unsigned char *pix;     /* the photo, RGB */
+	const float *depth;           /* of the mesh, 0: nothing */
+	const float *G, *E;           /* gradient magnitude; distance weight (NULL: 1) */
+	const uint32_t *cnt;          /* visible pixels per face */
+	const float *qsum, *csum;     /* their summed weighted gradients, colours */
+};
+
+/* The pixel of (u, v) clamped into the picture of V. */
+static size_t pixel_at(const struct vt_view *V, double u, double v)
+{
+	int W = V->cam.width, H = V->cam.height;
+	int px = (int)floor(u + 0.5), py = (int)floor(v + 0.5);
+	px = px < 0 ? 0 : px >= W ? W - 1 : px;
+	py = py < 0 ? 0 : py >= H ? H - 1 : py;
+	return (size_t)py * (size_t)W + (size_t)px;
+}
+
+/* Is the photo a candidate for face f (see viewtex.h, step 1)?  1 with
+ * *nc filled but for its view, or 0. */
+static int judge_face(const struct fct_viewtex *T, const struct seen_maps *S, size_t f,
+                      struct cand *nc)
+{
+	const struct fct_mesh *m = T->m;
+	const struct vt_view *V = S->V;
+	int W = V->cam.width, H = V->cam.height;
+	/* In front; its projected area, in the picture or not. */
+	uint32_t s = m->fstart[f], n = fct_face_size(m, f);
+	double area2 = 0, u0 = 0, w0 = 0, up = 0, wp = 0, z = 0;
+	int front = n >= 3, inside = 1;
+	for (uint32_t i = 0; i < n && front; i++) {
+		double u = 0, w = 0;
+		front = project(&V->v, m->xyz + 3 * (size_t)m->fvert[s + i], &u, &w, &z);
+		inside &= u >= 0 && w >= 0 && u <= W - 1 && w <= H - 1;
+		if (i == 0)
+			u0 = u, w0 = w;
+		else
+			area2 += (up - u0) * (w - w0) - (wp - w0) * (u - u0);
+		up = u, wp = w;
+	}
+	if (!front || (!inside && !S->cnt[f]))
+		return 0;
+	double area = 0.5 * fabs(area2);
+	/* The cosine of the viewing angle. */
+	const double centre[3] = { V->pose[3], V->pose[7], V->pose[11] };
+	double ray[3];
+	fct_v3_sub(ray, centre, T->fc + 3 * f);
+	double len = sqrt(fct_v3_dot(ray, ray));
+	double cs = len > 0 ? fabs(fct_v3_dot(ray, T->fn + 3 * f)) / len : 0;
+	if (!(cs > 0) || !(area > 0))
+		return 0;
+	/* The part of it the photo sees: its visible pixels, or for a face of
+	 * a few pixels, nothing of the mesh in front of its centre. */
+	double vis, u = 0, w = 0;
+	project(&V->v, T->fc + 3 * f, &u, &w, &z);
+	size_t at = pixel_at(V, u, w);
+	if (area >= 8) {
+		vis = fmin(1, S->cnt[f] / area);
+	} else {
+		float d = S->depth[at];
+		vis = inside && !(d > 0 && d < z * (1 - T->p.depth_tol));
+	}
+	if (!(vis > 0))
+		return 0;
+	double q;
+	if (S->cnt[f] > 0) {
+		q = S->qsum[f];
+		for (int j = 0; j < 3; j++)
+			nc->col[j] = S->csum[3 * f + (size_t)j] / (float)S->cnt[f];
+		nc->npix = (float)S->cnt[f];
+	} else {       /* smaller than a pixel: its centre's pixel, times its area */
+		q = area * (S->G[at] + GRAD_FLOOR) * (S->E ? S->E[at] : 1);
+		for (int j = 0; j < 3; j++)
+			nc->col[j] = S->pix[3 * at + (size_t)j];
+		nc->npix = 1;
+	}
+	/* Seen too obliquely or too little: a last resort, for faces no photo
+	 * sees well. */
+	int poor = !(cs >= T->p.min_cos) || vis < MIN_VISIBLE;
+	nc->q = (float)(q * cs * vis * vis * (poor ? 1e-3 : 1));
+	nc->area = (float)area;
+	nc->vis = (float)vis;
+	return 1;
+}
+
 int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camera *cam,
                          const double pose[12], const struct fct_image *rgb, size_t *seen,
                          struct fct_err *err)
@@ -438,78 +525,15 @@ int fct_viewtex_add_view(struct fct_viewtex *T, size_t k, const struct fct_camer
 		for (int j = 0; j < 3; j++)
 			csum[3 * (size_t)f + (size_t)j] += pix[3 * i + (size_t)j];
 	}
-	const double centre[3] = { pose[3], pose[7], pose[11] };
+	struct seen_maps S = { V, pix, depth, G, E, cnt, qsum, csum };
 	size_t nseen = 0;
 	for (size_t f = 0; f < nf; f++) {
-		/* In front; its projected area, in the picture or not. */
-		uint32_t s = m->fstart[f], n = fct_face_size(m, f);
-		double area2 = 0, u0 = 0, w0 = 0, up = 0, wp = 0, z = 0;
-		int front = n >= 3, inside = 1;
-		for (uint32_t i = 0; i < n && front; i++) {
-			double u = 0, w = 0;
-			front = project(&V->v, m->xyz + 3 * (size_t)m->fvert[s + i], &u, &w, &z);
-			inside &= u >= 0 && w >= 0 && u <= W - 1 && w <= H - 1;
-			if (i == 0)
-				u0 = u, w0 = w;
-			else
-				area2 += (up - u0) * (w - w0) - (wp - w0) * (u - u0);
-			up = u, wp = w;
-		}
-		if (!front || (!inside && !cnt[f]))
-			continue;
-		double area = 0.5 * fabs(area2);
-		/* Seen from not too far off its normal. */
-		double ray[3];
-		fct_v3_sub(ray, centre, T->fc + 3 * f);
-		double len = sqrt(fct_v3_dot(ray, ray));
-		double cs = len > 0 ? fabs(fct_v3_dot(ray, T->fn + 3 * f)) / len : 0;
-		if (!(cs > 0) || !(area > 0))
-			continue;
-		/* The part of it the photo sees: its visible pixels, or for a
-		 * face of a few pixels, nothing of the mesh in front of its
-		 * centre. */
-		double vis;
-		if (area >= 8) {
-			vis = fmin(1, cnt[f] / area);
-		} else {
-			double u = 0, w = 0;
-			project(&V->v, T->fc + 3 * f, &u, &w, &z);
-			int px = (int)floor(u + 0.5), py = (int)floor(w + 0.5);
-			px = px < 0 ? 0 : px >= W ? W - 1 : px;
-			py = py < 0 ? 0 : py >= H ? H - 1 : py;
-			float d = depth[(size_t)py * (size_t)W + (size_t)px];
-			vis = inside && !(d > 0 && d < z * (1 - T->p.depth_tol));
-		}
-		if (!(vis > 0))
-			continue;
 		struct cand nc;
-		double q;
-		if (cnt[f] > 0) {
-			q = qsum[f];
-			for (int j = 0; j < 3; j++)
-				nc.col[j] = csum[3 * f + (size_t)j] / (float)cnt[f];
-			nc.npix = (float)cnt[f];
-		} else {       /* smaller than a pixel: its centre's pixel, times its area */
-			double u = 0, w = 0;
-			project(&V->v, T->fc + 3 * f, &u, &w, &z);
-			int px = (int)floor(u + 0.5), py = (int)floor(w + 0.5);
-			px = px < 0 ? 0 : px >= W ? W - 1 : px;
-			py = py < 0 ? 0 : py >= H ? H - 1 : py;
-			size_t i = (size_t)py * (size_t)W + (size_t)px;
-			q = area * (G[i] + GRAD_FLOOR) * (E ? E[i] : 1);
-			for (int j = 0; j < 3; j++)
-				nc.col[j] = pix[3 * i + (size_t)j];
-			nc.npix = 1;
+		if (judge_face(T, &S, f, &nc)) {
+			nc.view = (int32_t)k;
+			keep_candidate(T, f, &nc);
+			nseen++;
 		}
-		/* Seen too obliquely or too little: a last resort, for faces no
-		 * photo sees well. */
-		int poor = !(cs >= T->p.min_cos) || vis < MIN_VISIBLE;
-		nc.q = (float)(q * cs * vis * vis * (poor ? 1e-3 : 1));
-		nc.area = (float)area;
-		nc.vis = (float)vis;
-		nc.view = (int32_t)k;
-		keep_candidate(T, f, &nc);
-		nseen++;
 	}
 	if (seen)
 		*seen = nseen;
@@ -1010,6 +1034,47 @@ static size_t shelf_pack(struct rect *r, size_t n, int S, int *last_height)
 	return n ? page + 1 : 0;
 }
 
+/* The edges between charts of different photos, and room for their
+ * samples: one per four pixels of the edge's length in the finer photo,
+ * 1 to SEAM_SAMPLES. */
+static int make_seams(struct fct_viewtex *T, struct fct_err *err)
+{
+	const struct fct_mesh *m = T->m;
+	const struct fct_adj *A = &T->adj;
+	size_t cap = 0;
+	for (size_t e = 0; e < A->ne; e++) {
+		if (fct_adj_edge_nfaces(A, e) != 2)
+			continue;
+		uint32_t f = A->edge_f[A->edge_fstart[e]], g = A->edge_f[A->edge_fstart[e] + 1];
+		if (T->label[f] < 0 || T->label[g] < 0 || T->chart_of[f] == T->chart_of[g] ||
+		    T->label[f] == T->label[g])
+			continue;
+		if (fct_grow((void **)&T->seams, &cap, T->nseams + 1, sizeof *T->seams, err))
+			return -1;
+		struct seam *sm = &T->seams[T->nseams++];
+		sm->f[0] = f, sm->f[1] = g;
+		sm->v[0] = A->edge_v[2 * e], sm->v[1] = A->edge_v[2 * e + 1];
+		/* One sample per four pixels of its length in the finer photo. */
+		double px = 0;
+		for (int side = 0; side < 2; side++) {
+			const struct fct_view *v = &T->views[T->label[sm->f[side]]].v;
+			double u0, w0, u1, w1, z;
+			if (project(v, m->xyz + 3 * (size_t)sm->v[0], &u0, &w0, &z) &&
+			    project(v, m->xyz + 3 * (size_t)sm->v[1], &u1, &w1, &z))
+				px = fmax(px, hypot(u1 - u0, w1 - w0));
+		}
+		sm->n = (int)fmin(SEAM_SAMPLES, fmax(1, ceil(px / 4)));
+		sm->first = (uint32_t)T->nsamples;
+		T->nsamples += (size_t)sm->n;
+	}
+	T->st.seam_edges = T->nseams;
+	T->seam_flat = calloc(T->nsamples ? T->nsamples : 1, 1);
+	if (!T->seam_flat ||
+	    !(T->seam_col = calloc(T->nsamples ? T->nsamples : 1, 6 * sizeof *T->seam_col)))
+		return fct_fail(err, "out of memory");
+	return 0;
+}
+
 int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err)
 {
 	const struct fct_mesh *m = T->m;
@@ -1110,39 +1175,8 @@ int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err)
 	T->st.page_width = npages ? T->pages[0].width : 0;
 	T->st.page_height = npages ? T->pages[0].height : 0;
 	T->st.scale = s;
-	/* The seams and room for their samples. */
-	const struct fct_adj *A = &T->adj;
-	size_t cap = 0;
-	for (size_t e = 0; e < A->ne; e++) {
-		if (fct_adj_edge_nfaces(A, e) != 2)
-			continue;
-		uint32_t f = A->edge_f[A->edge_fstart[e]], g = A->edge_f[A->edge_fstart[e] + 1];
-		if (T->label[f] < 0 || T->label[g] < 0 || T->chart_of[f] == T->chart_of[g] ||
-		    T->label[f] == T->label[g])
-			continue;
-		if (fct_grow((void **)&T->seams, &cap, T->nseams + 1, sizeof *T->seams, err))
-			return -1;
-		struct seam *sm = &T->seams[T->nseams++];
-		sm->f[0] = f, sm->f[1] = g;
-		sm->v[0] = A->edge_v[2 * e], sm->v[1] = A->edge_v[2 * e + 1];
-		/* One sample per four pixels of its length in the finer photo. */
-		double px = 0;
-		for (int side = 0; side < 2; side++) {
-			const struct fct_view *v = &T->views[T->label[sm->f[side]]].v;
-			double u0, w0, u1, w1, z;
-			if (project(v, m->xyz + 3 * (size_t)sm->v[0], &u0, &w0, &z) &&
-			    project(v, m->xyz + 3 * (size_t)sm->v[1], &u1, &w1, &z))
-				px = fmax(px, hypot(u1 - u0, w1 - w0));
-		}
-		sm->n = (int)fmin(SEAM_SAMPLES, fmax(1, ceil(px / 4)));
-		sm->first = (uint32_t)T->nsamples;
-		T->nsamples += (size_t)sm->n;
-	}
-	T->st.seam_edges = T->nseams;
-	T->seam_flat = calloc(T->nsamples ? T->nsamples : 1, 1);
-	if (!T->seam_flat ||
-	    !(T->seam_col = calloc(T->nsamples ? T->nsamples : 1, 6 * sizeof *T->seam_col)))
-		return fct_fail(err, "out of memory");
+	if (make_seams(T, err))
+		return -1;
 	return fct_raster_init(&T->tile, TILE, TILE, err);
 }
 
