@@ -151,6 +151,9 @@ static void parse_options(int argc, char **argv, struct options *o)
 		default: fct_bad_option(optstring, argv);
 		}
 	}
+	if ((double)o->p.max_pages * o->p.atlas_max * o->p.atlas_max > (double)((size_t)1 << 29))
+		fct_usage_error("--max-pages %d of --atlas-size %d: more than 2^29 texels", o->p.max_pages,
+		                o->p.atlas_max);
 	if (o->p.blend && !level_given)
 		o->p.level = 0;         /* the mean of the photos is level enough */
 	if (optind >= argc)

@@ -129,6 +129,10 @@ static int check_params(const struct fct_viewtex_params *p, struct fct_err *err)
 	    p->max_pages < 1 || p->max_pages > 1024 || p->level < 0 || p->level > 2 ||
 	    p->candidates < 1 || p->candidates > 32 || p->max_cycles < 1 || p->max_cycles > 1000)
 		return fct_fail(err, "texturing parameters out of range");
+	/* The atlas's texels take 12 bytes each while sampling. */
+	if ((double)p->max_pages * p->atlas_max * p->atlas_max > (double)((size_t)1 << 29))
+		return fct_fail(err, "%d pages of %d x %d texels: more than 2^29 texels", p->max_pages,
+		                p->atlas_max, p->atlas_max);
 	return 0;
 }
 

@@ -72,8 +72,8 @@
  *    rings deep, each ring reading only the rings before it.
  *
  * Memory is bounded by the mesh (candidates per face, charts, seams) and
- * the atlas pages (RGB, and 8 bytes a texel while sampling); one photo is
- * held at a time.  The same inputs give the same texture, bit for bit. */
+ * the atlas pages (4 bytes a texel, and 8 more while sampling; at most
+ * 2^29 texels in all); one photo is held at a time.  The same inputs give the same texture, bit for bit. */
 #ifndef FCT_VIEWTEX_H
 #define FCT_VIEWTEX_H
 
@@ -93,7 +93,7 @@ struct fct_viewtex_params {
 	double texel_scale;   /* texels per photo pixel, at most 4 (default 1) */
 	int padding;          /* texels around each chart (default 4) */
 	int atlas_max;        /* largest page side, a power of two in [64, 16384] (default 4096) */
-	int max_pages;        /* (default 16) */
+	int max_pages;        /* (default 16); pages x atlas_max^2 at most 2^29 texels */
 	int level;            /* 0 none, 1 a gain per photo, 2 and seam levelling (default 2) */
 	int rectify;          /* planar patches in their plane's frame (default 1) */
 	int candidates;       /* photos kept per face, 1 to 32 (default 6) */
