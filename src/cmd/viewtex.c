@@ -58,7 +58,7 @@ static const char usage[] =
 	"      --per-vertex   PLY with vertex s t (vertices copied at chart borders)\n"
 	"                     instead of per-face texcoord\n"
 	"      --poses file   camera-to-world poses: one file per photo (4x4 or 3x4),\n"
-	"                     or one TUM trajectory\n"
+	"                     or one trajectory (TUM, Redwood .log, KITTI, stacked 4x4)\n"
 	"      --smooth w     cost of a seam per pixel of its length, in pixels of\n"
 	"                     lost quality (default 10)\n"
 	"      --texel-scale s\n"

@@ -45,7 +45,7 @@ printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty floa
 run_case 1 "viewtex $C -o $TMP/m.obj $TMP/nofaces.ply $train" "" "viewtex: $TMP/nofaces.ply: the mesh has no faces"
 printf '1 0 0 nan\n0 1 0 0\n0 0 1 0\n0 0 0 1\n' >"$TMP/nan.pose"
 run_case 1 "viewtex $C -o $TMP/m.obj --poses $TMP/nan.pose $R/scene.ply $R/view00.color.png" "" "viewtex: $TMP/nan.pose"
-run_case 1 "viewtex $C -o $TMP/m.obj --poses $R/view00.pose $R/scene.ply $R/view00.color.png $R/view01.color.png" "" "viewtex: 2 images but 1 pose files"
+run_case 1 "viewtex $C -o $TMP/m.obj --poses $R/view00.pose $R/scene.ply $R/view00.color.png $R/view01.color.png" "" "viewtex: 2 depth frames but $R/view00.pose holds 1 pose"
 run_case 1 "viewtex $C -o $TMP/m.obj --poses $R/view00.pose $R/scene.ply $TMP/missing.png" "" "viewtex: $TMP/missing.png"
 # A camera 100 m away looking away from the room sees nothing.
 printf '1 0 0 0\n0 1 0 0\n0 0 1 100\n0 0 0 1\n' >"$TMP/away.pose"
@@ -71,6 +71,10 @@ check_num "levelling lowers the seams' difference" "$(value viewtex seam_rms_aft
 run_case 0 "viewtex $C -o $TMP/mod/n.obj $R/scene.ply $train"
 check_true "same atlas twice" cmp -s "$TMP/mod/m_atlas0.png" "$TMP/mod/n_atlas0.png"
 check_true "same OBJ twice" sh -c "sed 1,20d $TMP/mod/m.obj | sed 's/m_atlas/X/' >$TMP/a; sed 1,20d $TMP/mod/n.obj | sed 's/n_atlas/X/' >$TMP/b; cmp -s $TMP/a $TMP/b"
+# The same poses as one file of stacked 4x4 matrices: the same texture.
+cat "$R/view00.pose" "$R/view02.pose" "$R/view04.pose" "$R/view06.pose" >"$TMP/stacked.txt"
+run_case 0 "viewtex $C --poses $TMP/stacked.txt -o $TMP/mod/s.obj $R/scene.ply $R/view00.color.png $R/view02.color.png $R/view04.color.png $R/view06.color.png"
+check_true "stacked poses: the same atlas" cmp -s "$TMP/mod/m_atlas0.png" "$TMP/mod/s_atlas0.png"
 # PLY: per-face texcoord and texnumber, or vertex s t.
 run_case 0 "viewtex $C -o $TMP/mod/p.ply $R/scene.ply $train"
 meshinfo "$TMP/mod/p.ply" >"$TMP/info"
