@@ -274,24 +274,11 @@ static void choose_view(const struct opts *o, const struct fct_mesh *m, int rese
 		if ((size_t)W * (size_t)H > ((size_t)1 << 26))
 			fct_die(1, "%s: the camera's picture (%dx%d) is too large; choose one with -s",
 			        fct_path_display(o->input), W, H);
-		double sx = (double)W / cam.width, sy = (double)H / cam.height;
-		v->fx = cam.fx * sx, v->fy = cam.fy * sy;
-		v->cx = (cam.cx + 0.5) * sx - 0.5, v->cy = (cam.cy + 0.5) * sy - 0.5;
-		v->width = W, v->height = H;
-		if (has_pose) {
-			double inv[12];
-			fct_pose_invert(pose, inv);
-			for (int r = 0; r < 3; r++) {
-				for (int c = 0; c < 3; c++)
-					v->R[3 * r + c] = inv[4 * r + c];
-				v->t[r] = inv[4 * r + 3];
-			}
-		} else {
-			memset(v->R, 0, sizeof v->R);
-			v->R[0] = v->R[4] = v->R[8] = 1;
-			memset(v->t, 0, sizeof v->t);
+		if (fct_view_from_camera(v, &cam, has_pose ? pose : NULL, W, H,
+		                         size > 0 ? 1e-4 * size : 1e-6, &err)) {
+			fct_err_prefix(&err, "%s", fct_path_display(o->input));
+			fct_die_err(&err);
 		}
-		v->near = size > 0 ? 1e-4 * size : 1e-6;
 		return;
 	}
 	int W = o->width ? o->width : 800, H = o->height ? o->height : 600;

@@ -7,6 +7,7 @@
 #include "geom.h"
 
 #include "cylview.h"
+#include "texmap.h"
 #include "header.h"
 #include "output.h"
 #include "path.h"
@@ -564,105 +565,12 @@ static void texcoord(const struct fct_cylview *v, const double p[3], float st[2]
 static int set_textures(struct fct_mesh *m, const char *used, size_t nviews, char *const *names,
                         struct fct_err *err)
 {
-	size_t j = 0;
-	for (size_t i = 0; i < m->ncomments; i++) {
-		if (fct_comment_texture(&m->comments[i])) {
-			free(m->comments[i].text);
-			continue;
-		}
-		m->comments[j++] = m->comments[i];
-	}
-	m->ncomments = j;
+	fct_header_remove_textures(m);
 	size_t t = 0;
 	for (size_t k = 0; k < nviews; k++)
 		if (used[k] && fct_header_set_texture(m, t++, names[k], err))
 			return -1;
 	return 0;
-}
-
-/* OBJ: one copy of each vertex per view that uses it (the first keeps the
- * vertex's index, others go after the vertices), faces renumbered, and
- * vertex s t set from each copy's view. */
-static int split_vertices(struct fct_mesh *m, const double *inv, const struct fct_cylview *views,
-                          const int32_t *view_of, struct fct_err *err)
-{
-	size_t nv = m->nv, total = nv, ncopy = 0, ccap = 0, scap = 0, vcap = 0;
-	uint32_t *first = calloc(nv ? nv : 1, sizeof *first), *cnext = NULL, *cidx = NULL;
-	int32_t *cview = NULL, *vview = NULL;
-	size_t *src = NULL, ncap = 0, icap = 0;
-	int rc = -1;
-	if (!first) {
-		fct_fail(err, "out of memory");
-		goto out;
-	}
-	if (fct_grow((void **)&src, &scap, nv + 1, sizeof *src, err) ||
-	    fct_grow((void **)&vview, &vcap, nv + 1, sizeof *vview, err))
-		goto out;
-	for (size_t v = 0; v < nv; v++)
-		src[v] = v, vview[v] = -1;
-	for (size_t f = 0; f < m->nf; f++) {
-		int32_t k = view_of[f];
-		for (uint32_t i = m->fstart[f]; i < m->fstart[f + 1]; i++) {
-			uint32_t v = m->fvert[i], e;
-			for (e = first[v]; e && cview[e - 1] != k; e = cnext[e - 1])
-				;
-			if (!e) {
-				if (fct_grow((void **)&cview, &ccap, ncopy + 1, sizeof *cview, err) ||
-				    fct_grow((void **)&cnext, &ncap, ncopy + 1, sizeof *cnext, err) ||
-				    fct_grow((void **)&cidx, &icap, ncopy + 1, sizeof *cidx, err))
-					goto out;
-				uint32_t idx = v;
-				if (first[v]) {
-					if (total >= UINT32_MAX - 1) {
-						fct_fail(err, "too many vertices");
-						goto out;
-					}
-					if (fct_grow((void **)&src, &scap, total + 1, sizeof *src, err) ||
-					    fct_grow((void **)&vview, &vcap, total + 1, sizeof *vview, err))
-						goto out;
-					src[total] = v;
-					idx = (uint32_t)total++;
-				}
-				vview[idx] = k;
-				cview[ncopy] = k, cidx[ncopy] = idx, cnext[ncopy] = first[v];
-				first[v] = (uint32_t)++ncopy;
-				e = first[v];
-			}
-			m->fvert[i] = cidx[e - 1];
-		}
-	}
-	if (fct_elem_gather(&m->vertex, src, total, err) ||
-	    fct_grow((void **)&m->xyz, &m->xyz_cap, 3 * total, sizeof *m->xyz, err))
-		goto out;
-	for (size_t i = nv; i < total; i++)
-		memcpy(m->xyz + 3 * i, m->xyz + 3 * src[i], 3 * sizeof *m->xyz);
-	m->nv = total;
-	struct fct_prop *ps = fct_elem_add_scalar(&m->vertex, "s", FCT_FLOAT32, err);
-	if (!ps || !fct_elem_add_scalar(&m->vertex, "t", FCT_FLOAT32, err))
-		goto out;
-	ps = fct_elem_find(&m->vertex, "s");
-	float *s = ps->data, *t = fct_elem_find(&m->vertex, "t")->data;
-	for (size_t v = 0; v < total; v++) {
-		float st[2] = {0, 0};
-		if (vview[v] >= 0) {
-			double p[3];
-			if (inv)
-				fct_pose_apply(inv, m->xyz + 3 * v, p);
-			else
-				memcpy(p, m->xyz + 3 * v, sizeof p);
-			texcoord(&views[vview[v]], p, st);
-		}
-		s[v] = st[0], t[v] = st[1];
-	}
-	rc = 0;
-out:
-	free(first);
-	free(cnext);
-	free(cidx);
-	free(cview);
-	free(vview);
-	free(src);
-	return rc;
 }
 
 int fct_cylview_texture(struct fct_mesh *m, const double *pano_pose,
@@ -676,8 +584,10 @@ int fct_cylview_texture(struct fct_mesh *m, const double *pano_pose,
 		return fct_fail(err, "mesh too large");
 	char *used = calloc(nviews ? nviews : 1, 1);
 	int32_t *rank = fct_alloc_array(nviews, sizeof *rank, err);
+	float *st = fct_alloc_array(m->fstart[m->nf], 2 * sizeof *st, err);
+	int32_t *texnum = fct_alloc_array(m->nf, sizeof *texnum, err);
 	int rc = -1;
-	if (!used || !rank) {
+	if (!used || !rank || !st || !texnum) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -688,43 +598,31 @@ int fct_cylview_texture(struct fct_mesh *m, const double *pano_pose,
 	int32_t r = 0;
 	for (size_t k = 0; k < nviews; k++)
 		rank[k] = used[k] ? r++ : -1;
-	if (per_face) {
-		struct fct_prop *tc = fct_mesh_add_corner_list(m, "texcoord", FCT_FLOAT32, 2, err);
-		if (!tc)
-			goto out;
-		float *d = tc->data;
-		for (size_t f = 0; f < m->nf; f++) {
-			int32_t k = view_of[f];
-			for (uint32_t i = m->fstart[f]; i < m->fstart[f + 1]; i++) {
-				double p[3];
-				const double *x = m->xyz + 3 * (size_t)m->fvert[i];
-				if (pano_pose)
-					fct_pose_apply(inv, x, p);
-				else
-					memcpy(p, x, sizeof p);
-				if (k >= 0)
-					texcoord(&views[k], p, d + 2 * (size_t)i);
-				else
-					d[2 * i] = d[2 * i + 1] = 0;
-			}
+	for (size_t f = 0; f < m->nf; f++) {
+		int32_t k = view_of[f];
+		for (uint32_t i = m->fstart[f]; i < m->fstart[f + 1]; i++) {
+			double p[3];
+			const double *x = m->xyz + 3 * (size_t)m->fvert[i];
+			if (pano_pose)
+				fct_pose_apply(inv, x, p);
+			else
+				memcpy(p, x, sizeof p);
+			if (k >= 0)
+				texcoord(&views[k], p, st + 2 * (size_t)i);
+			else
+				st[2 * i] = st[2 * i + 1] = 0;
 		}
-		fct_elem_remove(&m->vertex, "s");
-		fct_elem_remove(&m->vertex, "t");
-	} else if (split_vertices(m, pano_pose ? inv : NULL, views, view_of, err)) {
-		goto out;
+		texnum[f] = k >= 0 ? rank[k] : -1;
 	}
-	struct fct_prop *tn = fct_elem_add_scalar(&m->face, "texnumber", FCT_INT32, err);
-	if (!tn)
-		goto out;
-	int32_t *t = tn->data;
-	for (size_t f = 0; f < m->nf; f++)
-		t[f] = view_of[f] >= 0 ? rank[view_of[f]] : -1;
-	if (set_textures(m, used, nviews, names, err))
+	if (fct_texmap_set_corners(m, st, texnum, per_face, err) ||
+	    set_textures(m, used, nviews, names, err))
 		goto out;
 	rc = 0;
 out:
 	free(used);
 	free(rank);
+	free(st);
+	free(texnum);
 	return rc;
 }
 

@@ -332,3 +332,16 @@ const char *fct_comment_line(const struct fct_comment *c, size_t max, char *buf)
 		return abbreviate_provenance(t, max, buf);
 	return cut_end(t, max, buf);
 }
+
+void fct_header_remove_textures(struct fct_mesh *m)
+{
+	size_t j = 0;
+	for (size_t i = 0; i < m->ncomments; i++) {
+		if (fct_comment_texture(&m->comments[i])) {
+			free(m->comments[i].text);
+			continue;
+		}
+		m->comments[j++] = m->comments[i];
+	}
+	m->ncomments = j;
+}

@@ -38,6 +38,8 @@ size_t fct_header_texture_count(const struct fct_mesh *m);
 const char *fct_header_texture(const struct fct_mesh *m, size_t i);
 /* Make comment c say "TextureFile path". */
 int fct_comment_set_texture(struct fct_comment *c, const char *path, struct fct_err *err);
+/* Remove every TextureFile comment of m. */
+void fct_header_remove_textures(struct fct_mesh *m);
 /* Replace the i-th TextureFile path (i == count appends one). */
 int fct_header_set_texture(struct fct_mesh *m, size_t i, const char *path, struct fct_err *err);
 

@@ -26,6 +26,38 @@ void fct_view_to_camera(const struct fct_view *v, const double p[3], double q[3]
 	q[0] = x, q[1] = y, q[2] = z;
 }
 
+int fct_view_from_camera(struct fct_view *v, const struct fct_camera *cam, const double *pose,
+                         int width, int height, double near, struct fct_err *err)
+{
+	memset(v, 0, sizeof *v);
+	if (cam->kind != FCT_CAMERA_PINHOLE || cam->width < 1 || cam->height < 1 ||
+	    !(cam->fx > 0 && cam->fy > 0) || !isfinite(cam->fx + cam->fy + cam->cx + cam->cy))
+		return fct_fail(err, "not a pinhole camera with a size and positive focal lengths");
+	int W = width > 0 ? width : cam->width, H = height > 0 ? height : cam->height;
+	if (W > FCT_IMAGE_MAX_SIDE || H > FCT_IMAGE_MAX_SIDE)
+		return fct_fail(err, "picture size %dx%d out of range", W, H);
+	double sx = (double)W / cam->width, sy = (double)H / cam->height;
+	v->fx = cam->fx * sx, v->fy = cam->fy * sy;
+	v->cx = (cam->cx + 0.5) * sx - 0.5, v->cy = (cam->cy + 0.5) * sy - 0.5;
+	v->width = W, v->height = H;
+	v->near = near;
+	if (pose) {
+		double inv[12];
+		fct_pose_invert(pose, inv);
+		for (int r = 0; r < 3; r++) {
+			for (int c = 0; c < 3; c++)
+				v->R[3 * r + c] = inv[4 * r + c];
+			v->t[r] = inv[4 * r + 3];
+		}
+		for (int k = 0; k < 12; k++)
+			if (!isfinite(pose[k]))
+				return fct_fail(err, "pose is not finite");
+	} else {
+		v->R[0] = v->R[4] = v->R[8] = 1;
+	}
+	return 0;
+}
+
 static int normalize(double v[3])
 {
 	double n = sqrt(fct_v3_dot(v, v));
@@ -158,6 +190,22 @@ int fct_raster_init(struct fct_raster *r, int width, int height, struct fct_err 
 		fct_raster_free(r);
 		return fct_fail(err, "out of memory for a %dx%d picture", width, height);
 	}
+	for (size_t i = 0; i < n; i++)
+		r->id[i] = FCT_RASTER_EMPTY;
+	r->width = width;
+	r->height = height;
+	r->cap = n;
+	return 0;
+}
+
+int fct_raster_reset(struct fct_raster *r, int width, int height, struct fct_err *err)
+{
+	if (width < 1 || height < 1 || (size_t)width * (size_t)height > r->cap)
+		return fct_fail(err, "picture size %dx%d beyond the buffer's %zu pixels", width, height,
+		                r->cap);
+	size_t n = (size_t)width * (size_t)height;
+	memset(r->w, 0, n * sizeof *r->w);
+	memset(r->b, 0, 2 * n * sizeof *r->b);
 	for (size_t i = 0; i < n; i++)
 		r->id[i] = FCT_RASTER_EMPTY;
 	r->width = width;

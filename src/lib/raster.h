@@ -20,6 +20,7 @@
 
 #include <stdint.h>
 
+#include "camera.h"
 #include "err.h"
 #include "image.h"
 
@@ -35,6 +36,14 @@ struct fct_view {
 
 /* q = R p + t. */
 void fct_view_to_camera(const struct fct_view *v, const double p[3], double q[3]);
+
+/* The view of pinhole camera cam (its width and height set) at pose
+ * (camera-to-world, NULL: the camera's own frame), drawn at width x height
+ * pixels with the same field of view (0 x 0: the camera's size), near
+ * plane near.  Fails when cam is not a pinhole with a size and positive
+ * focal lengths, the size is out of range, or the pose is not finite. */
+int fct_view_from_camera(struct fct_view *v, const struct fct_camera *cam, const double *pose,
+                         int width, int height, double near, struct fct_err *err);
 
 /* The view from eye looking at target, with up the direction that appears
  * upwards in the picture, a vertical field of view of fov_deg degrees, the
@@ -64,6 +73,7 @@ struct fct_raster {
 	float *w;
 	uint32_t *id;
 	float *b;       /* 2 per pixel */
+	size_t cap;     /* pixels allocated */
 };
 
 /* Allocate an empty buffer (sides 1 .. FCT_IMAGE_MAX_SIDE, at most
@@ -71,6 +81,10 @@ struct fct_raster {
 int fct_raster_init(struct fct_raster *r, int width, int height, struct fct_err *err);
 /* Free what r owns; r may be NULL. */
 void fct_raster_free(struct fct_raster *r);
+/* Empty r again as a buffer of width x height pixels, within the pixels
+ * it was allocated with (a buffer reused for pictures of several sizes).
+ * 0, or -1 when they do not fit. */
+int fct_raster_reset(struct fct_raster *r, int width, int height, struct fct_err *err);
 
 /* Draw the triangle with camera-frame corners q0 q1 q2 (see
  * fct_view_to_camera) as triangle id: clipped to z >= v->near and to a

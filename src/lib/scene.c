@@ -526,6 +526,31 @@ void fct_scene_panorama_pose(const struct fct_scene *s, double pose[12])
 
 /* Rendering ----------------------------------------------------------------- */
 
+/* A value in [0, 1) for lattice point (i, j) of surface k (a 64-bit mix
+ * of the three, SplitMix64's finaliser). */
+static double lattice(long long i, long long j, size_t k)
+{
+	uint64_t x = (uint64_t)i * 0x9E3779B97F4A7C15u ^ (uint64_t)j * 0xC2B2AE3D27D4EB4Fu ^
+	             (uint64_t)k * 0x165667B19E3779F9u;
+	x ^= x >> 30;
+	x *= 0xBF58476D1CE4E5B9u;
+	x ^= x >> 27;
+	x *= 0x94D049BB133111EBu;
+	x ^= x >> 31;
+	return (double)(x >> 11) / 9007199254740992.0;
+}
+
+/* Value noise at (x, y) metres on surface k: bilinear between lattice
+ * values cell metres apart. */
+static double value_noise(double x, double y, double cell, size_t k)
+{
+	double fx = floor(x / cell), fy = floor(y / cell), tx = x / cell - fx, ty = y / cell - fy;
+	long long i = (long long)fx, j = (long long)fy;
+	double a = lattice(i, j, k), b = lattice(i + 1, j, k), c = lattice(i, j + 1, k);
+	double d = lattice(i + 1, j + 1, k);
+	return (a + tx * (b - a)) * (1 - ty) + (c + tx * (d - c)) * ty;
+}
+
 void fct_scene_color(const struct fct_scene *s, size_t f, const double p[3], uint8_t rgb[3])
 {
 	const struct fct_scene_surface *su = &s->surf[s->face_surface[f]];
@@ -553,6 +578,20 @@ void fct_scene_color(const struct fct_scene *s, size_t f, const double p[3], uin
 			n[0] /= len, n[1] /= len, n[2] /= len;
 	}
 	double tone = (a + b) % 2 ? 0.6 : 1.0;
+	if (s->grain) {
+		/* The surface's own metric coordinates: in-plane, or arc length
+		 * and height (cylinder), or arc lengths (sphere). */
+		double x, y;
+		if (su->kind == FCT_SURF_PLANE) {
+			x = fct_v3_dot(q, su->e1), y = fct_v3_dot(q, su->e2);
+		} else {
+			x = su->r * atan2(q[1], q[0]);
+			y = su->kind == FCT_SURF_SPHERE ? su->r * atan2(q[2], hypot(q[0], q[1])) : q[2];
+		}
+		size_t k = (size_t)s->face_surface[f];
+		double g = (2 * value_noise(x, y, 0.04, k) + value_noise(x, y, 0.02, k + 1000)) / 3;
+		tone *= 0.6 + 0.4 * g;
+	}
 	double lit = fct_v3_dot(n, s->light);
 	double shade = 0.5 + 0.5 * (lit > 0 ? lit : 0);
 	for (int k = 0; k < 3; k++) {

@@ -60,6 +60,7 @@ struct fct_scene {
 	/* Default viewpoints: pinhole views placed by fct_scene_view_pose,
 	 * the panorama at pano[]. */
 	int orbit;                  /* 1: views orbit target from eye; 0: room views */
+	int grain;                  /* 1: the albedo also has a fine grain (fct_scene_color) */
 	double eye[3], target[3];
 	double pano[3];
 };
@@ -101,7 +102,10 @@ void fct_render_free(struct fct_render *r);
 
 /* The colour of world point p on face f: the surface's checker times
  * 0.5 + 0.5 max(0, n.light) with n the surface's exact normal at p,
- * rounded to 8 bits. */
+ * rounded to 8 bits.  With s->grain the checker is also multiplied by
+ * 0.6 + 0.4 g, g in [0, 1] a value noise in the surface's own metric
+ * coordinates (two octaves, lattices of 4 and 2 cm): detail finer than a
+ * 1 cm mesh's vertex colours hold, for judging texture against them. */
 void fct_scene_color(const struct fct_scene *s, size_t f, const double p[3], uint8_t rgb[3]);
 
 /* Sensor models applied to a depth image.  Each valid pixel (truth > 0),

@@ -40,19 +40,13 @@ static inline int continuous(double a, double b, double band, double slope)
 	return fabs(a - b) <= band + slope * fmin(a, b);
 }
 
-/* Chamfer distance (1, sqrt 2) in pixels from each pixel of r to the
- * nearest depth edge: a pixel without data, or one with a 4-neighbour
- * without data or not continuous with it.  Capped at cap; malloc'd W*H
- * floats, NULL when out of memory. */
-static float *edge_distance(const struct fct_range_image *r, double band, double slope,
-                            double cap, struct fct_err *err)
+float *fct_depth_edge_distance(const float *R, int W, int H, double band, double slope,
+                              double cap, struct fct_err *err)
 {
-	int W = r->width, H = r->height;
 	size_t n = (size_t)W * (size_t)H;
 	float *d = fct_alloc_array(n, sizeof *d, err);
 	if (!d)
 		return NULL;
-	const float *R = r->range;
 	for (int y = 0; y < H; y++)
 		for (int x = 0; x < W; x++) {
 			size_t i = (size_t)y * (size_t)W + (size_t)x;
@@ -122,7 +116,8 @@ int fct_viewcolor_add(struct fct_viewcolor *c, const struct fct_mesh *m,
 	int same = img->width == W && img->height == H;
 	double slope = FCT_DEFAULT_MAX_JUMP * fct_camera_pixel_angle(cam);
 	float *edge = NULL;
-	if (p->edge_px > 0 && !(edge = edge_distance(r, p->band, slope, p->edge_px, err))) {
+	if (p->edge_px > 0 &&
+	    !(edge = fct_depth_edge_distance(r->range, W, H, p->band, slope, p->edge_px, err))) {
 		fct_image_free(&rgb);
 		return -1;
 	}

@@ -81,4 +81,12 @@ int fct_viewcolor_add(struct fct_viewcolor *c, const struct fct_mesh *m,
 int fct_viewcolor_write(const struct fct_viewcolor *c, struct fct_mesh *m, const uint8_t fallback[3],
                         struct fct_viewcolor_stats *stats, struct fct_err *err);
 
+/* Chamfer distance (1, sqrt 2) in pixels from each pixel of a W x H range
+ * image R (0: no data) to the nearest depth edge: a pixel without data, or
+ * one with a 4-neighbour without data or not continuous with it (ranges a
+ * and b differ by more than band + slope min(a, b)).  Capped at cap;
+ * malloc'd W*H floats, NULL when out of memory. */
+float *fct_depth_edge_distance(const float *R, int W, int H, double band, double slope,
+                              double cap, struct fct_err *err);
+
 #endif
