@@ -45,6 +45,7 @@ struct region {
 	double c[3];     /* weighted centroid */
 	double s[6];     /* central scatter: xx yy zz xy yz xz */
 	double sse;      /* smallest eigenvalue of s: chi^2, the squared residuals in units of noise */
+	double va[3];    /* vector area: the sum of its faces' (which way the patch faces) */
 };
 
 /* A queued pair is a 64-bit key: its cost as the bits of a non-negative
@@ -93,6 +94,7 @@ struct seg {
 	double floor2;           /* no noise below (1e-7 bounding-box diagonal)^2 */
 	double max_ms, stop;     /* max_rms^2, factor^2 */
 	double fit2;             /* fit^2: the largest mean chi^2 of a patch */
+	int two_sided;           /* no viewpoint: a plane may be seen from both sides */
 	size_t patches;
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
 	struct fct_segment_stats st;
@@ -232,8 +234,10 @@ static void region_add(struct region *r, const struct region *a, const struct re
 		a->s[4] + b->s[4] + k * d[1] * d[2],
 		a->s[5] + b->s[5] + k * d[0] * d[2],
 	};
-	for (int i = 0; i < 3; i++)
+	for (int i = 0; i < 3; i++) {
 		r->c[i] = a->c[i] + t * d[i];
+		r->va[i] = a->va[i] + b->va[i];
+	}
 	memcpy(r->s, s, sizeof s);
 	r->n = a->n + b->n;
 	r->w = w;
@@ -250,6 +254,36 @@ static double union_sse(const struct region *a, const struct region *b, double *
 	return l > 0 ? l : 0;
 }
 
+/* The vector area of face f (its fan of triangles from corner 0): its
+ * normal times its area, pointing the way its winding faces. */
+static void face_vector_area(const struct fct_mesh *m, size_t f, double va[3])
+{
+	uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
+	va[0] = va[1] = va[2] = 0;
+	if (n < 3)
+		return;
+	const double *o = &m->xyz[3 * (size_t)m->fvert[s]];
+	for (uint32_t k = 1; k + 1 < n; k++) {
+		const double *p1 = &m->xyz[3 * (size_t)m->fvert[s + k]];
+		const double *p2 = &m->xyz[3 * (size_t)m->fvert[s + k + 1]];
+		double u[3] = { p1[0] - o[0], p1[1] - o[1], p1[2] - o[2] };
+		double v[3] = { p2[0] - o[0], p2[1] - o[1], p2[2] - o[2] };
+		va[0] += 0.5 * (u[1] * v[2] - u[2] * v[1]);
+		va[1] += 0.5 * (u[2] * v[0] - u[0] * v[2]);
+		va[2] += 0.5 * (u[0] * v[1] - u[1] * v[0]);
+	}
+}
+
+/* Do a and b face opposite ways?  Only asked of a mesh without a
+ * viewpoint (S->two_sided): a fused scan holds both sides of a board or a
+ * wall, parallel and closer than the noise allows a plane to tell apart,
+ * and one patch of both would fold over itself in its plane.  A mesh seen
+ * from one viewpoint faces it everywhere but where noise flips a face. */
+static int opposed(const struct seg *S, const struct region *a, const struct region *b)
+{
+	return S->two_sided && a->va[0] * b->va[0] + a->va[1] * b->va[1] + a->va[2] * b->va[2] < 0;
+}
+
 /* The moments of face f: its corners, each weighted by its vertex's
  * 1 / sigma^2 (wv), or the area of its fan of triangles from corner 0 in
  * units of area_unit, weighted by the mean of its corners' weights. */
@@ -260,6 +294,8 @@ static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, i
 	uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
 	if (n == 0)
 		return;
+	double va[3];
+	face_vector_area(m, f, va);
 	const double *o = &m->xyz[3 * (size_t)m->fvert[s]];
 	if (!area || n < 3) {
 		/* Corners relative to the first, for precision. */
@@ -286,6 +322,7 @@ static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, i
 		r->w = area ? 0 : w;
 		r->n = area ? 0 : n;
 		r->sse = n > 3 ? fmax(0, fct_sym3_min_eigenvalue(r->s)) : 0;
+		memcpy(r->va, va, sizeof va);
 		return;
 	}
 	double wmean = 0;
@@ -329,6 +366,7 @@ static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, i
 	for (int i = 0; i < 3; i++)
 		r->c[i] += o[i];
 	r->sse = n > 3 ? fmax(0, fct_sym3_min_eigenvalue(r->s)) : 0;
+	memcpy(r->va, va, sizeof va);
 }
 
 /* Union-find -------------------------------------------------------------- */
@@ -380,7 +418,7 @@ static double cost1(struct seg *S, uint32_t a, uint32_t b, double *sse)
 	double tr, u = union_sse(ra, rb, &tr), w = ra->w + rb->w, n = ra->n + rb->n;
 	S->st.evaluations++;
 	*sse = u;
-	if (u > S->max_ms * w || u > CLUSTER_FIT * CLUSTER_FIT * n)
+	if (u > S->max_ms * w || u > CLUSTER_FIT * CLUSTER_FIT * n || opposed(S, ra, rb))
 		return -1;
 	return u;
 }
@@ -390,7 +428,7 @@ static double cost1(struct seg *S, uint32_t a, uint32_t b, double *sse)
 static int union_fits(const struct seg *S, const struct region *ra, const struct region *rb,
                       double u)
 {
-	if (u > S->max_ms * (ra->w + rb->w))
+	if (u > S->max_ms * (ra->w + rb->w) || opposed(S, ra, rb))
 		return 0;
 	return S->p->target > 0 || u <= S->fit2 * (ra->n + rb->n);
 }
@@ -922,24 +960,39 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 }
 
 /* The plane of a patch's moments r: the weighted orthogonal fit, or the
- * fit along the rays (ray not NULL) where it is well posed. */
+ * fit along the rays (ray not NULL) where it is well posed.  Without rays
+ * its normal points the way the patch faces (its vector area), as finish
+ * writes it, so that face_deviation can tell a face turned away. */
 static void patch_plane(struct fct_plane *pl, const struct region *r, const double *ray,
                         const double *viewpoint)
 {
 	fct_plane_fit(pl, r->c, r->s);
 	if (ray)
 		ray_fit(pl, ray, viewpoint);
+	else if (pl->n[0] * r->va[0] + pl->n[1] * r->va[1] + pl->n[2] * r->va[2] < 0) {
+		for (int i = 0; i < 3; i++)
+			pl->n[i] = -pl->n[i];
+		pl->d = -pl->d;
+	}
 }
 
 /* The distance of face f from plane pl in units of its noise: the mean
  * over its corners of their signed distances over their sigma (the
- * distance of its centroid, where the corners' noise is alike). */
+ * distance of its centroid, where the corners' noise is alike).  A face
+ * turned away from a two-sided mesh's plane (patch_plane) is on the
+ * other side of a board, not on this plane: infinitely far. */
 static double face_deviation(const struct seg *S, size_t f, const struct fct_plane *pl)
 {
 	const struct fct_mesh *m = S->m;
 	uint32_t c0 = m->fstart[f], n = m->fstart[f + 1] - c0;
 	if (n == 0)
 		return 0;
+	if (S->two_sided) {
+		double va[3];
+		face_vector_area(m, f, va);
+		if (va[0] * pl->n[0] + va[1] * pl->n[1] + va[2] * pl->n[2] < 0)
+			return HUGE_VAL;
+	}
 	double dev = 0;
 	for (uint32_t c = c0; c < c0 + n; c++) {
 		uint32_t v = m->fvert[c];
@@ -1332,6 +1385,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	S.max_ms = p->max_rms < HUGE_VAL ? p->max_rms * p->max_rms : HUGE_VAL;
 	S.stop = p->factor * p->factor;
 	S.fit2 = p->fit * p->fit;
+	S.two_sided = !p->use_viewpoint;
 
 	int rc = -1;
 	qkey *least = NULL;

@@ -53,7 +53,16 @@
  *                  phase (the fit test is not applied then);
  *   target == 0    automatic: stop when the cheapest merge has t > factor^2;
  *   max_rms        in both modes a union of rms above max_rms is never made
- *                  (a hard bound in the units of the coordinates).
+ *                  (a hard bound in the units of the coordinates);
+ *   two-sided      without a viewpoint (use_viewpoint 0: a fused scan, a
+ *                  mesh of another tool) no union of patches facing
+ *                  opposite ways (their vector areas' dot product below
+ *                  0) is made in either mode, and a face turned away from
+ *                  its patch's plane is infinitely far from it (peeled,
+ *                  never grown or settled into): both sides of a board
+ *                  thinner than the noise fit one plane, and one patch of
+ *                  both would fold over itself in it.  A view's mesh
+ *                  faces its viewpoint but where noise flips a face.
  * Then, in the automatic mode and when min_faces > 1, each patch of fewer
  * faces is absorbed into the adjacent patch of at least min_faces faces
  * whose plane fits it best, while the union still passes the fit test and
