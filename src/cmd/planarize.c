@@ -79,7 +79,7 @@ static const char usage[] =
 	"      --tls          fit planes orthogonally, not along the camera's rays\n"
 	"The planar model, as planedecim(1):\n"
 	"  -e error           the free-form decimation's bound: the largest quadric\n"
-	"                     distance of a collapse, in sigma (default 1)\n"
+	"                     distance of a collapse, in sigma (default 1.5)\n"
 	"      --border k     a border may move by k edge lengths (default 1)\n"
 	"      --max-hole k   fill holes of at most k edges inside a patch (64)\n"
 	"      --max-move k   move a vertex onto a line or corner by at most k sigma\n"

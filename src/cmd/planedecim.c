@@ -28,7 +28,7 @@ static const char usage[] =
 	"or corner, all one connected mesh.\n"
 	"  -a             write ascii PLY\n"
 	"  -e error       the free-form decimation's bound: the largest quadric\n"
-	"                 distance of a collapse, in units of sigma (default 1)\n"
+	"                 distance of a collapse, in units of sigma (default 1.5)\n"
 	"  -o file        output file (default standard output)\n"
 	"      --border k a border may move by k edge lengths (default 1)\n"
 	"      --max-hole k\n"

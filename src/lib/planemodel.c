@@ -741,7 +741,7 @@ out:
 
 void fct_planar_params_default(struct fct_planar_params *p)
 {
-	p->max_error = 1;
+	p->max_error = 1.5;
 	p->border_tol = 1;
 	p->outline_tol = 3;
 	p->max_move = 4;

@@ -97,7 +97,7 @@ int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_p
 /* The planar model of a segmented mesh (planedecim, planarize). */
 struct fct_planar_params {
 	double max_error;     /* the free-form decimation's quadric distance, in sigma
-	                         (default 1) */
+	                         (default 1.5) */
 	double border_tol;    /* its border distances in edge lengths (default 1) */
 	double outline_tol;   /* outlines simplified to this many sample spacings
 	                         (default 3) */

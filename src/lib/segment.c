@@ -274,6 +274,17 @@ static void face_vector_area(const struct fct_mesh *m, size_t f, double va[3])
 	}
 }
 
+/* Do vector areas a and b point more than TURNED_AWAY apart?  Both sides
+ * of a board point 180 degrees apart; noise flips a face seen edge-on a
+ * little past 90. */
+#define TURNED_AWAY (2 * M_PI / 3)
+static int turned_away(const double a[3], const double b[3])
+{
+	double dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+	return dot < cos(TURNED_AWAY) * sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) *
+	                                     (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]));
+}
+
 /* Do a and b face opposite ways?  Only asked of a mesh without a
  * viewpoint (S->two_sided): a fused scan holds both sides of a board or a
  * wall, parallel and closer than the noise allows a plane to tell apart,
@@ -281,7 +292,7 @@ static void face_vector_area(const struct fct_mesh *m, size_t f, double va[3])
  * from one viewpoint faces it everywhere but where noise flips a face. */
 static int opposed(const struct seg *S, const struct region *a, const struct region *b)
 {
-	return S->two_sided && a->va[0] * b->va[0] + a->va[1] * b->va[1] + a->va[2] * b->va[2] < 0;
+	return S->two_sided && turned_away(a->va, b->va);
 }
 
 /* The moments of face f: its corners, each weighted by its vertex's
@@ -990,7 +1001,7 @@ static double face_deviation(const struct seg *S, size_t f, const struct fct_pla
 	if (S->two_sided) {
 		double va[3];
 		face_vector_area(m, f, va);
-		if (va[0] * pl->n[0] + va[1] * pl->n[1] + va[2] * pl->n[2] < 0)
+		if (turned_away(va, pl->n))
 			return HUGE_VAL;
 	}
 	double dev = 0;

@@ -75,17 +75,15 @@ check_true "kinect: stage figures" grep -q '^planarize: segplanes: patches=[0-9]
 check_true "kinect: --keep files" test "$(ls "$R/k" | tr '\n' ' ')" = "1-mesh.ply 2-patches.ply 3-model.ply "
 
 # The real TUM frame, defaults: an OBJ with its material library naming the
-# photo relative to the model's folder (measured at planar 277adc3: 48x,
-# 10071 faces, E_mean 8.4 mm, E_max 215 mm; QEM at the same count is closer
-# to the dense mesh, 4.4 mm).  Issue 23 asks 50x: 78x at d60fa92, 48x since
-# segplanes keeps no face farther than 3 sigma from its plane (d38dae5,
-# d8652e9: more of the clutter is free-form surface), so that goal is an
-# expected failure, with a margin.
+# photo relative to the model's folder (measured with planedecim's -e 1.5
+# default: 53x, E_mean 8.6 mm, E_max 220 mm; QEM at the same count is
+# closer to the dense mesh).  Issue 23 asks 50x: 78x at d60fa92, 48x once
+# segplanes kept no face farther than 3 sigma from its plane (more of the
+# clutter is free-form surface), 53x with -e 1.5.
 S=samples/tum
 mkdir -p "$TMP/tum/models"
 run_case 0 "planarize -v -K tum --keep $TMP/tum/k -o $TMP/tum/models/desk.obj $S/TUM_depth.png $S/TUM_color.png 2>$TMP/tum/err"
-check_num "TUM: reduction 45x" "$(field reduction "$TMP/tum/err")" ">=" 45
-xfail "TUM: reduction 50x (issue 23; $(field reduction "$TMP/tum/err")x)" holds "$(field reduction "$TMP/tum/err")" ">=" 50
+check_num "TUM: reduction 50x (issue 23)" "$(field reduction "$TMP/tum/err")" ">=" 50
 check_num "TUM: E_mean below 11 mm" "$(field E_mean "$TMP/tum/err")" "<" 0.011
 check_num "TUM: E_max below 0.3 m" "$(field E_max "$TMP/tum/err")" "<" 0.3
 valid TUM "$TMP/tum/models/desk.obj"
