@@ -296,34 +296,13 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 			fct_warn("%s: %s", path, why);
 			warned = 1;
 		}
-		/* With a noise model: smoothed in units of it, then meshed with
-		 * it (the jump test's noise term and each vertex's sigma, which
-		 * the fusion weighs by; depthsmooth.h, depthmesh.h). */
-		struct fct_depth_params vp = *dp;
-		if (vp.noise.model != FCT_NOISE_UNKNOWN && vp.noise.unit == 0)
-			vp.noise.unit = fct_depth_unit(&img, &vp);
-		if (o->smooth.radius > 0 && vp.noise.model != FCT_NOISE_UNKNOWN) {
-			struct fct_image sm;
-			if (fct_depth_smooth_image(&sm, &img, &cam, &vp, &o->smooth, &err)) {
-				fct_err_prefix(&err, "%s", path);
-				fct_die_err(&err);
-			}
-			fct_image_free(&img);
-			img = sm;
-		}
-		/* --projective reads the depths the mesh keeps (fuse.h). */
-		int rc = fct_depth_mesh_kept(&L->mesh, &img, &cam, &vp, NULL,
-		                             o->fp.projective ? &L->depth : NULL, &err);
+		int rc = fct_fuse_depth_view(&L->view, &L->mesh, o->fp.projective ? &L->depth : NULL,
+		                             &img, &cam, dp, &o->smooth, dpose, &err);
 		fct_image_free(&img);
 		if (rc) {
 			fct_err_prefix(&err, "%s", path);
 			fct_die_err(&err);
 		}
-		for (size_t v = 0; v < L->mesh.nv; v++)
-			fct_pose_apply(dpose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
-		memcpy(L->view.pose, dpose, sizeof L->view.pose);
-		L->view.cam = cam;
-		L->view.depth = L->depth;
 		L->depth_image = 1;
 	} else {
 		const char *path = o->views[idx];

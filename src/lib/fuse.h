@@ -97,6 +97,23 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
                   const struct fct_fuse_params *p, struct fct_fuse_stats *stats,
                   struct fct_err *err);
 
+struct fct_depth_params;
+struct fct_depth_smooth;
+struct fct_image;
+
+/* The view of depth image img (seen by cam, a camera of its size, at
+ * camera-to-world pose) for fusion: smoothed by smooth in units of dp's
+ * noise model when it has one (depthsmooth.h; not when smooth->radius is
+ * 0), meshed with it (fct_depth_mesh_kept: the jump test's noise term and
+ * each vertex's sigma, which v->sigma points into), the mesh moved to the
+ * world into mesh (v->mesh; the caller frees it).  depth, when not NULL,
+ * gets the depths the mesh keeps (malloc'd; v->depth, what --projective
+ * fusion reads).  0 or -1. */
+int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **depth,
+                        const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *dp, const struct fct_depth_smooth *smooth,
+                        const double pose[12], struct fct_err *err);
+
 /* A view's range image, from its mesh rasterised into its own camera. */
 struct fct_range_image {
 	struct fct_fuse_view view;
