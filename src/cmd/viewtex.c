@@ -173,31 +173,6 @@ static void parse_options(int argc, char **argv, struct options *o)
 		fct_usage_error("no camera: give -K or --camera");
 }
 
-/* name.obj -> name_atlasN.png */
-static char **page_names(const char *out, size_t n)
-{
-	const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
-	size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - out) : strlen(out);
-	char **names = calloc(n ? n : 1, sizeof *names);
-	if (!names)
-		fct_die(1, "out of memory");
-	for (size_t i = 0; i < n; i++) {
-		size_t len = stem + 40;
-		if (!(names[i] = malloc(len)))
-			fct_die(1, "out of memory");
-		snprintf(names[i], len, "%.*s_atlas%zu.png", (int)stem, out, i);
-	}
-	return names;
-}
-
-/* Read photo i, fitted to its camera, or exit. */
-static void read_photo(const struct fct_photo *ph, struct fct_image *rgb, struct fct_camera *cam)
-{
-	struct fct_err err;
-	if (fct_photo_read(ph, 1 << 14, rgb, cam, &err))
-		fct_die_err(&err);
-}
-
 int main(int argc, char **argv)
 {
 	fct_cli_init("viewtex");
@@ -223,22 +198,16 @@ int main(int argc, char **argv)
 
 	/* Candidates, one photo at a time. */
 	double t1 = fct_now();
-	size_t any = 0;
+	size_t any = 0, *seen = fct_alloc_array(o.nimages, sizeof *seen, &err);
+	if (!seen || fct_viewtex_add_photos(T, ph, o.nimages, seen, &err))
+		fct_die_err(&err);
 	for (size_t i = 0; i < o.nimages; i++) {
-		struct fct_image rgb;
-		struct fct_camera pc;
-		size_t seen;
-		read_photo(&ph[i], &rgb, &pc);
-		if (fct_viewtex_add_view(T, i, &pc, ph[i].pose, &rgb, &seen, &err)) {
-			fct_err_prefix(&err, "%s", ph[i].path);
-			fct_die_err(&err);
-		}
-		fct_image_free(&rgb);
-		any += seen;
+		any += seen[i];
 		if (fct_verbose)
 			fprintf(stderr, "viewtex: photo %zu/%zu %s: sees %zu faces whole\n", i + 1, o.nimages,
-			        ph[i].path, seen);
+			        ph[i].path, seen[i]);
 	}
+	free(seen);
 	if (!any)
 		fct_die(1, "%s: no photo sees any face whole (check the poses and the camera)", name);
 	double see_s = fct_now() - t1;
@@ -249,25 +218,17 @@ int main(int argc, char **argv)
 
 	/* Texels, one photo at a time, each photo that textures faces. */
 	t1 = fct_now();
-	for (size_t i = 0; i < o.nimages; i++) {
-		if (!fct_viewtex_needs_view(T, i))
-			continue;
-		struct fct_image rgb;
-		struct fct_camera pc;
-		read_photo(&ph[i], &rgb, &pc);
-		if (fct_viewtex_sample_view(T, i, &rgb, &err)) {
-			fct_err_prefix(&err, "%s", ph[i].path);
-			fct_die_err(&err);
-		}
-		fct_image_free(&rgb);
-	}
+	if (fct_viewtex_sample_photos(T, ph, o.nimages, &err))
+		fct_die_err(&err);
 	if (fct_viewtex_finish(T, &err))
 		fct_die_err(&err);
 	double sample_s = fct_now() - t1;
 
 	t1 = fct_now();
 	size_t npages = fct_viewtex_npages(T);
-	char **names = page_names(o.out, npages);
+	char **names = fct_viewtex_page_names(o.out, npages, &err);
+	if (!names)
+		fct_die_err(&err);
 	for (size_t i = 0; i < npages; i++)
 		fct_write_image_or_die(fct_viewtex_page(T, i), names[i]);
 	struct fct_viewtex_stats st;
@@ -307,9 +268,7 @@ int main(int argc, char **argv)
 	fct_report("sample_s", "%.3f", sample_s);
 	fct_report("write_s", "%.3f", write_s);
 	fct_report("total_s", "%.3f", fct_now() - t0);
-	for (size_t i = 0; i < npages; i++)
-		free(names[i]);
-	free(names);
+	fct_viewtex_page_names_free(names, npages);
 	fct_viewtex_free(T);
 	fct_mesh_free(&m);
 	free(ph);

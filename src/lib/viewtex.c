@@ -1,6 +1,7 @@
 /* viewtex.c - texturing a mesh from registered photos; see viewtex.h for
  * the method (Waechter, Moehrle and Goesele, ECCV 2014). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -1848,4 +1849,75 @@ out:
 void fct_viewtex_get_stats(const struct fct_viewtex *T, struct fct_viewtex_stats *st)
 {
 	*st = T->st;
+}
+
+/* ---- photos read from their files, one at a time -------------------------------- */
+
+/* The largest side of a photo read (viewtex's limit). */
+#define PHOTO_MAX_SIDE (1 << 14)
+
+int fct_viewtex_add_photos(struct fct_viewtex *T, const struct fct_photo *ph, size_t n, size_t *seen,
+                           struct fct_err *err)
+{
+	for (size_t i = 0; i < n; i++) {
+		struct fct_image rgb;
+		struct fct_camera cam;
+		if (fct_photo_read(&ph[i], PHOTO_MAX_SIDE, &rgb, &cam, err))
+			return -1;
+		int rc = fct_viewtex_add_view(T, i, &cam, ph[i].pose, &rgb, seen ? &seen[i] : NULL, err);
+		fct_image_free(&rgb);
+		if (rc) {
+			fct_err_prefix(err, "%s", ph[i].path);
+			return -1;
+		}
+	}
+	return 0;
+}
+
+int fct_viewtex_sample_photos(struct fct_viewtex *T, const struct fct_photo *ph, size_t n,
+                              struct fct_err *err)
+{
+	for (size_t i = 0; i < n; i++) {
+		if (!fct_viewtex_needs_view(T, i))
+			continue;
+		struct fct_image rgb;
+		struct fct_camera cam;
+		if (fct_photo_read(&ph[i], PHOTO_MAX_SIDE, &rgb, &cam, err))
+			return -1;
+		int rc = fct_viewtex_sample_view(T, i, &rgb, err);
+		fct_image_free(&rgb);
+		if (rc) {
+			fct_err_prefix(err, "%s", ph[i].path);
+			return -1;
+		}
+	}
+	return 0;
+}
+
+char **fct_viewtex_page_names(const char *model, size_t n, struct fct_err *err)
+{
+	const char *dot = strrchr(model, '.'), *slash = strrchr(model, '/');
+	size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - model) : strlen(model);
+	char **names = calloc(n ? n : 1, sizeof *names);
+	if (!names) {
+		fct_fail(err, "out of memory");
+		return NULL;
+	}
+	for (size_t i = 0; i < n; i++) {
+		size_t len = stem + 40;
+		if (!(names[i] = malloc(len))) {
+			fct_viewtex_page_names_free(names, i);
+			fct_fail(err, "out of memory");
+			return NULL;
+		}
+		snprintf(names[i], len, "%.*s_atlas%zu.png", (int)stem, model, i);
+	}
+	return names;
+}
+
+void fct_viewtex_page_names_free(char **names, size_t n)
+{
+	for (size_t i = 0; names && i < n; i++)
+		free(names[i]);
+	free(names);
 }

@@ -84,6 +84,7 @@
 #include "err.h"
 #include "image.h"
 #include "mesh.h"
+#include "photo.h"
 
 struct fct_viewtex_params {
 	double smooth;        /* seam cost per pixel of seam, in pixels of area (default 10) */
@@ -173,5 +174,22 @@ int fct_viewtex_apply(struct fct_viewtex *T, struct fct_mesh *m, char *const *na
                       struct fct_err *err);
 
 void fct_viewtex_get_stats(const struct fct_viewtex *T, struct fct_viewtex_stats *st);
+
+/* Step 1 for the photos ph[0..n) (photo.h; photo k is view k), each read
+ * (fct_photo_read, sides to 16384) and added in turn, one held at a time:
+ * seen[k] (seen may be NULL) the faces photo k is a candidate for.  0 or
+ * -1 ("PATH: ..."). */
+int fct_viewtex_add_photos(struct fct_viewtex *T, const struct fct_photo *ph, size_t n, size_t *seen,
+                           struct fct_err *err);
+/* Step 5 for the photos ph[0..n) that fct_viewtex_needs_view, read again
+ * one at a time.  0 or -1 ("PATH: ..."). */
+int fct_viewtex_sample_photos(struct fct_viewtex *T, const struct fct_photo *ph, size_t n,
+                              struct fct_err *err);
+
+/* The atlas pages' file names beside model: name.obj -> name_atlas0.png,
+ * name_atlas1.png, ... (n of them, malloc'd, as is the array), or NULL
+ * (out of memory).  Free with fct_viewtex_page_names_free. */
+char **fct_viewtex_page_names(const char *model, size_t n, struct fct_err *err);
+void fct_viewtex_page_names_free(char **names, size_t n);
 
 #endif
