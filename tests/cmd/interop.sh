@@ -6,7 +6,7 @@
 # the planar model (planedecim),
 # per-corner texcoord over several views (cyl2planar), an OBJ with its
 # .mtl, planarize's models (PLY with s t, OBJ, a panorama's per-corner
-# texcoord), and tsdfuse naming 30 views, whose provenance line Open3D's reader
+# texcoord), roommodel's textured OBJ, and tsdfuse naming 30 views, whose provenance line Open3D's reader
 # aborted on at 2359 bytes ("RPly: Line too long").  The numbers each reader
 # gets are checked against facet's own ascii output (tests/cmd/interop.py).
 . tests/lib.sh
@@ -42,6 +42,7 @@ dm2mesh -q --step 8 --cylindrical ,,0 --pose room/pano.pose --image room/pano.co
 mkdir c
 run_case 0 "cyl2planar --mesh dense.ply -o c/room.ply"
 run_case 0 "planarize --step 4 --cylindrical ,,0 --pose room/pano.pose -o c/plan.ply room/pano.depth.pfm room/pano.color.png"
+run_case 0 "roommodel -q --voxel 0.05 --camera room/view00.camera --poses room/view00.pose --poses room/view01.pose --image room/view00.color.png --image room/view01.color.png -o room_model.obj room/view00.depth.pfm room/view01.depth.pfm"
 
 # Every header line of every file: at most 255 bytes.
 for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply c/room.ply plan.ply c/plan.ply; do
@@ -56,7 +57,7 @@ if ! command -v "$PY" >/dev/null 2>&1 || ! "$PY" -c 'import numpy' 2>/dev/null; 
 fi
 specs=
 for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply c/room.ply model.obj \
-	plan.ply c/plan.ply plan_obj.obj; do
+	plan.ply c/plan.ply plan_obj.obj room_model.obj; do
 	ref=${f%.*}.ref.ply
 	case $f in model.obj) ref=model.ref.ply ;; esac
 	[ -f "$ref" ] || meshconv -a -o "$ref" "$f"

@@ -1,0 +1,266 @@
+/* dataset.c - a sequence's folder read as 7-Scenes or TUM lay it out
+ * (dataset.h). */
+#include "dataset.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "path.h"
+#include "poses.h"
+
+static int exists(const char *path)
+{
+	struct stat sb;
+	return stat(path, &sb) == 0 && S_ISREG(sb.st_mode);
+}
+
+static int cmp_names(const void *a, const void *b)
+{
+	return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The three path arrays for up to n frames, zeroed (fct_dataset_free
+ * frees what is set). */
+static int alloc_frames(struct fct_dataset *ds, size_t n, size_t nposes, struct fct_err *err)
+{
+	ds->depth = calloc(n, sizeof *ds->depth);
+	ds->color = calloc(n, sizeof *ds->color);
+	ds->poses = calloc(nposes, sizeof *ds->poses);
+	ds->n = n, ds->nposes = nposes;
+	return ds->depth && ds->color && ds->poses ? 0 : fct_fail(err, "out of memory");
+}
+
+/* The stems "frame-NNNNNN" of the *.depth.png files of dir, sorted. */
+static int seven_scenes_stems(char ***stems, size_t *n, const char *dir, struct fct_err *err)
+{
+	DIR *d = opendir(dir);
+	if (!d)
+		return fct_fail(err, "%s: %s", dir, strerror(errno));
+	size_t cap = 0;
+	struct dirent *e;
+	int rc = 0;
+	*stems = NULL, *n = 0;
+	while (!rc && (e = readdir(d))) {
+		size_t len = strlen(e->d_name);
+		if (len <= 10 || strncmp(e->d_name, "frame-", 6) || strcmp(e->d_name + len - 10, ".depth.png"))
+			continue;
+		char *stem = strndup(e->d_name, len - 10);
+		if (!stem || fct_grow((void **)stems, &cap, *n + 1, sizeof **stems, err)) {
+			free(stem);
+			rc = stem ? -1 : fct_fail(err, "out of memory");
+			break;
+		}
+		(*stems)[(*n)++] = stem;
+	}
+	closedir(d);
+	if (*n)
+		qsort(*stems, *n, sizeof **stems, cmp_names);
+	return rc;
+}
+
+static int read_seven_scenes(struct fct_dataset *ds, const char *dir, char **stems, size_t n,
+                             struct fct_err *err)
+{
+	char name[600];
+	ds->layout = "7-Scenes", ds->camera = "7scenes";
+	if (alloc_frames(ds, n, n, err))
+		return -1;
+	for (size_t i = 0; i < n; i++) {
+		snprintf(name, sizeof name, "%s.depth.png", stems[i]);
+		if (!(ds->depth[i] = fct_path_join(dir, name, err)))
+			return -1;
+		static const char *const colour[] = { ".color.png", ".color.jpg" };
+		for (int k = 0; k < 2 && !ds->color[i]; k++) {
+			snprintf(name, sizeof name, "%s%s", stems[i], colour[k]);
+			if (!(ds->color[i] = fct_path_join(dir, name, err)))
+				return -1;
+			if (!exists(ds->color[i])) {
+				free(ds->color[i]);
+				ds->color[i] = NULL;
+			}
+		}
+		if (!ds->color[i])
+			return fct_fail(err, "%s: %s has no colour image (%s.color.png or .color.jpg)", dir,
+			                stems[i], stems[i]);
+		snprintf(name, sizeof name, "%s.pose.txt", stems[i]);
+		if (!(ds->poses[i] = fct_path_join(dir, name, err)))
+			return -1;
+		if (!exists(ds->poses[i]))
+			return fct_fail(err, "%s: %s has no pose (%s)", dir, stems[i], name);
+	}
+	return 0;
+}
+
+/* A TUM list (rgb.txt, depth.txt): "timestamp file" per line, '#' lines
+ * and blank lines aside; stamps and names (relative to the folder). */
+struct stamped {
+	size_t n;
+	double *stamp;
+	char **file;
+};
+
+static void stamped_free(struct stamped *s)
+{
+	for (size_t i = 0; i < s->n; i++)
+		free(s->file[i]);
+	free(s->file);
+	free(s->stamp);
+	memset(s, 0, sizeof *s);
+}
+
+static int read_stamped(struct stamped *s, const char *path, struct fct_err *err)
+{
+	memset(s, 0, sizeof *s);
+	FILE *f = fopen(path, "r");
+	if (!f)
+		return fct_fail(err, "%s: %s", path, strerror(errno));
+	char line[4096];
+	size_t cap_s = 0, cap_f = 0;
+	long no = 0;
+	int rc = 0;
+	while (!rc && fgets(line, sizeof line, f)) {
+		no++;
+		size_t len = strlen(line);
+		if (len == sizeof line - 1 && line[len - 1] != '\n') {
+			rc = fct_fail(err, "%s:%ld: line too long", path, no);
+			break;
+		}
+		char *p = line + strspn(line, " \t\r\n");
+		if (*p == '#' || *p == '\0')
+			continue;
+		char *end;
+		double t = strtod(p, &end);
+		char name[4096];
+		if (end == p || !isfinite(t) || sscanf(end, " %4095s", name) != 1) {
+			rc = fct_fail(err, "%s:%ld: expected \"timestamp file\"", path, no);
+			break;
+		}
+		if (fct_grow((void **)&s->stamp, &cap_s, s->n + 1, sizeof *s->stamp, err) ||
+		    fct_grow((void **)&s->file, &cap_f, s->n + 1, sizeof *s->file, err) ||
+		    !(s->file[s->n] = fct_strdup(name, err))) {
+			rc = -1;
+			break;
+		}
+		s->stamp[s->n++] = t;
+	}
+	if (!rc && ferror(f))
+		rc = fct_fail(err, "%s: %s", path, strerror(errno));
+	fclose(f);
+	if (rc)
+		stamped_free(s);
+	return rc;
+}
+
+/* The index of the stamp of s nearest to t within max_diff, or -1. */
+static long nearest(const struct stamped *s, double t, double max_diff)
+{
+	long best = -1;
+	double bd = max_diff;
+	for (size_t i = 0; i < s->n; i++) {
+		double d = fabs(s->stamp[i] - t);
+		if (d <= bd && (best < 0 || d < bd))
+			best = (long)i, bd = d;
+	}
+	return best;
+}
+
+/* The freiburg camera a TUM folder's name tells (rgbd_dataset_freiburg1_desk). */
+static const char *tum_camera(const char *dir)
+{
+	if (strstr(dir, "freiburg1"))
+		return "tum1";
+	if (strstr(dir, "freiburg2"))
+		return "tum2";
+	if (strstr(dir, "freiburg3"))
+		return "tum3";
+	return "tum";
+}
+
+static int read_tum(struct fct_dataset *ds, const char *dir, double max_diff, struct fct_err *err)
+{
+	struct stamped depth = { 0 }, rgb = { 0 };
+	struct fct_trajectory tr = { 0 };
+	size_t n = 0;
+	char *gt = fct_path_join(dir, "groundtruth.txt", err), *dl = fct_path_join(dir, "depth.txt", err),
+	     *rl = fct_path_join(dir, "rgb.txt", err);
+	int rc = -1;
+	ds->layout = "TUM", ds->camera = tum_camera(dir);
+	if (!gt || !dl || !rl || read_stamped(&depth, dl, err) || read_stamped(&rgb, rl, err) ||
+	    fct_trajectory_read(&tr, gt, err))
+		goto out;
+	if (tr.format != FCT_TRAJ_TUM || !tr.stamp) {
+		fct_fail(err, "%s: not a TUM trajectory (%s)", gt, fct_traj_format_name(tr.format));
+		goto out;
+	}
+	if (alloc_frames(ds, depth.n ? depth.n : 1, 1, err))
+		goto out;
+	for (size_t i = 0; i < depth.n; i++) {
+		long c = nearest(&rgb, depth.stamp[i], max_diff);
+		size_t pose;
+		double d = fct_trajectory_associate(&pose, &tr, &depth.stamp[i], 1, max_diff);
+		if (c < 0 || pose == (size_t)-1)
+			continue;
+		ds->max_diff = fmax(ds->max_diff, fmax(d, fabs(rgb.stamp[c] - depth.stamp[i])));
+		if (!(ds->depth[n] = fct_path_join(dir, depth.file[i], err)) ||
+		    !(ds->color[n] = fct_path_join(dir, rgb.file[c], err)))
+			goto out;
+		n++;
+	}
+	ds->n = n;
+	if (!n) {
+		fct_fail(err, "%s: no depth frame has a colour image and a pose within %g s", dir, max_diff);
+		goto out;
+	}
+	ds->poses[0] = gt;
+	gt = NULL;
+	rc = 0;
+out:
+	free(gt), free(dl), free(rl);
+	stamped_free(&depth);
+	stamped_free(&rgb);
+	fct_trajectory_free(&tr);
+	return rc;
+}
+
+int fct_dataset_read(struct fct_dataset *ds, const char *dir, double max_diff, struct fct_err *err)
+{
+	memset(ds, 0, sizeof *ds);
+	char **stems = NULL;
+	size_t n = 0;
+	char *probe = fct_path_join(dir, "depth.txt", err);
+	if (!probe)
+		return -1;
+	int tum = exists(probe);
+	free(probe);
+	int rc;
+	if (tum)
+		rc = read_tum(ds, dir, max_diff, err);
+	else if ((rc = seven_scenes_stems(&stems, &n, dir, err)) == 0) {
+		rc = n ? read_seven_scenes(ds, dir, stems, n, err)
+		       : fct_fail(err, "%s: not a 7-Scenes or TUM sequence folder (no frame-*.depth.png, "
+		                  "no depth.txt)", dir);
+		for (size_t i = 0; i < n; i++)
+			free(stems[i]);
+		free(stems);
+	}
+	if (rc)
+		fct_dataset_free(ds);
+	return rc;
+}
+
+void fct_dataset_free(struct fct_dataset *ds)
+{
+	for (size_t i = 0; i < ds->n; i++) {
+		free(ds->depth ? ds->depth[i] : NULL);
+		free(ds->color ? ds->color[i] : NULL);
+	}
+	for (size_t i = 0; ds->poses && i < ds->nposes; i++)
+		free(ds->poses[i]);
+	free(ds->depth), free(ds->color), free(ds->poses);
+	memset(ds, 0, sizeof *ds);
+}
