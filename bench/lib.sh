@@ -2,3 +2,15 @@
 
 # median: the median of the numbers on standard input, one per line.
 median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+# seconds CMD...: the median wall time of RUNS runs of a command.
+seconds() {
+	i=0
+	while [ $i -lt "$RUNS" ]; do
+		s=$(date +%s.%N)
+		"$@" >/dev/null 2>&1
+		e=$(date +%s.%N)
+		awk -v s="$s" -v e="$e" 'BEGIN { print e - s }'
+		i=$((i + 1))
+	done | median
+}

@@ -11,17 +11,6 @@ dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-rm.XXXXXX")
 trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
 
-# seconds CMD...: the median wall time of RUNS runs of a command.
-seconds() {
-	i=0
-	while [ $i -lt "$RUNS" ]; do
-		s=$(date +%s.%N)
-		"$@" >/dev/null 2>&1
-		e=$(date +%s.%N)
-		awk -v s="$s" -v e="$e" 'BEGIN { print e - s }'
-		i=$((i + 1))
-	done | median
-}
 faces() { meshinfo "$1" | awk '/^faces/ { print $2 }'; }
 row() { printf '%-40s %9s %9s %9s %9s\n' "$1" "$2" "$3" "$4" "$5"; }
 

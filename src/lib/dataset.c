@@ -12,6 +12,7 @@
 
 #include "path.h"
 #include "poses.h"
+#include "reader.h"
 
 static int exists(const char *path)
 {
@@ -116,30 +117,36 @@ static void stamped_free(struct stamped *s)
 static int read_stamped(struct stamped *s, const char *path, struct fct_err *err)
 {
 	memset(s, 0, sizeof *s);
-	FILE *f = fopen(path, "r");
+	FILE *f = fopen(path, "rb");
 	if (!f)
 		return fct_fail(err, "%s: %s", path, strerror(errno));
-	char line[4096];
-	size_t cap_s = 0, cap_f = 0;
-	long no = 0;
+	struct fct_reader r;
+	if (fct_reader_init(&r, f, path, err)) {
+		fclose(f);
+		return -1;
+	}
+	size_t cap_s = 0, cap_f = 0, len;
 	int rc = 0;
-	while (!rc && fgets(line, sizeof line, f)) {
-		no++;
-		size_t len = strlen(line);
-		if (len == sizeof line - 1 && line[len - 1] != '\n') {
-			rc = fct_fail(err, "%s:%ld: line too long", path, no);
+	char *line;
+	while (!rc && (line = fct_reader_line(&r, &len, err))) {
+		unsigned long long no = (unsigned long long)r.line;
+		if (memchr(line, '\0', len)) {
+			rc = fct_fail(err, "%s:%llu: a NUL byte: binary data, not a TUM list", path, no);
 			break;
 		}
-		char *p = line + strspn(line, " \t\r\n");
+		char *p = line + strspn(line, " \t\r");
 		if (*p == '#' || *p == '\0')
 			continue;
-		char *end;
+		char *end, *name;
 		double t = strtod(p, &end);
-		char name[4096];
-		if (end == p || !isfinite(t) || sscanf(end, " %4095s", name) != 1) {
-			rc = fct_fail(err, "%s:%ld: expected \"timestamp file\"", path, no);
+		size_t n = 0;
+		name = end + strspn(end, " \t");
+		n = strcspn(name, " \t\r");
+		if (end == p || !isfinite(t) || end == name || n == 0) {
+			rc = fct_fail(err, "%s:%llu: expected \"timestamp file\"", path, no);
 			break;
 		}
+		name[n] = '\0';
 		if (fct_grow((void **)&s->stamp, &cap_s, s->n + 1, sizeof *s->stamp, err) ||
 		    fct_grow((void **)&s->file, &cap_f, s->n + 1, sizeof *s->file, err) ||
 		    !(s->file[s->n] = fct_strdup(name, err))) {
@@ -148,8 +155,9 @@ static int read_stamped(struct stamped *s, const char *path, struct fct_err *err
 		}
 		s->stamp[s->n++] = t;
 	}
-	if (!rc && ferror(f))
-		rc = fct_fail(err, "%s: %s", path, strerror(errno));
+	if (!rc && err->msg[0])
+		rc = -1;
+	fct_reader_free(&r);
 	fclose(f);
 	if (rc)
 		stamped_free(s);
