@@ -68,7 +68,7 @@ static const char usage[] =
 	"The planar model, as segplanes(1) and planedecim(1):\n"
 	"  -c factor          merge patches while the smaller moves by at most factor\n"
 	"                     sigma, rms (default 3)\n"
-	"  -e error           the free-form decimation's bound in sigma (default 1)\n"
+	"  -e error           the free-form decimation's bound in sigma (default 1.5)\n"
 	"      --min-plane k  a patch of fewer faces is free-form (default 64)\n"
 	"The texture, as viewtex(1):\n"
 	"      --atlas-size n largest atlas side, a power of two (default 4096)\n"
