@@ -13,7 +13,7 @@ for f in tests/bad/*; do
 	case $f in
 	*.png|*.pfm|*.jpg) progs=imginfo ;;
 	# well-formed PLY whose plane element lies: every planar stage reads it
-	*/planes_*) progs="simpchain projverts tripatch" ;;
+	*/planes_*) progs="simpchain projverts tripatch planedecim" ;;
 	*) progs=meshconv ;;
 	esac
 	for prog in $progs; do

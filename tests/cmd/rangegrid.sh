@@ -5,13 +5,7 @@
 
 # 4x4 cells 1 mm apart on the plane z = -0.5 (cell (i, j) at x = i mm,
 # y = -j mm), listed in the vertex element in cell order.
-{
-	printf 'ply\nformat ascii 1.0\nobj_info num_cols 4\nobj_info num_rows 4\n'
-	printf 'element vertex 16\nproperty float x\nproperty float y\nproperty float z\n'
-	printf 'element range_grid 16\nproperty list uchar int vertex_indices\nend_header\n'
-	for j in 0 1 2 3; do for i in 0 1 2 3; do echo "0.00$i -0.00$j -0.5"; done; done
-	for c in 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15; do echo "1 $c"; done
-} >"$TMP/scan.ply"
+cp tests/data/rangegrid_4x4.ply "$TMP/scan.ply"
 # 90 degrees about z, applied conjugated (x -> -y), then t = (1, 2, 3).
 echo "bmesh scan.ply 1 2 3 0 0 0.70710678118654752 0.70710678118654752" >"$TMP/scan.conf"
 

@@ -1,8 +1,8 @@
 # tsdfuse: four views of mkscene's room fused within one voxel of the true
 # surface and complete (projective too, from the meshes or the depth
 # images); carving closes the room; the same view twice is one view;
-# curvature flow removes a planted blob; tiles join; the bunny scans from a
-# .conf; bad input.
+# curvature flow removes a planted blob; tiles join; the bunny scans and a
+# 4x4 range grid from a .conf; bad input.
 . tests/lib.sh
 
 value() { awk -F= -v k="tsdfuse: $1" '$1 == k { print $2 }' "$TMP/err"; }
@@ -233,7 +233,24 @@ if [ -r "$B/data/bun.conf" ]; then
 	check_true "mesh line: skipped, said with -v" grep -q "^tsdfuse: $TMP/mesh.conf:2: skipped \"mesh dragonStandRight_cybcyl 0 0 0 0 0 0 1\" (vrip fuses bmesh lines only)$" "$TMP/err"
 	body "$TMP/bun.ply" >"$TMP/bun.body"
 	check_true "mesh line: the same bytes as without it" sh -c "grep -av '^comment facet' $TMP/bunm.ply | cmp -s - $TMP/bun.body"
+else
+	echo "tsdfuse.sh: $B/data/bun.conf not found: the bunny .conf cases skipped" >&2
 fi
+# The dragon_stand .conf's mesh line on a clean clone too: a 4x4 range grid
+# of 1 mm cells at z = -0.5, its bmesh line moving it by (1, 2, 3), fused
+# alone and after a camera and a mesh line naming a file that is not there.
+mkdir "$TMP/grid"
+cp tests/data/rangegrid_4x4.ply "$TMP/grid/scan.ply"
+echo "bmesh scan.ply 1 2 3 0 0 0 1" >"$TMP/grid/a.conf"
+{ echo "camera 0 0 0 0 0 0 1"; echo "mesh dragonStandRight_cybcyl 0 0 0 0 0 0 1"; cat "$TMP/grid/a.conf"; } >"$TMP/grid/m.conf"
+run_case 0 "tsdfuse --voxel 0.0005 --conf $TMP/grid/a.conf -o $TMP/grid/a.ply"
+# Its corner (0, -3 mm, -0.5) lands at (1, 1.997, 2.5), to a hundredth of a voxel.
+check_num "grid: fused where the bmesh line puts it" "$(meshinfo "$TMP/grid/a.ply" | awk '$1 == "bbox_min:" {
+	print (($2 - 1) ^ 2 + ($3 - 1.997) ^ 2 + ($4 - 2.5) ^ 2) ^ 0.5 }')" "<" 5e-6
+body "$TMP/grid/a.ply" >"$TMP/grid/a.body"
+run_case 0 "tsdfuse -v --voxel 0.0005 --conf $TMP/grid/m.conf -o $TMP/grid/m.ply"
+check_true "grid: the mesh line skipped, said with -v" grep -q "^tsdfuse: $TMP/grid/m.conf:2: skipped \"mesh dragonStandRight_cybcyl 0 0 0 0 0 0 1\" (vrip fuses bmesh lines only)$" "$TMP/err"
+check_true "grid: the same bytes as without it" sh -c "grep -av '^comment facet' $TMP/grid/m.ply | cmp -s - '$TMP/grid/a.body'"
 # 7-Scenes as distributed: camera-intrinsics.txt (a 3x3 K) with --camera,
 # a pose file per frame, or the same poses stacked in one file: the same
 # bytes; 7scenes' depth scale is right, so no warning.
