@@ -59,7 +59,8 @@ int fct_header_add_provenance(struct fct_mesh *m, const char *prog, int argc, ch
  * %.17g took 260); a longer provenance line with its middle arguments
  * left out and counted ("facet tsdfuse -o room.ply v00.ply ... (19 more)
  * ... v21.ply"); other free text cut with "..."; camera and TextureFile
- * lines whole (data; a texture path over max is written as it is).
+ * lines whole (data: a texture path over max is returned as it is, and
+ * fct_ply_write refuses a line it makes longer than FCT_HEADER_LINE_MAX).
  * Returns c->text or buf, which must hold FCT_HEADER_LINE_MAX + 64 bytes. */
 const char *fct_comment_line(const struct fct_comment *c, size_t max, char *buf);
 

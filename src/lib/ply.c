@@ -1135,6 +1135,19 @@ int fct_ply_write(const struct fct_mesh *m, FILE *f, enum fct_ply_format fmt, st
 		if (!(ct[e] = elem_count_types(el[e])))
 			goto oom;
 
+	/* Lines that cannot be shortened (a camera, a texture's path) and are
+	 * too long for MeshLab or Open3D: refused before a byte is written. */
+	for (size_t i = 0; i < m->ncomments; i++) {
+		const char *key = m->comments[i].obj_info ? "obj_info" : "comment";
+		char line[FCT_HEADER_LINE_MAX + 64];
+		const char *text = fct_comment_line(&m->comments[i], FCT_HEADER_LINE_MAX - strlen(key) - 1, line);
+		size_t n = strlen(key) + 1 + strlen(text);
+		if (n > FCT_HEADER_LINE_MAX) {
+			fct_fail(err, "header line \"%s %.24s...\": %zu bytes, over the %d that MeshLab and "
+			         "Open3D read (a shorter texture path?)", key, text, n, FCT_HEADER_LINE_MAX);
+			goto out;
+		}
+	}
 	fprintf(f, "ply\nformat %s 1.0\n", fmt_name[fmt]);
 	for (size_t i = 0; i < m->ncomments; i++) {
 		const char *key = m->comments[i].obj_info ? "obj_info" : "comment";

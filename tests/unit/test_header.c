@@ -125,10 +125,47 @@ static void test_written_header(void)
 	fct_mesh_free(&m);
 }
 
+/* A texture path too long for one header line cannot be shortened: the
+ * PLY writer refuses it, with the figure, before writing anything (it was
+ * written whole: 267 bytes for a 240-character image name). */
+static void test_long_texture(void)
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	fct_mesh_init(&m);
+	CHECK(fct_mesh_add_vertex(&m, 0, 0, 0, &err) == 0);
+	char path[300];
+	memset(path, 'a', 250);
+	strcpy(path + 250, ".png");
+	CHECK(fct_header_set_texture(&m, 0, path, &err) == 0);
+	char *buf = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&buf, &len);
+	CHECK(f && fct_ply_write(&m, f, FCT_PLY_ASCII, &err) == -1);
+	CHECK_MSG(strstr(err.msg, "comment TextureFile") && strstr(err.msg, "274 bytes, over the 255"), "%s", err.msg);
+	if (f)
+		fclose(f);
+	CHECK_INT(len, 0);
+	free(buf);
+	/* 230 characters fit: "comment TextureFile " and the path, 250 bytes. */
+	path[226] = 0;
+	strcat(path, ".png");
+	CHECK(fct_header_set_texture(&m, 0, path, &err) == 0);
+	buf = NULL, len = 0;
+	f = open_memstream(&buf, &len);
+	CHECK(f && fct_ply_write(&m, f, FCT_PLY_ASCII, &err) == 0);
+	if (f)
+		fclose(f);
+	CHECK(buf && strstr(buf, path));
+	free(buf);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_provenance();
 	test_other_lines();
 	test_written_header();
+	test_long_texture();
 	CHECK_DONE();
 }
