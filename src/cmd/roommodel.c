@@ -463,6 +463,14 @@ int main(int argc, char **argv)
 	parse_options(argc, argv, &o);
 	struct fct_err err;
 	double t0 = fct_now(), c0 = fct_cpu_time();
+	/* The model's folder, before the work: a missing one failed at the end. */
+	char *out_dir = fct_path_dir(o.out, &err);
+	struct stat sb;
+	if (!out_dir)
+		fct_die_err(&err);
+	if (stat(out_dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
+		fct_die(1, "%s: no such folder for the model", out_dir);
+	free(out_dir);
 	struct sequence s;
 	sequence_open(&s, &o);
 	char *keep[3] = { NULL, NULL, NULL };

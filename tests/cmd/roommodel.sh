@@ -50,6 +50,8 @@ check_true "--help names the stages' options" grep -q -- "--blend" "$TMP/out"
 run_case 1 "roommodel -K $K --poses $S/view00.pose --image $TMP/missing.png $S/view00.depth.png" "" "roommodel: $TMP/missing.png"
 mkdir -p "$TMP/empty"
 run_case 1 "roommodel $TMP/empty" "" "roommodel: $TMP/empty: not a 7-Scenes or TUM sequence folder"
+# -o into a missing folder fails at once (it failed after all the work).
+run_case 1 "roommodel -o $TMP/nowhere/m.obj $V" "" "roommodel: $TMP/nowhere: no such folder for the model"
 # Depths all beyond the range kept: nothing to fuse.
 mkscene -q --views 1 --size 160x120 --fx 131.25 --depth png16 --range 100,200 -o "$TMP/far"
 run_case 1 "roommodel -K $K --poses $TMP/far/view00.pose --image $TMP/far/view00.color.png -o $TMP/m/a.obj $TMP/far/view00.depth.png" "" "roommodel: tsdfuse: the views fused into no surface"
