@@ -114,6 +114,29 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 			st->speck_faces++;
 		}
 	}
+	/* A patch with no edge to another label or the mesh's border is a
+	 * whole closed piece (a blob whose top was a patch, its rest a speck
+	 * that joined it): no outline bounds it, and its polygon would be
+	 * nothing.  Free-form. */
+	unsigned char *bounded = calloc(nf ? nf : 1, 1);
+	if (!bounded) {
+		free(root), free(host), free(count);
+		fct_adj_free(&adj);
+		return fct_fail(err, "out of memory");
+	}
+	for (size_t e = 0; e < adj.ne; e++) {
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		for (uint32_t i = 0; i < k; i++)
+			if (patch[fs[i]] >= 0 && (size_t)patch[fs[i]] < nf && (k != 2 || patch[fs[0]] != patch[fs[1]]))
+				bounded[patch[fs[i]]] = 1;
+	}
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0 && (size_t)patch[f] < nf && !bounded[patch[f]]) {
+			patch[f] = -1;
+			st->closed_faces++;
+		}
+	free(bounded);
 	free(root), free(host), free(count);
 	fct_adj_free(&adj);
 	return 0;

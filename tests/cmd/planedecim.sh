@@ -175,6 +175,17 @@ run_case 0 "planedecim -a $TMP/one.ply | grep -q '^element face 1\$'"
 run_case 2 "planedecim -e x $TMP/one.ply" "" 'planedecim: -e: "x" is not a number'
 run_case 2 "planedecim --min-plane -1 $TMP/one.ply" "" "planedecim: --min-plane: "
 run_case 2 "planedecim --outline $TMP/one.ply" "" "planedecim: "
+# A closed thin box without a camera (tests/data/pancake_gen.py): its top
+# one patch, its sides and bottom 30 faces, fewer than --min-free.  They
+# joined the top as a speck, the whole box became one patch with no
+# outline, and the box vanished (0 faces out).  Two-sided: the bottom faces
+# away from the top's plane and stays free-form; watertight in, out.
+run_case 0 "planedecim -o $TMP/pancake.ply tests/data/closed_pancake.ply"
+check_num "closed box: faces kept" "$(info faces "$TMP/pancake.ply")" ">" 0
+check_num "closed box: watertight" "$(info border_edges "$TMP/pancake.ply")" == 0
+check_num "closed box: one piece" "$(info components "$TMP/pancake.ply")" == 1
+check_num "closed box: manifold" "$(info non_manifold_edges "$TMP/pancake.ply")" == 0
+
 run_case 2 "planedecim -Z $TMP/one.ply" "" "planedecim: -Z: "
 run_case 2 "planedecim $TMP/one.ply $TMP/one.ply" "" "planedecim: too many operands"
 run_case 0 "planedecim --help | head -n 1 | grep -q '^usage: planedecim '"
