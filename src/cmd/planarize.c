@@ -365,6 +365,7 @@ static void report_model(const struct fct_planar_stats *st)
 	stage_report("planedecim", "small_faces", "%zu", st->tidy.small_faces);
 	stage_report("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
 	stage_report("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
+	stage_report("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);
 	stage_report("planedecim", "holes_filled", "%zu", st->holes_filled);
 	stage_report("planedecim", "collapses", "%zu", st->qem.collapses);
 	stage_report("planedecim", "max_error", "%.9g", st->qem.max_error);

@@ -122,6 +122,7 @@ int main(int argc, char **argv)
 	fct_report("small_faces", "%zu", st.tidy.small_faces);
 	fct_report("speck_faces", "%zu", st.tidy.speck_faces);
 	fct_report("closed_faces", "%zu", st.tidy.closed_faces);
+	fct_report("seam_faces", "%zu", st.tidy.seam_faces);
 	fct_report("holes_filled", "%zu", st.holes_filled);
 	fct_report("projected", "%zu", st.projected);
 	fct_report("collapses", "%zu", st.qem.collapses);

@@ -33,8 +33,9 @@ static uint32_t uf_find(int32_t *parent, uint32_t x)
 /* Narrower than this many samples, a piece of faces is a sliver. */
 #define SLIVER_WIDTH 3
 
-int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
-                     struct fct_tidy_stats *st, struct fct_err *err)
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                     size_t np, size_t min_plane, size_t min_free, struct fct_tidy_stats *st,
+                     struct fct_err *err)
 {
 	memset(st, 0, sizeof *st);
 	size_t nf = m->nf;
@@ -114,6 +115,24 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane,
 			st->speck_faces++;
 		}
 	}
+	/* Two patches turned away from each other (normals more than 120
+	 * degrees apart: the two sides of a board thinner than the noise)
+	 * that meet along an edge have no rim between them: their polygons
+	 * would span the same outline, in the same triangles, and one copy of
+	 * each be dropped as a duplicate, leaving the board open.  The faces
+	 * along such a seam become free-form: a rim of their own. */
+	if (planes)
+		for (size_t e = 0; e < adj.ne; e++) {
+			const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+			if (fct_adj_edge_nfaces(&adj, e) != 2)
+				continue;
+			int32_t a = patch[fs[0]], b = patch[fs[1]];
+			if (a < 0 || b < 0 || a == b || (size_t)a >= np || (size_t)b >= np ||
+			    !(fct_v3_dot(planes[a].n, planes[b].n) < -0.5))
+				continue;
+			patch[fs[0]] = patch[fs[1]] = -1;
+			st->seam_faces += 2;
+		}
 	/* A patch with no edge to another label or the mesh's border is a
 	 * whole closed piece (a blob whose top was a patch, its rest a speck
 	 * that joined it): no outline bounds it, and its polygon would be
@@ -1262,7 +1281,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	}
 	if (vertex_sigma(m, pl, np, &sigma, &st->sigma_estimated, err) ||
 	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
-	    fct_patches_tidy(patch, m, p->min_plane, p->min_free, &st->tidy, err) ||
+	    fct_patches_tidy(patch, m, have_cam ? NULL : pl, np, p->min_plane, p->min_free, &st->tidy, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||

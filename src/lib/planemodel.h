@@ -21,6 +21,7 @@ struct fct_tidy_stats {
 	size_t small_faces;   /* faces of patches too small, made free-form */
 	size_t speck_faces;   /* faces of specks, given to the one label around them */
 	size_t closed_faces;  /* faces of patches with no outline (whole closed pieces), made free-form */
+	size_t seam_faces;    /* faces along seams of patches facing apart (no viewpoint), free-form */
 };
 
 /* Tidy a segmentation for the planar model: patches of fewer than min_plane
@@ -31,11 +32,17 @@ struct fct_tidy_stats {
  * other label all around it joins that label: specks of outliers inside a plane, which
  * the model puts on the plane, and the islands that a crease's noise leaves
  * on either side of it, each of which would cost the model a boundary.
+ * Without a viewpoint (planes: the np planes; NULL for a view's mesh),
+ * the faces along an edge between two patches whose normals are more than
+ * 120 degrees apart (the two sides of a board thinner than the noise,
+ * which would span one outline in the same triangles) become free-form: a
+ * rim between them.
  * Last, a patch with no edge to another label or the mesh's border (a
  * whole closed piece: a blob whose top was a patch and whose rest joined
  * it as a speck) becomes free-form: no outline bounds its polygon.
  * patch: m->nf labels, changed in place. */
-int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, size_t min_plane, size_t min_free,
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                     size_t np, size_t min_plane, size_t min_free,
                      struct fct_tidy_stats *st, struct fct_err *err);
 
 /* Facets of curved surfaces become free-form: each patch whose outline

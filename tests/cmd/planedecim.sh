@@ -186,6 +186,19 @@ check_num "closed box: watertight" "$(info border_edges "$TMP/pancake.ply")" == 
 check_num "closed box: one piece" "$(info components "$TMP/pancake.ply")" == 1
 check_num "closed box: manifold" "$(info non_manifold_edges "$TMP/pancake.ply")" == 0
 
+# A board thinner than its noise, its two sides two patches facing apart
+# that meet along their whole outline (tests/data/board_gen.py; a carved
+# fusion of the 7-Scenes frames holds such a board).  Both polygons spanned
+# the one outline in the same triangles, one copy of each was dropped as a
+# duplicate, and the board came out as 2 faces with 4 border edges.  Now a
+# rim of free-form faces between them: watertight, both sides planes.
+run_case 0 "planedecim -v -o $TMP/board.ply tests/data/thin_board.ply 2>$TMP/board.err"
+check_num "thin board: watertight" "$(info border_edges "$TMP/board.ply")" == 0
+check_num "thin board: manifold" "$(info non_manifold_edges "$TMP/board.ply")" == 0
+check_num "thin board: no duplicate faces" "$(info duplicate_faces "$TMP/board.ply")" == 0
+check_num "thin board: both sides planes" "$(report unclean_patches "$TMP/board.err")" == 0
+check_num "thin board: seam faces free-form" "$(report seam_faces "$TMP/board.err")" ">" 0
+
 run_case 2 "planedecim -Z $TMP/one.ply" "" "planedecim: -Z: "
 run_case 2 "planedecim $TMP/one.ply $TMP/one.ply" "" "planedecim: too many operands"
 run_case 0 "planedecim --help | head -n 1 | grep -q '^usage: planedecim '"
