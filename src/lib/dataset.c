@@ -117,14 +117,9 @@ static void stamped_free(struct stamped *s)
 static int read_stamped(struct stamped *s, const char *path, struct fct_err *err)
 {
 	memset(s, 0, sizeof *s);
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return fct_fail(err, "%s: %s", path, strerror(errno));
 	struct fct_reader r;
-	if (fct_reader_init(&r, f, path, err)) {
-		fclose(f);
+	if (fct_reader_open(&r, path, err))
 		return -1;
-	}
 	size_t cap_s = 0, cap_f = 0, len;
 	int rc = 0;
 	char *line;
@@ -157,8 +152,7 @@ static int read_stamped(struct stamped *s, const char *path, struct fct_err *err
 	}
 	if (!rc && err->msg[0])
 		rc = -1;
-	fct_reader_free(&r);
-	fclose(f);
+	fct_reader_close(&r);
 	if (rc)
 		stamped_free(s);
 	return rc;

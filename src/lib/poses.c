@@ -107,14 +107,9 @@ static int parse_line(struct numbers *s, const char *path, long no, const char *
 static int read_numbers(struct numbers *s, const char *path, struct fct_err *err)
 {
 	memset(s, 0, sizeof *s);
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return fct_fail(err, "%s: %s", path, strerror(errno));
 	struct fct_reader r;
-	if (fct_reader_init(&r, f, path, err)) {
-		fclose(f);
+	if (fct_reader_open(&r, path, err))
 		return -1;
-	}
 	int rc = 0;
 	char *line;
 	size_t len;
@@ -137,8 +132,7 @@ static int read_numbers(struct numbers *s, const char *path, struct fct_err *err
 	}
 	if (!line && err->msg[0])
 		rc = -1;
-	fct_reader_free(&r);
-	fclose(f);
+	fct_reader_close(&r);
 	return rc;
 }
 

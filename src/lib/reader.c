@@ -23,6 +23,26 @@ void fct_pipe_widen(int fd)
 #endif
 }
 
+int fct_reader_open(struct fct_reader *r, const char *path, struct fct_err *err)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f)
+		return fct_fail(err, "%s: %s", path, strerror(errno));
+	if (fct_reader_init(r, f, path, err)) {
+		fclose(f);
+		return -1;
+	}
+	return 0;
+}
+
+void fct_reader_close(struct fct_reader *r)
+{
+	FILE *f = r->f;
+	fct_reader_free(r);
+	if (f)
+		fclose(f);
+}
+
 int fct_reader_init(struct fct_reader *r, FILE *f, const char *name, struct fct_err *err)
 {
 	memset(r, 0, sizeof *r);

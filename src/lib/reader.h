@@ -29,6 +29,10 @@ void fct_pipe_widen(int fd);
 /* Set up r on f (which stays open and owned by the caller). */
 int fct_reader_init(struct fct_reader *r, FILE *f, const char *name, struct fct_err *err);
 void fct_reader_free(struct fct_reader *r);
+/* Open path and set up r on it ("path: reason" when it cannot be opened);
+ * fct_reader_close frees r and closes the file. */
+int fct_reader_open(struct fct_reader *r, const char *path, struct fct_err *err);
+void fct_reader_close(struct fct_reader *r);
 
 /* Make n bytes available at r->buf + r->pos (n <= the reader's maximum block);
  * returns the number available, which is less than n only at end of input. */

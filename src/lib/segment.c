@@ -1269,19 +1269,10 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 			res[2 * l] += d * d;
 			res[2 * l + 1] += 1;
 		}
-		if (n < 3)
-			continue;
-		/* Vector area (fan from corner 0), for the orientation. */
-		const double *o = &m->xyz[3 * (size_t)m->fvert[s]];
-		for (uint32_t k = 1; k + 1 < n; k++) {
-			const double *p1 = &m->xyz[3 * (size_t)m->fvert[s + k]];
-			const double *p2 = &m->xyz[3 * (size_t)m->fvert[s + k + 1]];
-			double u[3] = { p1[0] - o[0], p1[1] - o[1], p1[2] - o[2] };
-			double v[3] = { p2[0] - o[0], p2[1] - o[1], p2[2] - o[2] };
-			wind[3 * l] += u[1] * v[2] - u[2] * v[1];
-			wind[3 * l + 1] += u[2] * v[0] - u[0] * v[2];
-			wind[3 * l + 2] += u[0] * v[1] - u[1] * v[0];
-		}
+		double va[3];   /* for the orientation */
+		face_vector_area(m, f, va);
+		for (int i = 0; i < 3; i++)
+			wind[3 * l + (size_t)i] += va[i];
 	}
 	/* count: the distinct vertices of each patch, its faces taken patch by
 	 * patch so that one stamp per vertex tells. */

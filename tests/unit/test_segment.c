@@ -83,7 +83,7 @@ static double plane_distance(const struct fct_plane *pl, const struct fct_mesh *
 	double worst = 0;
 	for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
 		const double *x = &m->xyz[3 * m->fvert[k]];
-		worst = fmax(worst, fabs(pl->n[0] * x[0] + pl->n[1] * x[1] + pl->n[2] * x[2] + pl->d));
+		worst = fmax(worst, fabs(fct_plane_distance(pl, x)));
 	}
 	return worst;
 }
@@ -447,7 +447,7 @@ static double corner_rms(const struct fct_plane *pl, const struct fct_mesh *m)
 	double sum = 0;
 	for (size_t k = 0; k < m->fstart[m->nf]; k++) {
 		const double *x = &m->xyz[3 * m->fvert[k]];
-		double d = pl->n[0] * x[0] + pl->n[1] * x[1] + pl->n[2] * x[2] + pl->d;
+		double d = fct_plane_distance(pl, x);
 		sum += d * d;
 	}
 	return sqrt(sum / m->fstart[m->nf]);
