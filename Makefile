@@ -109,6 +109,12 @@ fuzz: build/config.mk
 bench: $(PROGS) $(BENCHES)
 	@FCT_BIN=$(O)/bin FCT_BENCH=$(O)/bench sh bench/run
 
+# md5 sums of every output on the demo's and the bench's inputs, for a
+# change that must not alter any: make fingerprint FP=dir > list.
+FP ?= build/fingerprint
+fingerprint: $(PROGS) $(SCRIPT_BIN) $(BENCHES)
+	@FCT_BIN=$(O)/bin FCT_BENCH=$(O)/bench sh tools/fingerprint $(FP)
+
 demo: $(PROGS) $(SCRIPT_BIN)
 	@FCT_BIN=$(O)/bin sh tools/demo
 
@@ -132,7 +138,7 @@ uninstall:
 clean:
 	rm -rf build out
 
-.PHONY: all check sanitize fuzz bench demo gallery lint-man install uninstall clean
+.PHONY: all check sanitize fuzz bench demo fingerprint gallery lint-man install uninstall clean
 .SECONDARY:
 .DELETE_ON_ERROR:
 

@@ -7,9 +7,8 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${RUNS:=3}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-af.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
+bench_dir af
 mkscene -q --size 1280x800 --fx 1050 --noise kinect-gauss:0.0015 -o "$dir/room"
 dm2mesh -q --camera "$dir/room/view00.camera" --pose "$dir/room/view00.pose" -o "$dir/r.ply" "$dir/room/view00.depth.pfm"
 # figure KEY args...: median over RUNS of an areaflow -v figure.

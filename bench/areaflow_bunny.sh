@@ -18,8 +18,8 @@ if [ -z "$B" ]; then
 	echo "areaflow_bunny: ../shared/data/stanford_bunny not found, skipped"
 	exit 0
 fi
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-afb.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+bench_dir afb
 Z=$B/reconstruction/bun_zipper.ply
 mm() { meshdist "$1" "$Z" | awk '$1 == "mean" { printf "%.4f", $2 * 1000 }'; }
 # smooth SCAN OPTIONS...: mean distance (mm) of the smoothed scan.

@@ -7,9 +7,8 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-cyl.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
+bench_dir cyl
 mkscene -q --views 0 --panorama 4096x1024 -o "$dir/room"
 pano=$dir/room/pano.color.png
 # figure KEY: median over RUNS of a -v figure.

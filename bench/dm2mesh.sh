@@ -7,11 +7,10 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-dm.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+bench_dir dm
 T="$FCT_BENCH/timeit $RUNS"
 
-. bench/lib.sh
 # figure KEY ARGS...: median over RUNS of dm2mesh -v's KEY.
 figure() {
 	key=$1

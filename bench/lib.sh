@@ -14,3 +14,17 @@ seconds() {
 		i=$((i + 1))
 	done | median
 }
+
+# bench_dir NAME: sets dir to the script's scratch folder, removed at exit.
+# With BENCH_KEEP set it is $BENCH_KEEP/NAME instead, and kept: what the
+# programs wrote there is what tools/fingerprint compares across a change.
+bench_dir() {
+	if [ -n "${BENCH_KEEP:-}" ]; then
+		dir=$BENCH_KEEP/$1
+		rm -rf "$dir"
+		mkdir -p "$dir"
+	else
+		dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-$1.XXXXXX")
+		trap 'rm -rf "$dir"' EXIT
+	fi
+}

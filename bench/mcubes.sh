@@ -15,8 +15,8 @@ set -eu
 : "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 row() { printf '%-58s %10s %10s\n' "$1" "$2" "$3"; }
 fig() { sed -n "s/^$1=//p" "$2"; }
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-mc.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+bench_dir mc
 
 echo "marching cubes (fct_mcubes: shared vertices, gradient normals), medians of $RUNS runs"
 row "what" "M vox/s" "seconds"

@@ -6,13 +6,12 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-dist.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+bench_dir dist
 N=${DIST_N:-400}
 "$FCT_BENCH/gen_dist" "$N" >"$dir/b.ply"
 "$FCT_BENCH/gen_dist" -p "$N" >"$dir/a.ply"
 
-. bench/lib.sh
 # figure KEY [meshdist options...]: median over RUNS of a -v figure.
 figure() {
 	key=$1

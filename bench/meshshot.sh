@@ -6,8 +6,8 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-shot.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+bench_dir shot
 T="$FCT_BENCH/timeit $RUNS"
 "$FCT_BENCH/gen_grid" 708 >"$dir/grid.ply"
 echo "meshshot: gen_grid 708 (999,698 triangles) at 1024x768; medians of $RUNS runs"

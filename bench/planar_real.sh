@@ -14,9 +14,8 @@
 set -eu
 : "${FCT_BIN:=build/bin}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-real.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
+bench_dir real
 
 kitchen=
 for k in ../shared/data/7scenes_redkitchen /work/shared/data/7scenes_redkitchen; do

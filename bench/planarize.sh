@@ -12,8 +12,7 @@ set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=3}"
 PATH=$FCT_BIN:$PATH
 . bench/lib.sh
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-plan.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
+bench_dir plan
 faces() { meshinfo "$1" | awk '$1 == "faces:" { print $2 }'; }
 table1() { meshdist "$1" "$2" | awk '$1 == "mean" { m = $2 } $1 == "stdev" { s = $2 } $1 == "max" { x = $2 } END { printf "%.4f %.4f %.4f", m, s, x }'; }
 truth() { meshdist -p -s 200000 "$1" "$2" | awk '$1 == "mean" { m = $2 } $1 == "p95" { p = $2 } END { printf "%.4f %.4f", m, p }'; }

@@ -13,10 +13,9 @@ set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 PATH=$FCT_BIN:$PATH
 T="$FCT_BENCH/timeit $RUNS"
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-qem.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
-
 . bench/lib.sh
+bench_dir qem
+
 # figure KEY ARGS...: median over RUNS of qemdecim -v's KEY.
 figure() {
 	key=$1

@@ -7,9 +7,8 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${RUNS:=3}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-rm.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
+bench_dir rm
 
 faces() { meshinfo "$1" | awk '/^faces/ { print $2 }'; }
 row() { printf '%-40s %9s %9s %9s %9s\n' "$1" "$2" "$3" "$4" "$5"; }

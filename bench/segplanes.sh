@@ -10,10 +10,9 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-seg.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
-
 . bench/lib.sh
+bench_dir seg
+
 # figure KEY FILE: median over RUNS of segplanes -v's KEY on FILE.
 figure() {
 	i=0

@@ -15,10 +15,9 @@ set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=5}"
 PATH=$FCT_BIN:$PATH
 T="$FCT_BENCH/timeit $RUNS"
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-simpchain.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
-
 . bench/lib.sh
+bench_dir simpchain
+
 cpu() {
 	i=0
 	while [ $i -lt "$RUNS" ]; do

@@ -11,8 +11,8 @@ set -eu
 PATH=$FCT_BIN:$PATH
 N=${TRIPATCH_N:-100000}
 T="$FCT_BENCH/timeit $RUNS"
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-tripatch.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
+. bench/lib.sh
+bench_dir tripatch
 
 # kind 0: zig-zag strip; 1: two-vertex base under a zig-zag; 2: random star.
 gen() {

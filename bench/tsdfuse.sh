@@ -13,9 +13,8 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=3}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-tsd.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
+bench_dir tsd
 
 mkscene --views 4 -o "$dir/room" 2>/dev/null
 V=""

@@ -12,9 +12,8 @@
 set -eu
 : "${FCT_BIN:=build/bin}" "${FCT_BENCH:=build/bench}" "${RUNS:=3}"
 PATH=$FCT_BIN:$PATH
-dir=$(mktemp -d "${TMPDIR:-/tmp}/facet-bench-vt.XXXXXX")
-trap 'rm -rf "$dir"' EXIT
 . bench/lib.sh
+bench_dir vt
 
 faces() { meshinfo "$1" | awk '/^faces/ { print $2 }'; }
 judge() { viewjudge "$@" | awk '$1 == "all" { print $2, $3 }'; }
