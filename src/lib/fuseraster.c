@@ -100,9 +100,13 @@ static void samples_chunk(void *ctx, size_t lo, size_t hi, int worker)
 		sp[1] = (sp[1] - R->v0) * R->S;
 		sp[2] = pin ? 1 / sp[2] : sp[2];
 		if (R->at) {
-			double x = floor(sp[0] + 0.5), y = floor(sp[1] + 0.5);
-			int on = fabs(sp[0] - x) < 1e-3 && fabs(sp[1] - y) < 1e-3 && x >= 0 && y >= 0 &&
-			         x < R->w && y < R->h;
+			/* The nearest sample, floor(sp + 0.5), when it is in the
+			 * raster: there sp + 0.5 is not negative and its floor is
+			 * its truncation (floor is a call without SSE4.1). */
+			double hx = sp[0] + 0.5, hy = sp[1] + 0.5;
+			int on = hx >= 0 && hy >= 0 && hx < R->w && hy < R->h;
+			double x = on ? (double)(long)hx : -1, y = on ? (double)(long)hy : -1;
+			on = on && fabs(sp[0] - x) < 1e-3 && fabs(sp[1] - y) < 1e-3;
 			R->at[2 * i] = on ? (int32_t)x : -1;
 			R->at[2 * i + 1] = on ? (int32_t)y : -1;
 		}
