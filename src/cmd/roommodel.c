@@ -41,8 +41,8 @@ static const char usage[] =
 	"Make one concise textured model of a room from an RGB-D sequence: the depth\n"
 	"images fused (tsdfuse, with the sensor's noise model), the fused surface\n"
 	"made planes plus a decimated free-form surface (segplanes, planedecim), and\n"
-	"textured from the colour images (viewtex).  The sequence is a 7-Scenes or\n"
-	"TUM folder, or depth images with -K, --poses and an --image each.\n"
+	"textured from the colour images (viewtex).  The sequence is a 7-Scenes, TUM\n"
+	"or Redwood folder, or depth images with -K, --poses and an --image each.\n"
 	"  -o model.obj       the model (OBJ with its .mtl and atlas PNGs beside it,\n"
 	"                     or .ply); default model.obj\n"
 	"  -q                 quiet\n"
@@ -186,7 +186,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		fct_usage_error("--atlas-size %d: more than 2^29 texels in %d pages", o->tex.atlas_max,
 		                o->tex.max_pages);
 	if (optind >= argc)
-		fct_usage_error("no sequence: give a 7-Scenes or TUM folder, or depth images");
+		fct_usage_error("no sequence: give a 7-Scenes, TUM or Redwood folder, or depth images");
 	if (fct_path_is_std(o->out))
 		fct_usage_error("-o: the model must be a named file (the atlas is written beside it)");
 	if (o->K && o->camera)
@@ -226,6 +226,7 @@ struct sequence {
 static void sequence_open(struct sequence *s, struct options *o)
 {
 	struct fct_err err;
+	const char *intrinsics = NULL; /* a folder's own, when no camera is given */
 	memset(s, 0, sizeof *s);
 	if (o->folder) {
 		if (fct_dataset_read(&s->ds, o->folder, o->max_diff, &err))
@@ -233,8 +234,10 @@ static void sequence_open(struct sequence *s, struct options *o)
 		s->depth = (const char *const *)s->ds.depth, s->color = (const char *const *)s->ds.color;
 		s->pose_files = (const char *const *)s->ds.poses;
 		s->n = s->ds.n, s->nposes = s->ds.nposes;
-		if (!o->K && !o->camera)
+		if (!o->K && !o->camera) {
 			o->K = s->ds.camera;
+			intrinsics = s->ds.intrinsics;
+		}
 		fct_report("sequence", "%s, %zu frames", s->ds.layout, s->n);
 	} else {
 		s->depth = o->depths, s->color = o->images, s->pose_files = o->poses;
@@ -244,6 +247,8 @@ static void sequence_open(struct sequence *s, struct options *o)
 	 * the last two unless given. */
 	double named_scale;
 	fct_opt_camera(&s->cam, &named_scale, NULL, o->K, o->camera);
+	if (intrinsics && fct_camera_read_file(intrinsics, &s->cam, &err))
+		fct_die_err(&err);
 	fct_depth_params_default(&s->dp);
 	s->dp.texcoords = 0;
 	s->dp.depth_scale = o->scale_given || !(named_scale > 0) ? o->depth_scale : named_scale;

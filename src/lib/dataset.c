@@ -1,4 +1,4 @@
-/* dataset.c - a sequence's folder read as 7-Scenes or TUM lay it out
+/* dataset.c - a sequence's folder read as 7-Scenes, TUM or Redwood lay it out
  * (dataset.h). */
 #include "dataset.h"
 
@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "path.h"
@@ -36,8 +37,9 @@ static int alloc_frames(struct fct_dataset *ds, size_t n, size_t nposes, struct 
 	return ds->depth && ds->color && ds->poses ? 0 : fct_fail(err, "out of memory");
 }
 
-/* The stems "frame-NNNNNN" of the *.depth.png files of dir, sorted. */
-static int seven_scenes_stems(char ***stems, size_t *n, const char *dir, struct fct_err *err)
+/* The names of dir's entries that keep accepts, sorted. */
+static int sorted_names(char ***names, size_t *n, const char *dir, int (*keep)(const char *name),
+                        struct fct_err *err)
 {
 	DIR *d = opendir(dir);
 	if (!d)
@@ -45,23 +47,50 @@ static int seven_scenes_stems(char ***stems, size_t *n, const char *dir, struct 
 	size_t cap = 0;
 	struct dirent *e;
 	int rc = 0;
-	*stems = NULL, *n = 0;
+	*names = NULL, *n = 0;
 	while (!rc && (e = readdir(d))) {
-		size_t len = strlen(e->d_name);
-		if (len <= 10 || strncmp(e->d_name, "frame-", 6) || strcmp(e->d_name + len - 10, ".depth.png"))
+		if (!keep(e->d_name))
 			continue;
-		char *stem = strndup(e->d_name, len - 10);
-		if (!stem || fct_grow((void **)stems, &cap, *n + 1, sizeof **stems, err)) {
-			free(stem);
-			rc = stem ? -1 : fct_fail(err, "out of memory");
+		char *name = fct_strdup(e->d_name, err);
+		if (!name || fct_grow((void **)names, &cap, *n + 1, sizeof **names, err)) {
+			free(name);
+			rc = -1;
 			break;
 		}
-		(*stems)[(*n)++] = stem;
+		(*names)[(*n)++] = name;
 	}
 	closedir(d);
 	if (*n)
-		qsort(*stems, *n, sizeof **stems, cmp_names);
+		qsort(*names, *n, sizeof **names, cmp_names);
 	return rc;
+}
+
+static void free_names(char **names, size_t n)
+{
+	for (size_t i = 0; i < n; i++)
+		free(names[i]);
+	free(names);
+}
+
+static int ends_with(const char *s, const char *end)
+{
+	size_t ls = strlen(s), le = strlen(end);
+	return ls >= le && !strcmp(s + ls - le, end);
+}
+
+static int is_seven_scenes_depth(const char *name)
+{
+	return !strncmp(name, "frame-", 6) && ends_with(name, ".depth.png");
+}
+
+/* The stems "frame-NNNNNN" of the *.depth.png files of dir, sorted. */
+static int seven_scenes_stems(char ***stems, size_t *n, const char *dir, struct fct_err *err)
+{
+	if (sorted_names(stems, n, dir, is_seven_scenes_depth, err))
+		return -1;
+	for (size_t i = 0; i < *n; i++)
+		(*stems)[i][strlen((*stems)[i]) - 10] = '\0';
+	return 0;
 }
 
 static int read_seven_scenes(struct fct_dataset *ds, const char *dir, char **stems, size_t n,
@@ -229,27 +258,135 @@ out:
 	return rc;
 }
 
+/* Redwood and Open3D's reconstruction system: depth/ and color/ (or image/
+ * or rgb/) holding one image per frame, paired in the order of their
+ * names, and the trajectory in a .log file. */
+static int is_image_name(const char *name)
+{
+	const char *dot = strrchr(name, '.');
+	return name[0] != '.' && dot &&
+	       (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".jpg") || !strcasecmp(dot, ".jpeg"));
+}
+
+static int is_log_name(const char *name)
+{
+	return name[0] != '.' && ends_with(name, ".log");
+}
+
+static int is_dir(const char *path)
+{
+	struct stat sb;
+	return stat(path, &sb) == 0 && S_ISDIR(sb.st_mode);
+}
+
+/* dir joined to the first of names that exists (test: exists or is_dir),
+ * or NULL (err set only when out of memory). */
+static char *first_of(const char *dir, const char *const *names, int (*test)(const char *),
+                      struct fct_err *err)
+{
+	for (; *names; names++) {
+		char *p = fct_path_join(dir, *names, err);
+		if (!p || test(p))
+			return p;
+		free(p);
+	}
+	return NULL;
+}
+
+/* The folder's trajectory: trajectory.log or scene/trajectory.log (where
+ * Open3D's reconstruction system writes it), else its one .log file. */
+static char *redwood_trajectory(const char *dir, struct fct_err *err)
+{
+	static const char *const known[] = { "trajectory.log", "scene/trajectory.log", NULL };
+	err->msg[0] = '\0';
+	char *path = first_of(dir, known, exists, err);
+	if (path || err->msg[0])
+		return path;
+	char **logs;
+	size_t n;
+	if (sorted_names(&logs, &n, dir, is_log_name, err))
+		return NULL;
+	if (n == 1)
+		path = fct_path_join(dir, logs[0], err);
+	else if (n == 0)
+		fct_fail(err, "%s: no trajectory (trajectory.log, scene/trajectory.log or one .log file)", dir);
+	else
+		fct_fail(err, "%s: %zu .log files (%s, %s, ...): which is the trajectory? name it "
+		         "trajectory.log", dir, n, logs[0], logs[1]);
+	free_names(logs, n);
+	return path;
+}
+
+static int read_redwood(struct fct_dataset *ds, const char *dir, const char *depth_dir,
+                        struct fct_err *err)
+{
+	static const char *const colour_names[] = { "color", "image", "rgb" };
+	static const char *const intrinsics[] = { "camera_intrinsic.json", NULL };
+	char **depth = NULL, **colour = NULL, *colour_dir = NULL;
+	size_t nd = 0, nc = 0, k;
+	int rc = -1;
+	ds->layout = "Redwood", ds->camera = "redwood";
+	for (k = 0; k < 3 && !colour_dir; k++) {
+		if (!(colour_dir = fct_path_join(dir, colour_names[k], err)))
+			goto out;
+		if (!is_dir(colour_dir)) {
+			free(colour_dir);
+			colour_dir = NULL;
+		}
+	}
+	if (!colour_dir) {
+		fct_fail(err, "%s: depth/ but no colour images beside it (color/, image/ or rgb/)", dir);
+		goto out;
+	}
+	if (sorted_names(&depth, &nd, depth_dir, is_image_name, err) ||
+	    sorted_names(&colour, &nc, colour_dir, is_image_name, err))
+		goto out;
+	if (nd == 0 || nd != nc) {
+		fct_fail(err, "%s: %zu depth images in depth/ but %zu colour images in %s/ (a Redwood "
+		         "folder pairs them in the order of their names)", dir, nd, nc, colour_names[k - 1]);
+		goto out;
+	}
+	if (alloc_frames(ds, nd, 1, err))
+		goto out;
+	for (size_t i = 0; i < nd; i++)
+		if (!(ds->depth[i] = fct_path_join(depth_dir, depth[i], err)) ||
+		    !(ds->color[i] = fct_path_join(colour_dir, colour[i], err)))
+			goto out;
+	if (!(ds->poses[0] = redwood_trajectory(dir, err)))
+		goto out;
+	err->msg[0] = '\0';
+	ds->intrinsics = first_of(dir, intrinsics, exists, err);
+	rc = err->msg[0] ? -1 : 0;
+out:
+	free_names(depth, nd);
+	free_names(colour, nc);
+	free(colour_dir);
+	return rc;
+}
+
 int fct_dataset_read(struct fct_dataset *ds, const char *dir, double max_diff, struct fct_err *err)
 {
 	memset(ds, 0, sizeof *ds);
-	char **stems = NULL;
+	char **stems = NULL, *depth_dir = NULL;
 	size_t n = 0;
 	char *probe = fct_path_join(dir, "depth.txt", err);
-	if (!probe)
+	if (!probe || !(depth_dir = fct_path_join(dir, "depth", err))) {
+		free(probe);
 		return -1;
-	int tum = exists(probe);
-	free(probe);
+	}
 	int rc;
-	if (tum)
+	if (exists(probe))
 		rc = read_tum(ds, dir, max_diff, err);
+	else if (is_dir(depth_dir))
+		rc = read_redwood(ds, dir, depth_dir, err);
 	else if ((rc = seven_scenes_stems(&stems, &n, dir, err)) == 0) {
 		rc = n ? read_seven_scenes(ds, dir, stems, n, err)
-		       : fct_fail(err, "%s: not a 7-Scenes or TUM sequence folder (no frame-*.depth.png, "
-		                  "no depth.txt)", dir);
-		for (size_t i = 0; i < n; i++)
-			free(stems[i]);
-		free(stems);
+		       : fct_fail(err, "%s: not a 7-Scenes, TUM or Redwood sequence folder (no "
+		                  "frame-*.depth.png, no depth.txt, no depth/)", dir);
+		free_names(stems, n);
 	}
+	free(probe);
+	free(depth_dir);
 	if (rc)
 		fct_dataset_free(ds);
 	return rc;
@@ -264,5 +401,6 @@ void fct_dataset_free(struct fct_dataset *ds)
 	for (size_t i = 0; ds->poses && i < ds->nposes; i++)
 		free(ds->poses[i]);
 	free(ds->depth), free(ds->color), free(ds->poses);
+	free(ds->intrinsics);
 	memset(ds, 0, sizeof *ds);
 }

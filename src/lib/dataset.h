@@ -11,6 +11,13 @@
  *                     ground truth's pose nearest in time, each within
  *                     max_diff seconds (TUM's associate.py); frames
  *                     without either are left out
+ *   Redwood / Open3D  depth/ and color/ (or image/ or rgb/), an image per
+ *                     frame each (PNG or JPEG), paired in the order of
+ *                     their names; the trajectory in trajectory.log,
+ *                     scene/trajectory.log (where Open3D's reconstruction
+ *                     system writes it) or the folder's one .log file;
+ *                     camera_intrinsic.json (Open3D's intrinsics) when
+ *                     there, else the PrimeSense camera Redwood used
  *
  * Paths are the folder joined to the names it holds. */
 #ifndef FCT_DATASET_H
@@ -21,8 +28,12 @@
 #include "err.h"
 
 struct fct_dataset {
-	const char *layout;      /* "7-Scenes" or "TUM" */
-	const char *camera;      /* the camera's name (camera.h): 7scenes, tum, tum1..3 */
+	const char *layout;      /* "7-Scenes", "TUM" or "Redwood" */
+	const char *camera;      /* the camera's name (camera.h): 7scenes, tum, tum1..3,
+	                          * redwood; its depth units and noise */
+	char *intrinsics;        /* the folder's intrinsics file (--camera's forms), whose
+	                          * focal lengths and centre replace the named camera's;
+	                          * NULL when it has none */
 	size_t n;                /* frames */
 	char **depth, **color;   /* n paths each */
 	char **poses;            /* npose files: n (7-Scenes) or 1 (TUM) */
@@ -31,7 +42,7 @@ struct fct_dataset {
 };
 
 /* Read the folder dir into d (fct_dataset_free).  0, or -1 ("DIR: not a
- * 7-Scenes or TUM sequence folder (...)", "DIR/rgb.txt:LINE: ...", a
+ * 7-Scenes, TUM or Redwood sequence folder (...)", "DIR/rgb.txt:LINE: ...", a
  * frame without its colour image or pose, no frame). */
 int fct_dataset_read(struct fct_dataset *d, const char *dir, double max_diff, struct fct_err *err);
 void fct_dataset_free(struct fct_dataset *d);

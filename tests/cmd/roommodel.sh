@@ -4,7 +4,7 @@
 # textured from 6 views, judged against the exact scene (meshdist) and at
 # the 2 views it was not made from (viewjudge), beside tsdfuse's fused mesh
 # of the same views; the model's files (OBJ, MTL, atlas, relative paths);
-# the same sequence as a 7-Scenes folder and as a TUM folder; the same bytes
+# the same sequence as a 7-Scenes, a Redwood and a TUM folder; the same bytes
 # twice; usage errors and bad data; the shared 7-Scenes frames end to end.
 . tests/lib.sh
 
@@ -49,7 +49,7 @@ check_true "--help names the stages' options" grep -q -- "--blend" "$TMP/out"
 # Bad data: one line, exit 1.
 run_case 1 "roommodel -K $K --poses $S/view00.pose --image $TMP/missing.png $S/view00.depth.png" "" "roommodel: $TMP/missing.png"
 mkdir -p "$TMP/empty"
-run_case 1 "roommodel $TMP/empty" "" "roommodel: $TMP/empty: not a 7-Scenes or TUM sequence folder"
+run_case 1 "roommodel $TMP/empty" "" "roommodel: $TMP/empty: not a 7-Scenes, TUM or Redwood sequence folder"
 # -o into a missing folder fails at once (it failed after all the work).
 run_case 1 "roommodel -o $TMP/nowhere/m.obj $V" "" "roommodel: $TMP/nowhere: no such folder for the model"
 # Depths all beyond the range kept: nothing to fuse.
@@ -112,6 +112,29 @@ run_case 1 "roommodel -K $K -o $TMP/m/g.obj $F" "" "roommodel: $F: frame-000005 
 mv "$TMP/c.png" "$F/frame-000005.color.png"
 rm "$F/frame-000004.pose.txt"
 run_case 1 "roommodel -K $K -o $TMP/m/g.obj $F" "" "roommodel: $F: frame-000004 has no pose"
+
+# The same views as a Redwood folder in Open3D's layout: depth/, color/,
+# the trajectory (Redwood's .log) in scene/trajectory.log and the camera in
+# camera_intrinsic.json: the same model with no camera option.
+R=$TMP/redwood
+mkdir -p "$R/depth" "$R/color" "$R/scene"
+: >"$R/scene/trajectory.log"
+n=0
+for i in 0 1 2 4 5 6; do
+	cp "$S/view0$i.depth.png" "$R/depth/00000$n.png"
+	cp "$S/view0$i.color.png" "$R/color/00000$n.png"
+	{ echo "$n $n 6"; head -n 3 "$S/view0$i.pose"; echo "0 0 0 1"; } >>"$R/scene/trajectory.log"
+	n=$((n + 1))
+done
+printf '{ "width": 160, "height": 120, "intrinsic_matrix": [ 131.25, 0, 0, 0, 131.25, 0, 79.5, 59.5, 1 ] }\n' \
+	>"$R/camera_intrinsic.json"
+run_case 0 "roommodel -v --voxel 0.03 --noise kinect -o $TMP/m/r.obj $R"
+check_true "Redwood folder: read as such" grep -q '^roommodel: sequence=Redwood, 6 frames$' "$TMP/err"
+check_true "Redwood folder: the same atlas" cmp -s "$TMP/m/a_atlas0.png" "$TMP/m/r_atlas0.png"
+bare "$TMP/m/r.obj" >"$TMP/r.txt"
+check_true "Redwood folder: the same OBJ" cmp -s "$TMP/a.txt" "$TMP/r.txt"
+rm "$R/color/000005.png"
+run_case 1 "roommodel -o $TMP/m/g.obj $R" "" "roommodel: $R: 6 depth images in depth/ but 5 colour images in color/"
 
 # The same views as a TUM folder: depth.txt, rgb.txt (the colour 5 ms after
 # the depth) and groundtruth.txt (quaternions) associated by timestamp; a

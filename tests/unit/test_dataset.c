@@ -1,4 +1,4 @@
-/* test_dataset.c - sequence folders as 7-Scenes and TUM lay them out: the
+/* test_dataset.c - sequence folders as 7-Scenes, TUM and Redwood lay them out: the
  * frames found, in order, each with its colour image and pose; TUM's
  * association by timestamp (frames without colour or pose left out); the
  * camera a folder's name tells; refusals with where and what. */
@@ -44,7 +44,7 @@ static void test_seven_scenes(void)
 	struct fct_dataset ds;
 	struct fct_err err;
 	CHECK(fct_dataset_read(&ds, d, 0.02, &err) == -1);
-	CHECK_MSG(strstr(err.msg, "not a 7-Scenes or TUM sequence folder"), "%s", err.msg);
+	CHECK_MSG(strstr(err.msg, "not a 7-Scenes, TUM or Redwood sequence folder"), "%s", err.msg);
 	/* Written out of order: read in the order of the names. */
 	put(d, "frame-000010.depth.png", "");
 	put(d, "frame-000010.color.jpg", "");
@@ -119,6 +119,61 @@ static void test_tum(void)
 	CHECK_MSG(strstr(err.msg, "groundtruth.txt: not a TUM trajectory"), "%s", err.msg);
 }
 
+static void test_redwood(void)
+{
+	const char *d = sub("livingroom1");
+	char depth[512], colour[512], scene[512];
+	snprintf(depth, sizeof depth, "%s", sub("livingroom1/depth"));
+	struct fct_dataset ds;
+	struct fct_err err;
+	CHECK(fct_dataset_read(&ds, d, 0.02, &err) == -1);
+	CHECK_MSG(strstr(err.msg, "livingroom1: depth/ but no colour images beside it (color/, image/ or rgb/)"),
+	          "%s", err.msg);
+	snprintf(colour, sizeof colour, "%s", sub("livingroom1/image"));
+	/* Paired in the order of the names, whatever they are; other files aside. */
+	put(depth, "00010.png", "");
+	put(depth, "00002.png", "");
+	put(depth, ".hidden.png", "");
+	put(depth, "README", "");
+	put(colour, "00010.JPG", "");
+	put(colour, "00002.jpg", "");
+	CHECK(fct_dataset_read(&ds, d, 0.02, &err) == -1);
+	CHECK_MSG(strstr(err.msg, "livingroom1: no trajectory (trajectory.log, scene/trajectory.log or one .log file)"),
+	          "%s", err.msg);
+	put(d, "livingroom1-traj.log", "");
+	CHECK(fct_dataset_read(&ds, d, 0.02, &err) == 0);
+	CHECK_STR(ds.layout, "Redwood");
+	CHECK_STR(ds.camera, "redwood");
+	CHECK(ds.intrinsics == NULL);
+	CHECK_INT(ds.n, 2);
+	CHECK_INT(ds.nposes, 1);
+	if (ds.n == 2) {
+		CHECK_STR(tail(ds.depth[0]), "00002.png");
+		CHECK_STR(tail(ds.color[0]), "00002.jpg");
+		CHECK_STR(tail(ds.depth[1]), "00010.png");
+		CHECK_STR(tail(ds.color[1]), "00010.JPG");
+	}
+	CHECK_STR(tail(ds.poses[0]), "livingroom1-traj.log");
+	fct_dataset_free(&ds);
+	/* Two .log files: which one is not guessed ... */
+	put(d, "odometry.log", "");
+	CHECK(fct_dataset_read(&ds, d, 0.02, &err) == -1);
+	CHECK_MSG(strstr(err.msg, ": 2 .log files (livingroom1-traj.log, odometry.log, ...): which is the trajectory?"),
+	          "%s", err.msg);
+	/* ... but Open3D's reconstruction output is, and its intrinsics taken. */
+	snprintf(scene, sizeof scene, "%s", sub("livingroom1/scene"));
+	put(scene, "trajectory.log", "");
+	put(d, "camera_intrinsic.json", "{}");
+	CHECK(fct_dataset_read(&ds, d, 0.02, &err) == 0);
+	CHECK(ds.poses && !strcmp(ds.poses[0] + strlen(ds.poses[0]) - 20, "scene/trajectory.log"));
+	CHECK(ds.intrinsics && !strcmp(tail(ds.intrinsics), "camera_intrinsic.json"));
+	fct_dataset_free(&ds);
+	/* A colour image short. */
+	put(depth, "00011.png", "");
+	CHECK(fct_dataset_read(&ds, d, 0.02, &err) == -1);
+	CHECK_MSG(strstr(err.msg, ": 3 depth images in depth/ but 2 colour images in image/"), "%s", err.msg);
+}
+
 int main(void)
 {
 	if (!mkdtemp(top)) {
@@ -127,6 +182,7 @@ int main(void)
 	}
 	test_seven_scenes();
 	test_tum();
+	test_redwood();
 	char cmd[600];
 	snprintf(cmd, sizeof cmd, "rm -rf %s", top);
 	if (system(cmd) != 0)
