@@ -1037,9 +1037,9 @@ static int prepare(const double *xy, size_t np, const uint32_t *lstart, size_t n
 	return rc;
 }
 
-int fct_polytri(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                const uint32_t *lvert, enum fct_polytri_method method, uint32_t **tri,
-                size_t *ntri, struct fct_polytri_stats *st, struct fct_err *err)
+int fct_polytri(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
+                enum fct_polytri_method method, struct fct_polytri_stats *st, struct fct_err *err)
 {
 	struct fct_polytri_stats dummy;
 	if (!st) {

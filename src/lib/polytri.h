@@ -96,9 +96,9 @@ struct fct_polytri_stats {
  * vertex repeated in a row), with the reason in err and *tri NULL; -1 on an
  * index out of range, a coordinate that is not finite, or out of memory.
  * st may be NULL. */
-int fct_polytri(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                const uint32_t *lvert, enum fct_polytri_method method, uint32_t **tri,
-                size_t *ntri, struct fct_polytri_stats *st, struct fct_err *err);
+int fct_polytri(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
+                enum fct_polytri_method method, struct fct_polytri_stats *st, struct fct_err *err);
 
 /* The repair of last resort for loops fct_polytri refuses: loops of positive
  * signed area are outer boundaries, the others holes, each given to the

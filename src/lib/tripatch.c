@@ -234,7 +234,7 @@ static int repair(struct work *w, const struct fct_tripatch_params *p, struct fc
 		for (int f = p->plane_only ? 1 : 0; f < 2 && !done; f++) {
 			if (!w->have[f])
 				continue;
-			int rc = fct_polytri(w->xy[f], w->nl, w->pstart, np, w->pvert, p->method, &t, &nt, &st->tri, &perr);
+			int rc = fct_polytri(&t, &nt, w->xy[f], w->nl, w->pstart, np, w->pvert, p->method, &st->tri, &perr);
 			if (rc < 0) {
 				*w->err = perr;
 				return -1;
@@ -454,7 +454,7 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 			break;
 		uint32_t *t = NULL;
 		size_t nt = 0;
-		int rc = fct_polytri(w->xy[f], w->nl, w->lstart, w->nloops, w->lvert, p->method, &t, &nt,
+		int rc = fct_polytri(&t, &nt, w->xy[f], w->nl, w->lstart, w->nloops, w->lvert, p->method,
 		                     &st->tri, &perr);
 		if (rc < 0) {
 			*w->err = perr;

@@ -193,7 +193,7 @@ static int run(const struct poly *p, enum fct_polytri_method m, uint32_t **t, si
 {
 	struct fct_err err;
 	err.msg[0] = 0;
-	int rc = fct_polytri(p->xy, p->np, p->lstart, p->nl, p->lv, m, t, nt, st, &err);
+	int rc = fct_polytri(t, nt, p->xy, p->np, p->lstart, p->nl, p->lv, m, st, &err);
 	CHECK_MSG(rc == 0, "fct_polytri: %d: %s", rc, err.msg);
 	return rc;
 }
@@ -550,7 +550,7 @@ static void test_refuse(void)
 	poly_init(&p);
 	loop_pts(&p, bow, 4);
 	for (int m = 0; m < 2; m++) {
-		CHECK_INT(fct_polytri(p.xy, p.np, p.lstart, p.nl, p.lv, m, &t, &nt, NULL, &err), 1);
+		CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, m, NULL, &err), 1);
 		CHECK(t == NULL);
 	}
 	CHECK_INT(fct_polytri_earclip(p.xy, p.np, p.lstart, p.nl, p.lv, &t, &nt, NULL, &err), 1);
@@ -559,7 +559,7 @@ static void test_refuse(void)
 	static const double cw[] = { 0, 0, 0, 1, 1, 1, 1, 0 };
 	poly_init(&p);
 	loop_pts(&p, cw, 4);
-	CHECK_INT(fct_polytri(p.xy, p.np, p.lstart, p.nl, p.lv, 0, &t, &nt, NULL, &err), 1);
+	CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, 0, NULL, &err), 1);
 	poly_free(&p);
 	/* a hole crossing the outer boundary: refused; repaired into
 	 * 4 + 4 + 2 - 2 = 8 triangles */
@@ -568,7 +568,7 @@ static void test_refuse(void)
 	poly_init(&p);
 	loop_pts(&p, sq, 4);
 	loop_pts(&p, h, 4);
-	CHECK_INT(fct_polytri(p.xy, p.np, p.lstart, p.nl, p.lv, 0, &t, &nt, NULL, &err), 1);
+	CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, 0, NULL, &err), 1);
 	struct fct_polytri_stats st;
 	memset(&st, 0, sizeof st);
 	CHECK_INT(fct_polytri_earclip(p.xy, p.np, p.lstart, p.nl, p.lv, &t, &nt, &st, &err), 0);
@@ -582,20 +582,20 @@ static void test_refuse(void)
 	poly_init(&p);
 	loop_pts(&p, touch_o, 4);
 	loop_pts(&p, touch_h, 3);
-	CHECK_INT(fct_polytri(p.xy, p.np, p.lstart, p.nl, p.lv, 0, &t, &nt, NULL, &err), 1);
+	CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, 0, NULL, &err), 1);
 	poly_free(&p);
 	static const double dup[] = { 0, 0, 4, 0, 4, 4, 4, 0, 0, 4 };
 	poly_init(&p);
 	loop_pts(&p, dup, 5);
-	CHECK_INT(fct_polytri(p.xy, p.np, p.lstart, p.nl, p.lv, 0, &t, &nt, NULL, &err), 1);
+	CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, 0, NULL, &err), 1);
 	poly_free(&p);
 	static const double line[] = { 0, 0, 1, 1, 2, 2 };
 	poly_init(&p);
 	loop_pts(&p, line, 3);
-	CHECK_INT(fct_polytri(p.xy, p.np, p.lstart, p.nl, p.lv, 0, &t, &nt, NULL, &err), 1);
+	CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, 0, NULL, &err), 1);
 	/* an index out of range is an error, not a refusal */
 	p.lv[1] = 99;
-	CHECK_INT(fct_polytri(p.xy, p.np, p.lstart, p.nl, p.lv, 0, &t, &nt, NULL, &err), -1);
+	CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, 0, NULL, &err), -1);
 	poly_free(&p);
 }
 
