@@ -1237,8 +1237,8 @@ out:
 	return rc;
 }
 
-int fct_polytri_nest(const double *xy, const uint32_t *lstart, size_t nloops,
-                     const uint32_t *lvert, long *owner)
+int fct_polytri_nest(long *owner, const double *xy, const uint32_t *lstart, size_t nloops,
+                     const uint32_t *lvert)
 {
 	long biggest = -1;
 	double ba = 0;
@@ -1270,8 +1270,8 @@ int fct_polytri_nest(const double *xy, const uint32_t *lstart, size_t nloops,
 	return 0;
 }
 
-int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                        const uint32_t *lvert, uint32_t **tri, size_t *ntri,
+int fct_polytri_earclip(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                        const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
                         struct fct_polytri_stats *st, struct fct_err *err)
 {
 	struct fct_polytri_stats dummy;
@@ -1292,7 +1292,7 @@ int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, siz
 		goto done;
 	for (size_t l = 0; l < nloops; l++)
 		area[l] = lstart[l + 1] - lstart[l] >= 3 ? fct_polytri_loop_area2(xy, lvert + lstart[l], lstart[l + 1] - lstart[l]) : 0;
-	if (fct_polytri_nest(xy, lstart, nloops, lvert, owner)) {
+	if (fct_polytri_nest(owner, xy, lstart, nloops, lvert)) {
 		rc = 1;
 		fct_fail(err, "no loop of positive area");
 		goto done;

@@ -113,8 +113,8 @@ int fct_polytri(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
  * outer loop up to 4096 corners and about O(n) per pass beyond.  Returns 0,
  * or -1 (bad index, out of memory; err set); 1 when there is no loop of
  * positive area. */
-int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                        const uint32_t *lvert, uint32_t **tri, size_t *ntri,
+int fct_polytri_earclip(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                        const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
                         struct fct_polytri_stats *st, struct fct_err *err);
 
 /* Which outer loop each loop belongs to: owner[l] = l for a loop of
@@ -122,8 +122,8 @@ int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, siz
  * outer loop of smallest area that contains the hole's first vertex (even-odd
  * rule), or the outer loop of largest area when none does, or -1 when there
  * is no outer loop at all (then the call returns 1). */
-int fct_polytri_nest(const double *xy, const uint32_t *lstart, size_t nloops,
-                     const uint32_t *lvert, long *owner);
+int fct_polytri_nest(long *owner, const double *xy, const uint32_t *lstart, size_t nloops,
+                     const uint32_t *lvert);
 
 /* Twice the signed area of loop lvert[0..n) (positive counter-clockwise),
  * summed relative to its first point. */

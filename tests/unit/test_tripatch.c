@@ -553,7 +553,7 @@ static void test_refuse(void)
 		CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, m, NULL, &err), 1);
 		CHECK(t == NULL);
 	}
-	CHECK_INT(fct_polytri_earclip(p.xy, p.np, p.lstart, p.nl, p.lv, &t, &nt, NULL, &err), 1);
+	CHECK_INT(fct_polytri_earclip(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, NULL, &err), 1);
 	poly_free(&p);
 	/* a clockwise square alone: wrong orientation */
 	static const double cw[] = { 0, 0, 0, 1, 1, 1, 1, 0 };
@@ -571,7 +571,7 @@ static void test_refuse(void)
 	CHECK_INT(fct_polytri(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, 0, NULL, &err), 1);
 	struct fct_polytri_stats st;
 	memset(&st, 0, sizeof st);
-	CHECK_INT(fct_polytri_earclip(p.xy, p.np, p.lstart, p.nl, p.lv, &t, &nt, &st, &err), 0);
+	CHECK_INT(fct_polytri_earclip(&t, &nt, p.xy, p.np, p.lstart, p.nl, p.lv, &st, &err), 0);
 	CHECK_INT(nt, 8);
 	free(t);
 	poly_free(&p);
