@@ -406,8 +406,8 @@ static void dt_free(struct dt *d)
 	free(d->bnd);
 }
 
-int fct_delaunay(const double *uv, size_t n, uint32_t **tri, size_t *ntri,
-                 size_t *nduplicates, struct fct_err *err)
+int fct_delaunay(uint32_t **tri, size_t *ntri, size_t *nduplicates, const double *uv, size_t n,
+                 struct fct_err *err)
 {
 	*tri = NULL;
 	*ntri = 0;

@@ -1060,7 +1060,7 @@ int fct_polytri(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
 	int rc = prepare(xy, np, lstart, nloops, lvert, &lv, &pts, &glob, &n, err);
 	if (rc)
 		goto done;
-	if (fct_delaunay(pts, n, &dt, &ndt, &ndup, err)) {
+	if (fct_delaunay(&dt, &ndt, &ndup, pts, n, err)) {
 		rc = -1;
 		goto done;
 	}
