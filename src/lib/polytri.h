@@ -90,12 +90,13 @@ struct fct_polytri_stats {
  *
  * Returns 0 with *tri a malloc'd array of 3 * *ntri point indices (free()),
  * each triangle counter-clockwise; 1 when the loops do not bound a region as
- * described in the header comment (two loop edges crossing or overlapping,
- * a loop edge through a vertex, two used points at the same place, all
- * points on a line, a loop of the wrong orientation or nesting, a loop
- * vertex repeated in a row), with the reason in err and *tri NULL; -1 on an
- * index out of range, a coordinate that is not finite, or out of memory.
- * st may be NULL. */
+ * described in the header comment (no loops, a loop of fewer than three
+ * vertices, two loop edges crossing or overlapping, a loop edge through a
+ * vertex, two used points at the same place, all points on a line, a loop
+ * of the wrong orientation or nesting, a loop vertex repeated in a row, a
+ * coordinate that is not finite), with the reason in err and *tri NULL; -1
+ * on an index out of range, lstart not starting at 0 or decreasing, or out
+ * of memory.  st may be NULL. */
 int fct_polytri(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
                 const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
                 enum fct_polytri_method method, struct fct_polytri_stats *st, struct fct_err *err);
