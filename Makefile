@@ -3,6 +3,7 @@
 #   make                build every program into $(O)/bin
 #   make check          unit and command tests (the README's test command)
 #   make sanitize       the whole test suite under ASan+UBSan
+#   make regold         rewrite the tests' golden files from this build
 #   make fuzz           libFuzzer targets (clang), FUZZ_TIME seconds each
 #   make bench          throughput figures beside a reference run
 #   make demo           the pipelines on the bundled samples, into out/
@@ -89,6 +90,11 @@ $(O)/bench/%: $(O)/bench/%.o $(LIB)
 check: $(PROGS) $(SCRIPT_BIN) $(UNITS)
 	@FCT_BIN=$(O)/bin FCT_UNITS=$(O)/tests sh tests/run
 
+# The golden files the command tests compare against, rewritten from this
+# build's output (tests/regold says which changed); review with git diff.
+regold: $(PROGS) $(SCRIPT_BIN)
+	@FCT_BIN=$(O)/bin sh tests/regold
+
 # ASan+UBSan build of everything, then the whole suite against it.
 SAN_FLAGS = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 sanitize:
@@ -138,7 +144,7 @@ uninstall:
 clean:
 	rm -rf build out
 
-.PHONY: all check sanitize fuzz bench demo fingerprint gallery lint-man install uninstall clean
+.PHONY: all check regold sanitize fuzz bench demo fingerprint gallery lint-man install uninstall clean
 .SECONDARY:
 .DELETE_ON_ERROR:
 

@@ -75,7 +75,7 @@ int main(int argc, char **argv)
 			qsort(copy, (size_t)n, 2 * sizeof *copy, cmp_pt);
 		} else {
 			uint32_t *tri;
-			if (fct_delaunay(uv, (size_t)n, &tri, &ntri, NULL, &err))
+			if (fct_delaunay(&tri, &ntri, NULL, uv, (size_t)n, &err))
 				fct_die_err(&err);
 			free(tri);
 		}

@@ -8,6 +8,8 @@
 #       in PATH; checks the exit status, the exact stdout (when a file is
 #       named; "" skips) and that stderr is one line starting with the prefix
 #       (when given; for non-zero status the one-line rule always holds).
+#       A stdout file in tests/cmd/expected is a golden file: make regold
+#       rewrites it (see regold below).
 
 : "${FCT_BIN:=build/bin}"
 case $FCT_BIN in /*) ;; *) FCT_BIN=$(pwd)/$FCT_BIN ;; esac
@@ -29,6 +31,7 @@ run_case() {
 		not_ok "$cmd: exit status $st, expected $want_status; stderr: $(head -c 300 "$TMP/err")"
 		return
 	fi
+	case $want_out in tests/cmd/expected/*) regold "$TMP/out" "$want_out" ;; esac
 	if [ -n "$want_out" ] && ! cmp -s "$TMP/out" "$want_out"; then
 		not_ok "$cmd: output differs from $want_out"
 		return
@@ -47,6 +50,24 @@ run_case() {
 		esac
 	fi
 	ok
+}
+
+# regold GOT GOLDEN: nothing in a test run.  Under make regold (tests/regold
+# sets FCT_REGOLD to its log) GOT, this build's output, replaces the golden
+# file GOLDEN, and the log says whether that changed it.  Golden files are
+# the programs' own outputs kept for comparison; expected outputs computed
+# another way (by hand, by a generator script, by another decoder) are not
+# golden and are never rewritten.
+regold() {
+	[ -n "${FCT_REGOLD:-}" ] || return 0
+	if [ ! -s "$1" ]; then
+		echo "no-output $2" >>"$FCT_REGOLD"
+		return 1
+	elif cmp -s "$1" "$2"; then
+		echo "unchanged $2" >>"$FCT_REGOLD"
+	else
+		cp "$1" "$2" && echo "changed $2" >>"$FCT_REGOLD"
+	fi
 }
 
 # check_true "description" command...: passes when the command succeeds.

@@ -406,8 +406,158 @@ static void dt_free(struct dt *d)
 	free(d->bnd);
 }
 
-int fct_delaunay(const double *uv, size_t n, uint32_t **tri, size_t *ntri,
-                 size_t *nduplicates, struct fct_err *err)
+/* The points in insertion order: *order[k] the input index of the k-th,
+ * *p its coordinates (both malloc'd, NULL for none).  0 or -1. */
+static int ordered_points(const double *uv, size_t n, uint32_t **order, double **p,
+                          struct fct_err *err)
+{
+	*order = fct_alloc_array(n, sizeof **order, err);
+	*p = *order ? fct_alloc_array(n, 2 * sizeof **p, err) : NULL;
+	if (!*p)
+		return -1;
+	if (n > 0 && insertion_order(uv, n, *order, err))
+		return -1;
+	for (size_t k = 0; k < n; k++) {
+		(*p)[2 * k] = uv[2 * (size_t)(*order)[k]];
+		(*p)[2 * k + 1] = uv[2 * (size_t)(*order)[k] + 1];
+	}
+	return 0;
+}
+
+/* Seeds: the first point, the first one different from it (*j1), and the
+ * first one not on the line through those two (*j2).  The points passed
+ * over are duplicates or collinear; they are inserted later like any
+ * other.  0, or 1 when there are fewer than three distinct points or all
+ * are on one line. */
+static int find_seeds(const double *p, size_t n, size_t *j1, size_t *j2)
+{
+	size_t a = 1, b;
+	while (a < n && same_point(p, p + 2 * a))
+		a++;
+	b = a + 1;
+	while (b < n && fct_orient2d(p, p + 2 * a, p + 2 * b) == 0)
+		b++;
+	*j1 = a, *j2 = b;
+	return b >= n;
+}
+
+/* Move the seeds j1, j2 to places 1 and 2 (point and input index), so that
+ * points 0, 1, 2 make a counter-clockwise triangle. */
+static void seeds_first(double *p, uint32_t *order, size_t j1, size_t j2)
+{
+	for (int s = 0; s < 2; s++) {
+		size_t a = (size_t)s + 1, b = s ? j2 : j1;
+		double tx = p[2 * a], ty = p[2 * a + 1];
+		uint32_t to = order[a];
+		p[2 * a] = p[2 * b];
+		p[2 * a + 1] = p[2 * b + 1];
+		order[a] = order[b];
+		p[2 * b] = tx;
+		p[2 * b + 1] = ty;
+		order[b] = to;
+	}
+	if (fct_orient2d(p, p + 2, p + 4) < 0) {
+		for (int c = 0; c < 2; c++) {
+			double t = p[2 + c];
+			p[2 + c] = p[4 + c];
+			p[4 + c] = t;
+		}
+		uint32_t t = order[1];
+		order[1] = order[2];
+		order[2] = t;
+	}
+}
+
+/* Start the triangulation of the n points p (at least three, the first
+ * three a counter-clockwise triangle), with room for all of them: triangle
+ * 0 = (0, 1, 2) and its three ghosts as a fan around INF over its reversed
+ * edges.  0 or -1. */
+static int dt_start(struct dt *d, const double *p, size_t n, struct fct_err *err)
+{
+	size_t maxtri = 2 * n;
+	d->p = p;
+	d->inf = (uint32_t)n;
+	d->tv = fct_alloc_array(maxtri, 3 * sizeof *d->tv, err);
+	d->nb = d->tv ? fct_alloc_array(maxtri, 3 * sizeof *d->nb, err) : NULL;
+	d->mark = d->nb ? fct_alloc_array(maxtri, sizeof *d->mark, err) : NULL;
+	d->first = d->mark ? fct_alloc_array(n + 1, sizeof *d->first, err) : NULL;
+	if (!d->first || grow_stack(d, 64, err) || grow_bnd(d, 64, err))
+		return -1;
+	uint32_t *v = d->tv;
+	v[0] = 0;
+	v[1] = 1;
+	v[2] = 2;
+	struct bedge hull[3];
+	uint32_t slot[3] = {1, 2, 3};
+	for (uint32_t e = 0; e < 3; e++) {
+		hull[e].u = v[prev3(e)];
+		hull[e].v = v[next3(e)];
+		hull[e].out = e;
+	}
+	d->ntri = 4;
+	memset(d->mark, 0, 4 * sizeof *d->mark);
+	fan(d, d->inf, hull, 3, slot);
+	d->last = 0;
+	return 0;
+}
+
+/* Insert points 3 .. n-1; a duplicate is counted in *ndup and the vertex
+ * it duplicates takes the lower of their input indices.  0 or -1. */
+static int insert_rest(struct dt *d, uint32_t *order, size_t n, size_t *ndup, struct fct_err *err)
+{
+	for (size_t k = 3; k < n; k++) {
+		uint32_t dup;
+		int r = insert(d, (uint32_t)k, (uint32_t)k, &dup, err);
+		if (r < 0)
+			return -1;
+		if (r == 1) {
+			(*ndup)++;
+			if (order[k] < order[dup])
+				order[dup] = order[k];
+		}
+	}
+	return 0;
+}
+
+/* The triangles that are not ghosts, in input indices, each rotated to
+ * put its smallest index first (the orientation stays): *out (malloc'd)
+ * holds *nout of them.  0 or -1. */
+static int real_triangles(const struct dt *d, const uint32_t *order, uint32_t **out, size_t *nout,
+                          struct fct_err *err)
+{
+	size_t nreal = 0;
+	for (uint32_t t = 0; t < d->ntri; t++)
+		nreal += !is_ghost(d, t);
+	*out = fct_alloc_array(nreal, 3 * sizeof **out, err);
+	if (!*out)
+		return -1;
+	size_t m = 0;
+	for (uint32_t t = 0; t < d->ntri; t++) {
+		if (is_ghost(d, t))
+			continue;
+		uint32_t a = order[d->tv[3 * t]], b = order[d->tv[3 * t + 1]], c = order[d->tv[3 * t + 2]];
+		if (b < a && b < c) {
+			uint32_t x = a;
+			a = b;
+			b = c;
+			c = x;
+		} else if (c < a && c < b) {
+			uint32_t x = c;
+			c = b;
+			b = a;
+			a = x;
+		}
+		(*out)[3 * m] = a;
+		(*out)[3 * m + 1] = b;
+		(*out)[3 * m + 2] = c;
+		m++;
+	}
+	*nout = nreal;
+	return 0;
+}
+
+int fct_delaunay(uint32_t **tri, size_t *ntri, size_t *nduplicates, const double *uv, size_t n,
+                 struct fct_err *err)
 {
 	*tri = NULL;
 	*ntri = 0;
@@ -423,131 +573,23 @@ int fct_delaunay(const double *uv, size_t n, uint32_t **tri, size_t *ntri,
 	memset(&d, 0, sizeof d);
 	double *p = NULL;
 	uint32_t *order = NULL, *out = NULL;
-	size_t ndup = 0;
+	size_t ndup = 0, nout = 0, j1, j2;
 	int rc = -1;
-
-	order = fct_alloc_array(n, sizeof *order, err);
-	p = order ? fct_alloc_array(n, 2 * sizeof *p, err) : NULL;
-	if (!p)
+	if (ordered_points(uv, n, &order, &p, err))
 		goto done;
-	if (n > 0 && insertion_order(uv, n, order, err))
-		goto done;
-	for (size_t k = 0; k < n; k++) {
-		p[2 * k] = uv[2 * (size_t)order[k]];
-		p[2 * k + 1] = uv[2 * (size_t)order[k] + 1];
-	}
-
-	/* Seeds: the first point, the first one different from it, and the
-	 * first one not on the line through those two.  The points passed over
-	 * are duplicates or collinear; they are inserted later like any other. */
-	size_t j1 = 1, j2;
-	while (j1 < n && same_point(p, p + 2 * j1))
-		j1++;
-	j2 = j1 + 1;
-	while (j2 < n && fct_orient2d(p, p + 2 * j1, p + 2 * j2) == 0)
-		j2++;
-	if (j2 >= n) {
-		/* Fewer than three distinct points, or all on one line. */
+	if (find_seeds(p, n, &j1, &j2)) {
+		/* no triangle: success, with the duplicates counted apart */
 		if (count_duplicates(p, n, &ndup, err))
 			goto done;
 		out = fct_alloc_array(0, sizeof *out, err);
-		if (!out)
-			goto done;
-		rc = 0;
+		rc = out ? 0 : -1;
 		goto done;
 	}
-	for (int s = 0; s < 2; s++) {
-		size_t a = (size_t)s + 1, b = s ? j2 : j1;
-		double tx = p[2 * a], ty = p[2 * a + 1];
-		uint32_t to = order[a];
-		p[2 * a] = p[2 * b];
-		p[2 * a + 1] = p[2 * b + 1];
-		order[a] = order[b];
-		p[2 * b] = tx;
-		p[2 * b + 1] = ty;
-		order[b] = to;
-	}
-	if (fct_orient2d(p, p + 2, p + 4) < 0) {
-		/* Make the first triangle counter-clockwise. */
-		for (int c = 0; c < 2; c++) {
-			double t = p[2 + c];
-			p[2 + c] = p[4 + c];
-			p[4 + c] = t;
-		}
-		uint32_t t = order[1];
-		order[1] = order[2];
-		order[2] = t;
-	}
-
-	size_t maxtri = 2 * n;
-	d.p = p;
-	d.inf = (uint32_t)n;
-	d.tv = fct_alloc_array(maxtri, 3 * sizeof *d.tv, err);
-	d.nb = d.tv ? fct_alloc_array(maxtri, 3 * sizeof *d.nb, err) : NULL;
-	d.mark = d.nb ? fct_alloc_array(maxtri, sizeof *d.mark, err) : NULL;
-	d.first = d.mark ? fct_alloc_array(n + 1, sizeof *d.first, err) : NULL;
-	if (!d.first || grow_stack(&d, 64, err) || grow_bnd(&d, 64, err))
+	seeds_first(p, order, j1, j2);
+	if (dt_start(&d, p, n, err) || insert_rest(&d, order, n, &ndup, err) ||
+	    real_triangles(&d, order, &out, &nout, err))
 		goto done;
-
-	/* Triangle 0 = (0, 1, 2), then its three ghosts as a fan around INF
-	 * over its reversed edges. */
-	uint32_t *v = d.tv;
-	v[0] = 0;
-	v[1] = 1;
-	v[2] = 2;
-	struct bedge hull[3];
-	uint32_t slot[3] = {1, 2, 3};
-	for (uint32_t e = 0; e < 3; e++) {
-		hull[e].u = v[prev3(e)];
-		hull[e].v = v[next3(e)];
-		hull[e].out = e;
-	}
-	d.ntri = 4;
-	memset(d.mark, 0, 4 * sizeof *d.mark);
-	fan(&d, d.inf, hull, 3, slot);
-	d.last = 0;
-
-	for (size_t k = 3; k < n; k++) {
-		uint32_t dup;
-		int r = insert(&d, (uint32_t)k, (uint32_t)k, &dup, err);
-		if (r < 0)
-			goto done;
-		if (r == 1) {
-			ndup++;
-			if (order[k] < order[dup])
-				order[dup] = order[k];
-		}
-	}
-
-	size_t nreal = 0;
-	for (uint32_t t = 0; t < d.ntri; t++)
-		nreal += !is_ghost(&d, t);
-	out = fct_alloc_array(nreal, 3 * sizeof *out, err);
-	if (!out)
-		goto done;
-	size_t m = 0;
-	for (uint32_t t = 0; t < d.ntri; t++) {
-		if (is_ghost(&d, t))
-			continue;
-		uint32_t a = order[d.tv[3 * t]], b = order[d.tv[3 * t + 1]], c = order[d.tv[3 * t + 2]];
-		/* rotate the smallest index first; the orientation stays */
-		if (b < a && b < c) {
-			uint32_t x = a;
-			a = b;
-			b = c;
-			c = x;
-		} else if (c < a && c < b) {
-			uint32_t x = c;
-			c = b;
-			b = a;
-			a = x;
-		}
-		out[3 * m] = a;
-		out[3 * m + 1] = b;
-		out[3 * m + 2] = c;
-		m++;
-	}
-	*ntri = nreal;
+	*ntri = nout;
 	rc = 0;
 done:
 	if (rc == 0) {

@@ -52,7 +52,7 @@
  * Choi, Rote 2003) sorted along a Hilbert curve within each round, each
  * found by a visibility walk from the previous one and inserted by
  * Bowyer-Watson cavity retriangulation. */
-int fct_delaunay(const double *uv, size_t n, uint32_t **tri, size_t *ntri,
-                 size_t *nduplicates, struct fct_err *err);
+int fct_delaunay(uint32_t **tri, size_t *ntri, size_t *nduplicates, const double *uv, size_t n,
+                 struct fct_err *err);
 
 #endif

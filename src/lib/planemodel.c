@@ -314,7 +314,7 @@ static int fill_loop(struct fct_mesh *m, int32_t **patch, const struct fct_plane
 		goto out;
 	}
 	struct fct_err local;
-	int r = fct_polytri(xy, k, lstart, 1, lv, FCT_POLYTRI_GREEDY, &tri, &ntri, NULL, &local);
+	int r = fct_polytri(&tri, &ntri, xy, k, lstart, 1, lv, FCT_POLYTRI_GREEDY, NULL, &local);
 	if (r != 0) {
 		rc = r > 0 ? 0 : fct_fail(err, "%s", local.msg);
 		goto out;

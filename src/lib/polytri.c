@@ -769,189 +769,276 @@ static int try_pair(struct ct *c, int32_t v, int32_t w)
 	return r < 0 ? -1 : r == 0;
 }
 
-/* The paper's greedy triangulation of the inside triangles' region (see
- * polytri.h for the scheme). */
-static int greedy(struct ct *c)
+/* The greedy run (see polytri.h for the scheme): the k-d tree over the
+ * points, the heap of candidate pairs, the heap of vertices by the squared
+ * radius of their next expansion (pairs (r_v^2, v) with b unused), and
+ * r2[v], the squared radius up to which v's pairs have been produced. */
+struct greedy {
+	struct ct *c;
+	struct kd kd;
+	struct pheap pairs, verts;
+	double *r2;
+};
+
+static void greedy_free(struct greedy *g)
 {
-	size_t u = 0, np = c->np;
+	free(g->r2), free(g->kd.idx), free(g->kd.node), free(g->pairs.h), free(g->verts.h);
+}
+
+static int greedy_init(struct greedy *g, struct ct *c)
+{
+	size_t np = c->np;
+	memset(g, 0, sizeof *g);
+	g->c = c;
+	g->r2 = fct_alloc_array(np, sizeof *g->r2, c->err);
+	c->deg = fct_alloc_array(np, sizeof *c->deg, c->err);
+	if (!g->r2 || !c->deg || kd_build(&g->kd, c->xy, np, c->err))
+		return -1;
+	for (size_t v = 0; v < np; v++)
+		c->deg[v] = 6;
+	for (size_t v = 0; v < np; v++) {
+		g->r2[v] = 0;
+		if (pheap_push(&g->verts, (struct pair){ 0, (uint32_t)v, 0 }, c->err))
+			return -1;
+	}
+	return 0;
+}
+
+/* The unconstrained edges between inside triangles, each counted once:
+ * the diagonals the greedy run still has to choose. */
+static size_t open_edges(const struct ct *c)
+{
+	size_t u = 0;
 	for (size_t t = 0; t < c->nt; t++)
 		if (c->tf[t] & F_INSIDE)
 			for (int e = 0; e < 3; e++)
 				if (!(c->tf[t] & (1u << e)) && c->tn[3 * t + e] >= 0 && (size_t)c->tn[3 * t + e] > t)
 					u++;
+	return u;
+}
+
+/* The squared radius of v's next expansion: at the first, its nearest
+ * neighbour in the triangulation (c->ring holds the triangles around v),
+ * then four times (twice the radius) the last; HUGE_VAL when that would
+ * not grow. */
+static double expansion_radius(const struct ct *c, const double *r2, uint32_t v)
+{
+	double R = HUGE_VAL;
+	if (r2[v] == 0) {
+		for (size_t k = 0; k < c->nring; k++) {
+			int32_t t = c->ring[k];
+			int i = vidx(c, t, (int32_t)v);
+			double d = dist2(c->xy, v, (uint32_t)c->tv[3 * (size_t)t + (i + 1) % 3]);
+			R = d < R ? d : R;
+		}
+	} else {
+		R = 4 * r2[v];
+	}
+	return R > r2[v] ? R : HUGE_VAL;
+}
+
+/* What can still start at v: the unconstrained edges at v (direct
+ * candidates, to c->direct) and the wedges of inside triangles (v, a, b)
+ * whose far edge a-b is unconstrained (a segment into such a wedge must
+ * cross a-b), as funnels to c->fun.  0 or -1. */
+static int open_wedges(struct ct *c, uint32_t v, double R, size_t *nfun, size_t *ndirect)
+{
+	for (size_t k = 0; k < c->nring; k++) {
+		int32_t t = c->ring[k];
+		int i = vidx(c, t, (int32_t)v);
+		int32_t a = c->tv[3 * (size_t)t + (i + 1) % 3], b = c->tv[3 * (size_t)t + (i + 2) % 3];
+		if (!(c->tf[t] & F_INSIDE))
+			continue;
+		if (!(c->tf[t] & (1u << ((i + 1) % 3))) && window_near(c, (int32_t)v, a, b, R) &&
+		    push_funnel(c, nfun, a, b, a, b, t, (i + 1) % 3))
+			return -1;
+		if (!(c->tf[t] & (1u << i)) && push32(&c->direct, ndirect, &c->direct_cap, a, c->err))
+			return -1;
+	}
+	return 0;
+}
+
+/* Follow each wedge at v through the triangulation as a funnel: across its
+ * window edge lies a triangle whose third vertex is either inside the
+ * wedge (a visible vertex, a direct candidate, splitting the wedge in two)
+ * or beside it (narrowing the window); a window that is constrained, or
+ * farther than R, closes.  Wedges still open after FUNNEL_STEPS steps go to
+ * c->cones (ray pairs) for the k-d tree.  Constraints only accumulate, so
+ * a segment outside every wedge now never becomes valid: nothing is
+ * missed.  0 or -1. */
+static int follow_funnels(struct ct *c, uint32_t v, double R, size_t nfun, size_t *ndirect,
+                          size_t *ncone)
+{
+	size_t steps = 0;
+	while (nfun) {
+		struct funnel f = c->fun[--nfun];
+		if (steps >= FUNNEL_STEPS) {
+			if (push32(&c->cones, ncone, &c->cones_cap, f.ra, c->err) ||
+			    push32(&c->cones, ncone, &c->cones_cap, f.rb, c->err))
+				return -1;
+			continue;
+		}
+		steps++;
+		int32_t u = c->tn[3 * (size_t)f.t + f.e];
+		if (u < 0)
+			continue;
+		const int32_t *pu = &c->tv[3 * (size_t)u];
+		int32_t w = pu[0] != f.ea && pu[0] != f.eb ? pu[0] : pu[1] != f.ea && pu[1] != f.eb ? pu[1] : pu[2];
+		double oa = orient(c, (int32_t)v, f.ra, w), ob = orient(c, (int32_t)v, f.rb, w);
+		int e1 = eidx(c, u, f.ea, w), e2 = eidx(c, u, w, f.eb);
+		int open1 = !(c->tf[u] & (1u << e1)) && window_near(c, (int32_t)v, f.ea, w, R);
+		int open2 = !(c->tf[u] & (1u << e2)) && window_near(c, (int32_t)v, w, f.eb, R);
+		if (oa > 0 && ob < 0) {
+			if (push32(&c->direct, ndirect, &c->direct_cap, w, c->err) ||
+			    (open1 && push_funnel(c, &nfun, f.ra, w, f.ea, w, u, e1)) ||
+			    (open2 && push_funnel(c, &nfun, w, f.rb, w, f.eb, u, e2)))
+				return -1;
+		} else if (oa <= 0) {
+			if (open2 && push_funnel(c, &nfun, f.ra, f.rb, w, f.eb, u, e2))
+				return -1;
+		} else if (open1 && push_funnel(c, &nfun, f.ra, f.rb, f.ea, w, u, e1)) {
+			return -1;
+		}
+	}
+	return 0;
+}
+
+/* Is v - w a pair for v's expansion to R: farther than v's last radius,
+ * within R, and not already produced by w?  Sets *d to its squared length. */
+static int new_pair(const struct greedy *g, uint32_t v, uint32_t w, double R, double *d)
+{
+	*d = dist2(g->c->xy, v, w);
+	return *d > g->r2[v] && *d <= R && *d > g->r2[w];
+}
+
+static int push_pair(struct greedy *g, uint32_t v, uint32_t w, double d)
+{
+	struct pair p = { d, v < w ? v : w, v < w ? w : v };
+	if (pheap_push(&g->pairs, p, g->c->err))
+		return -1;
+	g->c->st->candidates++;
+	return 0;
+}
+
+/* Is w strictly inside one of the ncone / 2 wedges at v in c->cones? */
+static int in_cones(const struct ct *c, uint32_t v, uint32_t w, size_t ncone)
+{
+	for (size_t k = 0; k < ncone; k += 2)
+		if (orient(c, (int32_t)v, c->cones[k], (int32_t)w) > 0 &&
+		    orient(c, (int32_t)v, c->cones[k + 1], (int32_t)w) < 0)
+			return 1;
+	return 0;
+}
+
+/* Pairs of v with the points of the k-d tree strictly inside an open wedge
+ * (c->cones) and new for an expansion to R.  0 or -1. */
+static int search_cones(struct greedy *g, uint32_t v, size_t ncone, double R)
+{
+	const struct ct *c = g->c;
+	int32_t stack[256];
+	size_t ns = 0;
+	if (ncone)
+		stack[ns++] = 0;
+	const double *pv = &c->xy[2 * v];
+	while (ns) {
+		const struct kdnode *nd = &g->kd.node[stack[--ns]];
+		double dx = pv[0] < nd->lo[0] ? nd->lo[0] - pv[0] : pv[0] > nd->hi[0] ? pv[0] - nd->hi[0] : 0;
+		double dy = pv[1] < nd->lo[1] ? nd->lo[1] - pv[1] : pv[1] > nd->hi[1] ? pv[1] - nd->hi[1] : 0;
+		if (dx * dx + dy * dy > R || !box_in_cones(c, (int32_t)v, nd, ncone))
+			continue;
+		if (nd->child >= 0) {
+			stack[ns++] = nd->child;
+			stack[ns++] = nd->child + 1;
+			continue;
+		}
+		for (uint32_t i = nd->begin; i < nd->end; i++) {
+			uint32_t w = g->kd.idx[i];
+			double d;
+			if (w == v || !new_pair(g, v, w, R, &d) || !in_cones(c, v, w, ncone))
+				continue;
+			if (push_pair(g, v, w, d))
+				return -1;
+		}
+	}
+	return 0;
+}
+
+/* Expand v to its next radius: produce the pairs it can still take there,
+ * and queue its next expansion; a vertex that is finished (every inside
+ * triangle around it fully constrained) expands no more.  0 or -1. */
+static int expand(struct greedy *g, uint32_t v)
+{
+	struct ct *c = g->c;
+	int frc;
+	if (finished(c, (int32_t)v, &frc) || frc) {
+		g->r2[v] = HUGE_VAL;
+		return frc ? -1 : 0;
+	}
+	size_t ncone = 0, ndirect = 0, nfun = 0;
+	double R = expansion_radius(c, g->r2, v);
+	if (open_wedges(c, v, R, &nfun, &ndirect) || follow_funnels(c, v, R, nfun, &ndirect, &ncone))
+		return -1;
+	for (size_t k = 0; k < ndirect; k++) {
+		uint32_t w = (uint32_t)c->direct[k];
+		double d;
+		if (new_pair(g, v, w, R, &d) && push_pair(g, v, w, d))
+			return -1;
+	}
+	if (search_cones(g, v, ncone, R))
+		return -1;
+	g->r2[v] = R;
+	if (R < HUGE_VAL && pheap_push(&g->verts, (struct pair){ R, v, 0 }, c->err))
+		return -1;
+	return 0;
+}
+
+/* Out of budget: the edges the triangulation still holds cross nothing;
+ * take them all, which completes a valid triangulation. */
+static void take_remaining(struct ct *c)
+{
+	c->st->budget_hits++;
+	for (size_t t = 0; t < c->nt; t++)
+		if (c->tf[t] & F_INSIDE)
+			for (int e = 0; e < 3; e++)
+				if (!(c->tf[t] & (1u << e)))
+					mark_constrained(c, (int32_t)t, e);
+}
+
+/* The paper's greedy triangulation of the inside triangles' region: take
+ * the shortest candidate pair while no vertex can still produce a shorter
+ * one, else expand the vertex of least radius, until every diagonal is
+ * chosen or the budget is spent. */
+static int greedy(struct ct *c)
+{
+	size_t u = open_edges(c), np = c->np;
 	if (u == 0)
 		return 0;
-	struct kd kd = { 0 };
-	struct pheap ph = { 0 }, vh = { 0 };
-	double *r2 = fct_alloc_array(np, sizeof *r2, c->err);
+	struct greedy g;
 	int rc = -1;
-	c->deg = fct_alloc_array(np, sizeof *c->deg, c->err);
-	if (!r2 || !c->deg || kd_build(&kd, c->xy, np, c->err))
+	if (greedy_init(&g, c))
 		goto out;
-	for (size_t v = 0; v < np; v++)
-		c->deg[v] = 6;
-	/* The vertex heap holds (r_v^2, v) as pairs with b unused. */
-	for (size_t v = 0; v < np; v++) {
-		r2[v] = 0;
-		if (pheap_push(&vh, (struct pair){ 0, (uint32_t)v, 0 }, c->err))
-			goto out;
-	}
 	size_t cand0 = c->st->candidates, steps0 = c->st->walk_steps;
 	size_t budget_c = 64 * np + 65536, budget_s = 256 * np + ((size_t)1 << 20);
-	int32_t stack[256];
 	while (u > 0) {
 		if (c->st->candidates - cand0 > budget_c || c->st->walk_steps - steps0 > budget_s)
 			break;
-		if (ph.n && (!vh.n || ph.h[0].d2 <= vh.h[0].d2)) {
-			struct pair p = pheap_pop(&ph);
+		if (g.pairs.n && (!g.verts.n || g.pairs.h[0].d2 <= g.verts.h[0].d2)) {
+			struct pair p = pheap_pop(&g.pairs);
 			int r = try_pair(c, (int32_t)p.a, (int32_t)p.b);
 			if (r < 0)
 				goto out;
 			u -= (size_t)r;
-			continue;
-		}
-		if (!vh.n)
-			break;
-		uint32_t v = pheap_pop(&vh).a;
-		int frc;
-		if (finished(c, (int32_t)v, &frc) || frc) {
-			if (frc)
-				goto out;
-			r2[v] = HUGE_VAL;
-			continue;
-		}
-		/* What can still start at v: the unconstrained edges at v (direct
-		 * candidates) and the wedges of inside triangles (v, a, b) whose
-		 * far edge a-b is unconstrained (a segment into such a wedge must
-		 * cross a-b).  Each wedge is followed through the triangulation
-		 * as a funnel: across its window edge lies a triangle whose third
-		 * vertex is either inside the wedge (a visible vertex, a direct
-		 * candidate, splitting the wedge in two) or beside it (narrowing
-		 * the window); a window that is constrained, or farther than R,
-		 * closes.  Wedges still open after FUNNEL_STEPS steps are searched
-		 * in the k-d tree by angle alone.  Constraints only accumulate, so
-		 * a segment outside every wedge now never becomes valid: nothing
-		 * is missed. */
-		size_t ncone = 0, ndirect = 0, nfun = 0, steps = 0;
-		double R = HUGE_VAL;
-		if (r2[v] == 0) {
-			for (size_t k = 0; k < c->nring; k++) {
-				int32_t t = c->ring[k];
-				int i = vidx(c, t, (int32_t)v);
-				double d = dist2(c->xy, v, (uint32_t)c->tv[3 * (size_t)t + (i + 1) % 3]);
-				R = d < R ? d : R;
-			}
-		} else {
-			R = 4 * r2[v];
-		}
-		if (!(R > r2[v]))
-			R = HUGE_VAL;
-		for (size_t k = 0; k < c->nring; k++) {
-			int32_t t = c->ring[k];
-			int i = vidx(c, t, (int32_t)v);
-			int32_t a = c->tv[3 * (size_t)t + (i + 1) % 3], b = c->tv[3 * (size_t)t + (i + 2) % 3];
-			if (!(c->tf[t] & F_INSIDE))
-				continue;
-			if (!(c->tf[t] & (1u << ((i + 1) % 3))) && window_near(c, (int32_t)v, a, b, R) &&
-			    push_funnel(c, &nfun, a, b, a, b, t, (i + 1) % 3))
-				goto out;
-			if (!(c->tf[t] & (1u << i)) && push32(&c->direct, &ndirect, &c->direct_cap, a, c->err))
-				goto out;
-		}
-		while (nfun) {
-			struct funnel f = c->fun[--nfun];
-			if (steps >= FUNNEL_STEPS) {
-				if (push32(&c->cones, &ncone, &c->cones_cap, f.ra, c->err) ||
-				    push32(&c->cones, &ncone, &c->cones_cap, f.rb, c->err))
-					goto out;
-				continue;
-			}
-			steps++;
-			int32_t u = c->tn[3 * (size_t)f.t + f.e];
-			if (u < 0)
-				continue;
-			const int32_t *pu = &c->tv[3 * (size_t)u];
-			int32_t w = pu[0] != f.ea && pu[0] != f.eb ? pu[0] : pu[1] != f.ea && pu[1] != f.eb ? pu[1] : pu[2];
-			double oa = orient(c, (int32_t)v, f.ra, w), ob = orient(c, (int32_t)v, f.rb, w);
-			int e1 = eidx(c, u, f.ea, w), e2 = eidx(c, u, w, f.eb);
-			int open1 = !(c->tf[u] & (1u << e1)) && window_near(c, (int32_t)v, f.ea, w, R);
-			int open2 = !(c->tf[u] & (1u << e2)) && window_near(c, (int32_t)v, w, f.eb, R);
-			if (oa > 0 && ob < 0) {
-				if (push32(&c->direct, &ndirect, &c->direct_cap, w, c->err) ||
-				    (open1 && push_funnel(c, &nfun, f.ra, w, f.ea, w, u, e1)) ||
-				    (open2 && push_funnel(c, &nfun, w, f.rb, w, f.eb, u, e2)))
-					goto out;
-			} else if (oa <= 0) {
-				if (open2 && push_funnel(c, &nfun, f.ra, f.rb, w, f.eb, u, e2))
-					goto out;
-			} else if (open1 && push_funnel(c, &nfun, f.ra, f.rb, f.ea, w, u, e1)) {
-				goto out;
-			}
-		}
-		for (size_t k = 0; k < ndirect; k++) {
-			uint32_t w = (uint32_t)c->direct[k];
-			double d = dist2(c->xy, v, w);
-			if (d > r2[v] && d <= R && d > r2[w]) {
-				struct pair p = { d, v < w ? v : w, v < w ? w : v };
-				if (pheap_push(&ph, p, c->err))
-					goto out;
-				c->st->candidates++;
-			}
-		}
-		/* Points strictly inside an open wedge, r2[v] < d <= R, that w
-		 * has not produced itself. */
-		size_t ns = 0;
-		if (ncone)
-			stack[ns++] = 0;
-		const double *pv = &c->xy[2 * v];
-		while (ns) {
-			const struct kdnode *nd = &kd.node[stack[--ns]];
-			double dx = pv[0] < nd->lo[0] ? nd->lo[0] - pv[0] : pv[0] > nd->hi[0] ? pv[0] - nd->hi[0] : 0;
-			double dy = pv[1] < nd->lo[1] ? nd->lo[1] - pv[1] : pv[1] > nd->hi[1] ? pv[1] - nd->hi[1] : 0;
-			if (dx * dx + dy * dy > R || !box_in_cones(c, (int32_t)v, nd, ncone))
-				continue;
-			if (nd->child >= 0) {
-				stack[ns++] = nd->child;
-				stack[ns++] = nd->child + 1;
-				continue;
-			}
-			for (uint32_t i = nd->begin; i < nd->end; i++) {
-				uint32_t w = kd.idx[i];
-				if (w == v)
-					continue;
-				double d = dist2(c->xy, v, w);
-				if (!(d > r2[v] && d <= R && d > r2[w]))
-					continue;
-				size_t k = 0;
-				for (; k < ncone; k += 2)
-					if (orient(c, (int32_t)v, c->cones[k], (int32_t)w) > 0 &&
-					    orient(c, (int32_t)v, c->cones[k + 1], (int32_t)w) < 0)
-						break;
-				if (k == ncone)
-					continue;
-				struct pair p = { d, v < w ? v : w, v < w ? w : v };
-				if (pheap_push(&ph, p, c->err))
-					goto out;
-				c->st->candidates++;
-			}
-		}
-		r2[v] = R;
-		if (R < HUGE_VAL && pheap_push(&vh, (struct pair){ R, v, 0 }, c->err))
+		} else if (!g.verts.n) {
+			break;   /* out of candidates: cannot happen */
+		} else if (expand(&g, pheap_pop(&g.verts).a)) {
 			goto out;
+		}
 	}
-	if (u > 0) {
-		/* Out of budget (or of candidates, which cannot happen): the
-		 * remaining edges of the triangulation cross nothing; take them. */
-		c->st->budget_hits++;
-		for (size_t t = 0; t < c->nt; t++)
-			if (c->tf[t] & F_INSIDE)
-				for (int e = 0; e < 3; e++)
-					if (!(c->tf[t] & (1u << e)))
-						mark_constrained(c, (int32_t)t, e);
-	}
+	if (u > 0)
+		take_remaining(c);
 	rc = 0;
 out:
-	free(r2), free(kd.idx), free(kd.node), free(ph.h), free(vh.h);
+	greedy_free(&g);
 	return rc;
 }
 
@@ -1037,9 +1124,9 @@ static int prepare(const double *xy, size_t np, const uint32_t *lstart, size_t n
 	return rc;
 }
 
-int fct_polytri(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                const uint32_t *lvert, enum fct_polytri_method method, uint32_t **tri,
-                size_t *ntri, struct fct_polytri_stats *st, struct fct_err *err)
+int fct_polytri(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
+                enum fct_polytri_method method, struct fct_polytri_stats *st, struct fct_err *err)
 {
 	struct fct_polytri_stats dummy;
 	if (!st) {
@@ -1060,7 +1147,7 @@ int fct_polytri(const double *xy, size_t np, const uint32_t *lstart, size_t nloo
 	int rc = prepare(xy, np, lstart, nloops, lvert, &lv, &pts, &glob, &n, err);
 	if (rc)
 		goto done;
-	if (fct_delaunay(pts, n, &dt, &ndt, &ndup, err)) {
+	if (fct_delaunay(&dt, &ndt, &ndup, pts, n, err)) {
 		rc = -1;
 		goto done;
 	}
@@ -1237,8 +1324,8 @@ out:
 	return rc;
 }
 
-int fct_polytri_nest(const double *xy, const uint32_t *lstart, size_t nloops,
-                     const uint32_t *lvert, long *owner)
+int fct_polytri_nest(long *owner, const double *xy, const uint32_t *lstart, size_t nloops,
+                     const uint32_t *lvert)
 {
 	long biggest = -1;
 	double ba = 0;
@@ -1270,8 +1357,8 @@ int fct_polytri_nest(const double *xy, const uint32_t *lstart, size_t nloops,
 	return 0;
 }
 
-int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                        const uint32_t *lvert, uint32_t **tri, size_t *ntri,
+int fct_polytri_earclip(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                        const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
                         struct fct_polytri_stats *st, struct fct_err *err)
 {
 	struct fct_polytri_stats dummy;
@@ -1292,7 +1379,7 @@ int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, siz
 		goto done;
 	for (size_t l = 0; l < nloops; l++)
 		area[l] = lstart[l + 1] - lstart[l] >= 3 ? fct_polytri_loop_area2(xy, lvert + lstart[l], lstart[l + 1] - lstart[l]) : 0;
-	if (fct_polytri_nest(xy, lstart, nloops, lvert, owner)) {
+	if (fct_polytri_nest(owner, xy, lstart, nloops, lvert)) {
 		rc = 1;
 		fct_fail(err, "no loop of positive area");
 		goto done;

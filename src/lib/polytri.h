@@ -90,15 +90,16 @@ struct fct_polytri_stats {
  *
  * Returns 0 with *tri a malloc'd array of 3 * *ntri point indices (free()),
  * each triangle counter-clockwise; 1 when the loops do not bound a region as
- * described in the header comment (two loop edges crossing or overlapping,
- * a loop edge through a vertex, two used points at the same place, all
- * points on a line, a loop of the wrong orientation or nesting, a loop
- * vertex repeated in a row), with the reason in err and *tri NULL; -1 on an
- * index out of range, a coordinate that is not finite, or out of memory.
- * st may be NULL. */
-int fct_polytri(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                const uint32_t *lvert, enum fct_polytri_method method, uint32_t **tri,
-                size_t *ntri, struct fct_polytri_stats *st, struct fct_err *err);
+ * described in the header comment (no loops, a loop of fewer than three
+ * vertices, two loop edges crossing or overlapping, a loop edge through a
+ * vertex, two used points at the same place, all points on a line, a loop
+ * of the wrong orientation or nesting, a loop vertex repeated in a row, a
+ * coordinate that is not finite), with the reason in err and *tri NULL; -1
+ * on an index out of range, lstart not starting at 0 or decreasing, or out
+ * of memory.  st may be NULL. */
+int fct_polytri(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
+                enum fct_polytri_method method, struct fct_polytri_stats *st, struct fct_err *err);
 
 /* The repair of last resort for loops fct_polytri refuses: loops of positive
  * signed area are outer boundaries, the others holes, each given to the
@@ -113,8 +114,8 @@ int fct_polytri(const double *xy, size_t np, const uint32_t *lstart, size_t nloo
  * outer loop up to 4096 corners and about O(n) per pass beyond.  Returns 0,
  * or -1 (bad index, out of memory; err set); 1 when there is no loop of
  * positive area. */
-int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, size_t nloops,
-                        const uint32_t *lvert, uint32_t **tri, size_t *ntri,
+int fct_polytri_earclip(uint32_t **tri, size_t *ntri, const double *xy, size_t np,
+                        const uint32_t *lstart, size_t nloops, const uint32_t *lvert,
                         struct fct_polytri_stats *st, struct fct_err *err);
 
 /* Which outer loop each loop belongs to: owner[l] = l for a loop of
@@ -122,8 +123,8 @@ int fct_polytri_earclip(const double *xy, size_t np, const uint32_t *lstart, siz
  * outer loop of smallest area that contains the hole's first vertex (even-odd
  * rule), or the outer loop of largest area when none does, or -1 when there
  * is no outer loop at all (then the call returns 1). */
-int fct_polytri_nest(const double *xy, const uint32_t *lstart, size_t nloops,
-                     const uint32_t *lvert, long *owner);
+int fct_polytri_nest(long *owner, const double *xy, const uint32_t *lstart, size_t nloops,
+                     const uint32_t *lvert);
 
 /* Twice the signed area of loop lvert[0..n) (positive counter-clockwise),
  * summed relative to its first point. */

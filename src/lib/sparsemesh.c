@@ -147,7 +147,7 @@ int fct_sparse_mesh(struct fct_mesh *m, const struct fct_image_points *pts,
 	fct_mesh_init(m);
 	if (pts->n > UINT32_MAX)
 		return fct_fail(err, "%zu points are more than 2^32", pts->n);
-	if (fct_delaunay(pts->uv, pts->n, &tri, &ntri, &st.duplicates, err))
+	if (fct_delaunay(&tri, &ntri, &st.duplicates, pts->uv, pts->n, err))
 		return -1;
 	double limit = p->max_jump * fct_camera_pixel_angle(cam);
 	double max_e2 = p->max_edge * p->max_edge;

@@ -213,7 +213,7 @@ static int repair(struct work *w, const struct fct_tripatch_params *p, struct fc
 	if (GROW(w, w->owner, w->owner_cap, w->nloops) || GROW(w, w->pstart, w->pstart_cap, w->nloops + 1) ||
 	    GROW(w, w->pvert, w->pvert_cap, w->nlv))
 		return -1;
-	if (fct_polytri_nest(w->xy[1], w->lstart, w->nloops, w->lvert, w->owner))
+	if (fct_polytri_nest(w->owner, w->xy[1], w->lstart, w->nloops, w->lvert))
 		return 0;
 	for (size_t o = 0; o < w->nloops; o++) {
 		if (w->owner[o] != (long)o)
@@ -234,7 +234,7 @@ static int repair(struct work *w, const struct fct_tripatch_params *p, struct fc
 		for (int f = p->plane_only ? 1 : 0; f < 2 && !done; f++) {
 			if (!w->have[f])
 				continue;
-			int rc = fct_polytri(w->xy[f], w->nl, w->pstart, np, w->pvert, p->method, &t, &nt, &st->tri, &perr);
+			int rc = fct_polytri(&t, &nt, w->xy[f], w->nl, w->pstart, np, w->pvert, p->method, &st->tri, &perr);
 			if (rc < 0) {
 				*w->err = perr;
 				return -1;
@@ -243,7 +243,7 @@ static int repair(struct work *w, const struct fct_tripatch_params *p, struct fc
 				done = 1;
 		}
 		if (!done) {
-			int rc = fct_polytri_earclip(w->xy[1], w->nl, w->pstart, np, w->pvert, &t, &nt, &st->tri, &perr);
+			int rc = fct_polytri_earclip(&t, &nt, w->xy[1], w->nl, w->pstart, np, w->pvert, &st->tri, &perr);
 			if (rc < 0) {
 				*w->err = perr;
 				return -1;
@@ -454,7 +454,7 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 			break;
 		uint32_t *t = NULL;
 		size_t nt = 0;
-		int rc = fct_polytri(w->xy[f], w->nl, w->lstart, w->nloops, w->lvert, p->method, &t, &nt,
+		int rc = fct_polytri(&t, &nt, w->xy[f], w->nl, w->lstart, w->nloops, w->lvert, p->method,
 		                     &st->tri, &perr);
 		if (rc < 0) {
 			*w->err = perr;

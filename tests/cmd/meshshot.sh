@@ -5,12 +5,14 @@
 . tests/lib.sh
 D=tests/data
 
-# Golden pictures (regenerate by hand with the commands below and review
+# Golden pictures (rewritten by make regold; look at them before committing
 # them): the cube from the fitted oblique view, textured with a wireframe,
 # and coloured by the vertex property distance with its legend and a title.
 run_case 0 "meshshot -s 160x120 --view oblique -w -m texture -o $TMP/tex.png $D/shot_cube.ply"
+regold $TMP/tex.png $D/shot_golden_tex.png
 run_case 0 "pngsheet -d 2 $TMP/tex.png $D/shot_golden_tex.png"
 run_case 0 "meshshot -s 160x120 --view oblique --scalar distance --title d -o $TMP/sc.png $D/shot_cube.ply"
+regold $TMP/sc.png $D/shot_golden_scalar.png
 run_case 0 "pngsheet -d 2 $TMP/sc.png $D/shot_golden_scalar.png"
 # The comparison does see a different picture.
 run_case 1 "pngsheet -d 2 $TMP/tex.png $D/shot_golden_scalar.png" "" "pngsheet: $TMP/tex.png $D/shot_golden_scalar.png: "

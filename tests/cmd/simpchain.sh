@@ -4,7 +4,9 @@
 # (tests/data/chain_label.awk); every wireframe is checked independently by
 # tests/data/chain_check.awk: labels valid, each vertex pair once, every
 # patch's edges closed (in- and out-degree equal), and every original
-# boundary vertex within the tolerance of the simplified boundary.
+# boundary vertex within the tolerance of the simplified boundary.  One
+# golden file (tests/cmd/expected/simpchain_tri.ply, rewritten by make
+# regold).
 . tests/lib.sh
 
 # report KEY FILE: a simpchain -v figure.

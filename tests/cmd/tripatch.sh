@@ -3,7 +3,8 @@
 # triangles per patch, areas summing to the polygon minus its holes, every
 # face wound with its plane normal; the fallback from crossing s t to the
 # plane; a patch touching itself; open chains; long boundaries; bad input;
-# usage; the man page.
+# usage; the man page.  One golden file (tests/cmd/expected/tripatch_hole.ply,
+# rewritten by make regold).
 . tests/lib.sh
 D=tests/data
 

@@ -100,7 +100,7 @@ static struct verdict check_dt(const double *uv, size_t n, int brute, int area_c
 	uint32_t *tri;
 	size_t nt, ndup;
 	struct fct_err err;
-	if (fct_delaunay(uv, n, &tri, &nt, &ndup, &err)) {
+	if (fct_delaunay(&tri, &nt, &ndup, uv, n, &err)) {
 		CHECK_MSG(0, "%s: %s", what, err.msg);
 		return v;
 	}
@@ -283,7 +283,7 @@ static struct ctri *canonical(const double *uv, size_t n, size_t *nt)
 {
 	uint32_t *tri;
 	struct fct_err err;
-	if (fct_delaunay(uv, n, &tri, nt, NULL, &err))
+	if (fct_delaunay(&tri, nt, NULL, uv, n, &err))
 		return NULL;
 	struct ctri *c = malloc((*nt + 1) * sizeof *c);
 	for (size_t t = 0; t < *nt; t++) {
@@ -318,34 +318,34 @@ static void test_small(void)
 	uint32_t *tri;
 	size_t nt, nd;
 	struct fct_err err;
-	CHECK(fct_delaunay(ccw, 3, &tri, &nt, &nd, &err) == 0);
+	CHECK(fct_delaunay(&tri, &nt, &nd, ccw, 3, &err) == 0);
 	CHECK_INT(nt, 1);
 	CHECK_INT(nd, 0);
 	CHECK(tri[0] == 0 && tri[1] == 1 && tri[2] == 2);
 	free(tri);
-	CHECK(fct_delaunay(cw, 3, &tri, &nt, NULL, &err) == 0);
+	CHECK(fct_delaunay(&tri, &nt, NULL, cw, 3, &err) == 0);
 	CHECK_INT(nt, 1);
 	CHECK(tri[0] == 0 && tri[1] == 2 && tri[2] == 1);
 	free(tri);
 	/* image frame: u right, v down; (0,0) (0,1) (1,0) is "ccw" here */
 	double img[6] = {10, 10, 10, 11, 11, 10};
-	CHECK(fct_delaunay(img, 3, &tri, &nt, NULL, &err) == 0);
+	CHECK(fct_delaunay(&tri, &nt, NULL, img, 3, &err) == 0);
 	CHECK(nt == 1 && tri[0] == 0 && tri[1] == 2 && tri[2] == 1);
 	free(tri);
 
 	/* n < 3, and no uv at all */
 	for (size_t n = 0; n < 3; n++) {
 		tri = NULL;
-		CHECK(fct_delaunay(ccw, n, &tri, &nt, &nd, &err) == 0);
+		CHECK(fct_delaunay(&tri, &nt, &nd, ccw, n, &err) == 0);
 		CHECK_INT(nt, 0);
 		CHECK_INT(nd, 0);
 		CHECK(tri != NULL);
 		free(tri);
 	}
-	CHECK(fct_delaunay(NULL, 0, &tri, &nt, &nd, &err) == 0 && nt == 0);
+	CHECK(fct_delaunay(&tri, &nt, &nd, NULL, 0, &err) == 0 && nt == 0);
 	free(tri);
 	double two[4] = {1, 2, 1, 2};
-	CHECK(fct_delaunay(two, 2, &tri, &nt, &nd, &err) == 0 && nt == 0 && nd == 1);
+	CHECK(fct_delaunay(&tri, &nt, &nd, two, 2, &err) == 0 && nt == 0 && nd == 1);
 	free(tri);
 
 	/* a square: cocircular, two triangles either way */
@@ -370,7 +370,7 @@ static void test_degenerate_sets(void)
 		line[2 * i] = x;
 		line[2 * i + 1] = 3 * x + 1;
 	}
-	CHECK(fct_delaunay(line, 100, &tri, &nt, &nd, &err) == 0);
+	CHECK(fct_delaunay(&tri, &nt, &nd, line, 100, &err) == 0);
 	CHECK_INT(nt, 0);
 	CHECK_INT(nd, 40);
 	free(tri);
@@ -379,7 +379,7 @@ static void test_degenerate_sets(void)
 	for (int i = 0; i < 20; i++)
 		same[i] = i % 2 ? -0.0 : 2.5;
 	same[3] = 0.0;   /* -0 and 0 are one value */
-	CHECK(fct_delaunay(same, 10, &tri, &nt, &nd, &err) == 0);
+	CHECK(fct_delaunay(&tri, &nt, &nd, same, 10, &err) == 0);
 	CHECK_INT(nt, 0);
 	CHECK_INT(nd, 9);
 	free(tri);
@@ -397,12 +397,12 @@ static void test_degenerate_sets(void)
 	/* NaN and infinity are refused with the point's index */
 	double bad[8] = {0, 0, 1, 0, 0, NAN, 1, 1};
 	tri = (uint32_t *)bad;
-	CHECK(fct_delaunay(bad, 4, &tri, &nt, &nd, &err) == -1);
+	CHECK(fct_delaunay(&tri, &nt, &nd, bad, 4, &err) == -1);
 	CHECK_STR(err.msg, "point 2: coordinate is not finite");
 	CHECK(tri == NULL);
 	bad[5] = 0;
 	bad[6] = -INFINITY;
-	CHECK(fct_delaunay(bad, 4, &tri, &nt, &nd, &err) == -1);
+	CHECK(fct_delaunay(&tri, &nt, &nd, bad, 4, &err) == -1);
 	CHECK_STR(err.msg, "point 3: coordinate is not finite");
 }
 
@@ -491,8 +491,8 @@ static void test_random(void)
 	uint32_t *t1, *t2;
 	size_t n1, n2;
 	struct fct_err err;
-	CHECK(fct_delaunay(uv, 100000, &t1, &n1, NULL, &err) == 0);
-	CHECK(fct_delaunay(uv, 100000, &t2, &n2, NULL, &err) == 0);
+	CHECK(fct_delaunay(&t1, &n1, NULL, uv, 100000, &err) == 0);
+	CHECK(fct_delaunay(&t2, &n2, NULL, uv, 100000, &err) == 0);
 	CHECK(n1 == n2 && !memcmp(t1, t2, 3 * n1 * sizeof *t1));
 	free(t1);
 	free(t2);
