@@ -201,103 +201,108 @@ static void chain_end(struct chain_build *b, int loop)
 	c->start[++c->n] = b->np;
 }
 
-int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
-                       struct fct_err *err)
+/* The mean edge length (the unit of the simplification's threshold); the
+ * most faces on one edge in *maxk. */
+static double mean_edge(const struct fct_adj *a, const struct fct_mesh *m, size_t *maxk)
 {
-	memset(c, 0, sizeof *c);
-	struct fct_adj a;
-	if (fct_adj_build(&a, m, err))
-		return -1;
-	int rc = -1;
-	struct recs rs = { 0 };
-	signed char *dir = NULL;
-	uint32_t *cursor = NULL, *outstart = NULL, *outrec = NULL, *inrec = NULL;
-	unsigned char *touch_out = NULL, *junction = NULL, *visited = NULL;
-	struct side *sbuf = NULL;
-	size_t nocc = a.edge_fstart[a.ne], maxk = 0;
-
 	double sum = 0;
-	for (size_t e = 0; e < a.ne; e++) {
-		sum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)a.edge_v[2 * e],
-		                         m->xyz + 3 * (size_t)a.edge_v[2 * e + 1]));
-		if (fct_adj_edge_nfaces(&a, e) > maxk)
-			maxk = fct_adj_edge_nfaces(&a, e);
+	*maxk = 0;
+	for (size_t e = 0; e < a->ne; e++) {
+		sum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)a->edge_v[2 * e],
+		                         m->xyz + 3 * (size_t)a->edge_v[2 * e + 1]));
+		if (fct_adj_edge_nfaces(a, e) > *maxk)
+			*maxk = fct_adj_edge_nfaces(a, e);
 	}
-	c->mean_edge = a.ne ? sum / (double)a.ne : 0;
+	return a->ne ? sum / (double)a->ne : 0;
+}
 
+/* The boundary graph: the directed records with a patch on a side, their
+ * out-lists (CSR by tail), each vertex's in-record, and the junctions. */
+struct boundary {
+	struct recs rs;
+	uint32_t *outstart, *outrec, *inrec;
+	unsigned char *touch_out;   /* per vertex: on an edge with the outside */
+	unsigned char *junction;
+};
+
+/* g->rs: the records of every edge with different sides, less those that
+ * only touched the outside; marks g->touch_out.  Counts the non-manifold
+ * edges into c. */
+static int boundary_records(struct boundary *g, struct fct_chains *c, const struct fct_adj *a,
+                            const struct fct_mesh *m, const int32_t *patch, size_t maxk,
+                            struct fct_err *err)
+{
+	int rc = -1;
+	struct fct_arena ar = { 0 };
+	signed char *dir = fct_arena_array(&ar, a->edge_fstart[a->ne], sizeof *dir, err);
+	uint32_t *cursor = fct_arena_zeroed(&ar, a->ne ? a->ne : 1, sizeof *cursor, err);
+	struct side *sbuf = fct_arena_array(&ar, 3 * (maxk ? maxk : 1), sizeof *sbuf, err);
+	if (!dir || !cursor || !sbuf)
+		goto done;
 	/* The direction of every face's walk along every edge, in the order of
 	 * edge_f (faces in increasing index, corners in order). */
-	dir = fct_alloc_array(nocc, sizeof *dir, err);
-	cursor = calloc(a.ne ? a.ne : 1, sizeof *cursor);
-	touch_out = calloc(m->nv ? m->nv : 1, 1);
-	sbuf = fct_alloc_array(3 * (maxk ? maxk : 1), sizeof *sbuf, err);
-	if (!dir || !cursor || !touch_out || !sbuf) {
-		if (!cursor || !touch_out)
-			fct_fail(err, "out of memory");
-		goto done;
-	}
 	for (size_t f = 0; f < m->nf; f++)
 		for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
-			uint32_t e = a.face_e[k];
+			uint32_t e = a->face_e[k];
 			if (e == FCT_ADJ_NONE)
 				continue;
-			dir[a.edge_fstart[e] + cursor[e]++] = m->fvert[k] == a.edge_v[2 * e] ? 1 : -1;
+			dir[a->edge_fstart[e] + cursor[e]++] = m->fvert[k] == a->edge_v[2 * e] ? 1 : -1;
 		}
-
-	for (size_t e = 0; e < a.ne; e++) {
-		uint32_t k0 = a.edge_fstart[e], k1 = a.edge_fstart[e + 1];
-		if (k1 - k0 == 2 && patch[a.edge_f[k0]] == patch[a.edge_f[k0 + 1]])
+	for (size_t e = 0; e < a->ne; e++) {
+		uint32_t k0 = a->edge_fstart[e], k1 = a->edge_fstart[e + 1];
+		if (k1 - k0 == 2 && patch[a->edge_f[k0]] == patch[a->edge_f[k0 + 1]])
 			continue;       /* interior, however wound (even count) */
 		size_t n = 0;
 		for (uint32_t k = k0; k < k1; k++)
-			sbuf[n].label = patch[a.edge_f[k]], sbuf[n++].dir = dir[k];
+			sbuf[n].label = patch[a->edge_f[k]], sbuf[n++].dir = dir[k];
 		if (n >= 3)
 			c->nonmanifold_edges++;
-		if (edge_records(&rs, a.edge_v[2 * e], a.edge_v[2 * e + 1], sbuf, n, sbuf + maxk,
-		                 sbuf + 2 * maxk, touch_out, err))
+		if (edge_records(&g->rs, a->edge_v[2 * e], a->edge_v[2 * e + 1], sbuf, n, sbuf + maxk,
+		                 sbuf + 2 * maxk, g->touch_out, err))
 			goto done;
 	}
-	free(dir), dir = NULL;
-	free(cursor), cursor = NULL;
-
-	/* Records with a patch on a side; the others only touched the outside. */
 	size_t nr = 0;
-	for (size_t i = 0; i < rs.n; i++)
-		if (rs.r[i].l >= 0)
-			rs.r[nr++] = rs.r[i];
-	rs.n = nr;
-	c->boundary_edges = nr;
+	for (size_t i = 0; i < g->rs.n; i++)
+		if (g->rs.r[i].l >= 0)
+			g->rs.r[nr++] = g->rs.r[i];
+	g->rs.n = nr;
+	rc = 0;
+done:
+	fct_arena_free(&ar);
+	return rc;
+}
 
-	/* Out-lists (CSR by tail), the in-record of each vertex, degrees. */
-	outstart = calloc(m->nv + 1, sizeof *outstart);
-	inrec = fct_alloc_array(m->nv, sizeof *inrec, err);
-	outrec = fct_alloc_array(nr, sizeof *outrec, err);
-	junction = calloc(m->nv ? m->nv : 1, 1);
-	visited = calloc(nr ? nr : 1, 1);
-	if (!outstart || !inrec || !outrec || !junction || !visited) {
-		fct_fail(err, "out of memory");
-		goto done;
-	}
+/* g's out-lists and in-records, and its junctions: the vertices where a
+ * chain must end, with other than one record in and one out, or a change
+ * of the sides, or three sides around (the outside counted). */
+static int find_junctions(struct boundary *g, struct fct_chains *c, const struct fct_adj *a,
+                          const int32_t *patch, size_t nv, struct fct_arena *ar,
+                          struct fct_err *err)
+{
+	const struct rec *r = g->rs.r;
+	size_t nr = g->rs.n;
+	g->outstart = fct_arena_zeroed(ar, nv + 1, sizeof *g->outstart, err);
+	g->inrec = fct_arena_array(ar, nv, sizeof *g->inrec, err);
+	g->outrec = fct_arena_array(ar, nr, sizeof *g->outrec, err);
+	g->junction = fct_arena_zeroed(ar, nv ? nv : 1, 1, err);
+	uint32_t *fill = fct_arena_zeroed(ar, nv ? nv : 1, sizeof *fill, err);
+	if (!g->outstart || !g->inrec || !g->outrec || !g->junction || !fill)
+		return -1;
+	uint32_t *outstart = g->outstart;
+	unsigned char *junction = g->junction;
 	/* indeg in junction[] temporarily: 0, 1, 2 = two or more. */
 	for (size_t i = 0; i < nr; i++) {
-		outstart[rs.r[i].a + 1]++;
-		uint32_t b = rs.r[i].b;
+		outstart[r[i].a + 1]++;
+		uint32_t b = r[i].b;
 		if (junction[b] < 2)
 			junction[b]++;
-		inrec[b] = (uint32_t)i;
+		g->inrec[b] = (uint32_t)i;
 	}
-	for (size_t v = 0; v < m->nv; v++)
+	for (size_t v = 0; v < nv; v++)
 		outstart[v + 1] += outstart[v];
-	{
-		uint32_t *fill = cursor = calloc(m->nv ? m->nv : 1, sizeof *cursor);
-		if (!fill) {
-			fct_fail(err, "out of memory");
-			goto done;
-		}
-		for (size_t i = 0; i < nr; i++)
-			outrec[outstart[rs.r[i].a] + fill[rs.r[i].a]++] = (uint32_t)i;
-	}
-	for (uint32_t v = 0; v < m->nv; v++) {
+	for (size_t i = 0; i < nr; i++)
+		g->outrec[outstart[r[i].a] + fill[r[i].a]++] = (uint32_t)i;
+	for (uint32_t v = 0; v < nv; v++) {
 		uint32_t outdeg = outstart[v + 1] - outstart[v], indeg = junction[v];
 		if (!outdeg && !indeg) {
 			junction[v] = 0;
@@ -306,62 +311,79 @@ int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int
 		c->boundary_vertices++;
 		int j = outdeg != 1 || indeg != 1;
 		if (!j) {
-			const struct rec *ri = &rs.r[inrec[v]], *ro = &rs.r[outrec[outstart[v]]];
+			const struct rec *ri = &r[g->inrec[v]], *ro = &r[g->outrec[outstart[v]]];
 			j = ri->l != ro->l || ri->r != ro->r ||
-			    vertex_sides(&a, patch, touch_out[v], v) >= 3;
+			    vertex_sides(a, patch, g->touch_out[v], v) >= 3;
 		}
 		junction[v] = (unsigned char)j;
 		c->junctions += (size_t)j;
 	}
+	return 0;
+}
 
-	/* Walk the chains from junctions, then the loops. */
+/* The chains of g into c: walked from the junctions, then the loops left. */
+static int walk_chains(struct fct_chains *c, const struct boundary *g, unsigned char *visited,
+                       struct fct_err *err)
+{
+	const struct rec *rs = g->rs.r;
 	struct chain_build b = { c, 0, 0, 0, 0, 0, 0 };
 	if (fct_grow((void **)&c->start, &b.cap_start, 1, sizeof *c->start, err))
-		goto done;
+		return -1;
 	c->start[0] = 0;
 	for (int pass = 0; pass < 2; pass++)
-		for (size_t i = 0; i < nr; i++) {
-			if (visited[i] || (pass == 0 && !junction[rs.r[i].a]))
+		for (size_t i = 0; i < g->rs.n; i++) {
+			if (visited[i] || (pass == 0 && !g->junction[rs[i].a]))
 				continue;
-			uint32_t first = rs.r[i].a;
-			if (chain_begin(&b, rs.r[i].l, rs.r[i].r, err) || chain_point(&b, first, err))
-				goto done;
+			uint32_t first = rs[i].a;
+			if (chain_begin(&b, rs[i].l, rs[i].r, err) || chain_point(&b, first, err))
+				return -1;
 			for (size_t r = i;;) {
 				if (visited[r])
 					abort();    /* a non-junction has one record in and one out */
 				visited[r] = 1;
-				uint32_t v = rs.r[r].b;
+				uint32_t v = rs[r].b;
 				if (chain_point(&b, v, err))
-					goto done;
-				if (junction[v] || v == first)
+					return -1;
+				if (g->junction[v] || v == first)
 					break;
-				r = outrec[outstart[v]];
+				r = g->outrec[g->outstart[v]];
 			}
 			chain_end(&b, pass == 1);
 			c->loops += pass == 1;
 		}
-	{
-		size_t np = c->start[c->n];
-		c->keep = malloc(np ? np : 1);
-		if (!c->keep) {
-			fct_fail(err, "out of memory");
-			goto done;
-		}
-		memset(c->keep, 1, np);
-	}
+	return 0;
+}
+
+int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                       struct fct_err *err)
+{
+	memset(c, 0, sizeof *c);
+	struct fct_adj a;
+	if (fct_adj_build(&a, m, err))
+		return -1;
+	int rc = -1;
+	struct fct_arena ar = { 0 };
+	struct boundary g;
+	memset(&g, 0, sizeof g);
+	size_t maxk;
+	c->mean_edge = mean_edge(&a, m, &maxk);
+	if (!(g.touch_out = fct_arena_zeroed(&ar, m->nv ? m->nv : 1, 1, err)) ||
+	    boundary_records(&g, c, &a, m, patch, maxk, err))
+		goto done;
+	c->boundary_edges = g.rs.n;
+	unsigned char *visited = fct_arena_zeroed(&ar, g.rs.n ? g.rs.n : 1, 1, err);
+	if (!visited || find_junctions(&g, c, &a, patch, m->nv, &ar, err) ||
+	    walk_chains(c, &g, visited, err))
+		goto done;
+	size_t np = c->start[c->n];
+	if (!(c->keep = fct_alloc_array(np, 1, err)))
+		goto done;
+	memset(c->keep, 1, np);
 	rc = 0;
 done:
 	fct_adj_free(&a);
-	free(rs.r);
-	free(dir);
-	free(cursor);
-	free(outstart);
-	free(outrec);
-	free(inrec);
-	free(touch_out);
-	free(junction);
-	free(visited);
-	free(sbuf);
+	free(g.rs.r);
+	fct_arena_free(&ar);
 	if (rc)
 		fct_chains_free(c);
 	return rc;
