@@ -1149,6 +1149,197 @@ static int median_edge(const struct fct_adj *adj, const double *x, double *out, 
 	return 0;
 }
 
+/* The arrays every method needs; x0, the input positions, is the
+ * caller's to free.  F->cur starts on the mesh's own positions. */
+static int flow_alloc(struct flow *F, double **x0, struct fct_err *err)
+{
+	const struct fct_mesh *m = F->m;
+	if (alloc_doubles(x0, m->nv, 3, err) || alloc_doubles(&F->next, m->nv, 3, err) ||
+	    alloc_doubles(&F->fn, m->nf, 3, err) || alloc_doubles(&F->fc, m->nf, 3, err) ||
+	    alloc_doubles(&F->fa, m->nf, 3, err) || alloc_doubles(&F->g, m->nf, 3, err) ||
+	    alloc_doubles(&F->vn, m->nv, 3, err) ||
+	    alloc_doubles(&F->sm, m->nv, 3, err) || alloc_doubles(&F->sm2, m->nv, 3, err) ||
+	    alloc_doubles(&F->s, m->nv, 1, err) ||
+	    !(F->held = fct_alloc_array(m->nv, 1, err)))
+		return -1;
+	F->x0 = *x0;
+	if (m->nv)
+		memcpy(*x0, m->xyz, sizeof **x0 * 3 * m->nv);
+	memset(F->s, 0, sizeof *F->s * (m->nv ? m->nv : 1));
+	F->cur = m->xyz;
+	return 0;
+}
+
+/* The guide left to us (guide < 0; areaflow.h): on when GUIDE_PASSES
+ * Laplacian passes shorten the median edge below GUIDE_RATIO of the
+ * input's (edge), i.e. when the noise is more than about half the sample
+ * spacing. */
+static int choose_guide(struct flow *F, struct fct_areaflow_params *pv, double edge,
+                        struct fct_err *err)
+{
+	const struct fct_mesh *m = F->m;
+	if (build_neighbours(F, err))
+		return -1;
+	memcpy(F->sm, m->xyz, sizeof *F->sm * 3 * m->nv);
+	double *save = F->cur, *save_next = F->next;
+	F->cur = F->sm, F->next = F->sm2, F->factor = 0.5;
+	for (int i = 0; i < GUIDE_PASSES; i++) {
+		run(F, laplace_chunk, m->nv);
+		double *t = F->cur; F->cur = F->next; F->next = t;
+	}
+	double se;
+	int fail = median_edge(F->adj, F->cur, &se, err);
+	F->cur = save, F->next = save_next;
+	if (fail)
+		return -1;
+	F->st->edge_ratio = se / edge;
+	pv->guide = F->st->edge_ratio < GUIDE_RATIO;
+	return 0;
+}
+
+/* What the method and the guide imply for the other options. */
+static void settle_params(struct fct_areaflow_params *pv, struct fct_areaflow_stats *st)
+{
+	if (pv->method == FCT_SMOOTH_AREAFLOW && pv->guide == 0) {
+		/* the paper's own: no guide, eq. (4) over the window walk */
+		pv->passes = pv->rings = pv->vote_rings = 0;
+		pv->crease_lo = pv->crease_hi = 0;
+		pv->along_ray = 0;
+		if (pv->lambda < 0)
+			pv->lambda = 1;
+	}
+	if (pv->lambda < 0)
+		pv->lambda = 0;
+	st->guide = pv->method == FCT_SMOOTH_AREAFLOW && pv->guide != 0;
+}
+
+/* F->held: the vertices that do not move, those without faces and, in
+ * the area flow, those on a non-manifold edge; their counts into the
+ * stats.  Returns the vertices with faces. */
+static size_t hold_vertices(struct flow *F)
+{
+	const struct fct_adj *adj = F->adj;
+	struct fct_areaflow_stats *st = F->st;
+	size_t nv = F->m->nv, nwith = 0;
+	for (size_t v = 0; v < nv; v++) {
+		int has = adj->vert_fstart[v] < adj->vert_fstart[v + 1];
+		nwith += has;
+		st->isolated += !has;
+		F->held[v] = !has;
+	}
+	if (F->p->method == FCT_SMOOTH_AREAFLOW)
+		for (size_t e = 0; e < adj->ne; e++)
+			if (fct_adj_edge_nfaces(adj, e) > 2)
+				F->held[adj->edge_v[2 * e]] = F->held[adj->edge_v[2 * e + 1]] = 1;
+	for (size_t v = 0; v < nv; v++)
+		st->moving += !F->held[v];
+	st->held = nv - st->moving - st->isolated;
+	return nwith;
+}
+
+/* The tables the method and options use, each only when used: corners
+ * and colours (the area flow), the voting windows (the crease by the
+ * window walk), the window cache (that crease computed twice or more in
+ * maxit iterations and the crease asked for, crease_out), and the
+ * neighbours (Laplacian, Taubin, smoothed copies). */
+static int flow_tables(struct flow *F, int maxit, int crease_out, struct fct_err *err)
+{
+	const struct fct_areaflow_params *p = F->p;
+	size_t nv = F->m->nv;
+	int flow = p->method == FCT_SMOOTH_AREAFLOW;
+	if (flow && (build_corners(F, err) || build_colours(F, err)))
+		return -1;
+	if (((flow && p->crease) || crease_out) && p->vote_rings <= 0 && scratch_alloc(F, err))
+		return -1;
+	F->win_want = flow && p->crease && p->vote_rings <= 0 && maxit + crease_out >= 2;
+	if (F->win_want &&
+	    (!(F->woff = fct_alloc_array(nv, sizeof *F->woff, err)) ||
+	     !(F->wacc = fct_alloc_array(nv, 1, err)) || !(F->wrej = fct_alloc_array(nv, 1, err))))
+		return -1;
+	if ((p->method == FCT_SMOOTH_LAPLACIAN || p->method == FCT_SMOOTH_TAUBIN || p->passes > 0) &&
+	    !F->nbr && build_neighbours(F, err))
+		return -1;
+	return 0;
+}
+
+/* One iteration of the area flow (eq. (4)): the geometry and crease of the
+ * current positions, then the vertices moved colour by colour (the last,
+ * crowded colour in order on one thread); returns the summed move. */
+static double flow_sweep(struct flow *F, size_t nwith)
+{
+	double ms = geometry(F, F->p->crease, nwith);
+	if (F->p->crease)
+		F->st->mean_crease = ms;
+	double moved = 0;
+	for (int c = 0; c < NCOLOR; c++) {
+		F->color_lo = F->color_start[c];
+		int nt = F->nthreads;
+		if (c == NCOLOR - 1)
+			F->nthreads = 1;
+		if (F->color_start[c + 1] > F->color_start[c]) {
+			run(F, flow_chunk, F->color_start[c + 1] - F->color_start[c]);
+			moved += sum_parts(F->part);
+		}
+		F->nthreads = nt;
+	}
+	return moved;
+}
+
+/* One Laplacian pass, or Taubin's two (lambda, then mu); returns the
+ * summed move of the last. */
+static double laplace_sweep(struct flow *F)
+{
+	const struct fct_areaflow_params *p = F->p;
+	F->factor = p->lap_lambda;
+	run(F, laplace_chunk, F->m->nv);
+	double moved = sum_parts(F->part);
+	if (p->method == FCT_SMOOTH_TAUBIN) {
+		double *t = F->cur; F->cur = F->next; F->next = t;
+		F->factor = p->taubin_mu;
+		run(F, laplace_chunk, F->m->nv);
+		moved = sum_parts(F->part);
+	}
+	double *t = F->cur; F->cur = F->next; F->next = t;
+	return moved;
+}
+
+/* maxit iterations, or (iterations < 0) until the mean move falls below
+ * tol median edges. */
+static void iterate(struct flow *F, int maxit, double edge, size_t nwith)
+{
+	const struct fct_areaflow_params *p = F->p;
+	struct fct_areaflow_stats *st = F->st;
+	for (int it = 0; it < maxit; it++) {
+		double moved = p->method == FCT_SMOOTH_AREAFLOW ? flow_sweep(F, nwith) : laplace_sweep(F);
+		st->iterations = it + 1;
+		st->last_move = st->moving ? moved / (double)st->moving : 0;
+		if (p->iterations < 0 && st->last_move < p->tol * edge)
+			break;
+	}
+}
+
+/* The result into the mesh, the crease strength of the result into crease
+ * (when not NULL), and the offsets from the input into the stats. */
+static void write_result(struct flow *F, double *crease, size_t nwith)
+{
+	struct fct_mesh *m = F->m;
+	struct fct_areaflow_stats *st = F->st;
+	if (F->cur != m->xyz) {
+		memcpy(m->xyz, F->cur, sizeof *m->xyz * 3 * m->nv);
+		F->next = F->cur;     /* the buffer we own */
+		F->cur = m->xyz;
+	}
+	if (crease) {
+		st->mean_crease = geometry(F, 1, nwith);
+		memcpy(crease, F->s, sizeof *crease * m->nv);
+	}
+	run(F, offset_chunk, m->nv);
+	st->mean_offset = st->moving ? sum_parts(F->part) / (double)st->moving : 0;
+	for (int c = 0; c < NCHUNK; c++)
+		if (F->partmax[c] > st->max_offset)
+			st->max_offset = F->partmax[c];
+}
+
 int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *pin, double *crease,
                  struct fct_areaflow_stats *st, struct fct_err *err)
 {
@@ -1176,59 +1367,18 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *pin, doub
 	st->threads = (size_t)F.nthreads;
 	int rc = -1;
 	double *x0 = NULL;
-	if (fct_adj_build(&adj, m, err) ||
-	    alloc_doubles(&x0, m->nv, 3, err) || alloc_doubles(&F.next, m->nv, 3, err) ||
-	    alloc_doubles(&F.fn, m->nf, 3, err) || alloc_doubles(&F.fc, m->nf, 3, err) ||
-	    alloc_doubles(&F.fa, m->nf, 3, err) || alloc_doubles(&F.g, m->nf, 3, err) ||
-	    alloc_doubles(&F.vn, m->nv, 3, err) ||
-	    alloc_doubles(&F.sm, m->nv, 3, err) || alloc_doubles(&F.sm2, m->nv, 3, err) ||
-	    alloc_doubles(&F.s, m->nv, 1, err) ||
-	    !(F.held = fct_alloc_array(m->nv, 1, err)))
+	if (fct_adj_build(&adj, m, err) || flow_alloc(&F, &x0, err))
 		goto out;
-	F.x0 = x0;
-	if (m->nv)
-		memcpy(x0, m->xyz, sizeof *x0 * 3 * m->nv);
-	memset(F.s, 0, sizeof *F.s * (m->nv ? m->nv : 1));
-	F.cur = m->xyz;
-
 	/* Median edge length of the input: the unit of lambda, window and
 	 * sigma (the median, as the long edges across depth jumps and grazing
 	 * surfaces of range meshes would inflate a mean). */
 	double edge;
 	if (median_edge(&adj, m->xyz, &edge, err))
 		goto out;
-	/* The guide (areaflow.h): on when GUIDE_PASSES Laplacian passes
-	 * shorten the median edge below GUIDE_RATIO of the input's, i.e. when
-	 * the noise is more than about half the sample spacing. */
-	if (p->method == FCT_SMOOTH_AREAFLOW && p->guide < 0 && edge > 0) {
-		if (build_neighbours(&F, err))
-			goto out;
-		memcpy(F.sm, m->xyz, sizeof *F.sm * 3 * m->nv);
-		double *save = F.cur, *save_next = F.next;
-		F.cur = F.sm, F.next = F.sm2, F.factor = 0.5;
-		for (int i = 0; i < GUIDE_PASSES; i++) {
-			run(&F, laplace_chunk, m->nv);
-			double *t = F.cur; F.cur = F.next; F.next = t;
-		}
-		double se;
-		int fail = median_edge(&adj, F.cur, &se, err);
-		F.cur = save, F.next = save_next;
-		if (fail)
-			goto out;
-		st->edge_ratio = se / edge;
-		pv.guide = st->edge_ratio < GUIDE_RATIO;
-	}
-	if (p->method == FCT_SMOOTH_AREAFLOW && p->guide == 0) {
-		/* the paper's own: no guide, eq. (4) over the window walk */
-		pv.passes = pv.rings = pv.vote_rings = 0;
-		pv.crease_lo = pv.crease_hi = 0;
-		pv.along_ray = 0;
-		if (pv.lambda < 0)
-			pv.lambda = 1;
-	}
-	if (pv.lambda < 0)
-		pv.lambda = 0;
-	st->guide = p->method == FCT_SMOOTH_AREAFLOW && p->guide != 0;
+	if (p->method == FCT_SMOOTH_AREAFLOW && p->guide < 0 && edge > 0 &&
+	    choose_guide(&F, &pv, edge, err))
+		goto out;
+	settle_params(&pv, st);
 	if (p->vote_rings > 0 && (alloc_doubles(&F.ft, m->nf, 9, err) ||
 	                          alloc_doubles(&F.vt9, m->nv, 9, err)))
 		goto out;
@@ -1238,90 +1388,14 @@ int fct_areaflow(struct fct_mesh *m, const struct fct_areaflow_params *pin, doub
 	F.sigma2 = p->sigma * edge * p->sigma * edge;
 	if (!(F.sigma2 > 0))
 		F.sigma2 = 1;
-
-	size_t nwith = 0;
-	for (size_t v = 0; v < m->nv; v++) {
-		int has = adj.vert_fstart[v] < adj.vert_fstart[v + 1];
-		nwith += has;
-		st->isolated += !has;
-		F.held[v] = !has;
-	}
-	if (p->method == FCT_SMOOTH_AREAFLOW)
-		for (size_t e = 0; e < adj.ne; e++)
-			if (fct_adj_edge_nfaces(&adj, e) > 2)
-				F.held[adj.edge_v[2 * e]] = F.held[adj.edge_v[2 * e + 1]] = 1;
-	for (size_t v = 0; v < m->nv; v++)
-		st->moving += !F.held[v];
-	st->held = m->nv - st->moving - st->isolated;
-
-	if (p->method == FCT_SMOOTH_AREAFLOW && (build_corners(&F, err) || build_colours(&F, err)))
-		goto out;
-	int need_crease = (p->method == FCT_SMOOTH_AREAFLOW && p->crease) || crease;
-	if (need_crease && p->vote_rings <= 0 && scratch_alloc(&F, err))
-		goto out;
+	size_t nwith = hold_vertices(&F);
 	int maxit = p->iterations >= 0 ? p->iterations : p->max_iterations;
 	if (!(edge > 0))
 		maxit = 0;   /* no edge of any length: nothing can move */
-	/* the window cache pays when the crease is computed twice or more */
-	F.win_want = p->method == FCT_SMOOTH_AREAFLOW && p->crease && p->vote_rings <= 0 &&
-	             maxit + (crease != NULL) >= 2;
-	if (F.win_want &&
-	    (!(F.woff = fct_alloc_array(m->nv, sizeof *F.woff, err)) ||
-	     !(F.wacc = fct_alloc_array(m->nv, 1, err)) || !(F.wrej = fct_alloc_array(m->nv, 1, err))))
+	if (flow_tables(&F, maxit, crease != NULL, err))
 		goto out;
-	if ((p->method == FCT_SMOOTH_LAPLACIAN || p->method == FCT_SMOOTH_TAUBIN || p->passes > 0) &&
-	    !F.nbr && build_neighbours(&F, err))
-		goto out;
-
-	for (int it = 0; it < maxit; it++) {
-		double moved;
-		if (p->method == FCT_SMOOTH_AREAFLOW) {
-			double ms = geometry(&F, p->crease, nwith);
-			if (p->crease)
-				st->mean_crease = ms;
-			moved = 0;
-			for (int c = 0; c < NCOLOR; c++) {
-				F.color_lo = F.color_start[c];
-				int nt = F.nthreads;
-				if (c == NCOLOR - 1)
-					F.nthreads = 1;   /* the crowded vertices, in order */
-				if (F.color_start[c + 1] > F.color_start[c]) {
-					run(&F, flow_chunk, F.color_start[c + 1] - F.color_start[c]);
-					moved += sum_parts(F.part);
-				}
-				F.nthreads = nt;
-			}
-		} else {
-			F.factor = p->lap_lambda;
-			run(&F, laplace_chunk, m->nv);
-			moved = sum_parts(F.part);
-			if (p->method == FCT_SMOOTH_TAUBIN) {
-				double *t = F.cur; F.cur = F.next; F.next = t;
-				F.factor = p->taubin_mu;
-				run(&F, laplace_chunk, m->nv);
-				moved = sum_parts(F.part);
-			}
-			double *t = F.cur; F.cur = F.next; F.next = t;
-		}
-		st->iterations = it + 1;
-		st->last_move = st->moving ? moved / (double)st->moving : 0;
-		if (p->iterations < 0 && st->last_move < p->tol * edge)
-			break;
-	}
-	if (F.cur != m->xyz) {
-		memcpy(m->xyz, F.cur, sizeof *m->xyz * 3 * m->nv);
-		F.next = F.cur;     /* the buffer we own */
-		F.cur = m->xyz;
-	}
-	if (crease) {
-		st->mean_crease = geometry(&F, 1, nwith);
-		memcpy(crease, F.s, sizeof *crease * m->nv);
-	}
-	run(&F, offset_chunk, m->nv);
-	st->mean_offset = st->moving ? sum_parts(F.part) / (double)st->moving : 0;
-	for (int c = 0; c < NCHUNK; c++)
-		if (F.partmax[c] > st->max_offset)
-			st->max_offset = F.partmax[c];
+	iterate(&F, maxit, edge, nwith);
+	write_result(&F, crease, nwith);
 	rc = 0;
 out:
 	/* every failure comes before the first move, so m is unchanged */

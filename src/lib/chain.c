@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "adj.h"
+#include "arena.h"
 #include "geom.h"
 #include "header.h"
 #include "predicates.h"
@@ -200,103 +201,108 @@ static void chain_end(struct chain_build *b, int loop)
 	c->start[++c->n] = b->np;
 }
 
-int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
-                       struct fct_err *err)
+/* The mean edge length (the unit of the simplification's threshold); the
+ * most faces on one edge in *maxk. */
+static double mean_edge(const struct fct_adj *a, const struct fct_mesh *m, size_t *maxk)
 {
-	memset(c, 0, sizeof *c);
-	struct fct_adj a;
-	if (fct_adj_build(&a, m, err))
-		return -1;
-	int rc = -1;
-	struct recs rs = { 0 };
-	signed char *dir = NULL;
-	uint32_t *cursor = NULL, *outstart = NULL, *outrec = NULL, *inrec = NULL;
-	unsigned char *touch_out = NULL, *junction = NULL, *visited = NULL;
-	struct side *sbuf = NULL;
-	size_t nocc = a.edge_fstart[a.ne], maxk = 0;
-
 	double sum = 0;
-	for (size_t e = 0; e < a.ne; e++) {
-		sum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)a.edge_v[2 * e],
-		                         m->xyz + 3 * (size_t)a.edge_v[2 * e + 1]));
-		if (fct_adj_edge_nfaces(&a, e) > maxk)
-			maxk = fct_adj_edge_nfaces(&a, e);
+	*maxk = 0;
+	for (size_t e = 0; e < a->ne; e++) {
+		sum += sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)a->edge_v[2 * e],
+		                         m->xyz + 3 * (size_t)a->edge_v[2 * e + 1]));
+		if (fct_adj_edge_nfaces(a, e) > *maxk)
+			*maxk = fct_adj_edge_nfaces(a, e);
 	}
-	c->mean_edge = a.ne ? sum / (double)a.ne : 0;
+	return a->ne ? sum / (double)a->ne : 0;
+}
 
+/* The boundary graph: the directed records with a patch on a side, their
+ * out-lists (CSR by tail), each vertex's in-record, and the junctions. */
+struct boundary {
+	struct recs rs;
+	uint32_t *outstart, *outrec, *inrec;
+	unsigned char *touch_out;   /* per vertex: on an edge with the outside */
+	unsigned char *junction;
+};
+
+/* g->rs: the records of every edge with different sides, less those that
+ * only touched the outside; marks g->touch_out.  Counts the non-manifold
+ * edges into c. */
+static int boundary_records(struct boundary *g, struct fct_chains *c, const struct fct_adj *a,
+                            const struct fct_mesh *m, const int32_t *patch, size_t maxk,
+                            struct fct_err *err)
+{
+	int rc = -1;
+	struct fct_arena ar = { 0 };
+	signed char *dir = fct_arena_array(&ar, a->edge_fstart[a->ne], sizeof *dir, err);
+	uint32_t *cursor = fct_arena_zeroed(&ar, a->ne ? a->ne : 1, sizeof *cursor, err);
+	struct side *sbuf = fct_arena_array(&ar, 3 * (maxk ? maxk : 1), sizeof *sbuf, err);
+	if (!dir || !cursor || !sbuf)
+		goto done;
 	/* The direction of every face's walk along every edge, in the order of
 	 * edge_f (faces in increasing index, corners in order). */
-	dir = fct_alloc_array(nocc, sizeof *dir, err);
-	cursor = calloc(a.ne ? a.ne : 1, sizeof *cursor);
-	touch_out = calloc(m->nv ? m->nv : 1, 1);
-	sbuf = fct_alloc_array(3 * (maxk ? maxk : 1), sizeof *sbuf, err);
-	if (!dir || !cursor || !touch_out || !sbuf) {
-		if (!cursor || !touch_out)
-			fct_fail(err, "out of memory");
-		goto done;
-	}
 	for (size_t f = 0; f < m->nf; f++)
 		for (uint32_t k = m->fstart[f]; k < m->fstart[f + 1]; k++) {
-			uint32_t e = a.face_e[k];
+			uint32_t e = a->face_e[k];
 			if (e == FCT_ADJ_NONE)
 				continue;
-			dir[a.edge_fstart[e] + cursor[e]++] = m->fvert[k] == a.edge_v[2 * e] ? 1 : -1;
+			dir[a->edge_fstart[e] + cursor[e]++] = m->fvert[k] == a->edge_v[2 * e] ? 1 : -1;
 		}
-
-	for (size_t e = 0; e < a.ne; e++) {
-		uint32_t k0 = a.edge_fstart[e], k1 = a.edge_fstart[e + 1];
-		if (k1 - k0 == 2 && patch[a.edge_f[k0]] == patch[a.edge_f[k0 + 1]])
+	for (size_t e = 0; e < a->ne; e++) {
+		uint32_t k0 = a->edge_fstart[e], k1 = a->edge_fstart[e + 1];
+		if (k1 - k0 == 2 && patch[a->edge_f[k0]] == patch[a->edge_f[k0 + 1]])
 			continue;       /* interior, however wound (even count) */
 		size_t n = 0;
 		for (uint32_t k = k0; k < k1; k++)
-			sbuf[n].label = patch[a.edge_f[k]], sbuf[n++].dir = dir[k];
+			sbuf[n].label = patch[a->edge_f[k]], sbuf[n++].dir = dir[k];
 		if (n >= 3)
 			c->nonmanifold_edges++;
-		if (edge_records(&rs, a.edge_v[2 * e], a.edge_v[2 * e + 1], sbuf, n, sbuf + maxk,
-		                 sbuf + 2 * maxk, touch_out, err))
+		if (edge_records(&g->rs, a->edge_v[2 * e], a->edge_v[2 * e + 1], sbuf, n, sbuf + maxk,
+		                 sbuf + 2 * maxk, g->touch_out, err))
 			goto done;
 	}
-	free(dir), dir = NULL;
-	free(cursor), cursor = NULL;
-
-	/* Records with a patch on a side; the others only touched the outside. */
 	size_t nr = 0;
-	for (size_t i = 0; i < rs.n; i++)
-		if (rs.r[i].l >= 0)
-			rs.r[nr++] = rs.r[i];
-	rs.n = nr;
-	c->boundary_edges = nr;
+	for (size_t i = 0; i < g->rs.n; i++)
+		if (g->rs.r[i].l >= 0)
+			g->rs.r[nr++] = g->rs.r[i];
+	g->rs.n = nr;
+	rc = 0;
+done:
+	fct_arena_free(&ar);
+	return rc;
+}
 
-	/* Out-lists (CSR by tail), the in-record of each vertex, degrees. */
-	outstart = calloc(m->nv + 1, sizeof *outstart);
-	inrec = fct_alloc_array(m->nv, sizeof *inrec, err);
-	outrec = fct_alloc_array(nr, sizeof *outrec, err);
-	junction = calloc(m->nv ? m->nv : 1, 1);
-	visited = calloc(nr ? nr : 1, 1);
-	if (!outstart || !inrec || !outrec || !junction || !visited) {
-		fct_fail(err, "out of memory");
-		goto done;
-	}
+/* g's out-lists and in-records, and its junctions: the vertices where a
+ * chain must end, with other than one record in and one out, or a change
+ * of the sides, or three sides around (the outside counted). */
+static int find_junctions(struct boundary *g, struct fct_chains *c, const struct fct_adj *a,
+                          const int32_t *patch, size_t nv, struct fct_arena *ar,
+                          struct fct_err *err)
+{
+	const struct rec *r = g->rs.r;
+	size_t nr = g->rs.n;
+	g->outstart = fct_arena_zeroed(ar, nv + 1, sizeof *g->outstart, err);
+	g->inrec = fct_arena_array(ar, nv, sizeof *g->inrec, err);
+	g->outrec = fct_arena_array(ar, nr, sizeof *g->outrec, err);
+	g->junction = fct_arena_zeroed(ar, nv ? nv : 1, 1, err);
+	uint32_t *fill = fct_arena_zeroed(ar, nv ? nv : 1, sizeof *fill, err);
+	if (!g->outstart || !g->inrec || !g->outrec || !g->junction || !fill)
+		return -1;
+	uint32_t *outstart = g->outstart;
+	unsigned char *junction = g->junction;
 	/* indeg in junction[] temporarily: 0, 1, 2 = two or more. */
 	for (size_t i = 0; i < nr; i++) {
-		outstart[rs.r[i].a + 1]++;
-		uint32_t b = rs.r[i].b;
+		outstart[r[i].a + 1]++;
+		uint32_t b = r[i].b;
 		if (junction[b] < 2)
 			junction[b]++;
-		inrec[b] = (uint32_t)i;
+		g->inrec[b] = (uint32_t)i;
 	}
-	for (size_t v = 0; v < m->nv; v++)
+	for (size_t v = 0; v < nv; v++)
 		outstart[v + 1] += outstart[v];
-	{
-		uint32_t *fill = cursor = calloc(m->nv ? m->nv : 1, sizeof *cursor);
-		if (!fill) {
-			fct_fail(err, "out of memory");
-			goto done;
-		}
-		for (size_t i = 0; i < nr; i++)
-			outrec[outstart[rs.r[i].a] + fill[rs.r[i].a]++] = (uint32_t)i;
-	}
-	for (uint32_t v = 0; v < m->nv; v++) {
+	for (size_t i = 0; i < nr; i++)
+		g->outrec[outstart[r[i].a] + fill[r[i].a]++] = (uint32_t)i;
+	for (uint32_t v = 0; v < nv; v++) {
 		uint32_t outdeg = outstart[v + 1] - outstart[v], indeg = junction[v];
 		if (!outdeg && !indeg) {
 			junction[v] = 0;
@@ -305,62 +311,79 @@ int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int
 		c->boundary_vertices++;
 		int j = outdeg != 1 || indeg != 1;
 		if (!j) {
-			const struct rec *ri = &rs.r[inrec[v]], *ro = &rs.r[outrec[outstart[v]]];
+			const struct rec *ri = &r[g->inrec[v]], *ro = &r[g->outrec[outstart[v]]];
 			j = ri->l != ro->l || ri->r != ro->r ||
-			    vertex_sides(&a, patch, touch_out[v], v) >= 3;
+			    vertex_sides(a, patch, g->touch_out[v], v) >= 3;
 		}
 		junction[v] = (unsigned char)j;
 		c->junctions += (size_t)j;
 	}
+	return 0;
+}
 
-	/* Walk the chains from junctions, then the loops. */
+/* The chains of g into c: walked from the junctions, then the loops left. */
+static int walk_chains(struct fct_chains *c, const struct boundary *g, unsigned char *visited,
+                       struct fct_err *err)
+{
+	const struct rec *rs = g->rs.r;
 	struct chain_build b = { c, 0, 0, 0, 0, 0, 0 };
 	if (fct_grow((void **)&c->start, &b.cap_start, 1, sizeof *c->start, err))
-		goto done;
+		return -1;
 	c->start[0] = 0;
 	for (int pass = 0; pass < 2; pass++)
-		for (size_t i = 0; i < nr; i++) {
-			if (visited[i] || (pass == 0 && !junction[rs.r[i].a]))
+		for (size_t i = 0; i < g->rs.n; i++) {
+			if (visited[i] || (pass == 0 && !g->junction[rs[i].a]))
 				continue;
-			uint32_t first = rs.r[i].a;
-			if (chain_begin(&b, rs.r[i].l, rs.r[i].r, err) || chain_point(&b, first, err))
-				goto done;
+			uint32_t first = rs[i].a;
+			if (chain_begin(&b, rs[i].l, rs[i].r, err) || chain_point(&b, first, err))
+				return -1;
 			for (size_t r = i;;) {
 				if (visited[r])
 					abort();    /* a non-junction has one record in and one out */
 				visited[r] = 1;
-				uint32_t v = rs.r[r].b;
+				uint32_t v = rs[r].b;
 				if (chain_point(&b, v, err))
-					goto done;
-				if (junction[v] || v == first)
+					return -1;
+				if (g->junction[v] || v == first)
 					break;
-				r = outrec[outstart[v]];
+				r = g->outrec[g->outstart[v]];
 			}
 			chain_end(&b, pass == 1);
 			c->loops += pass == 1;
 		}
-	{
-		size_t np = c->start[c->n];
-		c->keep = malloc(np ? np : 1);
-		if (!c->keep) {
-			fct_fail(err, "out of memory");
-			goto done;
-		}
-		memset(c->keep, 1, np);
-	}
+	return 0;
+}
+
+int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                       struct fct_err *err)
+{
+	memset(c, 0, sizeof *c);
+	struct fct_adj a;
+	if (fct_adj_build(&a, m, err))
+		return -1;
+	int rc = -1;
+	struct fct_arena ar = { 0 };
+	struct boundary g;
+	memset(&g, 0, sizeof g);
+	size_t maxk;
+	c->mean_edge = mean_edge(&a, m, &maxk);
+	if (!(g.touch_out = fct_arena_zeroed(&ar, m->nv ? m->nv : 1, 1, err)) ||
+	    boundary_records(&g, c, &a, m, patch, maxk, err))
+		goto done;
+	c->boundary_edges = g.rs.n;
+	unsigned char *visited = fct_arena_zeroed(&ar, g.rs.n ? g.rs.n : 1, 1, err);
+	if (!visited || find_junctions(&g, c, &a, patch, m->nv, &ar, err) ||
+	    walk_chains(c, &g, visited, err))
+		goto done;
+	size_t np = c->start[c->n];
+	if (!(c->keep = fct_alloc_array(np, 1, err)))
+		goto done;
+	memset(c->keep, 1, np);
 	rc = 0;
 done:
 	fct_adj_free(&a);
-	free(rs.r);
-	free(dir);
-	free(cursor);
-	free(outstart);
-	free(outrec);
-	free(inrec);
-	free(touch_out);
-	free(junction);
-	free(visited);
-	free(sbuf);
+	free(g.rs.r);
+	fct_arena_free(&ar);
 	if (rc)
 		fct_chains_free(c);
 	return rc;
@@ -561,12 +584,13 @@ struct box_tree {
 
 #define BOX_LEAF 8
 
-static int box_tree_reserve(struct box_tree *t, size_t n, struct fct_err *err)
+static int box_tree_reserve(struct box_tree *t, struct fct_arena *a, size_t n, struct fct_err *err)
 {
 	t->n = n;
-	return fct_grow((void **)&t->box, &t->cap_box, 4 * (n ? n : 1), sizeof *t->box, err) ||
-	       fct_grow((void **)&t->idx, &t->cap_idx, n ? n : 1, sizeof *t->idx, err) ||
-	       fct_grow((void **)&t->node, &t->cap_node, 2 * (n / (BOX_LEAF / 2) + 1), sizeof *t->node, err)
+	return fct_arena_grow(a, (void **)&t->box, &t->cap_box, 4 * (n ? n : 1), sizeof *t->box, err) ||
+	       fct_arena_grow(a, (void **)&t->idx, &t->cap_idx, n ? n : 1, sizeof *t->idx, err) ||
+	       fct_arena_grow(a, (void **)&t->node, &t->cap_node, 2 * (n / (BOX_LEAF / 2) + 1),
+	                      sizeof *t->node, err)
 	       ? -1 : 0;
 }
 
@@ -670,13 +694,6 @@ static void box_tree_query(const struct box_tree *t, const double q[4],
 	}
 }
 
-static void box_tree_free(struct box_tree *t)
-{
-	free(t->box);
-	free(t->idx);
-	free(t->node);
-}
-
 static int sgn(double x)
 {
 	return (x > 0) - (x < 0);
@@ -745,10 +762,14 @@ struct seg {
 	size_t i, j;
 };
 
-/* Working memory of the checks, reused from patch to patch. */
+/* Working memory of the checks, reused from patch to patch; every array
+ * is the arena's. */
 struct checker {
+	struct fct_arena arena;
 	const struct fct_mesh *m;
 	struct fct_chains *c;
+	const int32_t *lab;       /* the patches' labels, increasing; patch p is lab[p] */
+	size_t np;
 	size_t *pchain_start;     /* patch -> chains CSR */
 	uint32_t *pchain;
 	const uint32_t *list;     /* the chains of the patch being checked */
@@ -774,6 +795,9 @@ struct checker {
 	unsigned char *chain_new; /* chains split in the last round */
 	unsigned char *checked;   /* per check: done once (later rounds test only
 	                             the pairs with a new segment) */
+	unsigned char *dirty;     /* per check: due this round */
+	size_t *unresolved;       /* per check: its conflicts inherited from the input */
+	size_t nchecks;           /* 2 np + 2 (see plan_checks) */
 	const struct fct_prop *ps, *pt;   /* image coordinates, or NULL */
 	double W, H;              /* the camera's image size (1 without a camera) */
 	int wrap;                 /* s wraps round (a cylindrical panorama) */
@@ -886,7 +910,7 @@ static int find_pairs(struct checker *k, struct pair_ctx *pc, struct fct_err *er
 {
 	size_t n = k->nseg;
 	struct box_tree *t = &k->sg;
-	if (box_tree_reserve(t, n, err))
+	if (box_tree_reserve(t, &k->arena, n, err))
 		return -1;
 	for (size_t s = 0; s < n; s++) {
 		const double *a = lxy(k, &k->seg[s], k->seg[s].i), *b = lxy(k, &k->seg[s], k->seg[s].j);
@@ -949,7 +973,7 @@ static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
 {
 	const struct fct_chains *c = k->c;
 	struct box_tree *t = &k->pg;
-	if (box_tree_reserve(t, nkept, err))
+	if (box_tree_reserve(t, &k->arena, nkept, err))
 		return -1;
 	for (size_t q = 0; q < nkept; q++) {
 		const double *o = k->xy + 2 * (size_t)k->pts[q];
@@ -1004,7 +1028,7 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 	const struct fct_chains *c = k->c;
 	size_t c0 = k->pchain_start[p], nc = k->pchain_start[p + 1] - c0;
 	k->list = k->pchain + c0, k->nlist = nc;
-	if (fct_grow((void **)&k->base, &k->cap_base, nc + 1, sizeof *k->base, err))
+	if (fct_arena_grow(&k->arena, (void **)&k->base, &k->cap_base, nc + 1, sizeof *k->base, err))
 		return -1;
 	size_t npt = 0, nkept = 0;
 	for (size_t x = 0; x < nc; x++) {
@@ -1013,14 +1037,15 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 		npt += c->start[ci + 1] - c->start[ci];
 	}
 	k->base[nc] = npt;
-	if (fct_grow((void **)&k->xy, &k->cap_xy, 2 * (npt ? npt : 1), sizeof *k->xy, err) ||
-	    fct_grow((void **)&k->seg, &k->cap_seg, npt ? npt : 1, sizeof *k->seg, err) ||
-	    fct_grow((void **)&k->pts, &k->cap_pts, npt ? npt : 1, sizeof *k->pts, err) ||
-	    fct_grow((void **)&k->mark, &k->cap_mark, npt ? npt : 1, sizeof *k->mark, err))
+	struct fct_arena *a = &k->arena;
+	if (fct_arena_grow(a, (void **)&k->xy, &k->cap_xy, 2 * (npt ? npt : 1), sizeof *k->xy, err) ||
+	    fct_arena_grow(a, (void **)&k->seg, &k->cap_seg, npt ? npt : 1, sizeof *k->seg, err) ||
+	    fct_arena_grow(a, (void **)&k->pts, &k->cap_pts, npt ? npt : 1, sizeof *k->pts, err) ||
+	    fct_arena_grow(a, (void **)&k->mark, &k->cap_mark, npt ? npt : 1, sizeof *k->mark, err))
 		return -1;
 	int first = !k->fpre_of[v];
-	if (first && !(k->fpre_of[v] = calloc(npt + 1, sizeof *k->fpre)))
-		return fct_fail(err, "out of memory");
+	if (first && !(k->fpre_of[v] = fct_arena_zeroed(a, npt + 1, sizeof *k->fpre, err)))
+		return -1;
 	k->fpre = k->fpre_of[v];
 
 	/* Project; list the original edges. */
@@ -1062,7 +1087,7 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 		size_t nf = 0;
 		for (size_t l = 0; l < npt; l++)
 			nf += k->fpre[l + 1];
-		if (!(k->flist_of[v] = fct_alloc_array(nf, sizeof *k->flist, err)))
+		if (!(k->flist_of[v] = fct_arena_array(a, nf, sizeof *k->flist, err)))
 			return -1;
 		nf = 0;
 		for (size_t l = 0; l < npt; l++) {
@@ -1125,83 +1150,73 @@ static long label_id(const int32_t *lab, size_t n, int32_t x)
 	return f ? (long)(f - lab) : -1;
 }
 
-/* Per-patch crossing checks and splits until nothing more can be split. */
-static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
-                         const struct fct_plane *planes, size_t nplanes, double tol2,
-                         size_t *stack, struct fct_chain_stats *st, struct fct_err *err)
+/* The distinct labels on the chains' sides into lab (2 n entries),
+ * increasing; returns their count. */
+static size_t side_labels(int32_t *lab, const struct fct_chains *c)
 {
-	int rc = -1;
-	struct checker k;
-	memset(&k, 0, sizeof k);
-	k.m = m, k.c = c;
-	size_t np = 0, total = c->start[c->n];
-	int32_t *lab = fct_alloc_array(2 * c->n, sizeof *lab, err);
-	unsigned char *dirty = NULL;
-	size_t *unres = NULL;
-	if (!lab)
-		return -1;
+	size_t n = 0;
 	for (size_t i = 0; i < c->n; i++) {
-		lab[np++] = c->left[i];
+		lab[n++] = c->left[i];
 		if (c->right[i] >= 0)
-			lab[np++] = c->right[i];
+			lab[n++] = c->right[i];
 	}
-	qsort(lab, np, sizeof *lab, label_cmp);
+	qsort(lab, n, sizeof *lab, label_cmp);
 	size_t u = 0;
-	for (size_t i = 0; i < np; i++)
+	for (size_t i = 0; i < n; i++)
 		if (!u || lab[i] != lab[u - 1])
 			lab[u++] = lab[i];
-	np = u;
+	return u;
+}
 
-	/* Chains by patch, CSR; the extra list np holds every chain (the
-	 * global image check). */
-	k.pchain_start = calloc(np + 2, sizeof *k.pchain_start);
-	k.pchain = fct_alloc_array(3 * c->n, sizeof *k.pchain, err);
-	k.normal = calloc(np + 1, sizeof *k.normal);
-	k.split = calloc(total ? total : 1, 1);
-	k.chain_dirty = calloc(c->n ? c->n : 1, 1);
-	dirty = malloc(2 * np + 2);
-	unres = calloc(2 * np + 2, sizeof *unres);
-	k.fpre_of = calloc(2 * np + 2, sizeof *k.fpre_of);
-	k.checked = calloc(2 * np + 2, 1);
-	k.chain_new = calloc(c->n ? c->n : 1, 1);
-	k.flist_of = calloc(2 * np + 2, sizeof *k.flist_of);
-	k.nflist_of = calloc(2 * np + 2, sizeof *k.nflist_of);
-	if (!k.pchain_start || !k.pchain || !k.normal || !k.split || !k.chain_dirty || !dirty || !unres ||
-	    !k.fpre_of || !k.flist_of || !k.nflist_of || !k.checked || !k.chain_new) {
-		fct_fail(err, "out of memory");
-		goto done;
-	}
+/* The chains of each patch, CSR (k->pchain_start, k->pchain); the extra
+ * list np holds every chain (the global image check). */
+static int chains_by_patch(struct checker *k, struct fct_err *err)
+{
+	const struct fct_chains *c = k->c;
+	size_t np = k->np;
+	size_t *start = fct_arena_zeroed(&k->arena, np + 2, sizeof *start, err);
+	uint32_t *list = fct_arena_array(&k->arena, 3 * c->n, sizeof *list, err);
+	size_t *fill = fct_arena_zeroed(&k->arena, np ? np : 1, sizeof *fill, err);
+	if (!start || !list || !fill)
+		return -1;
 	for (size_t i = 0; i < c->n; i++) {
-		k.pchain_start[label_id(lab, np, c->left[i]) + 1]++;
+		start[label_id(k->lab, np, c->left[i]) + 1]++;
 		if (c->right[i] >= 0)
-			k.pchain_start[label_id(lab, np, c->right[i]) + 1]++;
+			start[label_id(k->lab, np, c->right[i]) + 1]++;
 	}
-	k.pchain_start[np + 1] = c->n;
+	start[np + 1] = c->n;
 	for (size_t i = 0; i < np + 1; i++)
-		k.pchain_start[i + 1] += k.pchain_start[i];
+		start[i + 1] += start[i];
 	for (size_t i = 0; i < c->n; i++)
-		k.pchain[k.pchain_start[np] + i] = (uint32_t)i;
-	{
-		size_t *fill = calloc(np ? np : 1, sizeof *fill);
-		if (!fill) {
-			fct_fail(err, "out of memory");
-			goto done;
+		list[start[np] + i] = (uint32_t)i;
+	for (size_t i = 0; i < c->n; i++) {
+		long a = label_id(k->lab, np, c->left[i]);
+		list[start[a] + fill[a]++] = (uint32_t)i;
+		if (c->right[i] >= 0) {
+			long b = label_id(k->lab, np, c->right[i]);
+			list[start[b] + fill[b]++] = (uint32_t)i;
 		}
-		for (size_t i = 0; i < c->n; i++) {
-			long a = label_id(lab, np, c->left[i]);
-			k.pchain[k.pchain_start[a] + fill[a]++] = (uint32_t)i;
-			if (c->right[i] >= 0) {
-				long b = label_id(lab, np, c->right[i]);
-				k.pchain[k.pchain_start[b] + fill[b]++] = (uint32_t)i;
-			}
-		}
-		free(fill);
 	}
-	/* Normals: the plane's, or the faces' area-weighted (Newell) normal. */
+	k->pchain_start = start, k->pchain = list;
+	return 0;
+}
+
+/* Each patch's unit normal, the plane its boundary is checked in: the
+ * plane's, or the faces' area-weighted (Newell) normal for a patch without
+ * one; +z when that vanishes. */
+static int patch_normals(struct checker *k, const int32_t *patch, const struct fct_plane *planes,
+                         size_t nplanes, struct fct_err *err)
+{
+	const struct fct_mesh *m = k->m;
+	const int32_t *lab = k->lab;
+	size_t np = k->np;
+	double (*normal)[3] = fct_arena_zeroed(&k->arena, np + 1, sizeof *normal, err);
+	if (!normal)
+		return -1;
 	int need = 0;
 	for (size_t i = 0; i < np; i++) {
 		if ((size_t)lab[i] < nplanes)
-			memcpy(k.normal[i], planes[lab[i]].n, sizeof k.normal[i]);
+			memcpy(normal[i], planes[lab[i]].n, sizeof normal[i]);
 		else
 			need = 1;
 	}
@@ -1215,134 +1230,192 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 			for (uint32_t x = m->fstart[f]; x < m->fstart[f + 1]; x++) {
 				uint32_t y = x + 1 < m->fstart[f + 1] ? x + 1 : m->fstart[f];
 				const double *a = m->xyz + 3 * (size_t)m->fvert[x], *b = m->xyz + 3 * (size_t)m->fvert[y];
-				k.normal[id][0] += (a[1] - b[1]) * (a[2] + b[2]);
-				k.normal[id][1] += (a[2] - b[2]) * (a[0] + b[0]);
-				k.normal[id][2] += (a[0] - b[0]) * (a[1] + b[1]);
+				normal[id][0] += (a[1] - b[1]) * (a[2] + b[2]);
+				normal[id][1] += (a[2] - b[2]) * (a[0] + b[0]);
+				normal[id][2] += (a[0] - b[0]) * (a[1] + b[1]);
 			}
 		}
 	for (size_t i = 0; i < np; i++) {
-		double l = sqrt(fct_v3_dot(k.normal[i], k.normal[i]));
+		double l = sqrt(fct_v3_dot(normal[i], normal[i]));
 		if (!(l > 0) || !isfinite(l)) {
-			k.normal[i][0] = k.normal[i][1] = 0, k.normal[i][2] = 1;
+			normal[i][0] = normal[i][1] = 0, normal[i][2] = 1;
 			continue;
 		}
 		for (int x = 0; x < 3; x++)
-			k.normal[i][x] /= l;
+			normal[i][x] /= l;
 	}
+	k->normal = normal;
+	return 0;
+}
 
-	/* Each patch is checked in its plane (check 2 p), and when the vertices
-	 * carry image coordinates, the whole boundary in the image (check
-	 * 2 np + 1): one view's image is a planar map of all its surfaces, so
-	 * there no chains may cross whatever patches they bound, and a hole or
-	 * an unlabelled region may not collapse either.  A cylindrical
-	 * panorama's s wraps round; it is unwrapped patch by patch (checks
-	 * 2 p + 1) instead. */
-	k.ps = fct_elem_find(&m->vertex, "s"), k.pt = fct_elem_find(&m->vertex, "t");
-	if (!k.ps || !k.pt || k.ps->count_type || k.pt->count_type)
-		k.ps = k.pt = NULL;
+/* The checks and what each needs.  Each patch is checked in its plane
+ * (check 2 p), and when the vertices carry image coordinates, the whole
+ * boundary in the image (check 2 np + 1): one view's image is a planar map
+ * of all its surfaces, so there no chains may cross whatever patches they
+ * bound, and a hole or an unlabelled region may not collapse either.  A
+ * cylindrical panorama's s wraps round; it is unwrapped patch by patch
+ * (checks 2 p + 1) instead.  All of them are due in the first round. */
+static int plan_checks(struct checker *k, struct fct_err *err)
+{
+	const struct fct_mesh *m = k->m;
+	size_t np = k->np, nv2 = 2 * np + 2;
+	struct fct_arena *a = &k->arena;
+	size_t total = k->c->start[k->c->n], nc = k->c->n ? k->c->n : 1;
+	k->ps = fct_elem_find(&m->vertex, "s"), k->pt = fct_elem_find(&m->vertex, "t");
+	if (!k->ps || !k->pt || k->ps->count_type || k->pt->count_type)
+		k->ps = k->pt = NULL;
 	struct fct_camera cam;
 	int have_cam = fct_header_camera(m, &cam, NULL) == 1 && cam.width > 0 && cam.height > 0;
-	k.wrap = have_cam && cam.kind == FCT_CAMERA_CYLINDRICAL;
-	k.W = have_cam ? cam.width : 1, k.H = have_cam ? cam.height : 1;
-	size_t nv2 = 2 * np + 2;
-	memset(dirty, 0, nv2);
+	k->wrap = have_cam && cam.kind == FCT_CAMERA_CYLINDRICAL;
+	k->W = have_cam ? cam.width : 1, k->H = have_cam ? cam.height : 1;
+	k->nchecks = nv2;
+	k->split = fct_arena_zeroed(a, total ? total : 1, 1, err);
+	k->chain_dirty = fct_arena_zeroed(a, nc, 1, err);
+	k->chain_new = fct_arena_zeroed(a, nc, 1, err);
+	k->dirty = fct_arena_zeroed(a, nv2, 1, err);
+	k->unresolved = fct_arena_zeroed(a, nv2, sizeof *k->unresolved, err);
+	k->checked = fct_arena_zeroed(a, nv2, 1, err);
+	k->fpre_of = fct_arena_zeroed(a, nv2, sizeof *k->fpre_of, err);
+	k->flist_of = fct_arena_zeroed(a, nv2, sizeof *k->flist_of, err);
+	k->nflist_of = fct_arena_zeroed(a, nv2, sizeof *k->nflist_of, err);
+	if (!k->split || !k->chain_dirty || !k->chain_new || !k->dirty || !k->unresolved ||
+	    !k->checked || !k->fpre_of || !k->flist_of || !k->nflist_of)
+		return -1;
 	for (size_t p = 0; p < np; p++)
-		dirty[2 * p] = 1, dirty[2 * p + 1] = k.ps && k.wrap;
-	dirty[2 * np + 1] = k.ps && !k.wrap;
-	for (;;) {
-		int any = 0;
-		for (size_t v = 0; v < nv2; v++) {
-			if (!dirty[v])
-				continue;
-			dirty[v] = 0;
-			size_t conf = 0;
-			unres[v] = 0;
-			if (check_patch(&k, v, 0, &conf, &unres[v], err))
-				goto done;
-			if (st->rounds == 0)
-				st->conflicts_plain += conf;
-		}
-		st->rounds++;
-		memset(k.chain_new, 0, c->n);
-		for (size_t ci = 0; ci < c->n; ci++) {
-			if (!k.chain_dirty[ci])
-				continue;
-			k.chain_dirty[ci] = 0;
-			size_t last = c->start[ci];
-			for (size_t q = c->start[ci] + 1; q < c->start[ci + 1]; q++) {
-				if (!c->keep[q])
-					continue;
-				if (k.split[last]) {
-					k.split[last] = 0;
-					if (q - last >= 2 && !(c->frozen && c->frozen[ci])) {
-						/* Split at the farthest point, then refit both
-						 * halves: a shorter segment may leave points
-						 * beyond the tolerance that the longer one did not. */
-						double d2;
-						size_t kk = farthest(m, c, last, q, &d2);
-						c->keep[kk] = 1;
-						endpoint_fit(m, c, last, kk, tol2, stack);
-						endpoint_fit(m, c, kk, q, tol2, stack);
-						st->topology_points++;
-						k.chain_new[ci] = 1;
-						size_t a = (size_t)label_id(lab, np, c->left[ci]);
-						dirty[2 * a] = 1;
-						dirty[2 * a + 1] |= k.ps && k.wrap;
-						if (c->right[ci] >= 0) {
-							size_t b = (size_t)label_id(lab, np, c->right[ci]);
-							dirty[2 * b] = 1;
-							dirty[2 * b + 1] |= k.ps && k.wrap;
-						}
-						dirty[2 * np + 1] |= k.ps && !k.wrap;
-						any = 1;
-					}
-				}
-				last = q;
+		k->dirty[2 * p] = 1, k->dirty[2 * p + 1] = k->ps && k->wrap;
+	k->dirty[2 * np + 1] = k->ps && !k->wrap;
+	return 0;
+}
+
+/* Runs the checks that are due; the first round's conflicts are the plain
+ * simplification's. */
+static int run_checks(struct checker *k, struct fct_chain_stats *st, struct fct_err *err)
+{
+	for (size_t v = 0; v < k->nchecks; v++) {
+		if (!k->dirty[v])
+			continue;
+		k->dirty[v] = 0;
+		size_t conf = 0;
+		k->unresolved[v] = 0;
+		if (check_patch(k, v, 0, &conf, &k->unresolved[v], err))
+			return -1;
+		if (st->rounds == 0)
+			st->conflicts_plain += conf;
+	}
+	return 0;
+}
+
+/* Splits chain ci's segments that the checks marked; 1 when any was. */
+static int split_chain(struct checker *k, size_t ci, double tol2, size_t *stack,
+                       struct fct_chain_stats *st)
+{
+	struct fct_chains *c = k->c;
+	int any = 0;
+	size_t last = c->start[ci];
+	for (size_t q = c->start[ci] + 1; q < c->start[ci + 1]; q++) {
+		if (!c->keep[q])
+			continue;
+		if (k->split[last]) {
+			k->split[last] = 0;
+			if (q - last >= 2 && !(c->frozen && c->frozen[ci])) {
+				/* Split at the farthest point, then refit both
+				 * halves: a shorter segment may leave points
+				 * beyond the tolerance that the longer one did not. */
+				double d2;
+				size_t kk = farthest(k->m, c, last, q, &d2);
+				c->keep[kk] = 1;
+				endpoint_fit(k->m, c, last, kk, tol2, stack);
+				endpoint_fit(k->m, c, kk, q, tol2, stack);
+				st->topology_points++;
+				any = 1;
 			}
 		}
-		if (!any)
-			break;
+		last = q;
 	}
-	/* The conflicts left, inherited from the input: one pass over all pairs
-	 * (the rounds after the first test only pairs with a new segment). */
-	for (size_t v = 0; v < nv2; v++) {
+	return any;
+}
+
+/* Chain ci changed: the checks of the patches on its sides, and of the
+ * image that holds it, are due again. */
+static void recheck_chain(struct checker *k, size_t ci)
+{
+	const struct fct_chains *c = k->c;
+	size_t np = k->np;
+	int32_t side[2] = { c->left[ci], c->right[ci] };
+	for (int x = 0; x < 2 && side[x] >= 0; x++) {
+		size_t p = (size_t)label_id(k->lab, np, side[x]);
+		k->dirty[2 * p] = 1;
+		k->dirty[2 * p + 1] |= k->ps && k->wrap;
+	}
+	k->dirty[2 * np + 1] |= k->ps && !k->wrap;
+}
+
+/* Splits the marked segments of every marked chain; 1 when any was split
+ * (another round is due). */
+static int split_marked(struct checker *k, double tol2, size_t *stack, struct fct_chain_stats *st)
+{
+	const struct fct_chains *c = k->c;
+	int any = 0;
+	memset(k->chain_new, 0, c->n);
+	for (size_t ci = 0; ci < c->n; ci++) {
+		if (!k->chain_dirty[ci])
+			continue;
+		k->chain_dirty[ci] = 0;
+		if (split_chain(k, ci, tol2, stack, st)) {
+			k->chain_new[ci] = 1;
+			recheck_chain(k, ci);
+			any = 1;
+		}
+	}
+	return any;
+}
+
+/* The conflicts left, inherited from the input: one pass over all pairs
+ * (the rounds after the first test only pairs with a new segment). */
+static int count_left(struct checker *k, struct fct_chain_stats *st, struct fct_err *err)
+{
+	for (size_t v = 0; v < k->nchecks; v++) {
 		size_t conf = 0;
-		unres[v] = 0;
-		if (k.checked[v] && check_patch(&k, v, 1, &conf, &unres[v], err))
-			goto done;
+		k->unresolved[v] = 0;
+		if (k->checked[v] && check_patch(k, v, 1, &conf, &k->unresolved[v], err))
+			return -1;
 	}
-	for (size_t v = 0; v < nv2; v++) {
+	for (size_t v = 0; v < k->nchecks; v++) {
 		if (v % 2)
-			st->conflicts_left_image += unres[v];
+			st->conflicts_left_image += k->unresolved[v];
 		else
-			st->conflicts_left += unres[v];
+			st->conflicts_left += k->unresolved[v];
 	}
+	return 0;
+}
+
+/* Per-patch crossing checks and splits until nothing more can be split. */
+static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                         const struct fct_plane *planes, size_t nplanes, double tol2,
+                         size_t *stack, struct fct_chain_stats *st, struct fct_err *err)
+{
+	int rc = -1;
+	struct checker k;
+	memset(&k, 0, sizeof k);
+	k.m = m, k.c = c;
+	int32_t *lab = fct_arena_array(&k.arena, 2 * c->n, sizeof *lab, err);
+	if (!lab)
+		goto done;
+	k.lab = lab;
+	k.np = side_labels(lab, c);
+	if (chains_by_patch(&k, err) || patch_normals(&k, patch, planes, nplanes, err) ||
+	    plan_checks(&k, err))
+		goto done;
+	do {
+		if (run_checks(&k, st, err))
+			goto done;
+		st->rounds++;
+	} while (split_marked(&k, tol2, stack, st));
+	if (count_left(&k, st, err))
+		goto done;
 	rc = 0;
 done:
-	free(lab);
-	free(dirty);
-	free(unres);
-	free(k.pchain_start);
-	free(k.pchain);
-	free(k.normal);
-	free(k.split);
-	free(k.chain_dirty);
-	free(k.xy);
-	free(k.base);
-	free(k.seg);
-	free(k.pts);
-	free(k.mark);
-	for (size_t v = 0; k.fpre_of && v < 2 * np + 2; v++)
-		free(k.fpre_of[v]);
-	for (size_t v = 0; k.flist_of && v < 2 * np + 2; v++)
-		free(k.flist_of[v]);
-	free(k.fpre_of);
-	free(k.flist_of);
-	free(k.checked);
-	free(k.chain_new);
-	free(k.nflist_of);
-	box_tree_free(&k.sg);
-	box_tree_free(&k.pg);
+	fct_arena_free(&k.arena);
 	return rc;
 }
 

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "adj.h"
+#include "arena.h"
 #include "clock.h"
 #include "noise.h"
 
@@ -99,6 +100,7 @@ struct seg {
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
 	struct fct_segment_stats st;
 	struct fct_err *err;
+	struct fct_arena arena;  /* the run's scratch, freed at fct_segment's exit */
 };
 
 void fct_segment_params_default(struct fct_segment_params *p)
@@ -1151,58 +1153,41 @@ static size_t renumber(int32_t *label, size_t nf, int32_t *map)
 	return np;
 }
 
-/* Labels, free-form faces, planes, stats.  The region growing's patches
- * are checked against their planes: a face farther than max_dev sigma from
- * its patch's plane leaves it (free-form, -1) and the plane is fitted again
- * without it, for PEEL_ROUNDS rounds; a patch too narrow to be a plane
- * (narrow) is free-form too.  Then the labels in the order of the smallest
- * face index, and each plane with its orientation, count and rms. */
-static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size_t *nplanes,
-                  struct fct_err *err)
+/* Fits each patch's plane to the faces it holds now. */
+static void fit_planes(struct seg *S, const int32_t *patch, size_t np, struct region *R,
+                       struct fct_plane *pl, double *ray)
 {
-	const struct fct_mesh *m = S->m;
-	size_t nf = m->nf;
-	int32_t *map = fct_alloc_array(nf, sizeof *map, err);
-	if (!map)
-		return -1;
-	for (size_t f = 0; f < nf; f++)
-		patch[f] = (int32_t)find(S->parent, (uint32_t)f);
-	size_t np = renumber(patch, nf, map);
-	struct region *R = fct_alloc_array(np ? np : 1, sizeof *R, err);
-	struct fct_plane *pl = fct_alloc_array(np ? np : 1, sizeof *pl, err);
-	double *ray = S->p->use_viewpoint ? fct_alloc_array(9 * (np ? np : 1), sizeof *ray, err) : NULL;
-	uint32_t *stamp = fct_alloc_array(m->nv > np ? m->nv : (np ? np : 1), sizeof *stamp, err);
-	double *wind = fct_alloc_array(3 * (np ? np : 1), sizeof *wind, err);
-	double *res = fct_alloc_array(2 * (np ? np : 1), sizeof *res, err);
-	if (!R || !pl || (S->p->use_viewpoint && !ray) || !stamp || !wind || !res)
-		goto fail;
-	const double *vp = S->p->viewpoint;
+	patch_moments(S, patch, np, R, ray);
+	for (size_t l = 0; l < np; l++)
+		patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, S->p->viewpoint);
+}
+
+/* Frees (-1) every face farther than max_dev sigma from its patch's plane
+ * (none when max_dev is not positive); returns how many. */
+static size_t peel(struct seg *S, int32_t *patch, const struct fct_plane *pl)
+{
 	double max_dev = S->p->max_dev;
-	for (int round = 0; round <= PEEL_ROUNDS; round++) {
-		patch_moments(S, patch, np, R, ray);
-		for (size_t l = 0; l < np; l++)
-			patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, vp);
-		if (round == PEEL_ROUNDS || !(max_dev > 0))
-			break;
-		size_t peeled = 0;
-		for (size_t f = 0; f < nf; f++)
-			if (patch[f] >= 0 && face_deviation(S, f, &pl[patch[f]]) > max_dev) {
-				patch[f] = -1;
-				peeled++;
-			}
-		S->st.peeled += peeled;
-		if (!peeled)
-			break;
-	}
-	if (max_dev > 0 && grow_into_free(S, patch, pl, err))
-		goto fail;
-	if (settle_boundaries(S, patch, pl, err))
-		goto fail;
-	/* Patches still smaller than min_faces are free-form too (a curved
-	 * surface cut into facets), unless no patch reaches it (a cube of
-	 * twelve triangles). */
-	int32_t *nfaces = (int32_t *)stamp;
-	memset(nfaces, 0, np * sizeof *nfaces);
+	size_t peeled = 0;
+	for (size_t f = 0; f < S->m->nf; f++)
+		if (max_dev > 0 && patch[f] >= 0 && face_deviation(S, f, &pl[patch[f]]) > max_dev) {
+			patch[f] = -1;
+			peeled++;
+		}
+	S->st.peeled += peeled;
+	return peeled;
+}
+
+/* Patches too narrow to be a plane (narrow), or still smaller than
+ * min_faces, are free-form too (a curved surface cut into facets), unless
+ * no patch reaches min_faces (a cube of twelve triangles).  drop: scratch,
+ * np entries. */
+static int drop_small(struct seg *S, int32_t *patch, size_t np, const struct region *R,
+                      int32_t *drop, struct fct_err *err)
+{
+	size_t nf = S->m->nf;
+	int32_t *nfaces = fct_arena_zeroed(&S->arena, np ? np : 1, sizeof *nfaces, err);
+	if (!nfaces)
+		return -1;
 	for (size_t f = 0; f < nf; f++)
 		if (patch[f] >= 0)
 			nfaces[patch[f]]++;
@@ -1210,53 +1195,72 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	for (size_t l = 0; l < np; l++)
 		any_big |= nfaces[l] >= S->p->min_faces;
 	for (size_t l = 0; l < np; l++)
-		map[l] = narrow(&R[l], S->p->min_extent) ||
-		         (any_big && S->p->target <= 0 && nfaces[l] < S->p->min_faces);
+		drop[l] = narrow(&R[l], S->p->min_extent) ||
+		          (any_big && S->p->target <= 0 && nfaces[l] < S->p->min_faces);
 	for (size_t f = 0; f < nf; f++)
-		if (patch[f] >= 0 && map[patch[f]]) {
+		if (patch[f] >= 0 && drop[patch[f]]) {
 			patch[f] = -1;
 			S->st.narrow_faces++;
 		}
+	return 0;
+}
+
+/* The region growing's np patches checked against their planes (pl, fitted
+ * here): a face farther than max_dev sigma from its patch's plane leaves it
+ * (free-form, -1) and the plane is fitted again without it, for
+ * PEEL_ROUNDS rounds; patches grow into the free faces their planes fit
+ * and settle their boundaries; small and narrow patches go.  map: scratch,
+ * np entries. */
+static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region *R,
+                         struct fct_plane *pl, double *ray, int32_t *map, struct fct_err *err)
+{
+	for (int round = 0; round <= PEEL_ROUNDS; round++) {
+		fit_planes(S, patch, np, R, pl, ray);
+		if (round == PEEL_ROUNDS || !peel(S, patch, pl))
+			break;
+	}
+	if (S->p->max_dev > 0 && grow_into_free(S, patch, pl, err))
+		return -1;
+	if (settle_boundaries(S, patch, pl, err) || drop_small(S, patch, np, R, map, err))
+		return -1;
 	/* The guarantee: the planes fitted again to what the patches now hold
 	 * (growing and settling judged faces by the planes before), and every
 	 * face beyond max_dev of them peeled, until a fit peels none (at most
 	 * FINAL_ROUNDS); the planes are those of the last fit, which every
 	 * face left lies within max_dev of, since peeling only takes faces. */
 	for (int round = 0; round < FINAL_ROUNDS; round++) {
-		patch_moments(S, patch, np, R, ray);
-		for (size_t l = 0; l < np; l++)
-			patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, vp);
-		size_t peeled = 0;
-		for (size_t f = 0; f < nf; f++)
-			if (max_dev > 0 && patch[f] >= 0 && face_deviation(S, f, &pl[patch[f]]) > max_dev) {
-				patch[f] = -1;
-				peeled++;
-			}
-		S->st.peeled += peeled;
-		if (!peeled)
+		fit_planes(S, patch, np, R, pl, ray);
+		if (!peel(S, patch, pl))
 			break;
 	}
-	for (size_t f = 0; f < nf; f++)
+	for (size_t f = 0; f < S->m->nf; f++)
 		S->st.free_faces += patch[f] < 0;
-	/* The patches that remain, numbered afresh, with those planes. */
-	size_t np0 = np;
-	np = renumber(patch, nf, map);
-	{
-		/* The planes, moved to their new numbers (peeling may have
-		 * reordered the patches' first faces). */
-		struct fct_plane *tmp = fct_alloc_array(np0 ? np0 : 1, sizeof *tmp, err);
-		if (!tmp)
-			goto fail;
-		memcpy(tmp, pl, np0 * sizeof *pl);
-		for (size_t l = 0; l < np0; l++)
-			if (map[l] >= 0)
-				pl[map[l]] = tmp[l];
-		free(tmp);
-	}
-	memset(wind, 0, 3 * (np ? np : 1) * sizeof *wind);
-	memset(res, 0, 2 * (np ? np : 1) * sizeof *res);
+	return 0;
+}
+
+/* The planes moved to their patches' new numbers map (np0 old numbers;
+ * peeling may have reordered the patches' first faces). */
+static int renumber_planes(struct seg *S, struct fct_plane *pl, const int32_t *map, size_t np0,
+                           struct fct_err *err)
+{
+	struct fct_plane *tmp = fct_arena_array(&S->arena, np0 ? np0 : 1, sizeof *tmp, err);
+	if (!tmp)
+		return -1;
+	memcpy(tmp, pl, np0 * sizeof *pl);
+	for (size_t l = 0; l < np0; l++)
+		if (map[l] >= 0)
+			pl[map[l]] = tmp[l];
+	return 0;
+}
+
+/* Each patch's squared distances of its corners from its plane and their
+ * count (res, 2 per patch), and its faces' vector area (wind, 3 per patch:
+ * which way it faces); returns the faces in patches. */
+static size_t patch_residuals(const struct fct_mesh *m, const int32_t *patch,
+                              const struct fct_plane *pl, double *res, double *wind)
+{
 	size_t nfaces_in = 0;
-	for (size_t f = 0; f < nf; f++) {
+	for (size_t f = 0; f < m->nf; f++) {
 		if (patch[f] < 0)
 			continue;
 		size_t l = (size_t)patch[f];
@@ -1269,50 +1273,62 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 			res[2 * l] += d * d;
 			res[2 * l + 1] += 1;
 		}
-		double va[3];   /* for the orientation */
+		double va[3];
 		face_vector_area(m, f, va);
 		for (int i = 0; i < 3; i++)
 			wind[3 * l + (size_t)i] += va[i];
 	}
-	/* count: the distinct vertices of each patch, its faces taken patch by
-	 * patch so that one stamp per vertex tells. */
+	return nfaces_in;
+}
+
+/* pl[l].count: the distinct vertices of each patch, its faces (nfaces_in
+ * in all) taken patch by patch so that one stamp per vertex tells. */
+static int count_vertices(struct seg *S, struct fct_plane *pl, size_t np, const int32_t *patch,
+                          size_t nfaces_in, struct fct_err *err)
+{
+	const struct fct_mesh *m = S->m;
+	struct fct_arena *a = &S->arena;
+	uint32_t *stamp = fct_arena_array(a, m->nv, sizeof *stamp, err);
+	uint32_t *start = fct_arena_zeroed(a, np + 1, sizeof *start, err);
+	uint32_t *order = fct_arena_array(a, nfaces_in, sizeof *order, err);
+	if (!stamp || !start || !order)
+		return -1;
 	memset(stamp, 0xff, m->nv * sizeof *stamp);
 	for (size_t l = 0; l < np; l++)
 		pl[l].count = 0;
-	{
-		uint32_t *start = fct_alloc_array(np + 1, sizeof *start, err);
-		uint32_t *order = fct_alloc_array(nfaces_in ? nfaces_in : 1, sizeof *order, err);
-		if (!start || !order) {
-			free(start), free(order);
-			goto fail;
-		}
-		memset(start, 0, (np + 1) * sizeof *start);
-		for (size_t f = 0; f < nf; f++)
-			if (patch[f] >= 0)
-				start[patch[f] + 1]++;
-		for (size_t l = 0; l < np; l++)
-			start[l + 1] += start[l];
-		for (size_t f = 0; f < nf; f++)
-			if (patch[f] >= 0)
-				order[start[patch[f]]++] = (uint32_t)f;
-		for (size_t l = np; l > 0; l--)
-			start[l] = start[l - 1];
-		start[0] = 0;
-		for (size_t l = 0; l < np; l++)
-			for (uint32_t i = start[l]; i < start[l + 1]; i++)
-				for (uint32_t c = m->fstart[order[i]]; c < m->fstart[order[i] + 1]; c++)
-					if (stamp[m->fvert[c]] != (uint32_t)l) {
-						stamp[m->fvert[c]] = (uint32_t)l;
-						pl[l].count++;
-					}
-		free(start), free(order);
-	}
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0)
+			start[patch[f] + 1]++;
+	for (size_t l = 0; l < np; l++)
+		start[l + 1] += start[l];
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0)
+			order[start[patch[f]]++] = (uint32_t)f;
+	for (size_t l = np; l > 0; l--)
+		start[l] = start[l - 1];
+	start[0] = 0;
+	for (size_t l = 0; l < np; l++)
+		for (uint32_t i = start[l]; i < start[l + 1]; i++)
+			for (uint32_t c = m->fstart[order[i]]; c < m->fstart[order[i] + 1]; c++)
+				if (stamp[m->fvert[c]] != (uint32_t)l) {
+					stamp[m->fvert[c]] = (uint32_t)l;
+					pl[l].count++;
+				}
+	return 0;
+}
+
+/* Each plane turned the way its faces wind (without winding to go by,
+ * its first non-zero component positive), its rms from res; the stats'
+ * max and mean rms. */
+static void orient_planes(struct seg *S, struct fct_plane *pl, size_t np, const double *wind,
+                          const double *res)
+{
 	double sum_rms = 0, max_rms = 0;
 	for (size_t l = 0; l < np; l++) {
 		const double *wv = &wind[3 * l];
 		double dot = pl[l].n[0] * wv[0] + pl[l].n[1] * wv[1] + pl[l].n[2] * wv[2];
 		int flip = dot < 0;
-		if (dot == 0) {   /* no winding to go by: first non-zero component positive */
+		if (dot == 0) {
 			for (int i = 0; i < 3; i++)
 				if (pl[l].n[i] != 0) {
 					flip = pl[l].n[i] < 0;
@@ -1335,10 +1351,52 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	double ncorners = 0;
 	for (size_t l = 0; l < np; l++)
 		ncorners += res[2 * l + 1];
-	free(map), free(R), free(ray), free(stamp), free(wind), free(res);
-	S->st.patches = np;
 	S->st.max_rms = max_rms;
 	S->st.mean_rms = ncorners > 0 ? sum_rms / ncorners : 0;
+}
+
+/* Each plane's orientation, count and rms. */
+static int describe_planes(struct seg *S, struct fct_plane *pl, size_t np, const int32_t *patch,
+                           struct fct_err *err)
+{
+	double *wind = fct_arena_zeroed(&S->arena, 3 * (np ? np : 1), sizeof *wind, err);
+	double *res = fct_arena_zeroed(&S->arena, 2 * (np ? np : 1), sizeof *res, err);
+	if (!wind || !res)
+		return -1;
+	size_t nfaces_in = patch_residuals(S->m, patch, pl, res, wind);
+	if (count_vertices(S, pl, np, patch, nfaces_in, err))
+		return -1;
+	orient_planes(S, pl, np, wind, res);
+	return 0;
+}
+
+/* Labels, free-form faces, planes, stats: the patches checked against
+ * their planes (check_patches), then the labels in the order of the
+ * smallest face index, and each plane with its orientation, count and
+ * rms.  *planes is the caller's (NULL with no patch). */
+static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size_t *nplanes,
+                  struct fct_err *err)
+{
+	size_t nf = S->m->nf;
+	int32_t *map = fct_arena_array(&S->arena, nf, sizeof *map, err);
+	if (!map)
+		return -1;
+	for (size_t f = 0; f < nf; f++)
+		patch[f] = (int32_t)find(S->parent, (uint32_t)f);
+	size_t np = renumber(patch, nf, map);
+	struct region *R = fct_arena_array(&S->arena, np ? np : 1, sizeof *R, err);
+	double *ray = S->p->use_viewpoint
+	              ? fct_arena_array(&S->arena, 9 * (np ? np : 1), sizeof *ray, err) : NULL;
+	struct fct_plane *pl = fct_alloc_array(np ? np : 1, sizeof *pl, err);
+	if (!R || (S->p->use_viewpoint && !ray) || !pl ||
+	    check_patches(S, patch, np, R, pl, ray, map, err))
+		goto fail;
+	/* The patches that remain, numbered afresh, with those planes. */
+	size_t np0 = np;
+	np = renumber(patch, nf, map);
+	if (renumber_planes(S, pl, map, np0, err) || describe_planes(S, pl, np, patch, err))
+		goto fail;
+	S->st.patches = np;
 	if (np == 0) {
 		free(pl);
 		pl = NULL;
@@ -1347,10 +1405,179 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	*nplanes = np;
 	return 0;
 fail:
-	free(map), free(R), free(pl), free(ray), free(stamp), free(wind), free(res);
+	free(pl);
 	return -1;
 }
 
+/* The squared diagonal of m's bounding box; fails on a coordinate that is
+ * not finite. */
+static int box_diagonal2(const struct fct_mesh *m, double *diag2, struct fct_err *err)
+{
+	double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+	for (size_t v = 0; v < m->nv; v++)
+		for (int i = 0; i < 3; i++) {
+			double x = m->xyz[3 * v + i];
+			if (!isfinite(x))
+				return fct_fail(err, "segment: vertex %zu: coordinate not finite", v);
+			lo[i] = x < lo[i] ? x : lo[i];
+			hi[i] = x > hi[i] ? x : hi[i];
+		}
+	*diag2 = 0;
+	if (m->nv)
+		for (int i = 0; i < 3; i++)
+			*diag2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+	return 0;
+}
+
+/* A third of the mean face area, so that a regular mesh's face counts as
+ * its three corners would.  Sets S->wv to 1 (its first use). */
+static double area_unit(struct seg *S)
+{
+	const struct fct_mesh *m = S->m;
+	double area = 0;
+	for (size_t v = 0; v < m->nv; v++)
+		S->wv[v] = 1;
+	for (size_t f = 0; f < m->nf; f++) {
+		struct region t;
+		face_moments(&t, m, f, 1, S->wv, 1);
+		area += t.n;
+	}
+	return area > 0 ? area / (3.0 * m->nf) : 1;
+}
+
+/* Each vertex's weight S->wv, 1 / sigma^2, and S->isigma, 1 / sigma: from
+ * the noise model, or else from the noise the data show (noise.h), or
+ * else (too few vertices to tell) the floor of exact data.  The median
+ * sigma into the stats. */
+static int vertex_weights(struct seg *S, struct fct_err *err)
+{
+	const struct fct_mesh *m = S->m;
+	int rc = -1;
+	struct fct_arena ar = { 0 };
+	float *sv = fct_arena_array(&ar, m->nv, sizeof *sv, err);
+	uint32_t *count = fct_arena_array(&ar, 65536, sizeof *count, err);
+	S->isigma = fct_arena_array(&S->arena, m->nv, sizeof *S->isigma, err);
+	if (!sv || !count || !S->isigma)
+		goto done;
+	struct fct_err ignored;
+	int have = 1;
+	if (S->p->sigma) {
+		for (size_t v = 0; v < m->nv; v++)
+			sv[v] = (float)S->p->sigma[v];
+	} else if (fct_noise_estimate_vertices(sv, m, &ignored)) {
+		have = 0;
+	} else {
+		S->st.noise_estimated = 1;
+	}
+	double floor = sqrt(S->floor2);
+	for (size_t v = 0; v < m->nv; v++) {
+		double sg = have ? sv[v] : floor;
+		if (!(sg >= floor) || !isfinite(sg))
+			sg = isfinite(sg) && sg >= 0 ? floor : HUGE_VAL;
+		S->wv[v] = sg < HUGE_VAL && sg > 0 ? 1 / (sg * sg) : 0;
+		sv[v] = (float)(sg < HUGE_VAL ? sg : 0);
+	}
+	S->st.noise = m->nv ? select_float(sv, m->nv, (m->nv - 1) / 2, count) : 0;
+	for (size_t v = 0; v < m->nv; v++)
+		S->isigma[v] = sqrt(S->wv[v]);
+	rc = 0;
+done:
+	fct_arena_free(&ar);
+	return rc;
+}
+
+/* Phase 1: clusters.  Every pair's union costed and queued, then grown
+ * into clusters; the merges into the stats. */
+static int cluster(struct seg *S, struct fct_err *err)
+{
+	size_t nf = S->m->nf;
+	qkey *least = fct_alloc_array(nf, sizeof *least, err);
+	if (!least)
+		return -1;
+	for (size_t f = 0; f < nf; f++)
+		least[f] = UINT64_MAX;
+	/* Every pair's union: the first phase-1 key, and each face's least. */
+	for (size_t i = 0; i < S->npairs; i++) {
+		uint32_t f = S->pair[i][0], g = S->pair[i][1];
+		double tr, u = union_sse(&S->region[f], &S->region[g], &tr);
+		S->st.evaluations++;
+		if (rh_push(S, (float)u, i)) {
+			free(least);
+			return -1;
+		}
+		float fu = (float)u;
+		uint32_t bits;
+		memcpy(&bits, &fu, sizeof bits);
+		qkey key = (qkey)bits << 32 | i;
+		if (key < least[f])
+			least[f] = key;
+		if (key < least[g])
+			least[g] = key;
+	}
+	/* A pair that is the least of both its faces' is popped before
+	 * anything touches either face, its cost unchanged: such pairs are
+	 * settled now, in one pass over the pairs (the queue then finds them
+	 * inside one patch and drops them), which spares the queue a third of
+	 * its random accesses and changes no result. */
+	size_t pre = 0;
+	for (size_t i = 0; i < S->npairs; i++) {
+		uint32_t f = S->pair[i][0], g = S->pair[i][1];
+		if ((uint32_t)least[f] != i || (uint32_t)least[g] != i || least[f] == UINT64_MAX ||
+		    least[f] != least[g])
+			continue;
+		double sse;
+		if (cost1(S, f, g, &sse) >= 0) {
+			merge(S, f, g, sse);
+			pre++;
+		}
+	}
+	free(least);
+	long k = grow(S, 1);
+	if (k < 0)
+		return -1;
+	S->st.merges = (size_t)k + pre;
+	S->st.clusters = S->patches;
+	return 0;
+}
+
+/* Phase 2: patches, then fresh sweeps until one merges nothing.  Keeps
+ * the face pairs for finish (refill turns S->pair into patch pairs). */
+static int grow_patches(struct seg *S, struct fct_err *err)
+{
+	S->dirty = fct_arena_zeroed(&S->arena, S->m->nf, 1, err);
+	S->nfpairs = S->npairs;
+	S->fpair = fct_arena_array(&S->arena, S->npairs, sizeof *S->fpair, err);
+	if (!S->dirty || !S->fpair)
+		return -1;
+	memcpy(S->fpair, S->pair, S->npairs * sizeof *S->pair);
+	for (int first = 1;; first = 0) {
+		long k;
+		if (refill(S, first) || (k = grow(S, 2)) < 0)
+			return -1;
+		S->st.merges += (size_t)k;
+		if (S->p->target > 0 || k == 0 || S->st.sweeps == MAX_SWEEPS)
+			break;
+		S->st.sweeps++;
+	}
+	return 0;
+}
+
+/* The patches of fewer than min_faces faces absorbed (absorb); its
+ * scratch, two arrays of F, given back at once. */
+static int absorb_small(struct seg *S, struct fct_err *err)
+{
+	struct fct_arena ar = { 0 };
+	uint32_t *best = fct_arena_array(&ar, S->m->nf, sizeof *best, err);
+	double *gain = fct_arena_array(&ar, S->m->nf, sizeof *gain, err);
+	if (best && gain)
+		absorb(S, best, gain);
+	fct_arena_free(&ar);
+	return best && gain ? 0 : -1;
+}
+
+/* The run's scratch lives in S.arena, freed at the one exit; the pairs
+ * and the queue, the largest arrays of the growing phases, are given back
+ * before finish. */
 int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                 const struct fct_mesh *m, const struct fct_segment_params *p,
                 struct fct_segment_stats *stats, struct fct_err *err)
@@ -1365,24 +1592,14 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	size_t nf = m->nf;
 	if (nf > INT32_MAX)
 		return fct_fail(err, "segment: %zu faces, more than %d", nf, INT32_MAX);
-	double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-	for (size_t v = 0; v < m->nv; v++)
-		for (int i = 0; i < 3; i++) {
-			double x = m->xyz[3 * v + i];
-			if (!isfinite(x))
-				return fct_fail(err, "segment: vertex %zu: coordinate not finite", v);
-			lo[i] = x < lo[i] ? x : lo[i];
-			hi[i] = x > hi[i] ? x : hi[i];
-		}
+	double diag2 = 0;
+	if (box_diagonal2(m, &diag2, err))
+		return -1;
 	if (nf == 0) {
 		if (stats)
 			stats->seconds = fct_now() - t0;
 		return 0;
 	}
-	double diag2 = 0;
-	if (m->nv)
-		for (int i = 0; i < 3; i++)
-			diag2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
 	S.floor2 = 1e-14 * diag2;
 	S.max_ms = p->max_rms < HUGE_VAL ? p->max_rms * p->max_rms : HUGE_VAL;
 	S.stop = p->factor * p->factor;
@@ -1390,164 +1607,37 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	S.two_sided = !p->use_viewpoint;
 
 	int rc = -1;
-	qkey *least = NULL;
-	uint32_t *count = NULL, *best = NULL;
-	double *gain = NULL;
 	if (build_pairs(&S, err))
 		goto out;
 	S.st.adjacencies = S.npairs;
-	S.region = fct_alloc_array(nf, sizeof *S.region, err);
-	S.parent = fct_alloc_array(nf, sizeof *S.parent, err);
-	S.wv = fct_alloc_array(m->nv ? m->nv : 1, sizeof *S.wv, err);
-	least = fct_alloc_array(nf, sizeof *least, err);
-	if (!S.region || !S.parent || !S.wv || !least)
+	S.region = fct_arena_array(&S.arena, nf, sizeof *S.region, err);
+	S.parent = fct_arena_array(&S.arena, nf, sizeof *S.parent, err);
+	S.wv = fct_arena_array(&S.arena, m->nv, sizeof *S.wv, err);
+	if (!S.region || !S.parent || !S.wv)
 		goto out;
-	if (p->area_weighted) {
-		/* A third of the mean face area, so that a regular mesh's face
-		 * counts as its three corners would. */
-		double area = 0;
-		for (size_t v = 0; v < m->nv; v++)
-			S.wv[v] = 1;
-		for (size_t f = 0; f < nf; f++) {
-			struct region t;
-			face_moments(&t, m, f, 1, S.wv, 1);
-			area += t.n;
-		}
-		S.area_unit = area > 0 ? area / (3.0 * nf) : 1;
-	}
-	/* Each vertex's weight: 1 / sigma^2, from the noise model, or else
-	 * from the noise the data show (noise.h), or else (too few vertices to
-	 * tell) the floor of exact data. */
-	{
-		float *sv = fct_alloc_array(m->nv ? m->nv : 1, sizeof *sv, err);
-		count = fct_alloc_array(65536, sizeof *count, err);
-		if (!sv || !count) {
-			free(sv);
-			goto out;
-		}
-		struct fct_err ignored;
-		int have = 1;
-		if (p->sigma) {
-			for (size_t v = 0; v < m->nv; v++)
-				sv[v] = (float)p->sigma[v];
-		} else if (fct_noise_estimate_vertices(sv, m, &ignored)) {
-			have = 0;
-		} else {
-			S.st.noise_estimated = 1;
-		}
-		double floor = sqrt(S.floor2);
-		for (size_t v = 0; v < m->nv; v++) {
-			double sg = have ? sv[v] : floor;
-			if (!(sg >= floor) || !isfinite(sg))
-				sg = isfinite(sg) && sg >= 0 ? floor : HUGE_VAL;
-			S.wv[v] = sg < HUGE_VAL && sg > 0 ? 1 / (sg * sg) : 0;
-			sv[v] = (float)(sg < HUGE_VAL ? sg : 0);
-		}
-		S.st.noise = m->nv ? select_float(sv, m->nv, (m->nv - 1) / 2, count) : 0;
-		if (!(S.isigma = fct_alloc_array(m->nv ? m->nv : 1, sizeof *S.isigma, err))) {
-			free(sv);
-			goto out;
-		}
-		for (size_t v = 0; v < m->nv; v++)
-			S.isigma[v] = sqrt(S.wv[v]);
-		free(sv);
-		free(count);
-		count = NULL;
-	}
+	if (p->area_weighted)
+		S.area_unit = area_unit(&S);
+	if (vertex_weights(&S, err))
+		goto out;
 	for (size_t f = 0; f < nf; f++) {
 		face_moments(&S.region[f], m, f, p->area_weighted, S.wv, S.area_unit);
 		S.parent[f] = -1;
-		least[f] = UINT64_MAX;
 	}
 	S.patches = nf;
-
-	/* Every pair's union: the first phase-1 key, and each face's least. */
-	for (size_t i = 0; i < S.npairs; i++) {
-		uint32_t f = S.pair[i][0], g = S.pair[i][1];
-		double tr, u = union_sse(&S.region[f], &S.region[g], &tr);
-		S.st.evaluations++;
-		if (rh_push(&S, (float)u, i))
-			goto out;
-		float fu = (float)u;
-		uint32_t bits;
-		memcpy(&bits, &fu, sizeof bits);
-		qkey key = (qkey)bits << 32 | i;
-		if (key < least[f])
-			least[f] = key;
-		if (key < least[g])
-			least[g] = key;
-	}
-
-	/* Phase 1: clusters.  A pair that is the least of both its faces' is
-	 * popped before anything touches either face, its cost unchanged: such
-	 * pairs are settled now, in one pass over the pairs (the queue then
-	 * finds them inside one patch and drops them), which spares the queue a
-	 * third of its random accesses and changes no result. */
-	size_t pre = 0;
-	for (size_t i = 0; i < S.npairs; i++) {
-		uint32_t f = S.pair[i][0], g = S.pair[i][1];
-		if ((uint32_t)least[f] != i || (uint32_t)least[g] != i || least[f] == UINT64_MAX ||
-		    least[f] != least[g])
-			continue;
-		double sse;
-		if (cost1(&S, f, g, &sse) >= 0) {
-			merge(&S, f, g, sse);
-			pre++;
-		}
-	}
-	free(least);
-	least = NULL;
-	long k = grow(&S, 1);
-	if (k < 0)
+	if (cluster(&S, err) || grow_patches(&S, err))
 		goto out;
-	S.st.merges = (size_t)k + pre;
-	S.st.clusters = S.patches;
-
-	/* Phase 2: patches, then fresh sweeps until one merges nothing. */
-	S.dirty = calloc(nf, 1);
-	if (!S.dirty) {
-		fct_fail(err, "out of memory");
-		goto out;
-	}
-	/* The face pairs, kept for finish (refill turns them into patch pairs). */
-	S.nfpairs = S.npairs;
-	if (!(S.fpair = fct_alloc_array(S.npairs ? S.npairs : 1, sizeof *S.fpair, err)))
-		goto out;
-	memcpy(S.fpair, S.pair, S.npairs * sizeof *S.pair);
-	for (int first = 1;; first = 0) {
-		if (refill(&S, first) || (k = grow(&S, 2)) < 0)
-			goto out;
-		S.st.merges += (size_t)k;
-		if (p->target > 0 || k == 0 || S.st.sweeps == MAX_SWEEPS)
-			break;
-		S.st.sweeps++;
-	}
 	rh_free(&S.q);
-
-	if (p->min_faces > 1 && p->target <= 0) {
-		best = fct_alloc_array(nf, sizeof *best, err);
-		gain = fct_alloc_array(nf, sizeof *gain, err);
-		if (!best || !gain)
-			goto out;
-		absorb(&S, best, gain);
-		free(best), free(gain);
-		best = NULL, gain = NULL;
-	}
+	if (p->min_faces > 1 && p->target <= 0 && absorb_small(&S, err))
+		goto out;
 	free(S.pair);
 	S.pair = NULL;
 	if (finish(&S, patch, planes, nplanes, err))
 		goto out;
 	rc = 0;
 out:
-	free(count), free(best), free(gain), free(least);
-	free(S.region);
-	free(S.parent);
 	free(S.pair);
-	free(S.fpair);
-	free(S.wv);
-	free(S.isigma);
-	free(S.dirty);
 	rh_free(&S.q);
+	fct_arena_free(&S.arena);
 	S.st.seconds = fct_now() - t0;
 	if (stats && rc == 0)
 		*stats = S.st;
