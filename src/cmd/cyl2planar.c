@@ -195,15 +195,11 @@ int main(int argc, char **argv)
 		if (fct_mesh_read_file(&m, o.mesh, NULL, &err))
 			fct_die_err(&err);
 		int r = fct_header_camera(&m, &cam, &err);
-		if (r < 0) {
-			fct_err_prefix(&err, "%s", mname);
-			fct_die_err(&err);
-		}
+		if (r < 0)
+			fct_die_err_at(&err, "%s", mname);
 		have_cam = r;
-		if ((r = fct_header_pose(&m, pose, &err)) < 0) {
-			fct_err_prefix(&err, "%s", mname);
-			fct_die_err(&err);
-		}
+		if ((r = fct_header_pose(&m, pose, &err)) < 0)
+			fct_die_err_at(&err, "%s", mname);
 		have_pose = r;
 		if (!o.pano && !(o.pano = fct_header_texture(&m, 0)))
 			fct_usage_error("%s: no TextureFile: name the panorama", mname);
@@ -234,10 +230,8 @@ int main(int argc, char **argv)
 	if (cam.width == 0)
 		cam.width = img.width, cam.height = img.height;
 	double seam_ratio;
-	if (fct_cylview_check_panorama(&img, &cam, o.seam_check, &seam_ratio, &err)) {
-		fct_err_prefix(&err, "%s", pname);
-		fct_die_err(&err);
-	}
+	if (fct_cylview_check_panorama(&img, &cam, o.seam_check, &seam_ratio, &err))
+		fct_die_err_at(&err, "%s", pname);
 	if (o.mesh && img.type == FCT_PIX_F32)
 		fct_die(1, "%s: a PFM image cannot texture a model: give a PNG", pname);
 
@@ -291,10 +285,8 @@ int main(int argc, char **argv)
 		char *name = xprintf("%s/view%02d%s", o.out, (int)k, ext);
 		struct fct_image vi;
 		double t3 = fct_now();
-		if (fct_cylview_render(&img, &cam, &views[k], &vi, &err)) {
-			fct_err_prefix(&err, "%s", pname);
-			fct_die_err(&err);
-		}
+		if (fct_cylview_render(&img, &cam, &views[k], &vi, &err))
+			fct_die_err_at(&err, "%s", pname);
 		double t4 = fct_now();
 		split_s += t4 - t3;
 		fct_write_image_or_die(&vi, name);

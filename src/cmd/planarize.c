@@ -228,13 +228,6 @@ static void stage_done(const char *name, const struct fct_mesh *m, double c0)
 	lines[nlines++] = (struct stage_line){ name, m->nv, m->nf, fct_cpu_time() - c0 };
 }
 
-/* Die of a stage's failure: "planarize: STAGE: what". */
-static _Noreturn void stage_die(const char *stage, struct fct_err *err)
-{
-	fct_err_prefix(err, "%s", stage);
-	fct_die_err(err);
-}
-
 /* Open the input and tell a depth image from a mesh by its first byte:
  * the PNG signature's 0x89, JPEG's 0xFF, PFM's 'P' (a mesh is PLY, "ply",
  * or OBJ, whose keywords are lower case). */
@@ -260,11 +253,8 @@ static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct option
 		fct_die_err(&err);
 	fct_depth_opts_resolve(&o->d, cam, &img, name);
 	struct fct_grid_stats st;
-	if (fct_depth_mesh(m, &img, cam, &o->d.depth, &st, &err)) {
-		fct_image_free(&img);
-		fct_err_prefix(&err, "%s", name);
-		stage_die("dm2mesh", &err);
-	}
+	if (fct_depth_mesh(m, &img, cam, &o->d.depth, &st, &err))
+		fct_die_err_at(&err, "dm2mesh: %s", name);
 	stage_report("dm2mesh", "pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	fct_image_free(&img);
 	stage_report("dm2mesh", "jump_faces", "%zu", st.jump_faces);
@@ -274,7 +264,7 @@ static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct option
 	stage_report("dm2mesh", "noise", "%s", *noise ? noise : "unknown");
 	o->d.image_file = o->image;
 	if (fct_depth_opts_finish(&o->d, m, cam, &err))
-		stage_die("dm2mesh", &err);
+		fct_die_err_at(&err, "dm2mesh");
 	stage_report("dm2mesh", "double_xyz", "%d", o->d.double_xyz);
 }
 
@@ -298,10 +288,8 @@ static void mesh_read(struct fct_mesh *m, struct fct_camera *cam, const struct o
 	}
 	if (o->d.first)
 		fct_usage_error("%s: for depth images, and %s is a mesh", o->d.first, name);
-	if (fct_header_camera(m, cam, &err) < 0) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_header_camera(m, cam, &err) < 0)
+		fct_die_err_at(&err, "%s", name);
 	if (o->image && fct_header_set_texture(m, 0, o->image, &err))
 		fct_die_err(&err);
 }
@@ -397,14 +385,12 @@ static void texture_panorama(struct fct_mesh *m, const struct fct_camera *cam,
 	int hp = fct_header_pose(m, pose, &err);
 	struct fct_cylview_model_stats st;
 	if (hp < 0)
-		stage_die("cyl2planar", &err);
-	if (fct_cylview_check_panorama(&img, cam, 1, NULL, &err)) {
-		fct_err_prefix(&err, "%s", path);
-		stage_die("cyl2planar", &err);
-	}
+		fct_die_err_at(&err, "cyl2planar");
+	if (fct_cylview_check_panorama(&img, cam, 1, NULL, &err))
+		fct_die_err_at(&err, "cyl2planar: %s", path);
 	if (fct_cylview_texture_model(m, &img, cam, hp ? pose : NULL, &o->view, 1, "the model", o->out,
 	                              &st, &err))
-		stage_die("cyl2planar", &err);
+		fct_die_err_at(&err, "cyl2planar");
 	fct_image_free(&img);
 	stage_report("cyl2planar", "views_used", "%zu", st.assign.views_used);
 	stage_report("cyl2planar", "splits", "%zu", st.assign.splits);
@@ -464,10 +450,8 @@ int main(int argc, char **argv)
 		o.seg.min_faces = m.nf / 600 > 8 ? (long)(m.nf / 600) : 8;
 	c1 = fct_cpu_time();
 	struct fct_segment_stats sst;
-	if (fct_segment_mesh(&m, &o.seg, o.tls, &sst, &err)) {
-		fct_err_prefix(&err, "%s", fct_path_display(o.input));
-		stage_die("segplanes", &err);
-	}
+	if (fct_segment_mesh(&m, &o.seg, o.tls, &sst, &err))
+		fct_die_err_at(&err, "segplanes: %s", fct_path_display(o.input));
 	stage_report("segplanes", "min_faces", "%ld", o.seg.min_faces);
 	stage_report("segplanes", "patches", "%zu", sst.patches);
 	stage_report("segplanes", "noise", "%.9g", sst.noise);
@@ -480,10 +464,8 @@ int main(int argc, char **argv)
 
 	c1 = fct_cpu_time();
 	struct fct_planar_stats pst;
-	if (fct_planar_model(&m, &o.plan, &pst, &err)) {
-		fct_err_prefix(&err, "%s", fct_path_display(o.input));
-		stage_die("planedecim", &err);
-	}
+	if (fct_planar_model(&m, &o.plan, &pst, &err))
+		fct_die_err_at(&err, "planedecim: %s", fct_path_display(o.input));
 	report_model(&pst);
 	stage_done("planedecim", &m, c1);
 	keep_stage(&o, &m, "3-model.ply");

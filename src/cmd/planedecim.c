@@ -100,11 +100,8 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	double t1 = fct_now();
 	struct fct_planar_stats st;
-	if (fct_planar_model(&m, &par, &st, &err)) {
-		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_planar_model(&m, &par, &st, &err))
+		fct_die_err_at(&err, "%s", name);
 	double t2 = fct_now();
 	if (fct_header_add_provenance(&m, "planedecim", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err)) {

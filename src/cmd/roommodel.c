@@ -306,19 +306,13 @@ static void stage_end(const char *stage, const struct fct_mesh *m, double cpu0, 
 		        m->nv, m->nf, fct_cpu_time() - cpu0, fct_now() - wall0);
 }
 
-static _Noreturn void stage_die(const char *stage, struct fct_err *err)
-{
-	fct_err_prefix(err, "%s", stage);
-	fct_die_err(err);
-}
-
 /* Stage 1: the depth images fused one at a time, the surface extracted. */
 static void fuse(struct fct_mesh *out, struct sequence *s, const struct options *o)
 {
 	struct fct_err err;
 	struct fct_voxgrid *g = fct_voxgrid_new(o->voxel, 0, &err);
 	if (!g)
-		stage_die("tsdfuse", &err);
+		fct_die_err_at(&err, "tsdfuse");
 	long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
 	if (pages > 0 && page > 0)
 		fct_voxgrid_set_limit(g, (size_t)(0.85 * (double)pages * (double)page));
@@ -343,16 +337,14 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 		int rc = fct_fuse_depth_view(&view, &mesh, NULL, &img, &cam, &s->dp, &o->smooth,
 		                             &s->pose[12 * i], &err);
 		fct_image_free(&img);
-		if (rc || fct_fuse_view(g, &view, &o->fp, &st, &err)) {
-			fct_err_prefix(&err, "%s", s->depth[i]);
-			stage_die("tsdfuse", &err);
-		}
+		if (rc || fct_fuse_view(g, &view, &o->fp, &st, &err))
+			fct_die_err_at(&err, "tsdfuse: %s", s->depth[i]);
 		fct_mesh_free(&mesh);
 		fct_progress_update(&pr, (double)i + 1, (double)s->n);
 	}
 	fct_progress_end(&pr);
 	if (fct_mcubes_stats(g, 0, NULL, NULL, o->fp.threads, out, NULL, &err))
-		stage_die("tsdfuse", &err);
+		fct_die_err_at(&err, "tsdfuse");
 	char noise[256];
 	fct_noise_format(&s->dp.noise, noise, sizeof noise);
 	figure("tsdfuse", "views", "%zu", s->n);
@@ -380,7 +372,7 @@ static void planar_model(struct fct_mesh *m, struct options *o, const char *keep
 	double c0 = fct_cpu_time(), t0 = fct_now();
 	struct fct_segment_stats sst;
 	if (fct_segment_mesh(m, &o->seg, 0, &sst, &err))
-		stage_die("segplanes", &err);
+		fct_die_err_at(&err, "segplanes");
 	figure("segplanes", "patches", "%zu", sst.patches);
 	figure("segplanes", "noise", "%.9g", sst.noise);
 	figure("segplanes", "free_faces", "%zu", sst.free_faces);
@@ -390,7 +382,7 @@ static void planar_model(struct fct_mesh *m, struct options *o, const char *keep
 	c0 = fct_cpu_time(), t0 = fct_now();
 	struct fct_planar_stats pst;
 	if (fct_planar_model(m, &o->plan, &pst, &err))
-		stage_die("planedecim", &err);
+		fct_die_err_at(&err, "planedecim");
 	figure("planedecim", "planes", "%zu", pst.planes);
 	figure("planedecim", "planar_triangles", "%zu", pst.planar_triangles);
 	figure("planedecim", "free_faces", "%zu", pst.free_faces);
@@ -407,7 +399,7 @@ static void texture(struct fct_mesh *m, const struct sequence *s, const struct o
 	struct fct_viewtex *T = fct_viewtex_new(m, s->n, &o->tex, &err);
 	size_t any = 0, *seen = fct_alloc_array(s->n, sizeof *seen, &err);
 	if (!T || !seen || fct_viewtex_add_photos(T, s->photo, s->n, seen, &err))
-		stage_die("viewtex", &err);
+		fct_die_err_at(&err, "viewtex");
 	for (size_t i = 0; i < s->n; i++)
 		any += seen[i];
 	free(seen);
@@ -416,7 +408,7 @@ static void texture(struct fct_mesh *m, const struct sequence *s, const struct o
 		        "and the camera)");
 	if (fct_viewtex_label(T, &err) || fct_viewtex_layout(T, &err) ||
 	    fct_viewtex_sample_photos(T, s->photo, s->n, &err) || fct_viewtex_finish(T, &err))
-		stage_die("viewtex", &err);
+		fct_die_err_at(&err, "viewtex");
 	size_t npages = fct_viewtex_npages(T);
 	char **names = fct_viewtex_page_names(o->out, npages, &err);
 	if (!names)

@@ -104,10 +104,8 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	double read_s = fct_now() - t0;
 	struct fct_segment_stats st;
-	if (fct_segment_mesh(&m, &sp, tls, &st, &err)) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_segment_mesh(&m, &sp, tls, &st, &err))
+		fct_die_err_at(&err, "%s", name);
 	double seg_s = fct_now() - t0 - read_s;
 	if (fct_header_add_provenance(&m, "segplanes", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err))

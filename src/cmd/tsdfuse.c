@@ -269,10 +269,8 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		double step;
 		int rc = fct_range_grid_mesh(&L->mesh, &raw, NULL, &step, &err);
 		fct_mesh_free(&raw);
-		if (rc) {
-			fct_err_prefix(&err, "%s", s->path);
-			fct_die_err(&err);
-		}
+		if (rc)
+			fct_die_err_at(&err, "%s", s->path);
 		for (size_t v = 0; v < L->mesh.nv; v++)
 			fct_pose_apply(s->pose, &L->mesh.xyz[3 * v], &L->mesh.xyz[3 * v]);
 		memcpy(L->view.pose, s->pose, sizeof s->pose);
@@ -299,10 +297,8 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		int rc = fct_fuse_depth_view(&L->view, &L->mesh, o->fp.projective ? &L->depth : NULL,
 		                             &img, &cam, dp, &o->smooth, dpose, &err);
 		fct_image_free(&img);
-		if (rc) {
-			fct_err_prefix(&err, "%s", path);
-			fct_die_err(&err);
-		}
+		if (rc)
+			fct_die_err_at(&err, "%s", path);
 		L->depth_image = 1;
 	} else {
 		const char *path = o->views[idx];
@@ -310,23 +306,17 @@ static void load_view(struct options *o, size_t idx, const struct fct_conf *conf
 		if (fct_mesh_read_file(&L->mesh, path, NULL, &err))
 			fct_die_err(&err);
 		int c = fct_header_camera(&L->mesh, &L->view.cam, &err);
-		if (c < 0) {
-			fct_err_prefix(&err, "%s", L->name);
-			fct_die_err(&err);
-		}
+		if (c < 0)
+			fct_die_err_at(&err, "%s", L->name);
 		if (c == 0)
 			fct_die(1, "%s: no camera comment: tsdfuse needs each view's camera (dm2mesh writes it)", L->name);
 		c = fct_header_pose(&L->mesh, L->view.pose, &err);
-		if (c < 0) {
-			fct_err_prefix(&err, "%s", L->name);
-			fct_die_err(&err);
-		}
+		if (c < 0)
+			fct_die_err_at(&err, "%s", L->name);
 		if (c == 0)
 			fct_die(1, "%s: no pose comment: tsdfuse needs each view's camera-to-world pose (dm2mesh --pose)", L->name);
-		if (fct_pose_check(L->view.pose, 1e-3, &err)) {
-			fct_err_prefix(&err, "%s: pose", L->name);
-			fct_die_err(&err);
-		}
+		if (fct_pose_check(L->view.pose, 1e-3, &err))
+			fct_die_err_at(&err, "%s: pose", L->name);
 		if (o->color && fct_header_texture_count(&L->mesh)) {
 			/* On disk a TextureFile is relative to its mesh's folder. */
 			char *dir = fct_path_dir(path, &err);
@@ -571,19 +561,15 @@ static void color_vertices(struct views *vs, struct fct_mesh *out, size_t *ncolo
 			struct fct_range_image ri;
 			struct fct_image img;
 			size_t seen;
-			if (fct_range_image_make(&ri, &L.view, (size_t)1 << 26, &err)) {
-				fct_err_prefix(&err, "%s", L.name);
-				fct_die_err(&err);
-			}
+			if (fct_range_image_make(&ri, &L.view, (size_t)1 << 26, &err))
+				fct_die_err_at(&err, "%s", L.name);
 			if (fct_image_read_file(&img, L.image, NULL, &err))
 				fct_die_err(&err);
 			int rc = fct_viewcolor_add(&acc, out, &ri, &img, &cp, &seen, &err);
 			fct_image_free(&img);
 			fct_range_image_free(&ri);
-			if (rc) {
-				fct_err_prefix(&err, "%s", L.name);
-				fct_die_err(&err);
-			}
+			if (rc)
+				fct_die_err_at(&err, "%s", L.name);
 			if (fct_verbose)
 				fprintf(stderr, "tsdfuse: colour from %s: %zu vertices seen\n", L.name, seen);
 		}
@@ -621,10 +607,8 @@ static void fuse_views(struct views *vs, struct fct_voxgrid *g, struct fct_carvi
 		}
 		double tv = fct_now();
 		size_t before = st->voxels;
-		if (fct_fuse_view(g, &L.view, &o->fp, st, &err)) {
-			fct_err_prefix(&err, "%s", L.name);
-			fct_die_err(&err);
-		}
+		if (fct_fuse_view(g, &L.view, &o->fp, st, &err))
+			fct_die_err_at(&err, "%s", L.name);
 		if (st->voxels == before)
 			warn_unused(&L, o->has_bbox);
 		double dt = fct_now() - tv;
@@ -638,10 +622,8 @@ static void fuse_views(struct views *vs, struct fct_voxgrid *g, struct fct_carvi
 			double vox = o->voxel;
 			if (L.view.cam.kind == FCT_CAMERA_NONE && L.view.ortho_step < vox / 2)
 				L.view.ortho_step = vox / 2;
-			if (fct_range_image_make(&ri, &L.view, (size_t)1 << 26, &err)) {
-				fct_err_prefix(&err, "%s", L.name);
-				fct_die_err(&err);
-			}
+			if (fct_range_image_make(&ri, &L.view, (size_t)1 << 26, &err))
+				fct_die_err_at(&err, "%s", L.name);
 			fct_carving_add(carving, &ri);
 			fct_range_image_free(&ri);
 			*carve_s += fct_now() - tc;

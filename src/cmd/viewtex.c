@@ -190,10 +190,8 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	const char *name = fct_path_display(o.mesh);
 	struct fct_viewtex *T = fct_viewtex_new(&m, o.nimages, &o.p, &err);
-	if (!T) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (!T)
+		fct_die_err_at(&err, "%s", name);
 	double read_s = fct_now() - t0;
 
 	/* Candidates, one photo at a time. */

@@ -114,6 +114,17 @@ void fct_die_err(const struct fct_err *err)
 	exit(1);
 }
 
+void fct_die_err_at(struct fct_err *err, const char *fmt, ...)
+{
+	char where[512];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(where, sizeof where, fmt, ap);
+	va_end(ap);
+	fct_err_prefix(err, "%s", where);
+	fct_die_err(err);
+}
+
 void fct_warn(const char *fmt, ...)
 {
 	if (fct_quiet)
