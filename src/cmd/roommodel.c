@@ -20,6 +20,7 @@
 #include "dataset.h"
 #include "depthsmooth.h"
 #include "fuse.h"
+#include "fuseopts.h"
 #include "header.h"
 #include "mcubes.h"
 #include "meshio.h"
@@ -80,18 +81,13 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum { OPT_VERSION = 256, OPT_CAMERA, OPT_SCALE, OPT_NOISE, OPT_SMOOTH, OPT_POSES, OPT_IMAGE,
-       OPT_MAXDIFF, OPT_VOXEL, OPT_TRUNC, OPT_THREADS, OPT_MINPLANE, OPT_ATLAS, OPT_BLEND,
-       OPT_LEVEL, OPT_TEXEL, OPT_KEEP };
+enum { OPT_VERSION = 256, OPT_MINPLANE, OPT_ATLAS, OPT_BLEND, OPT_LEVEL, OPT_TEXEL, OPT_KEEP };
 
 struct options {
-	const char *out, *keep, *K, *camera, *noise, *folder;
-	const char **poses, **images, **depths;
-	size_t nposes, nimages, ndepths;
-	int scale_given;
-	double depth_scale, voxel, trunc, max_diff;
-	struct fct_depth_smooth smooth;
-	struct fct_fuse_params fp;
+	const char *out, *keep, *folder;
+	const char **depths;
+	size_t ndepths;
+	struct fct_fuse_opts f;  /* tsdfuse's, 2 cm voxels */
 	struct fct_segment_params seg;
 	struct fct_planar_params plan;
 	struct fct_viewtex_params tex;
@@ -101,13 +97,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 {
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, OPT_VERSION},
-		{"camera", required_argument, NULL, OPT_CAMERA},
-		{"depth-scale", required_argument, NULL, OPT_SCALE},
-		{"noise", required_argument, NULL, OPT_NOISE}, {"smooth", required_argument, NULL, OPT_SMOOTH},
-		{"poses", required_argument, NULL, OPT_POSES}, {"image", required_argument, NULL, OPT_IMAGE},
-		{"max-difference", required_argument, NULL, OPT_MAXDIFF},
-		{"voxel", required_argument, NULL, OPT_VOXEL}, {"trunc", required_argument, NULL, OPT_TRUNC},
-		{"threads", required_argument, NULL, OPT_THREADS},
+		FCT_FUSE_LONGOPTS,
 		{"min-plane", required_argument, NULL, OPT_MINPLANE},
 		{"atlas-size", required_argument, NULL, OPT_ATLAS}, {"blend", no_argument, NULL, OPT_BLEND},
 		{"level", required_argument, NULL, OPT_LEVEL},
@@ -121,41 +111,21 @@ static void parse_options(int argc, char **argv, struct options *o)
 	long n;
 	memset(o, 0, sizeof *o);
 	o->out = "model.obj";
-	o->voxel = 0.02;
-	o->trunc = 3;
-	o->depth_scale = 1000;
-	o->max_diff = 0.02;
-	fct_depth_smooth_default(&o->smooth);
+	fct_fuse_opts_init(&o->f, argc, 0.02, 1e-4, 1);
 	fct_segment_params_default(&o->seg);
 	fct_planar_params_default(&o->plan);
 	fct_viewtex_params_default(&o->tex);
-	o->poses = calloc((size_t)argc + 1, sizeof *o->poses);
-	o->images = calloc((size_t)argc + 1, sizeof *o->images);
-	if (!o->poses || !o->images)
-		fct_die(1, "out of memory");
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		if (fct_fuse_opt(&o->f, c, optarg))
+			continue;
 		switch (c) {
 		case 'c': o->seg.factor = fct_opt_double("-c", optarg, 0, HUGE_VAL); break;
 		case 'e': o->plan.max_error = fct_opt_double("-e", optarg, 0, INFINITY); break;
 		case 'h': fputs(usage, stdout); exit(0);
-		case 'K': o->K = optarg; break;
 		case 'o': o->out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("roommodel (facet) " FCT_VERSION); exit(0);
-		case OPT_CAMERA: o->camera = optarg; break;
-		case OPT_SCALE:
-			o->depth_scale = fct_opt_double("--depth-scale", optarg, 1e-300, 1e300);
-			o->scale_given = 1;
-			break;
-		case OPT_NOISE: o->noise = optarg; break;
-		case OPT_SMOOTH: o->smooth.radius = (int)fct_opt_long("--smooth", optarg, 0, 64); break;
-		case OPT_POSES: o->poses[o->nposes++] = optarg; break;
-		case OPT_IMAGE: o->images[o->nimages++] = optarg; break;
-		case OPT_MAXDIFF: o->max_diff = fct_opt_double("--max-difference", optarg, 0, 1e9); break;
-		case OPT_VOXEL: o->voxel = fct_opt_double("--voxel", optarg, 1e-4, 1); break;
-		case OPT_TRUNC: o->trunc = fct_opt_double("--trunc", optarg, 1, 100); break;
-		case OPT_THREADS: o->fp.threads = (int)fct_opt_long("--threads", optarg, 0, 64); break;
 		case OPT_MINPLANE:
 			o->plan.min_plane = (size_t)fct_opt_long("--min-plane", optarg, 0, 0x7fffffffL);
 			break;
@@ -189,27 +159,26 @@ static void parse_options(int argc, char **argv, struct options *o)
 		fct_usage_error("no sequence: give a 7-Scenes, TUM or Redwood folder, or depth images");
 	if (fct_path_is_std(o->out))
 		fct_usage_error("-o: the model must be a named file (the atlas is written beside it)");
-	if (o->K && o->camera)
+	if (o->f.K && o->f.camera)
 		fct_usage_error("-K and --camera exclude each other");
 	struct stat sb;
 	if (argc - optind == 1 && stat(argv[optind], &sb) == 0 && S_ISDIR(sb.st_mode)) {
 		o->folder = argv[optind];
-		if (o->nimages || o->nposes)
+		if (o->f.nimages || o->f.nposes)
 			fct_usage_error("%s: a folder names its own images and poses (no --image, --poses)",
 			                o->folder);
 	} else {
 		o->depths = (const char **)argv + optind;
 		o->ndepths = (size_t)(argc - optind);
-		if (o->nimages != o->ndepths)
+		if (o->f.nimages != o->ndepths)
 			fct_usage_error("%zu depth images but %zu --image files (one colour image each)",
-			                o->ndepths, o->nimages);
-		if (!o->nposes)
+			                o->ndepths, o->f.nimages);
+		if (!o->f.nposes)
 			fct_usage_error("depth images need --poses");
-		if (!o->K && !o->camera)
+		if (!o->f.K && !o->f.camera)
 			fct_usage_error("depth images need -K or --camera");
 	}
-	o->fp.band = o->trunc * o->voxel;
-	o->smooth.voxel = o->voxel;
+	fct_fuse_opts_check(&o->f);
 }
 
 /* The sequence: the frames' depth and colour images and their poses. */
@@ -229,39 +198,28 @@ static void sequence_open(struct sequence *s, struct options *o)
 	const char *intrinsics = NULL; /* a folder's own, when no camera is given */
 	memset(s, 0, sizeof *s);
 	if (o->folder) {
-		if (fct_dataset_read(&s->ds, o->folder, o->max_diff, &err))
+		if (fct_dataset_read(&s->ds, o->folder, o->f.max_diff, &err))
 			fct_die_err(&err);
 		s->depth = (const char *const *)s->ds.depth, s->color = (const char *const *)s->ds.color;
 		s->pose_files = (const char *const *)s->ds.poses;
 		s->n = s->ds.n, s->nposes = s->ds.nposes;
-		if (!o->K && !o->camera) {
-			o->K = s->ds.camera;
+		if (!o->f.K && !o->f.camera) {
+			o->f.K = s->ds.camera;
 			intrinsics = s->ds.intrinsics;
 		}
 		fct_report("sequence", "%s, %zu frames", s->ds.layout, s->n);
 	} else {
-		s->depth = o->depths, s->color = o->images, s->pose_files = o->poses;
-		s->n = o->ndepths, s->nposes = o->nposes;
+		s->depth = o->depths, s->color = o->f.images, s->pose_files = o->f.poses;
+		s->n = o->ndepths, s->nposes = o->f.nposes;
 	}
 	/* The camera, the depth units and the noise: -K's dataset name sets
 	 * the last two unless given. */
-	double named_scale;
-	fct_opt_camera(&s->cam, &named_scale, NULL, o->K, o->camera);
-	if (intrinsics && fct_camera_read_file(intrinsics, &s->cam, &err))
-		fct_die_err(&err);
-	fct_depth_params_default(&s->dp);
-	s->dp.texcoords = 0;
-	s->dp.depth_scale = o->scale_given || !(named_scale > 0) ? o->depth_scale : named_scale;
-	s->dp.scale_float = o->scale_given;
-	s->dp.focal = s->cam.fx;
-	if (o->noise && fct_noise_names_model(o->noise)) {
-		if (fct_noise_parse(&s->dp.noise, o->noise, &err))
-			fct_usage_error("--%s", err.msg);
-	} else if (o->noise) {
-		if (fct_noise_read_file(o->noise, &s->dp.noise, &err))
+	fct_fuse_opts_depth(&o->f, &s->cam, &s->dp, NULL);
+	if (intrinsics) {       /* the folder's own focal lengths and centre */
+		if (fct_camera_read_file(intrinsics, &s->cam, &err))
 			fct_die_err(&err);
-	} else if (o->K)
-		fct_noise_named(o->K, &s->dp.noise);
+		s->dp.focal = s->cam.fx;
+	}
 	/* Every file is there and an image before the work starts. */
 	for (size_t i = 0; i < s->n; i++) {
 		struct fct_image probe;
@@ -271,7 +229,7 @@ static void sequence_open(struct sequence *s, struct options *o)
 	}
 	struct fct_frame_poses_stats st;
 	if (!(s->pose = fct_alloc_array(s->n, 12 * sizeof *s->pose, &err)) ||
-	    fct_frame_poses(s->pose, &st, s->pose_files, s->nposes, s->depth, s->n, o->max_diff, &err) ||
+	    fct_frame_poses(s->pose, &st, s->pose_files, s->nposes, s->depth, s->n, o->f.max_diff, &err) ||
 	    fct_photos_make(&s->photo, &s->cam, s->color, s->n, s->pose_files, s->nposes, &err))
 		fct_die_err(&err);
 	fct_report("poses", "%s", fct_traj_format_name(st.format));
@@ -310,7 +268,7 @@ static void stage_end(const char *stage, const struct fct_mesh *m, double cpu0, 
 static void fuse(struct fct_mesh *out, struct sequence *s, const struct options *o)
 {
 	struct fct_err err;
-	struct fct_voxgrid *g = fct_voxgrid_new(o->voxel, 0, &err);
+	struct fct_voxgrid *g = fct_voxgrid_new(o->f.voxel, 0, &err);
 	if (!g)
 		fct_die_err_at(&err, "tsdfuse");
 	long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
@@ -334,16 +292,16 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 			fct_warn("%s: %s", s->depth[i], why);
 		struct fct_mesh mesh;
 		struct fct_fuse_view view;
-		int rc = fct_fuse_depth_view(&view, &mesh, NULL, &img, &cam, &s->dp, &o->smooth,
+		int rc = fct_fuse_depth_view(&view, &mesh, NULL, &img, &cam, &s->dp, &o->f.smooth,
 		                             &s->pose[12 * i], &err);
 		fct_image_free(&img);
-		if (rc || fct_fuse_view(g, &view, &o->fp, &st, &err))
+		if (rc || fct_fuse_view(g, &view, &o->f.fp, &st, &err))
 			fct_die_err_at(&err, "tsdfuse: %s", s->depth[i]);
 		fct_mesh_free(&mesh);
 		fct_progress_update(&pr, (double)i + 1, (double)s->n);
 	}
 	fct_progress_end(&pr);
-	if (fct_mcubes_stats(g, 0, NULL, NULL, o->fp.threads, out, NULL, &err))
+	if (fct_mcubes_stats(g, 0, NULL, NULL, o->f.fp.threads, out, NULL, &err))
 		fct_die_err_at(&err, "tsdfuse");
 	char noise[256];
 	fct_noise_format(&s->dp.noise, noise, sizeof noise);
@@ -499,7 +457,6 @@ int main(int argc, char **argv)
 		free(keep[i]);
 	fct_mesh_free(&m);
 	sequence_close(&s);
-	free(o.poses);
-	free(o.images);
+	fct_fuse_opts_free(&o.f);
 	return 0;
 }
