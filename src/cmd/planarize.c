@@ -22,8 +22,8 @@
 #include "header.h"
 #include "meshio.h"
 #include "path.h"
-#include "planemodel.h"
-#include "segmesh.h"
+#include "planaropts.h"
+#include "segopts.h"
 
 static const char usage[] =
 	"usage: planarize [-aqv] [-o model] [-K fx,fy,cx,cy | name] [--camera file]\n"
@@ -63,30 +63,9 @@ static const char usage[] =
 	"      --pose file    camera-to-world pose: the model in world coordinates\n"
 	"      --image file   the co-registered image (or the second operand)\n"
 	"Planar patches, as segplanes(1):\n"
-	"  -c factor          merge while the smaller patch moves by at most factor\n"
-	"                     sigma, rms (default 3)\n"
-	"  -n patches         stop at this many patches instead\n"
-	"      --area-weighted\n"
-	"                     weight each face by its area\n"
-	"      --fit k        a patch's points stay within k sigma of its plane, rms\n"
-	"                     (default 1.5)\n"
-	"      --max-dev k    no face farther than k sigma from its patch's plane: it\n"
-	"                     is free-form (default 3)\n"
-	"      --max-rms r    never make a patch of rms above r (metres)\n"
-	"      --min-extent k a patch narrower than k sigma is free-form (default 10)\n"
-	"      --min-faces k  absorb patches of fewer faces (default: one in 600 of the\n"
-	"                     dense mesh's faces, at least 8)\n"
-	"      --tls          fit planes orthogonally, not along the camera's rays\n"
+	FCT_SEG_USAGE
 	"The planar model, as planedecim(1):\n"
-	"  -e error           the free-form decimation's bound: the largest quadric\n"
-	"                     distance of a collapse, in sigma (default 1.5)\n"
-	"      --border k     a border may move by k edge lengths (default 1)\n"
-	"      --max-hole k   fill holes of at most k edges inside a patch (64)\n"
-	"      --max-move k   move a vertex onto a line or corner by at most k sigma\n"
-	"                     (default 4)\n"
-	"      --min-free k   a speck of fewer faces joins the label around it (64)\n"
-	"      --min-plane k  a patch of fewer faces is free-form (default 64)\n"
-	"      --outline k    simplify outlines to k sample spacings (default 3)\n"
+	FCT_PLANAR_USAGE
 	"A panorama's texture, as cyl2planar(1):\n"
 	"      --count n, --fov deg\n"
 	"                     n planar views of deg degrees, written beside the model\n"
@@ -94,17 +73,13 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum {
-	OPT_VERSION = 256, OPT_AREA, OPT_FIT, OPT_MAXDEV, OPT_MAXRMS, OPT_MINEXTENT, OPT_MINFACES, OPT_TLS,
-	OPT_BORDER, OPT_MAXHOLE, OPT_MAXMOVE, OPT_MINFREE, OPT_MINPLANE, OPT_OUTLINE, OPT_COUNT,
-	OPT_FOV, OPT_KEEP
-};
+enum { OPT_VERSION = 256, OPT_COUNT, OPT_FOV, OPT_KEEP };
 
 struct options {
 	const char *out, *keep, *input, *image;
-	int ascii, tls, factor_given, min_faces_given;
+	int ascii;
 	struct fct_depth_opts d;
-	struct fct_segment_params seg;
+	struct fct_seg_opts s;
 	struct fct_planar_params plan;
 	struct fct_cylview_params view;
 };
@@ -115,19 +90,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, OPT_VERSION},
 		FCT_DEPTH_LONGOPTS,
-		{"area-weighted", no_argument, NULL, OPT_AREA},
-		{"fit", required_argument, NULL, OPT_FIT},
-		{"max-dev", required_argument, NULL, OPT_MAXDEV},
-		{"max-rms", required_argument, NULL, OPT_MAXRMS},
-		{"min-extent", required_argument, NULL, OPT_MINEXTENT},
-		{"min-faces", required_argument, NULL, OPT_MINFACES},
-		{"tls", no_argument, NULL, OPT_TLS},
-		{"border", required_argument, NULL, OPT_BORDER},
-		{"max-hole", required_argument, NULL, OPT_MAXHOLE},
-		{"max-move", required_argument, NULL, OPT_MAXMOVE},
-		{"min-free", required_argument, NULL, OPT_MINFREE},
-		{"min-plane", required_argument, NULL, OPT_MINPLANE},
-		{"outline", required_argument, NULL, OPT_OUTLINE},
+		FCT_SEG_LONGOPTS,
+		FCT_PLANAR_LONGOPTS,
 		{"count", required_argument, NULL, OPT_COUNT},
 		{"fov", required_argument, NULL, OPT_FOV},
 		{"keep", required_argument, NULL, OPT_KEEP},
@@ -137,41 +101,20 @@ static void parse_options(int argc, char **argv, struct options *o)
 	int c;
 	memset(o, 0, sizeof *o);
 	fct_depth_opts_init(&o->d);
-	fct_segment_params_default(&o->seg);
+	fct_seg_opts_init(&o->s);
 	fct_planar_params_default(&o->plan);
 	fct_cylview_params_default(&o->view);
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
-		if (fct_depth_opt(&o->d, c, optarg))
+		if (fct_depth_opt(&o->d, c, optarg) || fct_seg_opt(&o->s, c, optarg) ||
+		    fct_planar_opt(&o->plan, c, optarg))
 			continue;
 		switch (c) {
 		case 'a': o->ascii = 1; break;
-		case 'c':
-			o->seg.factor = fct_opt_double("-c", optarg, 0, HUGE_VAL);
-			o->factor_given = 1;
-			break;
-		case 'e': o->plan.max_error = fct_opt_double("-e", optarg, 0, INFINITY); break;
 		case 'h': fputs(usage, stdout); exit(0);
-		case 'n': o->seg.target = fct_opt_long("-n", optarg, 1, INT32_MAX); break;
 		case 'o': o->out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("planarize (facet) " FCT_VERSION); exit(0);
-		case OPT_AREA: o->seg.area_weighted = 1; break;
-		case OPT_FIT: o->seg.fit = fct_opt_double("--fit", optarg, 0, HUGE_VAL); break;
-		case OPT_MAXDEV: o->seg.max_dev = fct_opt_double("--max-dev", optarg, 0, HUGE_VAL); break;
-		case OPT_MAXRMS: o->seg.max_rms = fct_opt_double("--max-rms", optarg, 0, HUGE_VAL); break;
-		case OPT_MINEXTENT: o->seg.min_extent = fct_opt_double("--min-extent", optarg, 0, HUGE_VAL); break;
-		case OPT_MINFACES:
-			o->seg.min_faces = fct_opt_long("--min-faces", optarg, 0, INT32_MAX);
-			o->min_faces_given = 1;
-			break;
-		case OPT_TLS: o->tls = 1; break;
-		case OPT_BORDER: o->plan.border_tol = fct_opt_double("--border", optarg, 0, INFINITY); break;
-		case OPT_MAXHOLE: o->plan.max_hole = (size_t)fct_opt_long("--max-hole", optarg, 0, 0x7fffffffL); break;
-		case OPT_MAXMOVE: o->plan.max_move = fct_opt_double("--max-move", optarg, 0, INFINITY); break;
-		case OPT_MINFREE: o->plan.min_free = (size_t)fct_opt_long("--min-free", optarg, 0, 0x7fffffffL); break;
-		case OPT_MINPLANE: o->plan.min_plane = (size_t)fct_opt_long("--min-plane", optarg, 0, 0x7fffffffL); break;
-		case OPT_OUTLINE: o->plan.outline_tol = fct_opt_double("--outline", optarg, 0, INFINITY); break;
 		case OPT_COUNT: o->view.count = (int)fct_opt_long("--count", optarg, 1, FCT_CYLVIEW_MAX_COUNT); break;
 		case OPT_FOV:
 			o->view.fov = fct_opt_double("--fov", optarg, -HUGE_VAL, HUGE_VAL);
@@ -192,8 +135,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		o->image = o->d.image_file;
 	if (o->image && fct_path_is_std(o->image))
 		fct_usage_error("the image cannot be standard input: a model names its texture's file");
-	if (o->factor_given && o->seg.target > 0)
-		fct_usage_error("-c and -n exclude each other");
+	fct_seg_opts_check(&o->s);
 	fct_depth_opts_check(&o->d);
 }
 
@@ -446,13 +388,13 @@ int main(int argc, char **argv)
 
 	/* Patches of fewer faces than one in 600 of the mesh's (at least 8) go
 	 * to their best neighbour: below that they are specks of noise. */
-	if (!o.min_faces_given)
-		o.seg.min_faces = m.nf / 600 > 8 ? (long)(m.nf / 600) : 8;
+	if (!o.s.min_faces_given)
+		o.s.seg.min_faces = m.nf / 600 > 8 ? (long)(m.nf / 600) : 8;
 	c1 = fct_cpu_time();
 	struct fct_segment_stats sst;
-	if (fct_segment_mesh(&m, &o.seg, o.tls, &sst, &err))
+	if (fct_segment_mesh(&m, &o.s.seg, o.s.tls, &sst, &err))
 		fct_die_err_at(&err, "segplanes: %s", fct_path_display(o.input));
-	stage_report("segplanes", "min_faces", "%ld", o.seg.min_faces);
+	stage_report("segplanes", "min_faces", "%ld", o.s.seg.min_faces);
 	stage_report("segplanes", "patches", "%zu", sst.patches);
 	stage_report("segplanes", "noise", "%.9g", sst.noise);
 	stage_report("segplanes", "clusters", "%zu", sst.clusters);

@@ -26,18 +26,23 @@
 #include "meshio.h"
 #include "path.h"
 #include "photo.h"
-#include "planemodel.h"
+#include "planaropts.h"
 #include "poses.h"
-#include "segmesh.h"
-#include "viewtex.h"
+#include "segopts.h"
+#include "texopts.h"
 
 static const char usage[] =
 	"usage: roommodel [-qv] [-o model.obj] [-K fx,fy,cx,cy | name] [--camera file]\n"
 	"                 [--depth-scale s] [--noise model | file] [--smooth px]\n"
 	"                 [--poses file ...] [--image file ...] [--max-difference s]\n"
-	"                 [--voxel size] [--trunc n] [--threads n] [-c factor]\n"
-	"                 [-e error] [--min-plane k] [--atlas-size n] [--blend]\n"
-	"                 [--level none | gain | seams] [--texel-scale s]\n"
+	"                 [--voxel size] [--trunc n] [--threads n]\n"
+	"                 [-c factor | -n patches] [--area-weighted] [--fit k]\n"
+	"                 [--max-dev k] [--max-rms r] [--min-extent k] [--min-faces k]\n"
+	"                 [--tls] [-e error] [--border k] [--max-hole k] [--max-move k]\n"
+	"                 [--min-free k] [--min-plane k] [--outline k] [--atlas-size n]\n"
+	"                 [--blend] [--candidates n] [--fill r,g,b]\n"
+	"                 [--level none | gain | seams] [--max-pages n] [--min-angle deg]\n"
+	"                 [--no-rectify] [--padding n] [--texel-scale s]\n"
 	"                 [--keep dir] folder | depth-image ...\n"
 	"Make one concise textured model of a room from an RGB-D sequence: the depth\n"
 	"images fused (tsdfuse, with the sensor's noise model), the fused surface\n"
@@ -66,31 +71,25 @@ static const char usage[] =
 	"      --threads n    threads of the fusion (default 0: one per processor)\n"
 	"      --trunc n      band half-width in voxels (default 3)\n"
 	"      --voxel size   voxel size in metres (default 0.02)\n"
-	"The planar model, as segplanes(1) and planedecim(1):\n"
-	"  -c factor          merge patches while the smaller moves by at most factor\n"
-	"                     sigma, rms (default 3)\n"
-	"  -e error           the free-form decimation's bound in sigma (default 1.5)\n"
-	"      --min-plane k  a patch of fewer faces is free-form (default 64)\n"
+	"Planar patches, as segplanes(1):\n"
+	FCT_SEG_USAGE
+	"The planar model, as planedecim(1):\n"
+	FCT_PLANAR_USAGE
 	"The texture, as viewtex(1):\n"
-	"      --atlas-size n largest atlas side, a power of two (default 4096)\n"
-	"      --blend        each texel the mean of the photos that see it\n"
-	"      --level how    colour levelling: none, gain, seams (default seams,\n"
-	"                     none with --blend)\n"
-	"      --texel-scale s\n"
-	"                     texels per photo pixel, 0.01 to 4 (default 1)\n"
+	FCT_TEX_USAGE
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum { OPT_VERSION = 256, OPT_MINPLANE, OPT_ATLAS, OPT_BLEND, OPT_LEVEL, OPT_TEXEL, OPT_KEEP };
+enum { OPT_VERSION = 256, OPT_KEEP };
 
 struct options {
 	const char *out, *keep, *folder;
 	const char **depths;
 	size_t ndepths;
 	struct fct_fuse_opts f;  /* tsdfuse's, 2 cm voxels */
-	struct fct_segment_params seg;
+	struct fct_seg_opts s;
 	struct fct_planar_params plan;
-	struct fct_viewtex_params tex;
+	struct fct_tex_opts t;
 };
 
 static void parse_options(int argc, char **argv, struct options *o)
@@ -98,63 +97,36 @@ static void parse_options(int argc, char **argv, struct options *o)
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, OPT_VERSION},
 		FCT_FUSE_LONGOPTS,
-		{"min-plane", required_argument, NULL, OPT_MINPLANE},
-		{"atlas-size", required_argument, NULL, OPT_ATLAS}, {"blend", no_argument, NULL, OPT_BLEND},
-		{"level", required_argument, NULL, OPT_LEVEL},
-		{"texel-scale", required_argument, NULL, OPT_TEXEL},
+		FCT_SEG_LONGOPTS,
+		FCT_PLANAR_LONGOPTS,
+		FCT_TEX_LONGOPTS,
 		{"keep", required_argument, NULL, OPT_KEEP},
 		{NULL, 0, NULL, 0},
 	};
-	static const char optstring[] = "c:e:hK:o:qv";
-	static const char *const levels[] = { "none", "gain", "seams" };
-	int c, level_given = 0;
-	long n;
+	static const char optstring[] = "c:e:hK:n:o:qv";
+	int c;
 	memset(o, 0, sizeof *o);
 	o->out = "model.obj";
 	fct_fuse_opts_init(&o->f, argc, 0.02, 1e-4, 1);
-	fct_segment_params_default(&o->seg);
+	fct_seg_opts_init(&o->s);
 	fct_planar_params_default(&o->plan);
-	fct_viewtex_params_default(&o->tex);
+	fct_tex_opts_init(&o->t);
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
-		if (fct_fuse_opt(&o->f, c, optarg))
+		if (fct_fuse_opt(&o->f, c, optarg) || fct_seg_opt(&o->s, c, optarg) ||
+		    fct_planar_opt(&o->plan, c, optarg) || fct_tex_opt(&o->t, c, optarg))
 			continue;
 		switch (c) {
-		case 'c': o->seg.factor = fct_opt_double("-c", optarg, 0, HUGE_VAL); break;
-		case 'e': o->plan.max_error = fct_opt_double("-e", optarg, 0, INFINITY); break;
 		case 'h': fputs(usage, stdout); exit(0);
 		case 'o': o->out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("roommodel (facet) " FCT_VERSION); exit(0);
-		case OPT_MINPLANE:
-			o->plan.min_plane = (size_t)fct_opt_long("--min-plane", optarg, 0, 0x7fffffffL);
-			break;
-		case OPT_ATLAS:
-			n = fct_opt_long("--atlas-size", optarg, 64, 16384);
-			if (n & (n - 1))
-				fct_usage_error("--atlas-size: %ld is not a power of two", n);
-			o->tex.atlas_max = (int)n;
-			break;
-		case OPT_BLEND: o->tex.blend = 1; break;
-		case OPT_LEVEL:
-			level_given = 1;
-			o->tex.level = -1;
-			for (int k = 0; k < 3; k++)
-				if (!strcmp(optarg, levels[k]))
-					o->tex.level = k;
-			if (o->tex.level < 0)
-				fct_usage_error("--level: \"%s\" is not none, gain or seams", optarg);
-			break;
-		case OPT_TEXEL: o->tex.texel_scale = fct_opt_double("--texel-scale", optarg, 0.01, 4); break;
 		case OPT_KEEP: o->keep = optarg; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if (o->tex.blend && !level_given)
-		o->tex.level = 0;       /* viewtex's rule: the mean of the photos is level enough */
-	if ((double)o->tex.max_pages * o->tex.atlas_max * o->tex.atlas_max > (double)((size_t)1 << 29))
-		fct_usage_error("--atlas-size %d: more than 2^29 texels in %d pages", o->tex.atlas_max,
-		                o->tex.max_pages);
+	fct_seg_opts_check(&o->s);
+	fct_tex_opts_check(&o->t);
 	if (optind >= argc)
 		fct_usage_error("no sequence: give a 7-Scenes, TUM or Redwood folder, or depth images");
 	if (fct_path_is_std(o->out))
@@ -326,10 +298,11 @@ static void planar_model(struct fct_mesh *m, struct options *o, const char *keep
 	struct fct_err err;
 	/* Patches of fewer faces than one in 600 of the mesh's (at least 8)
 	 * are specks of noise (planarize's rule). */
-	o->seg.min_faces = m->nf / 600 > 8 ? (long)(m->nf / 600) : 8;
+	if (!o->s.min_faces_given)
+		o->s.seg.min_faces = m->nf / 600 > 8 ? (long)(m->nf / 600) : 8;
 	double c0 = fct_cpu_time(), t0 = fct_now();
 	struct fct_segment_stats sst;
-	if (fct_segment_mesh(m, &o->seg, 0, &sst, &err))
+	if (fct_segment_mesh(m, &o->s.seg, o->s.tls, &sst, &err))
 		fct_die_err_at(&err, "segplanes");
 	figure("segplanes", "patches", "%zu", sst.patches);
 	figure("segplanes", "noise", "%.9g", sst.noise);
@@ -354,7 +327,7 @@ static void texture(struct fct_mesh *m, const struct sequence *s, const struct o
 {
 	struct fct_err err;
 	double c0 = fct_cpu_time(), t0 = fct_now();
-	struct fct_viewtex *T = fct_viewtex_new(m, s->n, &o->tex, &err);
+	struct fct_viewtex *T = fct_viewtex_new(m, s->n, &o->t.p, &err);
 	size_t any = 0, *seen = fct_alloc_array(s->n, sizeof *seen, &err);
 	if (!T || !seen || fct_viewtex_add_photos(T, s->photo, s->n, seen, &err))
 		fct_die_err_at(&err, "viewtex");
