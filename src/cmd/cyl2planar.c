@@ -2,13 +2,11 @@
  * model textured through them: Kang, Johnson and Szeliski, "Extraction of
  * Concise and Realistic 3-D Models from Real Data" (DEC CRL 95/7),
  * section 7.  The library does the work (cylview.h). */
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "cylview.h"
@@ -154,17 +152,6 @@ static void parse_options(int argc, char **argv, struct options *o)
 	}
 }
 
-/* Create folder dir unless it is one already: 0, or -1 with errno set. */
-static int make_folder(const char *dir)
-{
-	struct stat sb;
-	if (mkdir(dir, 0777) == 0)
-		return 0;
-	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
-		return 0;
-	return -1;
-}
-
 static char *xprintf(const char *fmt, const char *a, int k, const char *ext)
 {
 	size_t n = strlen(a) + strlen(ext) + 32;
@@ -243,10 +230,8 @@ int main(int argc, char **argv)
 		free(views);
 		fct_die_err(&err);
 	}
-	if (!o.mesh && make_folder(o.out)) {
-		free(views);
-		fct_die(1, "%s: %s", o.out, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
-	}
+	if (!o.mesh)
+		fct_make_folder(NULL, o.out);
 
 	if (o.mesh) {
 		/* The model textured from the views, written beside it. */

@@ -9,13 +9,10 @@
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "bvh.h"
 #include "cli.h"
 #include "cylview.h"
 #include "depthopts.h"
@@ -23,6 +20,7 @@
 #include "meshio.h"
 #include "path.h"
 #include "planaropts.h"
+#include "pointdist.h"
 #include "segopts.h"
 
 static const char usage[] =
@@ -139,22 +137,6 @@ static void parse_options(int argc, char **argv, struct options *o)
 	fct_depth_opts_check(&o->d);
 }
 
-/* With -v: "planarize: STAGE: key=value". */
-static void stage_report(const char *stage, const char *key, const char *fmt, ...)
-	__attribute__((format(printf, 3, 4)));
-static void stage_report(const char *stage, const char *key, const char *fmt, ...)
-{
-	if (!fct_verbose)
-		return;
-	char k[64], v[256];
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(v, sizeof v, fmt, ap);
-	va_end(ap);
-	snprintf(k, sizeof k, "%s: %s", stage, key);
-	fct_report(k, "%s", v);
-}
-
 /* Each stage's size and CPU time, for the summary of -v. */
 struct stage_line {
 	const char *name;
@@ -197,17 +179,17 @@ static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct option
 	struct fct_grid_stats st;
 	if (fct_depth_mesh(m, &img, cam, &o->d.depth, &st, &err))
 		fct_die_err_at(&err, "dm2mesh: %s", name);
-	stage_report("dm2mesh", "pixels", "%zu", (size_t)img.width * (size_t)img.height);
+	fct_report_stage("dm2mesh", "pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	fct_image_free(&img);
-	stage_report("dm2mesh", "jump_faces", "%zu", st.jump_faces);
-	stage_report("dm2mesh", "speck_faces", "%zu", st.speck_faces);
+	fct_report_stage("dm2mesh", "jump_faces", "%zu", st.jump_faces);
+	fct_report_stage("dm2mesh", "speck_faces", "%zu", st.speck_faces);
 	char noise[256];
 	fct_noise_format(&o->d.depth.noise, noise, sizeof noise);
-	stage_report("dm2mesh", "noise", "%s", *noise ? noise : "unknown");
+	fct_report_stage("dm2mesh", "noise", "%s", *noise ? noise : "unknown");
 	o->d.image_file = o->image;
 	if (fct_depth_opts_finish(&o->d, m, cam, &err))
 		fct_die_err_at(&err, "dm2mesh");
-	stage_report("dm2mesh", "double_xyz", "%d", o->d.double_xyz);
+	fct_report_stage("dm2mesh", "double_xyz", "%d", o->d.double_xyz);
 }
 
 /* Stage 1 from a mesh: the mesh as it is, its camera if it has one; an
@@ -247,64 +229,39 @@ static void keep_stage(const struct options *o, const struct fct_mesh *m, const 
 	free(path);
 }
 
-/* The folder of --keep, made when missing. */
-static void make_keep_folder(const char *dir)
-{
-	struct stat sb;
-	if (mkdir(dir, 0777) == 0)
-		return;
-	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
-		return;
-	fct_die(1, "--keep: %s: %s", dir, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
-}
-
 /* Table 1 of Kang et al.: the distances of the dense mesh's vertices
- * (xyz, nv of them) to the model's faces, as meshdist measures them. */
+ * (xyz, nv of them) to the model's faces. */
 static void report_errors(const double *xyz, size_t nv, const struct fct_mesh *model)
 {
 	struct fct_err err;
-	struct fct_bvh tree;
-	if (fct_bvh_build_mesh(&tree, model, &err))
+	struct fct_dist_stats st;
+	if (fct_point_distances(&st, xyz, nv, model, &err))
 		fct_die_err(&err);
-	double mean = 0, m2 = 0, max = 0;
-	size_t n = 0;
-	for (size_t i = 0; i < nv && tree.ntri; i++) {
-		struct fct_bvh_hit hit;
-		if (!fct_bvh_closest(&tree, xyz + 3 * i, INFINITY, &hit))
-			continue;
-		double d = sqrt(hit.d2), delta = d - mean;
-		n++;
-		mean += delta / (double)n;
-		m2 += delta * (d - mean);
-		max = fmax(max, d);
-	}
-	fct_bvh_free(&tree);
-	double var = n ? m2 / (double)n : 0;
-	fct_report("E_mean", "%.9g", mean);
-	fct_report("E_stdev", "%.9g", sqrt(var));
-	fct_report("E_rms", "%.9g", sqrt(mean * mean + var));
-	fct_report("E_max", "%.9g", max);
+	fct_report("E_mean", "%.9g", st.mean);
+	fct_report("E_stdev", "%.9g", st.stdev);
+	fct_report("E_rms", "%.9g", st.rms);
+	fct_report("E_max", "%.9g", st.max);
 }
 
 /* The figures of the planar model's steps. */
 static void report_model(const struct fct_planar_stats *st)
 {
-	stage_report("planedecim", "planes", "%zu", st->planes);
-	stage_report("planedecim", "sigma_estimated", "%d", st->sigma_estimated);
-	stage_report("planedecim", "facets", "%zu", st->facets);
-	stage_report("planedecim", "small_faces", "%zu", st->tidy.small_faces);
-	stage_report("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
-	stage_report("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
-	stage_report("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);
-	stage_report("planedecim", "holes_filled", "%zu", st->holes_filled);
-	stage_report("planedecim", "collapses", "%zu", st->qem.collapses);
-	stage_report("planedecim", "max_error", "%.9g", st->qem.max_error);
-	stage_report("planedecim", "planar_triangles", "%zu", st->planar_triangles);
-	stage_report("planedecim", "free_faces", "%zu", st->free_faces);
-	stage_report("planedecim", "unclean_patches", "%zu", st->unclean_patches);
-	stage_report("planedecim", "moved_line", "%zu", st->meet.lines);
-	stage_report("planedecim", "moved_corner", "%zu", st->meet.corners);
-	stage_report("planedecim", "torn", "%zu", st->meet.torn);
+	fct_report_stage("planedecim", "planes", "%zu", st->planes);
+	fct_report_stage("planedecim", "sigma_estimated", "%d", st->sigma_estimated);
+	fct_report_stage("planedecim", "facets", "%zu", st->facets);
+	fct_report_stage("planedecim", "small_faces", "%zu", st->tidy.small_faces);
+	fct_report_stage("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
+	fct_report_stage("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
+	fct_report_stage("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);
+	fct_report_stage("planedecim", "holes_filled", "%zu", st->holes_filled);
+	fct_report_stage("planedecim", "collapses", "%zu", st->qem.collapses);
+	fct_report_stage("planedecim", "max_error", "%.9g", st->qem.max_error);
+	fct_report_stage("planedecim", "planar_triangles", "%zu", st->planar_triangles);
+	fct_report_stage("planedecim", "free_faces", "%zu", st->free_faces);
+	fct_report_stage("planedecim", "unclean_patches", "%zu", st->unclean_patches);
+	fct_report_stage("planedecim", "moved_line", "%zu", st->meet.lines);
+	fct_report_stage("planedecim", "moved_corner", "%zu", st->meet.corners);
+	fct_report_stage("planedecim", "torn", "%zu", st->meet.torn);
 }
 
 /* A panorama's model textured through planar views written beside it
@@ -334,9 +291,9 @@ static void texture_panorama(struct fct_mesh *m, const struct fct_camera *cam,
 	                              &st, &err))
 		fct_die_err_at(&err, "cyl2planar");
 	fct_image_free(&img);
-	stage_report("cyl2planar", "views_used", "%zu", st.assign.views_used);
-	stage_report("cyl2planar", "splits", "%zu", st.assign.splits);
-	stage_report("cyl2planar", "max_depth_ratio", "%.9g", st.assign.max_ratio);
+	fct_report_stage("cyl2planar", "views_used", "%zu", st.assign.views_used);
+	fct_report_stage("cyl2planar", "splits", "%zu", st.assign.splits);
+	fct_report_stage("cyl2planar", "max_depth_ratio", "%.9g", st.assign.max_ratio);
 }
 
 int main(int argc, char **argv)
@@ -358,7 +315,7 @@ int main(int argc, char **argv)
 	}
 	fct_depth_opts_read_pose(&o.d);
 	if (o.keep)
-		make_keep_folder(o.keep);
+		fct_make_folder("--keep", o.keep);
 
 	double t0 = fct_now(), c0 = fct_cpu_time(), c1;
 	struct fct_mesh m;
@@ -373,9 +330,7 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	/* Coordinates as a file holds them, so that the stages give what the
 	 * programs give on a pipe (and on the files of --keep). */
-	if (m.xyz_type == FCT_FLOAT32)
-		for (size_t i = 0; i < 3 * m.nv; i++)
-			m.xyz[i] = (float)m.xyz[i];
+	fct_mesh_round_xyz(&m);
 	stage_done(is_image ? "dm2mesh" : "read", &m, c0);
 	keep_stage(&o, &m, "1-mesh.ply");
 	size_t dense_faces = m.nf, dense_nv = m.nv;
@@ -394,13 +349,13 @@ int main(int argc, char **argv)
 	struct fct_segment_stats sst;
 	if (fct_segment_mesh(&m, &o.s.seg, o.s.tls, &sst, &err))
 		fct_die_err_at(&err, "segplanes: %s", fct_path_display(o.input));
-	stage_report("segplanes", "min_faces", "%ld", o.s.seg.min_faces);
-	stage_report("segplanes", "patches", "%zu", sst.patches);
-	stage_report("segplanes", "noise", "%.9g", sst.noise);
-	stage_report("segplanes", "clusters", "%zu", sst.clusters);
-	stage_report("segplanes", "merges", "%zu", sst.merges);
-	stage_report("segplanes", "absorbed", "%zu", sst.absorbed);
-	stage_report("segplanes", "free_faces", "%zu", sst.free_faces);
+	fct_report_stage("segplanes", "min_faces", "%ld", o.s.seg.min_faces);
+	fct_report_stage("segplanes", "patches", "%zu", sst.patches);
+	fct_report_stage("segplanes", "noise", "%.9g", sst.noise);
+	fct_report_stage("segplanes", "clusters", "%zu", sst.clusters);
+	fct_report_stage("segplanes", "merges", "%zu", sst.merges);
+	fct_report_stage("segplanes", "absorbed", "%zu", sst.absorbed);
+	fct_report_stage("segplanes", "free_faces", "%zu", sst.free_faces);
 	stage_done("segplanes", &m, c1);
 	keep_stage(&o, &m, "2-patches.ply");
 

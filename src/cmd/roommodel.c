@@ -6,10 +6,8 @@
  * Szeliski, DEC CRL 95/7, sec. 2-5), textured from the colour images
  * (viewtex; Waechter, Moehrle and Goesele, ECCV 2014).  Every stage is a
  * library call; one view is held at a time. */
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,7 +16,6 @@
 
 #include "cli.h"
 #include "dataset.h"
-#include "depthsmooth.h"
 #include "fuse.h"
 #include "fuseopts.h"
 #include "header.h"
@@ -214,20 +211,6 @@ static void sequence_close(struct sequence *s)
 	free(s->photo);
 }
 
-/* Stage figures under -v: "roommodel: STAGE: key=value". */
-static void figure(const char *stage, const char *key, const char *fmt, ...)
-	__attribute__((format(printf, 3, 4)));
-static void figure(const char *stage, const char *key, const char *fmt, ...)
-{
-	char k[64], v[256];
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(v, sizeof v, fmt, ap);
-	va_end(ap);
-	snprintf(k, sizeof k, "%s: %s", stage, key);
-	fct_report(k, "%s", v);
-}
-
 /* A stage's end: its mesh and its CPU and wall seconds under -v. */
 static void stage_end(const char *stage, const struct fct_mesh *m, double cpu0, double wall0)
 {
@@ -277,19 +260,17 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 		fct_die_err_at(&err, "tsdfuse");
 	char noise[256];
 	fct_noise_format(&s->dp.noise, noise, sizeof noise);
-	figure("tsdfuse", "views", "%zu", s->n);
-	figure("tsdfuse", "noise", "%s", *noise ? noise : "unknown");
-	figure("tsdfuse", "voxels_updated", "%zu", st.voxels);
-	figure("tsdfuse", "memory_mb", "%.1f", (double)fct_voxgrid_bytes(g) / 1048576);
+	fct_report_stage("tsdfuse", "views", "%zu", s->n);
+	fct_report_stage("tsdfuse", "noise", "%s", *noise ? noise : "unknown");
+	fct_report_stage("tsdfuse", "voxels_updated", "%zu", st.voxels);
+	fct_report_stage("tsdfuse", "memory_mb", "%.1f", (double)fct_voxgrid_bytes(g) / 1048576);
 	fct_voxgrid_free(g);
 	if (out->nf == 0)
 		fct_die(1, "tsdfuse: the views fused into no surface (check the poses, the camera and "
 		        "--depth-scale)");
 	/* Coordinates as a file holds them: the stages give what the programs
 	 * give on a pipe and on the files of --keep. */
-	if (out->xyz_type == FCT_FLOAT32)
-		for (size_t i = 0; i < 3 * out->nv; i++)
-			out->xyz[i] = (float)out->xyz[i];
+	fct_mesh_round_xyz(out);
 }
 
 /* Stages 2 and 3: planar patches, then the planar model. */
@@ -304,9 +285,9 @@ static void planar_model(struct fct_mesh *m, struct options *o, const char *keep
 	struct fct_segment_stats sst;
 	if (fct_segment_mesh(m, &o->s.seg, o->s.tls, &sst, &err))
 		fct_die_err_at(&err, "segplanes");
-	figure("segplanes", "patches", "%zu", sst.patches);
-	figure("segplanes", "noise", "%.9g", sst.noise);
-	figure("segplanes", "free_faces", "%zu", sst.free_faces);
+	fct_report_stage("segplanes", "patches", "%zu", sst.patches);
+	fct_report_stage("segplanes", "noise", "%.9g", sst.noise);
+	fct_report_stage("segplanes", "free_faces", "%zu", sst.free_faces);
 	stage_end("segplanes", m, c0, t0);
 	if (keep_patches && fct_mesh_write_file(m, keep_patches, 0, &err))
 		fct_die_err(&err);
@@ -314,10 +295,10 @@ static void planar_model(struct fct_mesh *m, struct options *o, const char *keep
 	struct fct_planar_stats pst;
 	if (fct_planar_model(m, &o->plan, &pst, &err))
 		fct_die_err_at(&err, "planedecim");
-	figure("planedecim", "planes", "%zu", pst.planes);
-	figure("planedecim", "planar_triangles", "%zu", pst.planar_triangles);
-	figure("planedecim", "free_faces", "%zu", pst.free_faces);
-	figure("planedecim", "collapses", "%zu", pst.qem.collapses);
+	fct_report_stage("planedecim", "planes", "%zu", pst.planes);
+	fct_report_stage("planedecim", "planar_triangles", "%zu", pst.planar_triangles);
+	fct_report_stage("planedecim", "free_faces", "%zu", pst.free_faces);
+	fct_report_stage("planedecim", "collapses", "%zu", pst.qem.collapses);
 	stage_end("planedecim", m, c0, t0);
 }
 
@@ -352,36 +333,16 @@ static void texture(struct fct_mesh *m, const struct sequence *s, const struct o
 		fct_die_err(&err);
 	struct fct_viewtex_stats st;
 	fct_viewtex_get_stats(T, &st);
-	figure("viewtex", "photos_used", "%zu", st.views_used);
-	figure("viewtex", "faces_unseen", "%zu", st.unseen);
-	figure("viewtex", "charts", "%zu", st.charts);
-	figure("viewtex", "charts_rectified", "%zu", st.rectified);
-	figure("viewtex", "atlas_pages", "%zu", st.pages);
-	figure("viewtex", "atlas_size", "%dx%d", st.page_width, st.page_height);
-	figure("viewtex", "seam_rms_after", "%.3f", st.seam_rms_after);
+	fct_report_stage("viewtex", "photos_used", "%zu", st.views_used);
+	fct_report_stage("viewtex", "faces_unseen", "%zu", st.unseen);
+	fct_report_stage("viewtex", "charts", "%zu", st.charts);
+	fct_report_stage("viewtex", "charts_rectified", "%zu", st.rectified);
+	fct_report_stage("viewtex", "atlas_pages", "%zu", st.pages);
+	fct_report_stage("viewtex", "atlas_size", "%dx%d", st.page_width, st.page_height);
+	fct_report_stage("viewtex", "seam_rms_after", "%.3f", st.seam_rms_after);
 	stage_end("viewtex", m, c0, t0);
 	fct_viewtex_page_names_free(names, npages);
 	fct_viewtex_free(T);
-}
-
-/* The folder of --keep, made when missing; path of file in it. */
-static char *keep_path(const char *dir, const char *file)
-{
-	struct fct_err err;
-	char *path = fct_path_join(dir, file, &err);
-	if (!path)
-		fct_die_err(&err);
-	return path;
-}
-
-static void make_folder(const char *dir)
-{
-	struct stat sb;
-	if (mkdir(dir, 0777) == 0)
-		return;
-	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
-		return;
-	fct_die(1, "--keep: %s: %s", dir, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
 }
 
 int main(int argc, char **argv)
@@ -401,13 +362,13 @@ int main(int argc, char **argv)
 	free(out_dir);
 	struct sequence s;
 	sequence_open(&s, &o);
+	static const char *const stages[3] = { "1-fused.ply", "2-patches.ply", "3-model.ply" };
 	char *keep[3] = { NULL, NULL, NULL };
-	if (o.keep) {
-		make_folder(o.keep);
-		keep[0] = keep_path(o.keep, "1-fused.ply");
-		keep[1] = keep_path(o.keep, "2-patches.ply");
-		keep[2] = keep_path(o.keep, "3-model.ply");
-	}
+	if (o.keep)
+		fct_make_folder("--keep", o.keep);
+	for (int i = 0; i < 3 && o.keep; i++)
+		if (!(keep[i] = fct_path_join(o.keep, stages[i], &err)))
+			fct_die_err(&err);
 
 	struct fct_mesh m;
 	double t1 = fct_now();

@@ -317,6 +317,32 @@ void fct_report(const char *key, const char *fmt, ...)
 	fprintf(stderr, "%s: %s=%s\n", fct_prog, key, buf);
 }
 
+void fct_report_stage(const char *stage, const char *key, const char *fmt, ...)
+{
+	if (!fct_verbose)
+		return;
+	char k[64], v[256];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(v, sizeof v, fmt, ap);
+	va_end(ap);
+	snprintf(k, sizeof k, "%s: %s", stage, key);
+	fct_report(k, "%s", v);
+}
+
+void fct_make_folder(const char *opt, const char *dir)
+{
+	struct stat sb;
+	if (mkdir(dir, 0777) == 0)
+		return;
+	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
+		return;
+	const char *why = errno == EEXIST ? "exists and is not a folder" : strerror(errno);
+	if (opt)
+		fct_die(1, "%s: %s: %s", opt, dir, why);
+	fct_die(1, "%s: %s", dir, why);
+}
+
 const char *fct_one_operand(int argc, char **argv, int optind, const char *absent)
 {
 	if (argc - optind > 1)

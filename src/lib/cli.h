@@ -94,5 +94,12 @@ void fct_progress_end(struct fct_progress *p);
 
 /* With -v: one figure as "prog: key=value" on stderr. */
 void fct_report(const char *key, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* With -v: a figure of one stage of several, "prog: STAGE: key=value". */
+void fct_report_stage(const char *stage, const char *key, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* The folder dir, made when missing; exit 1 with "opt: dir: why" ("dir:
+ * why" when opt is NULL) when it cannot be. */
+void fct_make_folder(const char *opt, const char *dir);
 
 #endif
