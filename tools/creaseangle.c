@@ -157,7 +157,7 @@ int main(int argc, char **argv)
 	int present = 0;
 	if (fct_planes_get(&t, &pl, &npl, &err) ||
 	    fct_patches_get(&t, &patch, &present, (long)npl, &err))
-		fct_die(1, "%s: %s", tname, err.msg);
+		fct_die_err_at(&err, "%s", tname);
 	if (!present || !npl)
 		fct_die(1, "%s: no face property patch and plane element", tname);
 
@@ -214,7 +214,7 @@ int main(int argc, char **argv)
 
 	struct fct_bvh tree;
 	if (fct_bvh_build_mesh(&tree, &t, &err))
-		fct_die(1, "%s: %s", tname, err.msg);
+		fct_die_err_at(&err, "%s", tname);
 	for (size_t v = 0; v < a.nv; v++) {
 		const double *x = a.xyz + 3 * v;
 		double tp[3];

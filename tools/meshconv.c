@@ -73,11 +73,8 @@ static void range_scan(struct fct_mesh *m, const char *in, int grid, const char 
 	const char *name = fct_path_is_std(in) ? "<stdin>" : in;
 	if (grid || (fct_mesh_find_elem(m, "range_grid") && m->nf == 0)) {
 		struct fct_mesh meshed;
-		if (fct_range_grid_mesh(&meshed, m, NULL, NULL, &err)) {
-			fct_mesh_free(m);
-			fct_err_prefix(&err, "%s", name);
-			fct_die_err(&err);
-		}
+		if (fct_range_grid_mesh(&meshed, m, NULL, NULL, &err))
+			fct_die_err_at(&err, "%s", name);
 		fct_mesh_free(m);
 		*m = meshed;
 	}
@@ -145,12 +142,8 @@ static void join(struct fct_mesh *m, struct fct_mesh *next, const char *in)
 	struct fct_err err;
 	for (size_t i = 0; i < next->nelems; i++)
 		fct_warn("%s: element %s dropped (several inputs are joined)", in, next->elems[i].name);
-	if (fct_mesh_append(m, next, &err)) {
-		fct_mesh_free(m);
-		fct_mesh_free(next);
-		fct_err_prefix(&err, "%s", in);
-		fct_die_err(&err);
-	}
+	if (fct_mesh_append(m, next, &err))
+		fct_die_err_at(&err, "%s", in);
 	fct_mesh_free(next);
 }
 

@@ -256,10 +256,8 @@ static void build_tree(struct fct_bvh *tree, const struct fct_mesh *m, const cha
 {
 	struct fct_err err;
 	double t0 = fct_now();
-	if (fct_bvh_build_mesh(tree, m, &err)) {
-		fct_err_prefix(&err, "%s", fct_path_display(path));
-		fct_die_err(&err);
-	}
+	if (fct_bvh_build_mesh(tree, m, &err))
+		fct_die_err_at(&err, "%s", fct_path_display(path));
 	if (tree->ntri == 0)
 		fct_die(1, "%s: no faces to measure the distance to", fct_path_display(path));
 	*seconds += fct_now() - t0;
@@ -276,11 +274,8 @@ static void measure(const struct fct_mesh *from, const char *from_path, const st
 	}
 	struct fct_err err;
 	struct sampler s;
-	if (sampler_init(&s, from, &err)) {
-		sampler_free(&s);
-		fct_err_prefix(&err, "%s", fct_path_display(from_path));
-		fct_die_err(&err);
-	}
+	if (sampler_init(&s, from, &err))
+		fct_die_err_at(&err, "%s", fct_path_display(from_path));
 	if (!(s.total > 0)) {
 		sampler_free(&s);
 		fct_die(1, "%s: -s: the faces have no area to sample", fct_path_display(from_path));

@@ -275,10 +275,8 @@ static void choose_view(const struct opts *o, const struct fct_mesh *m, int rese
 			fct_die(1, "%s: the camera's picture (%dx%d) is too large; choose one with -s",
 			        fct_path_display(o->input), W, H);
 		if (fct_view_from_camera(v, &cam, has_pose ? pose : NULL, W, H,
-		                         size > 0 ? 1e-4 * size : 1e-6, &err)) {
-			fct_err_prefix(&err, "%s", fct_path_display(o->input));
-			fct_die_err(&err);
-		}
+		                         size > 0 ? 1e-4 * size : 1e-6, &err))
+			fct_die_err_at(&err, "%s", fct_path_display(o->input));
 		return;
 	}
 	int W = o->width ? o->width : 800, H = o->height ? o->height : 600;
@@ -314,7 +312,7 @@ static void choose_view(const struct opts *o, const struct fct_mesh *m, int rese
 	double eye[3];
 	fct_v3_sub(eye, target, dir);
 	if (fct_view_look_at(v, eye, target, up, o->fov, W, H, &err))
-		fct_die(1, "--view %s: %s", view, err.msg);
+		fct_die_err_at(&err, "--view %s", view);
 	/* Fit into the picture less the legend's strip on the right. */
 	if (reserve > 0 && reserve < W / 2)
 		v->width = W - reserve;
@@ -668,10 +666,8 @@ int main(int argc, char **argv)
 	}
 	if (mode == M_PATCH) {
 		int present;
-		if (fct_patches_get(&m, &sc.patch, &present, -1, &err)) {
-			fct_err_prefix(&err, "%s", name);
-			fct_die_err(&err);
-		}
+		if (fct_patches_get(&m, &sc.patch, &present, -1, &err))
+			fct_die_err_at(&err, "%s", name);
 		if (!present)
 			fct_die(1, "%s: -m patch: the faces have no patch property", name);
 	}

@@ -518,9 +518,7 @@ int main(int argc, char **argv)
 	s.grain = op.grain;
 	double build_s = fct_now() - t0;
 
-	struct stat sb;
-	if (mkdir(op.dir, 0777) != 0 && (errno != EEXIST || stat(op.dir, &sb) != 0 || !S_ISDIR(sb.st_mode)))
-		fct_die(1, "%s: %s", op.dir, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
+	fct_make_folder(NULL, op.dir);
 
 	/* The mesh and its description. */
 	struct fct_mesh *m = &s.mesh;

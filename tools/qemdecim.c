@@ -89,11 +89,8 @@ int main(int argc, char **argv)
 		par.target_faces = nf / 2;
 
 	struct fct_qem_stats st;
-	if (fct_qem_decimate(&m, &par, &st, &err)) {
-		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_qem_decimate(&m, &par, &st, &err))
+		fct_die_err_at(&err, "%s", name);
 	double t2 = fct_now(), c2 = fct_cpu_time();
 	if (fct_header_add_provenance(&m, "qemdecim", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err)) {

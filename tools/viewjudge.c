@@ -143,10 +143,8 @@ static void load_model(struct model *M, const struct fct_mesh *m, enum mode mode
 		fct_die(1, "%s: too many triangles (%zu)", name, M->ntri);
 	M->corner = fan_corners(m, M->tface, M->ntri);
 	int has_tc = fct_texmap_corners(m, &M->st, &M->texnum, &err);
-	if (has_tc < 0) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (has_tc < 0)
+		fct_die_err_at(&err, "%s", name);
 	M->ntex = fct_header_texture_count(m);
 	if (mode == M_AUTO)
 		mode = has_tc && M->ntex ? M_TEXTURE : M_COLOR;
@@ -255,10 +253,8 @@ int main(int argc, char **argv)
 		struct fct_view view;
 		if (fct_photo_read(&ph[i], 1 << 14, &photo, &pc, &err))
 			fct_die_err(&err);
-		if (fct_view_from_camera(&view, &pc, ph[i].pose, 0, 0, diag > 0 ? 1e-4 * diag : 1e-6, &err)) {
-			fct_err_prefix(&err, "%s", ph[i].path);
-			fct_die_err(&err);
-		}
+		if (fct_view_from_camera(&view, &pc, ph[i].pose, 0, 0, diag > 0 ? 1e-4 * diag : 1e-6, &err))
+			fct_die_err_at(&err, "%s", ph[i].path);
 		struct fct_raster r;
 		if (fct_raster_init(&r, view.width, view.height, &err))
 			fct_die_err(&err);

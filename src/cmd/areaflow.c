@@ -238,10 +238,8 @@ int main(int argc, char **argv)
 		fct_die(1, "%s: out of memory for %zu vertices", name, m.nv);
 	struct fct_areaflow_stats st;
 	double t1 = fct_now();
-	if (fct_areaflow(&m, &p, crease, &st, &err)) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_areaflow(&m, &p, crease, &st, &err))
+		fct_die_err_at(&err, "%s", name);
 	double smooth_s = fct_now() - t1;
 	update_normals(&m, name);
 	if (crease) {

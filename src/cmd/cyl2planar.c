@@ -2,13 +2,11 @@
  * model textured through them: Kang, Johnson and Szeliski, "Extraction of
  * Concise and Realistic 3-D Models from Real Data" (DEC CRL 95/7),
  * section 7.  The library does the work (cylview.h). */
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "cylview.h"
@@ -154,17 +152,6 @@ static void parse_options(int argc, char **argv, struct options *o)
 	}
 }
 
-/* Create folder dir unless it is one already: 0, or -1 with errno set. */
-static int make_folder(const char *dir)
-{
-	struct stat sb;
-	if (mkdir(dir, 0777) == 0)
-		return 0;
-	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
-		return 0;
-	return -1;
-}
-
 static char *xprintf(const char *fmt, const char *a, int k, const char *ext)
 {
 	size_t n = strlen(a) + strlen(ext) + 32;
@@ -195,15 +182,11 @@ int main(int argc, char **argv)
 		if (fct_mesh_read_file(&m, o.mesh, NULL, &err))
 			fct_die_err(&err);
 		int r = fct_header_camera(&m, &cam, &err);
-		if (r < 0) {
-			fct_err_prefix(&err, "%s", mname);
-			fct_die_err(&err);
-		}
+		if (r < 0)
+			fct_die_err_at(&err, "%s", mname);
 		have_cam = r;
-		if ((r = fct_header_pose(&m, pose, &err)) < 0) {
-			fct_err_prefix(&err, "%s", mname);
-			fct_die_err(&err);
-		}
+		if ((r = fct_header_pose(&m, pose, &err)) < 0)
+			fct_die_err_at(&err, "%s", mname);
 		have_pose = r;
 		if (!o.pano && !(o.pano = fct_header_texture(&m, 0)))
 			fct_usage_error("%s: no TextureFile: name the panorama", mname);
@@ -234,10 +217,8 @@ int main(int argc, char **argv)
 	if (cam.width == 0)
 		cam.width = img.width, cam.height = img.height;
 	double seam_ratio;
-	if (fct_cylview_check_panorama(&img, &cam, o.seam_check, &seam_ratio, &err)) {
-		fct_err_prefix(&err, "%s", pname);
-		fct_die_err(&err);
-	}
+	if (fct_cylview_check_panorama(&img, &cam, o.seam_check, &seam_ratio, &err))
+		fct_die_err_at(&err, "%s", pname);
 	if (o.mesh && img.type == FCT_PIX_F32)
 		fct_die(1, "%s: a PFM image cannot texture a model: give a PNG", pname);
 
@@ -249,10 +230,8 @@ int main(int argc, char **argv)
 		free(views);
 		fct_die_err(&err);
 	}
-	if (!o.mesh && make_folder(o.out)) {
-		free(views);
-		fct_die(1, "%s: %s", o.out, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
-	}
+	if (!o.mesh)
+		fct_make_folder(NULL, o.out);
 
 	if (o.mesh) {
 		/* The model textured from the views, written beside it. */
@@ -291,10 +270,8 @@ int main(int argc, char **argv)
 		char *name = xprintf("%s/view%02d%s", o.out, (int)k, ext);
 		struct fct_image vi;
 		double t3 = fct_now();
-		if (fct_cylview_render(&img, &cam, &views[k], &vi, &err)) {
-			fct_err_prefix(&err, "%s", pname);
-			fct_die_err(&err);
-		}
+		if (fct_cylview_render(&img, &cam, &views[k], &vi, &err))
+			fct_die_err_at(&err, "%s", pname);
 		double t4 = fct_now();
 		split_s += t4 - t3;
 		fct_write_image_or_die(&vi, name);

@@ -136,11 +136,8 @@ static struct fct_mesh mesh_depth(struct options *o, struct fct_camera *cam)
 	struct fct_mesh m;
 	fct_report("pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	struct fct_grid_stats st;
-	if (fct_depth_mesh(&m, &img, cam, &o->d.depth, &st, &err)) {
-		fct_image_free(&img);
-		fct_err_prefix(&err, "%s", fct_path_display(o->input));
-		fct_die_err(&err);
-	}
+	if (fct_depth_mesh(&m, &img, cam, &o->d.depth, &st, &err))
+		fct_die_err_at(&err, "%s", fct_path_display(o->input));
 	fct_image_free(&img);
 	fct_report("jump_faces", "%zu", st.jump_faces);
 	fct_report("speck_faces", "%zu", st.speck_faces);

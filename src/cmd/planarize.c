@@ -9,21 +9,19 @@
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "bvh.h"
 #include "cli.h"
 #include "cylview.h"
 #include "depthopts.h"
 #include "header.h"
 #include "meshio.h"
 #include "path.h"
-#include "planemodel.h"
-#include "segmesh.h"
+#include "planaropts.h"
+#include "pointdist.h"
+#include "segopts.h"
 
 static const char usage[] =
 	"usage: planarize [-aqv] [-o model] [-K fx,fy,cx,cy | name] [--camera file]\n"
@@ -63,30 +61,9 @@ static const char usage[] =
 	"      --pose file    camera-to-world pose: the model in world coordinates\n"
 	"      --image file   the co-registered image (or the second operand)\n"
 	"Planar patches, as segplanes(1):\n"
-	"  -c factor          merge while the smaller patch moves by at most factor\n"
-	"                     sigma, rms (default 3)\n"
-	"  -n patches         stop at this many patches instead\n"
-	"      --area-weighted\n"
-	"                     weight each face by its area\n"
-	"      --fit k        a patch's points stay within k sigma of its plane, rms\n"
-	"                     (default 1.5)\n"
-	"      --max-dev k    no face farther than k sigma from its patch's plane: it\n"
-	"                     is free-form (default 3)\n"
-	"      --max-rms r    never make a patch of rms above r (metres)\n"
-	"      --min-extent k a patch narrower than k sigma is free-form (default 10)\n"
-	"      --min-faces k  absorb patches of fewer faces (default: one in 600 of the\n"
-	"                     dense mesh's faces, at least 8)\n"
-	"      --tls          fit planes orthogonally, not along the camera's rays\n"
+	FCT_SEG_USAGE
 	"The planar model, as planedecim(1):\n"
-	"  -e error           the free-form decimation's bound: the largest quadric\n"
-	"                     distance of a collapse, in sigma (default 1.5)\n"
-	"      --border k     a border may move by k edge lengths (default 1)\n"
-	"      --max-hole k   fill holes of at most k edges inside a patch (64)\n"
-	"      --max-move k   move a vertex onto a line or corner by at most k sigma\n"
-	"                     (default 4)\n"
-	"      --min-free k   a speck of fewer faces joins the label around it (64)\n"
-	"      --min-plane k  a patch of fewer faces is free-form (default 64)\n"
-	"      --outline k    simplify outlines to k sample spacings (default 3)\n"
+	FCT_PLANAR_USAGE
 	"A panorama's texture, as cyl2planar(1):\n"
 	"      --count n, --fov deg\n"
 	"                     n planar views of deg degrees, written beside the model\n"
@@ -94,17 +71,13 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum {
-	OPT_VERSION = 256, OPT_AREA, OPT_FIT, OPT_MAXDEV, OPT_MAXRMS, OPT_MINEXTENT, OPT_MINFACES, OPT_TLS,
-	OPT_BORDER, OPT_MAXHOLE, OPT_MAXMOVE, OPT_MINFREE, OPT_MINPLANE, OPT_OUTLINE, OPT_COUNT,
-	OPT_FOV, OPT_KEEP
-};
+enum { OPT_VERSION = 256, OPT_COUNT, OPT_FOV, OPT_KEEP };
 
 struct options {
 	const char *out, *keep, *input, *image;
-	int ascii, tls, factor_given, min_faces_given;
+	int ascii;
 	struct fct_depth_opts d;
-	struct fct_segment_params seg;
+	struct fct_seg_opts s;
 	struct fct_planar_params plan;
 	struct fct_cylview_params view;
 };
@@ -115,19 +88,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, OPT_VERSION},
 		FCT_DEPTH_LONGOPTS,
-		{"area-weighted", no_argument, NULL, OPT_AREA},
-		{"fit", required_argument, NULL, OPT_FIT},
-		{"max-dev", required_argument, NULL, OPT_MAXDEV},
-		{"max-rms", required_argument, NULL, OPT_MAXRMS},
-		{"min-extent", required_argument, NULL, OPT_MINEXTENT},
-		{"min-faces", required_argument, NULL, OPT_MINFACES},
-		{"tls", no_argument, NULL, OPT_TLS},
-		{"border", required_argument, NULL, OPT_BORDER},
-		{"max-hole", required_argument, NULL, OPT_MAXHOLE},
-		{"max-move", required_argument, NULL, OPT_MAXMOVE},
-		{"min-free", required_argument, NULL, OPT_MINFREE},
-		{"min-plane", required_argument, NULL, OPT_MINPLANE},
-		{"outline", required_argument, NULL, OPT_OUTLINE},
+		FCT_SEG_LONGOPTS,
+		FCT_PLANAR_LONGOPTS,
 		{"count", required_argument, NULL, OPT_COUNT},
 		{"fov", required_argument, NULL, OPT_FOV},
 		{"keep", required_argument, NULL, OPT_KEEP},
@@ -137,41 +99,20 @@ static void parse_options(int argc, char **argv, struct options *o)
 	int c;
 	memset(o, 0, sizeof *o);
 	fct_depth_opts_init(&o->d);
-	fct_segment_params_default(&o->seg);
+	fct_seg_opts_init(&o->s);
 	fct_planar_params_default(&o->plan);
 	fct_cylview_params_default(&o->view);
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
-		if (fct_depth_opt(&o->d, c, optarg))
+		if (fct_depth_opt(&o->d, c, optarg) || fct_seg_opt(&o->s, c, optarg) ||
+		    fct_planar_opt(&o->plan, c, optarg))
 			continue;
 		switch (c) {
 		case 'a': o->ascii = 1; break;
-		case 'c':
-			o->seg.factor = fct_opt_double("-c", optarg, 0, HUGE_VAL);
-			o->factor_given = 1;
-			break;
-		case 'e': o->plan.max_error = fct_opt_double("-e", optarg, 0, INFINITY); break;
 		case 'h': fputs(usage, stdout); exit(0);
-		case 'n': o->seg.target = fct_opt_long("-n", optarg, 1, INT32_MAX); break;
 		case 'o': o->out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("planarize (facet) " FCT_VERSION); exit(0);
-		case OPT_AREA: o->seg.area_weighted = 1; break;
-		case OPT_FIT: o->seg.fit = fct_opt_double("--fit", optarg, 0, HUGE_VAL); break;
-		case OPT_MAXDEV: o->seg.max_dev = fct_opt_double("--max-dev", optarg, 0, HUGE_VAL); break;
-		case OPT_MAXRMS: o->seg.max_rms = fct_opt_double("--max-rms", optarg, 0, HUGE_VAL); break;
-		case OPT_MINEXTENT: o->seg.min_extent = fct_opt_double("--min-extent", optarg, 0, HUGE_VAL); break;
-		case OPT_MINFACES:
-			o->seg.min_faces = fct_opt_long("--min-faces", optarg, 0, INT32_MAX);
-			o->min_faces_given = 1;
-			break;
-		case OPT_TLS: o->tls = 1; break;
-		case OPT_BORDER: o->plan.border_tol = fct_opt_double("--border", optarg, 0, INFINITY); break;
-		case OPT_MAXHOLE: o->plan.max_hole = (size_t)fct_opt_long("--max-hole", optarg, 0, 0x7fffffffL); break;
-		case OPT_MAXMOVE: o->plan.max_move = fct_opt_double("--max-move", optarg, 0, INFINITY); break;
-		case OPT_MINFREE: o->plan.min_free = (size_t)fct_opt_long("--min-free", optarg, 0, 0x7fffffffL); break;
-		case OPT_MINPLANE: o->plan.min_plane = (size_t)fct_opt_long("--min-plane", optarg, 0, 0x7fffffffL); break;
-		case OPT_OUTLINE: o->plan.outline_tol = fct_opt_double("--outline", optarg, 0, INFINITY); break;
 		case OPT_COUNT: o->view.count = (int)fct_opt_long("--count", optarg, 1, FCT_CYLVIEW_MAX_COUNT); break;
 		case OPT_FOV:
 			o->view.fov = fct_opt_double("--fov", optarg, -HUGE_VAL, HUGE_VAL);
@@ -192,25 +133,8 @@ static void parse_options(int argc, char **argv, struct options *o)
 		o->image = o->d.image_file;
 	if (o->image && fct_path_is_std(o->image))
 		fct_usage_error("the image cannot be standard input: a model names its texture's file");
-	if (o->factor_given && o->seg.target > 0)
-		fct_usage_error("-c and -n exclude each other");
+	fct_seg_opts_check(&o->s);
 	fct_depth_opts_check(&o->d);
-}
-
-/* With -v: "planarize: STAGE: key=value". */
-static void stage_report(const char *stage, const char *key, const char *fmt, ...)
-	__attribute__((format(printf, 3, 4)));
-static void stage_report(const char *stage, const char *key, const char *fmt, ...)
-{
-	if (!fct_verbose)
-		return;
-	char k[64], v[256];
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(v, sizeof v, fmt, ap);
-	va_end(ap);
-	snprintf(k, sizeof k, "%s: %s", stage, key);
-	fct_report(k, "%s", v);
 }
 
 /* Each stage's size and CPU time, for the summary of -v. */
@@ -226,13 +150,6 @@ static size_t nlines;
 static void stage_done(const char *name, const struct fct_mesh *m, double c0)
 {
 	lines[nlines++] = (struct stage_line){ name, m->nv, m->nf, fct_cpu_time() - c0 };
-}
-
-/* Die of a stage's failure: "planarize: STAGE: what". */
-static _Noreturn void stage_die(const char *stage, struct fct_err *err)
-{
-	fct_err_prefix(err, "%s", stage);
-	fct_die_err(err);
 }
 
 /* Open the input and tell a depth image from a mesh by its first byte:
@@ -260,22 +177,19 @@ static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct option
 		fct_die_err(&err);
 	fct_depth_opts_resolve(&o->d, cam, &img, name);
 	struct fct_grid_stats st;
-	if (fct_depth_mesh(m, &img, cam, &o->d.depth, &st, &err)) {
-		fct_image_free(&img);
-		fct_err_prefix(&err, "%s", name);
-		stage_die("dm2mesh", &err);
-	}
-	stage_report("dm2mesh", "pixels", "%zu", (size_t)img.width * (size_t)img.height);
+	if (fct_depth_mesh(m, &img, cam, &o->d.depth, &st, &err))
+		fct_die_err_at(&err, "dm2mesh: %s", name);
+	fct_report_stage("dm2mesh", "pixels", "%zu", (size_t)img.width * (size_t)img.height);
 	fct_image_free(&img);
-	stage_report("dm2mesh", "jump_faces", "%zu", st.jump_faces);
-	stage_report("dm2mesh", "speck_faces", "%zu", st.speck_faces);
+	fct_report_stage("dm2mesh", "jump_faces", "%zu", st.jump_faces);
+	fct_report_stage("dm2mesh", "speck_faces", "%zu", st.speck_faces);
 	char noise[256];
 	fct_noise_format(&o->d.depth.noise, noise, sizeof noise);
-	stage_report("dm2mesh", "noise", "%s", *noise ? noise : "unknown");
+	fct_report_stage("dm2mesh", "noise", "%s", *noise ? noise : "unknown");
 	o->d.image_file = o->image;
 	if (fct_depth_opts_finish(&o->d, m, cam, &err))
-		stage_die("dm2mesh", &err);
-	stage_report("dm2mesh", "double_xyz", "%d", o->d.double_xyz);
+		fct_die_err_at(&err, "dm2mesh");
+	fct_report_stage("dm2mesh", "double_xyz", "%d", o->d.double_xyz);
 }
 
 /* Stage 1 from a mesh: the mesh as it is, its camera if it has one; an
@@ -298,10 +212,8 @@ static void mesh_read(struct fct_mesh *m, struct fct_camera *cam, const struct o
 	}
 	if (o->d.first)
 		fct_usage_error("%s: for depth images, and %s is a mesh", o->d.first, name);
-	if (fct_header_camera(m, cam, &err) < 0) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_header_camera(m, cam, &err) < 0)
+		fct_die_err_at(&err, "%s", name);
 	if (o->image && fct_header_set_texture(m, 0, o->image, &err))
 		fct_die_err(&err);
 }
@@ -317,64 +229,39 @@ static void keep_stage(const struct options *o, const struct fct_mesh *m, const 
 	free(path);
 }
 
-/* The folder of --keep, made when missing. */
-static void make_keep_folder(const char *dir)
-{
-	struct stat sb;
-	if (mkdir(dir, 0777) == 0)
-		return;
-	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
-		return;
-	fct_die(1, "--keep: %s: %s", dir, errno == EEXIST ? "exists and is not a folder" : strerror(errno));
-}
-
 /* Table 1 of Kang et al.: the distances of the dense mesh's vertices
- * (xyz, nv of them) to the model's faces, as meshdist measures them. */
+ * (xyz, nv of them) to the model's faces. */
 static void report_errors(const double *xyz, size_t nv, const struct fct_mesh *model)
 {
 	struct fct_err err;
-	struct fct_bvh tree;
-	if (fct_bvh_build_mesh(&tree, model, &err))
+	struct fct_dist_stats st;
+	if (fct_point_distances(&st, xyz, nv, model, &err))
 		fct_die_err(&err);
-	double mean = 0, m2 = 0, max = 0;
-	size_t n = 0;
-	for (size_t i = 0; i < nv && tree.ntri; i++) {
-		struct fct_bvh_hit hit;
-		if (!fct_bvh_closest(&tree, xyz + 3 * i, INFINITY, &hit))
-			continue;
-		double d = sqrt(hit.d2), delta = d - mean;
-		n++;
-		mean += delta / (double)n;
-		m2 += delta * (d - mean);
-		max = fmax(max, d);
-	}
-	fct_bvh_free(&tree);
-	double var = n ? m2 / (double)n : 0;
-	fct_report("E_mean", "%.9g", mean);
-	fct_report("E_stdev", "%.9g", sqrt(var));
-	fct_report("E_rms", "%.9g", sqrt(mean * mean + var));
-	fct_report("E_max", "%.9g", max);
+	fct_report("E_mean", "%.9g", st.mean);
+	fct_report("E_stdev", "%.9g", st.stdev);
+	fct_report("E_rms", "%.9g", st.rms);
+	fct_report("E_max", "%.9g", st.max);
 }
 
 /* The figures of the planar model's steps. */
 static void report_model(const struct fct_planar_stats *st)
 {
-	stage_report("planedecim", "planes", "%zu", st->planes);
-	stage_report("planedecim", "sigma_estimated", "%d", st->sigma_estimated);
-	stage_report("planedecim", "facets", "%zu", st->facets);
-	stage_report("planedecim", "small_faces", "%zu", st->tidy.small_faces);
-	stage_report("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
-	stage_report("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
-	stage_report("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);
-	stage_report("planedecim", "holes_filled", "%zu", st->holes_filled);
-	stage_report("planedecim", "collapses", "%zu", st->qem.collapses);
-	stage_report("planedecim", "max_error", "%.9g", st->qem.max_error);
-	stage_report("planedecim", "planar_triangles", "%zu", st->planar_triangles);
-	stage_report("planedecim", "free_faces", "%zu", st->free_faces);
-	stage_report("planedecim", "unclean_patches", "%zu", st->unclean_patches);
-	stage_report("planedecim", "moved_line", "%zu", st->meet.lines);
-	stage_report("planedecim", "moved_corner", "%zu", st->meet.corners);
-	stage_report("planedecim", "torn", "%zu", st->meet.torn);
+	fct_report_stage("planedecim", "planes", "%zu", st->planes);
+	fct_report_stage("planedecim", "sigma_estimated", "%d", st->sigma_estimated);
+	fct_report_stage("planedecim", "facets", "%zu", st->facets);
+	fct_report_stage("planedecim", "small_faces", "%zu", st->tidy.small_faces);
+	fct_report_stage("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
+	fct_report_stage("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
+	fct_report_stage("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);
+	fct_report_stage("planedecim", "holes_filled", "%zu", st->holes_filled);
+	fct_report_stage("planedecim", "collapses", "%zu", st->qem.collapses);
+	fct_report_stage("planedecim", "max_error", "%.9g", st->qem.max_error);
+	fct_report_stage("planedecim", "planar_triangles", "%zu", st->planar_triangles);
+	fct_report_stage("planedecim", "free_faces", "%zu", st->free_faces);
+	fct_report_stage("planedecim", "unclean_patches", "%zu", st->unclean_patches);
+	fct_report_stage("planedecim", "moved_line", "%zu", st->meet.lines);
+	fct_report_stage("planedecim", "moved_corner", "%zu", st->meet.corners);
+	fct_report_stage("planedecim", "torn", "%zu", st->meet.torn);
 }
 
 /* A panorama's model textured through planar views written beside it
@@ -397,18 +284,16 @@ static void texture_panorama(struct fct_mesh *m, const struct fct_camera *cam,
 	int hp = fct_header_pose(m, pose, &err);
 	struct fct_cylview_model_stats st;
 	if (hp < 0)
-		stage_die("cyl2planar", &err);
-	if (fct_cylview_check_panorama(&img, cam, 1, NULL, &err)) {
-		fct_err_prefix(&err, "%s", path);
-		stage_die("cyl2planar", &err);
-	}
+		fct_die_err_at(&err, "cyl2planar");
+	if (fct_cylview_check_panorama(&img, cam, 1, NULL, &err))
+		fct_die_err_at(&err, "cyl2planar: %s", path);
 	if (fct_cylview_texture_model(m, &img, cam, hp ? pose : NULL, &o->view, 1, "the model", o->out,
 	                              &st, &err))
-		stage_die("cyl2planar", &err);
+		fct_die_err_at(&err, "cyl2planar");
 	fct_image_free(&img);
-	stage_report("cyl2planar", "views_used", "%zu", st.assign.views_used);
-	stage_report("cyl2planar", "splits", "%zu", st.assign.splits);
-	stage_report("cyl2planar", "max_depth_ratio", "%.9g", st.assign.max_ratio);
+	fct_report_stage("cyl2planar", "views_used", "%zu", st.assign.views_used);
+	fct_report_stage("cyl2planar", "splits", "%zu", st.assign.splits);
+	fct_report_stage("cyl2planar", "max_depth_ratio", "%.9g", st.assign.max_ratio);
 }
 
 int main(int argc, char **argv)
@@ -430,7 +315,7 @@ int main(int argc, char **argv)
 	}
 	fct_depth_opts_read_pose(&o.d);
 	if (o.keep)
-		make_keep_folder(o.keep);
+		fct_make_folder("--keep", o.keep);
 
 	double t0 = fct_now(), c0 = fct_cpu_time(), c1;
 	struct fct_mesh m;
@@ -445,9 +330,7 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	/* Coordinates as a file holds them, so that the stages give what the
 	 * programs give on a pipe (and on the files of --keep). */
-	if (m.xyz_type == FCT_FLOAT32)
-		for (size_t i = 0; i < 3 * m.nv; i++)
-			m.xyz[i] = (float)m.xyz[i];
+	fct_mesh_round_xyz(&m);
 	stage_done(is_image ? "dm2mesh" : "read", &m, c0);
 	keep_stage(&o, &m, "1-mesh.ply");
 	size_t dense_faces = m.nf, dense_nv = m.nv;
@@ -460,30 +343,26 @@ int main(int argc, char **argv)
 
 	/* Patches of fewer faces than one in 600 of the mesh's (at least 8) go
 	 * to their best neighbour: below that they are specks of noise. */
-	if (!o.min_faces_given)
-		o.seg.min_faces = m.nf / 600 > 8 ? (long)(m.nf / 600) : 8;
+	if (!o.s.min_faces_given)
+		o.s.seg.min_faces = m.nf / 600 > 8 ? (long)(m.nf / 600) : 8;
 	c1 = fct_cpu_time();
 	struct fct_segment_stats sst;
-	if (fct_segment_mesh(&m, &o.seg, o.tls, &sst, &err)) {
-		fct_err_prefix(&err, "%s", fct_path_display(o.input));
-		stage_die("segplanes", &err);
-	}
-	stage_report("segplanes", "min_faces", "%ld", o.seg.min_faces);
-	stage_report("segplanes", "patches", "%zu", sst.patches);
-	stage_report("segplanes", "noise", "%.9g", sst.noise);
-	stage_report("segplanes", "clusters", "%zu", sst.clusters);
-	stage_report("segplanes", "merges", "%zu", sst.merges);
-	stage_report("segplanes", "absorbed", "%zu", sst.absorbed);
-	stage_report("segplanes", "free_faces", "%zu", sst.free_faces);
+	if (fct_segment_mesh(&m, &o.s.seg, o.s.tls, &sst, &err))
+		fct_die_err_at(&err, "segplanes: %s", fct_path_display(o.input));
+	fct_report_stage("segplanes", "min_faces", "%ld", o.s.seg.min_faces);
+	fct_report_stage("segplanes", "patches", "%zu", sst.patches);
+	fct_report_stage("segplanes", "noise", "%.9g", sst.noise);
+	fct_report_stage("segplanes", "clusters", "%zu", sst.clusters);
+	fct_report_stage("segplanes", "merges", "%zu", sst.merges);
+	fct_report_stage("segplanes", "absorbed", "%zu", sst.absorbed);
+	fct_report_stage("segplanes", "free_faces", "%zu", sst.free_faces);
 	stage_done("segplanes", &m, c1);
 	keep_stage(&o, &m, "2-patches.ply");
 
 	c1 = fct_cpu_time();
 	struct fct_planar_stats pst;
-	if (fct_planar_model(&m, &o.plan, &pst, &err)) {
-		fct_err_prefix(&err, "%s", fct_path_display(o.input));
-		stage_die("planedecim", &err);
-	}
+	if (fct_planar_model(&m, &o.plan, &pst, &err))
+		fct_die_err_at(&err, "planedecim: %s", fct_path_display(o.input));
 	report_model(&pst);
 	stage_done("planedecim", &m, c1);
 	keep_stage(&o, &m, "3-model.ply");

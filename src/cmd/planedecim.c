@@ -8,7 +8,6 @@
  * corners (sec. 5).  The algorithm is fct_planar_model (planemodel.h);
  * this is its command line. */
 #include <getopt.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -16,7 +15,7 @@
 #include "header.h"
 #include "meshio.h"
 #include "path.h"
-#include "planemodel.h"
+#include "planaropts.h"
 
 static const char usage[] =
 	"usage: planedecim [-aqv] [-e error] [-o file] [--border k]\n"
@@ -50,20 +49,14 @@ static const char usage[] =
 	"  -h, --help     this help\n"
 	"      --version  print the version\n";
 
-enum { OPT_BORDER = 256, OPT_MAXHOLE, OPT_MAXMOVE, OPT_MINFREE, OPT_MINPLANE, OPT_OUTLINE,
-       OPT_VERSION };
+enum { OPT_VERSION = 256 };
 
 int main(int argc, char **argv)
 {
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, OPT_VERSION},
-		{"border", required_argument, NULL, OPT_BORDER},
-		{"max-hole", required_argument, NULL, OPT_MAXHOLE},
-		{"max-move", required_argument, NULL, OPT_MAXMOVE},
-		{"min-free", required_argument, NULL, OPT_MINFREE},
-		{"min-plane", required_argument, NULL, OPT_MINPLANE},
-		{"outline", required_argument, NULL, OPT_OUTLINE},
+		FCT_PLANAR_LONGOPTS,
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ae:ho:qv";
@@ -73,19 +66,14 @@ int main(int argc, char **argv)
 	const char *out = NULL;
 	int ascii = 0, c;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		if (fct_planar_opt(&par, c, optarg))
+			continue;
 		switch (c) {
 		case 'a': ascii = 1; break;
-		case 'e': par.max_error = fct_opt_double("-e", optarg, 0, INFINITY); break;
 		case 'h': fputs(usage, stdout); return 0;
 		case 'o': out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
-		case OPT_BORDER: par.border_tol = fct_opt_double("--border", optarg, 0, INFINITY); break;
-		case OPT_MAXHOLE: par.max_hole = (size_t)fct_opt_long("--max-hole", optarg, 0, 0x7fffffffL); break;
-		case OPT_MAXMOVE: par.max_move = fct_opt_double("--max-move", optarg, 0, INFINITY); break;
-		case OPT_MINFREE: par.min_free = (size_t)fct_opt_long("--min-free", optarg, 0, 0x7fffffffL); break;
-		case OPT_MINPLANE: par.min_plane = (size_t)fct_opt_long("--min-plane", optarg, 0, 0x7fffffffL); break;
-		case OPT_OUTLINE: par.outline_tol = fct_opt_double("--outline", optarg, 0, INFINITY); break;
 		case OPT_VERSION: puts("planedecim (facet) " FCT_VERSION); return 0;
 		default: fct_bad_option(optstring, argv);
 		}
@@ -100,11 +88,8 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	double t1 = fct_now();
 	struct fct_planar_stats st;
-	if (fct_planar_model(&m, &par, &st, &err)) {
-		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_planar_model(&m, &par, &st, &err))
+		fct_die_err_at(&err, "%s", name);
 	double t2 = fct_now();
 	if (fct_header_add_provenance(&m, "planedecim", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err)) {

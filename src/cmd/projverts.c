@@ -106,11 +106,8 @@ int main(int argc, char **argv)
 
 	double t1 = fct_now();
 	struct fct_project_stats st;
-	if (fct_project_mesh(&m, &par, &st, &err)) {
-		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_project_mesh(&m, &par, &st, &err))
+		fct_die_err_at(&err, "%s", name);
 	double project_s = fct_now() - t1;
 
 	if (!st.texcoords && had_st && m.nv > 0)

@@ -3,7 +3,6 @@
  * Models from Real Data" (DEC CRL 95/7), section 2.  The algorithm is
  * fct_segment (segment.h); this is its command line. */
 #include <getopt.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,7 +11,7 @@
 #include "header.h"
 #include "meshio.h"
 #include "path.h"
-#include "segmesh.h"
+#include "segopts.h"
 
 static const char usage[] =
 	"usage: segplanes [-aqv] [-c factor] [-n patches] [-o file] [--area-weighted]\n"
@@ -46,55 +45,37 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum { OPT_AREA = 256, OPT_FIT, OPT_MAXDEV, OPT_MAXRMS, OPT_MINEXTENT, OPT_MINFACES, OPT_TLS,
-       OPT_VERSION };
+enum { OPT_VERSION = 256 };
 
 int main(int argc, char **argv)
 {
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, OPT_VERSION},
-		{"area-weighted", no_argument, NULL, OPT_AREA},
-		{"fit", required_argument, NULL, OPT_FIT},
-		{"max-dev", required_argument, NULL, OPT_MAXDEV},
-		{"max-rms", required_argument, NULL, OPT_MAXRMS},
-		{"min-extent", required_argument, NULL, OPT_MINEXTENT},
-		{"min-faces", required_argument, NULL, OPT_MINFACES},
-		{"tls", no_argument, NULL, OPT_TLS},
+		FCT_SEG_LONGOPTS,
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ac:hn:o:qv";
 	fct_cli_init("segplanes");
-	struct fct_segment_params sp;
-	fct_segment_params_default(&sp);
+	struct fct_seg_opts so;
+	fct_seg_opts_init(&so);
 	const char *out = NULL;
-	int ascii = 0, c, factor_given = 0, tls = 0;
+	int ascii = 0, c;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		if (fct_seg_opt(&so, c, optarg))
+			continue;
 		switch (c) {
 		case 'a': ascii = 1; break;
-		case 'c':
-			sp.factor = fct_opt_double("-c", optarg, 0, HUGE_VAL);
-			factor_given = 1;
-			break;
 		case 'h': fputs(usage, stdout); return 0;
-		case 'n': sp.target = fct_opt_long("-n", optarg, 1, INT32_MAX); break;
 		case 'o': out = optarg; break;
 		case 'q': fct_quiet = 1; break;
 		case 'v': fct_verbose = 1; break;
 		case OPT_VERSION: puts("segplanes (facet) " FCT_VERSION); return 0;
-		case OPT_AREA: sp.area_weighted = 1; break;
-		case OPT_FIT: sp.fit = fct_opt_double("--fit", optarg, 0, HUGE_VAL); break;
-		case OPT_MAXDEV: sp.max_dev = fct_opt_double("--max-dev", optarg, 0, HUGE_VAL); break;
-		case OPT_MINEXTENT: sp.min_extent = fct_opt_double("--min-extent", optarg, 0, HUGE_VAL); break;
-		case OPT_MAXRMS: sp.max_rms = fct_opt_double("--max-rms", optarg, 0, HUGE_VAL); break;
-		case OPT_MINFACES: sp.min_faces = fct_opt_long("--min-faces", optarg, 0, INT32_MAX); break;
-		case OPT_TLS: tls = 1; break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
 	const char *input = fct_one_operand(argc, argv, optind, "-");
-	if (factor_given && sp.target > 0)
-		fct_usage_error("-c and -n exclude each other");
+	fct_seg_opts_check(&so);
 	const char *name = fct_path_display(input);
 
 	struct fct_err err;
@@ -104,10 +85,8 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	double read_s = fct_now() - t0;
 	struct fct_segment_stats st;
-	if (fct_segment_mesh(&m, &sp, tls, &st, &err)) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	if (fct_segment_mesh(&m, &so.seg, so.tls, &st, &err))
+		fct_die_err_at(&err, "%s", name);
 	double seg_s = fct_now() - t0 - read_s;
 	if (fct_header_add_provenance(&m, "segplanes", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err))

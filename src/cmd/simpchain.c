@@ -77,11 +77,8 @@ int main(int argc, char **argv)
 	struct fct_chains chains;
 	struct fct_chain_stats st;
 	double t1 = fct_now();
-	if (fct_simpchain(&m, &params, &chains, &st, &err)) {
-		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", fct_path_display(input));
-		fct_die_err(&err);
-	}
+	if (fct_simpchain(&m, &params, &chains, &st, &err))
+		fct_die_err_at(&err, "%s", fct_path_display(input));
 	double simp_s = fct_now() - t1;
 	if (fct_header_add_provenance(&m, "simpchain", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err))

@@ -67,11 +67,8 @@ int main(int argc, char **argv)
 		fct_die_err(&err);
 	double t1 = fct_now();
 	struct fct_tripatch_stats st;
-	if (fct_tripatch(&m, &p, &st, &err)) {
-		fct_mesh_free(&m);
-		fct_err_prefix(&err, "%s", fct_path_display(in));
-		fct_die_err(&err);
-	}
+	if (fct_tripatch(&m, &p, &st, &err))
+		fct_die_err_at(&err, "%s", fct_path_display(in));
 	double t2 = fct_now();
 	if (st.edges == 0)
 		fct_warn("no edges: no faces written");

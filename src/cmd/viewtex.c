@@ -14,7 +14,7 @@
 #include "meshio.h"
 #include "path.h"
 #include "photo.h"
-#include "viewtex.h"
+#include "texopts.h"
 
 static const char usage[] =
 	"usage: viewtex [-aqv] [-K fx,fy,cx,cy | name] [--camera file] [--poses file ...]\n"
@@ -71,36 +71,30 @@ struct options {
 	const char **poses, **images;
 	size_t nposes, nimages;
 	int ascii, per_vertex;
-	struct fct_viewtex_params p;
+	struct fct_tex_opts t;    /* the texture's options, shared with roommodel */
 };
 
 static void parse_options(int argc, char **argv, struct options *o)
 {
-	enum { CAMERA = 256, POSES, IMAGE, ATLAS, BLEND, CANDIDATES, FILL, LEVEL, MAXPAGES, MINANGLE,
-	       NORECT, PADDING, PERVERTEX, SMOOTH, SCALE, VERSION };
+	enum { CAMERA = 256, POSES, IMAGE, PERVERTEX, SMOOTH, VERSION };
 	static const struct option longopts[] = {
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, VERSION},
 		{"camera", required_argument, NULL, CAMERA}, {"poses", required_argument, NULL, POSES},
-		{"image", required_argument, NULL, IMAGE}, {"atlas-size", required_argument, NULL, ATLAS},
-		{"blend", no_argument, NULL, BLEND}, {"candidates", required_argument, NULL, CANDIDATES},
-		{"fill", required_argument, NULL, FILL}, {"level", required_argument, NULL, LEVEL},
-		{"max-pages", required_argument, NULL, MAXPAGES},
-		{"min-angle", required_argument, NULL, MINANGLE},
-		{"no-rectify", no_argument, NULL, NORECT}, {"padding", required_argument, NULL, PADDING},
+		{"image", required_argument, NULL, IMAGE}, FCT_TEX_LONGOPTS,
 		{"per-vertex", no_argument, NULL, PERVERTEX}, {"smooth", required_argument, NULL, SMOOTH},
-		{"texel-scale", required_argument, NULL, SCALE}, {NULL, 0, NULL, 0},
+		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ahK:o:qv";
 	memset(o, 0, sizeof *o);
-	fct_viewtex_params_default(&o->p);
+	fct_tex_opts_init(&o->t);
 	o->poses = calloc((size_t)argc + 1, sizeof *o->poses);
 	o->images = calloc((size_t)argc + 1, sizeof *o->images);
 	if (!o->poses || !o->images)
 		fct_die(1, "out of memory");
-	int c, level_given = 0;
-	double v[3];
-	long n;
+	int c;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
+		if (fct_tex_opt(&o->t, c, optarg))
+			continue;
 		switch (c) {
 		case 'a': o->ascii = 1; break;
 		case 'h': fputs(usage, stdout); exit(0);
@@ -111,51 +105,13 @@ static void parse_options(int argc, char **argv, struct options *o)
 		case CAMERA: o->camera = optarg; break;
 		case POSES: o->poses[o->nposes++] = optarg; break;
 		case IMAGE: o->images[o->nimages++] = optarg; break;
-		case ATLAS:
-			n = fct_opt_long("--atlas-size", optarg, 64, 16384);
-			if (n & (n - 1))
-				fct_usage_error("--atlas-size: %ld is not a power of two", n);
-			o->p.atlas_max = (int)n;
-			break;
-		case BLEND: o->p.blend = 1; break;
-		case CANDIDATES: o->p.candidates = (int)fct_opt_long("--candidates", optarg, 1, 32); break;
-		case FILL:
-			fct_opt_doubles("--fill", optarg, v, 3);
-			for (int k = 0; k < 3; k++) {
-				if (!(v[k] >= 0 && v[k] <= 255))
-					fct_usage_error("--fill: \"%s\": each value must be in [0, 255]", optarg);
-				o->p.fill[k] = (uint8_t)lround(v[k]);
-			}
-			break;
-		case LEVEL:
-			level_given = 1;
-			if (!strcmp(optarg, "none"))
-				o->p.level = 0;
-			else if (!strcmp(optarg, "gain"))
-				o->p.level = 1;
-			else if (!strcmp(optarg, "seams"))
-				o->p.level = 2;
-			else
-				fct_usage_error("--level: \"%s\" is not none, gain or seams", optarg);
-			break;
-		case MAXPAGES: o->p.max_pages = (int)fct_opt_long("--max-pages", optarg, 1, 1024); break;
-		case MINANGLE:
-			o->p.min_cos = sin(fct_opt_double("--min-angle", optarg, 0, 89) * M_PI / 180);
-			break;
-		case NORECT: o->p.rectify = 0; break;
-		case PADDING: o->p.padding = (int)fct_opt_long("--padding", optarg, 0, 64); break;
 		case PERVERTEX: o->per_vertex = 1; break;
-		case SMOOTH: o->p.smooth = fct_opt_double("--smooth", optarg, 0, 1e6); break;
-		case SCALE: o->p.texel_scale = fct_opt_double("--texel-scale", optarg, 0.01, 4); break;
+		case SMOOTH: o->t.p.smooth = fct_opt_double("--smooth", optarg, 0, 1e6); break;
 		case VERSION: puts("viewtex (facet) " FCT_VERSION); exit(0);
 		default: fct_bad_option(optstring, argv);
 		}
 	}
-	if ((double)o->p.max_pages * o->p.atlas_max * o->p.atlas_max > (double)((size_t)1 << 29))
-		fct_usage_error("--max-pages %d of --atlas-size %d: more than 2^29 texels", o->p.max_pages,
-		                o->p.atlas_max);
-	if (o->p.blend && !level_given)
-		o->p.level = 0;         /* the mean of the photos is level enough */
+	fct_tex_opts_check(&o->t);
 	if (optind >= argc)
 		fct_usage_error("no mesh");
 	o->mesh = argv[optind++];
@@ -189,11 +145,9 @@ int main(int argc, char **argv)
 	if (fct_mesh_read_file(&m, o.mesh, NULL, &err))
 		fct_die_err(&err);
 	const char *name = fct_path_display(o.mesh);
-	struct fct_viewtex *T = fct_viewtex_new(&m, o.nimages, &o.p, &err);
-	if (!T) {
-		fct_err_prefix(&err, "%s", name);
-		fct_die_err(&err);
-	}
+	struct fct_viewtex *T = fct_viewtex_new(&m, o.nimages, &o.t.p, &err);
+	if (!T)
+		fct_die_err_at(&err, "%s", name);
 	double read_s = fct_now() - t0;
 
 	/* Candidates, one photo at a time. */

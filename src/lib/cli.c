@@ -114,6 +114,17 @@ void fct_die_err(const struct fct_err *err)
 	exit(1);
 }
 
+void fct_die_err_at(struct fct_err *err, const char *fmt, ...)
+{
+	char where[512];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(where, sizeof where, fmt, ap);
+	va_end(ap);
+	fct_err_prefix(err, "%s", where);
+	fct_die_err(err);
+}
+
 void fct_warn(const char *fmt, ...)
 {
 	if (fct_quiet)
@@ -304,6 +315,32 @@ void fct_report(const char *key, const char *fmt, ...)
 	vsnprintf(buf, sizeof buf, fmt, ap);
 	va_end(ap);
 	fprintf(stderr, "%s: %s=%s\n", fct_prog, key, buf);
+}
+
+void fct_report_stage(const char *stage, const char *key, const char *fmt, ...)
+{
+	if (!fct_verbose)
+		return;
+	char k[64], v[256];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(v, sizeof v, fmt, ap);
+	va_end(ap);
+	snprintf(k, sizeof k, "%s: %s", stage, key);
+	fct_report(k, "%s", v);
+}
+
+void fct_make_folder(const char *opt, const char *dir)
+{
+	struct stat sb;
+	if (mkdir(dir, 0777) == 0)
+		return;
+	if (errno == EEXIST && stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode))
+		return;
+	const char *why = errno == EEXIST ? "exists and is not a folder" : strerror(errno);
+	if (opt)
+		fct_die(1, "%s: %s: %s", opt, dir, why);
+	fct_die(1, "%s: %s", dir, why);
 }
 
 const char *fct_one_operand(int argc, char **argv, int optind, const char *absent)

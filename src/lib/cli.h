@@ -33,6 +33,10 @@ void fct_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 _Noreturn void fct_die(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* "prog: err->msg" and exit 1. */
 _Noreturn void fct_die_err(const struct fct_err *err);
+/* "prog: WHERE: err->msg" and exit 1, WHERE made of fmt: the library's
+ * error reported with the file or stage it happened in. */
+_Noreturn void fct_die_err_at(struct fct_err *err, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
 /* "prog: warning: message" (suppressed by fct_quiet). */
 void fct_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* "prog: usage message", exit 2. */
@@ -90,5 +94,12 @@ void fct_progress_end(struct fct_progress *p);
 
 /* With -v: one figure as "prog: key=value" on stderr. */
 void fct_report(const char *key, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* With -v: a figure of one stage of several, "prog: STAGE: key=value". */
+void fct_report_stage(const char *stage, const char *key, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* The folder dir, made when missing; exit 1 with "opt: dir: why" ("dir:
+ * why" when opt is NULL) when it cannot be. */
+void fct_make_folder(const char *opt, const char *dir);
 
 #endif

@@ -80,6 +80,13 @@ int fct_path_is_image(const char *path)
 	return fct_image_magic(head, n) >= 0;
 }
 
+void fct_mesh_round_xyz(struct fct_mesh *m)
+{
+	if (m->xyz_type == FCT_FLOAT32)
+		for (size_t i = 0; i < 3 * m->nv; i++)
+			m->xyz[i] = (float)m->xyz[i];
+}
+
 int fct_mesh_read_file(struct fct_mesh *m, const char *path, enum fct_format *fmt,
                        struct fct_err *err)
 {

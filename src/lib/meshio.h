@@ -29,6 +29,11 @@ const char *fct_format_name(enum fct_format fmt);
  * meshes and depth images as operands alike (tsdfuse). */
 int fct_path_is_image(const char *path);
 
+/* Round m's positions to what a file holds (float, unless m->xyz_type is
+ * double): a program that runs several stages in memory gives what the
+ * stage programs give on a pipe. */
+void fct_mesh_round_xyz(struct fct_mesh *m);
+
 /* Read from path ("-" or NULL: stdin, named "<stdin>"); m is initialised
  * here.  fmt (may be NULL) gets the format read. */
 int fct_mesh_read_file(struct fct_mesh *m, const char *path, enum fct_format *fmt,

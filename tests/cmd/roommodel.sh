@@ -42,6 +42,11 @@ run_case 2 "roommodel --atlas-size 1000 $V" "" "roommodel: --atlas-size: 1000 is
 run_case 2 "roommodel --level some $V" "" "roommodel: --level:"
 run_case 2 "roommodel --voxel 0 $V" "" "roommodel: --voxel:"
 run_case 2 "roommodel --frobnicate $V" "" "roommodel: "
+run_case 2 "roommodel -c 2 -n 5 $V" "" "roommodel: -c and -n exclude each other"
+run_case 2 "roommodel --fit x $V" "" "roommodel: --fit: \"x\" is not a number"
+run_case 2 "roommodel --max-hole -1 $V" "" "roommodel: --max-hole: -1 must be in"
+run_case 2 "roommodel --candidates 0 $V" "" "roommodel: --candidates: 0 must be in"
+run_case 2 "roommodel --atlas-size 16384 $V" "" "roommodel: --max-pages 16 of --atlas-size 16384: more than 2^29 texels"
 run_case 2 "roommodel --image $S/view00.color.png $TMP" "" "roommodel: $TMP: a folder names its own images"
 run_case 0 "roommodel --help" ""
 check_true "--help names the stages' options" grep -q -- "--blend" "$TMP/out"
@@ -91,6 +96,20 @@ check_true "same atlas twice" cmp -s "$TMP/m/a_atlas0.png" "$TMP/m/b_atlas0.png"
 bare "$TMP/m/a.obj" >"$TMP/a.txt"
 bare "$TMP/m/b.obj" >"$TMP/b.txt"
 check_true "same OBJ twice" cmp -s "$TMP/a.txt" "$TMP/b.txt"
+
+# Every option of segplanes, planedecim and viewtex's texture reaches the
+# stages (one table each, segopts.h, planaropts.h, texopts.h): -n stops at
+# 3 patches (21 without, 3 cm voxels), --no-rectify leaves their charts
+# unrectified (1 of them rectified without), and --min-plane above every
+# patch's faces leaves no planar triangle, all of it free-form.
+run_case 0 "roommodel -v -n 3 --no-rectify --voxel 0.03 $V -o $TMP/m/n.obj"
+check_num "-n 3: patches" "$(field 'segplanes: patches')" "==" 3
+check_num "-n 3: planes" "$(field 'planedecim: planes')" "<=" 3
+check_num "--no-rectify: charts rectified" "$(field 'viewtex: charts_rectified')" "==" 0
+check_num "-n 3: planar triangles" "$(field 'planedecim: planar_triangles')" ">" 0
+run_case 0 "roommodel -v --min-plane 1000000 --voxel 0.03 $V -o $TMP/m/p.obj"
+check_num "--min-plane 1000000: planar triangles" "$(field 'planedecim: planar_triangles')" "==" 0
+check_num "--min-plane 1000000: free faces" "$(field 'planedecim: free_faces')" ">" 0
 
 # The same views as a 7-Scenes folder: the same model.
 F=$TMP/7s

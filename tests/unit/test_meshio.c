@@ -5,7 +5,9 @@
  * neither PLY nor OBJ refused; TextureFile paths rewritten relative to the
  * written file's folder (the caller's mesh untouched), joined to the folder
  * of a file read from elsewhere; a textured OBJ's material library beside
- * it; a file in a folder that does not exist refused, nothing left. */
+ * it; a file in a folder that does not exist refused, nothing left;
+ * fct_mesh_round_xyz: positions rounded to float as a PLY of float x y z
+ * holds them, left as they are for a mesh written as double. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -202,6 +204,24 @@ static void test_textures(void)
 	fct_mesh_free(&m);
 }
 
+static void test_round_xyz(void)
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	fct_mesh_init(&m);
+	CHECK(fct_mesh_add_vertex(&m, 0.1, -1e-9, 4e6 + 0.3, &err) == 0);
+	CHECK(m.xyz_type == FCT_FLOAT32);
+	fct_mesh_round_xyz(&m);
+	CHECK(m.xyz[0] == (double)0.1f && m.xyz[0] != 0.1);
+	CHECK(m.xyz[1] == (double)-1e-9f);
+	CHECK(m.xyz[2] == 4000000.25);   /* float's step at 4e6 is 0.25 */
+	m.xyz[0] = 0.1;
+	m.xyz_type = FCT_FLOAT64;
+	fct_mesh_round_xyz(&m);
+	CHECK(m.xyz[0] == 0.1);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	snprintf(dir, sizeof dir, "%s/facet-meshio.XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
@@ -211,6 +231,7 @@ int main(void)
 	test_is_image();
 	test_round_trip();
 	test_textures();
+	test_round_xyz();
 	char cmd[128];
 	snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
 	if (system(cmd))
