@@ -11,7 +11,7 @@
 #include "geom.h"
 #include "header.h"
 #include "numparse.h"
-#include "segment.h"
+#include "planes.h"
 
 static const char *const model_names[] = {
 	[FCT_NOISE_NONE] = "none", [FCT_NOISE_KINECT] = "kinect", [FCT_NOISE_TOF] = "tof",

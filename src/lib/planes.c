@@ -197,3 +197,100 @@ void fct_plane_frame(const double n[3], double e1[3], double e2[3])
 	e1[0] /= l, e1[1] /= l, e1[2] /= l;
 	fct_v3_cross(e2, n, e1);
 }
+
+/* Eigen solvers ----------------------------------------------------------- */
+
+/* The smallest root of the characteristic polynomial by Halley's method
+ * from 0, where the polynomial is positive, decreasing and convex up to the
+ * root: the iterates rise to it, in two or three steps when the points are
+ * nearly planar (the common case here), some 40 ns.  Jacobi rotations take
+ * over when the iteration is slow (nearly equal eigenvalues). */
+double fct_sym3_min_eigenvalue(const double s[6])
+{
+	double a = s[0], b = s[1], c = s[2], d = s[3], e = s[4], f = s[5];
+	double t = a + b + c;
+	double m = a * b - d * d + b * c - e * e + a * c - f * f;
+	double det = a * (b * c - e * e) - d * (d * c - e * f) + f * (d * e - b * f);
+	if (!(det > 0) || !(m > 0))
+		return 0;   /* singular, up to rounding: a point, a line or a plane */
+	double x = 0;
+	for (int it = 0; it < 12; it++) {
+		double px = ((t - x) * x - m) * x + det;
+		double dp = (2 * t - 3 * x) * x - m;
+		double den = 2 * dp * dp - px * (2 * t - 6 * x);
+		if (!(dp < 0) || !(den > 0))
+			break;
+		double nx = x - 2 * px * dp / den;
+		if (!(nx > x))
+			return x;
+		if (nx - x <= 1e-16 * t)   /* below the rounding of the entries */
+			return nx;
+		x = nx;
+	}
+	/* Nearly equal eigenvalues (the polynomial is ill-conditioned there):
+	 * Jacobi rotations. */
+	double m3[3][3] = { { a, d, f }, { d, b, e }, { f, e, c } }, v[3][3], ev[3];
+	fct_sym3_jacobi(v, ev, m3);
+	double l = fmin(ev[0], fmin(ev[1], ev[2]));
+	return l > 0 ? l : 0;
+}
+
+void fct_sym3_jacobi(double v[3][3], double ev[3], double a[3][3])
+{
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			v[i][j] = i == j;
+	for (int sweep = 0; sweep < 64; sweep++) {
+		double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+		double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+		if (off == 0 || off <= 1e-36 * diag)
+			break;
+		for (int p = 0; p < 2; p++)
+			for (int q = p + 1; q < 3; q++) {
+				if (a[p][q] == 0)
+					continue;
+				double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+				double t = 1 / (fabs(theta) + sqrt(theta * theta + 1));
+				if (theta < 0)
+					t = -t;
+				double c = 1 / sqrt(t * t + 1), s = t * c;
+				for (int k = 0; k < 3; k++) {   /* columns p, q */
+					double akp = a[k][p], akq = a[k][q];
+					a[k][p] = c * akp - s * akq;
+					a[k][q] = s * akp + c * akq;
+				}
+				for (int k = 0; k < 3; k++) {   /* rows p, q */
+					double apk = a[p][k], aqk = a[q][k];
+					a[p][k] = c * apk - s * aqk;
+					a[q][k] = s * apk + c * aqk;
+				}
+				for (int k = 0; k < 3; k++) {
+					double vkp = v[k][p], vkq = v[k][q];
+					v[k][p] = c * vkp - s * vkq;
+					v[k][q] = s * vkp + c * vkq;
+				}
+			}
+	}
+	for (int i = 0; i < 3; i++)
+		ev[i] = a[i][i];
+}
+
+double fct_plane_fit(struct fct_plane *pl, const double c[3], const double s[6])
+{
+	double a[3][3] = {
+		{ s[0], s[3], s[5] },
+		{ s[3], s[1], s[4] },
+		{ s[5], s[4], s[2] },
+	}, v[3][3], ev[3];
+	fct_sym3_jacobi(v, ev, a);
+	int k = 0;   /* the smallest; ties to the lower index */
+	for (int i = 1; i < 3; i++)
+		if (ev[i] < ev[k])
+			k = i;
+	double n[3] = { v[0][k], v[1][k], v[2][k] };
+	double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	for (int i = 0; i < 3; i++)
+		pl->n[i] = n[i] / len;
+	pl->d = -(pl->n[0] * c[0] + pl->n[1] * c[1] + pl->n[2] * c[2]);
+	return ev[k] > 0 ? ev[k] : 0;
+}

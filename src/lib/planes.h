@@ -6,7 +6,8 @@
  * Every stage of the planar pipeline reads and writes them through these
  * functions, so the on-disk types (double planes, int patch) are fixed in
  * one place; a file whose plane element uses float or another integer type
- * is read all the same. */
+ * is read all the same.  And the fits behind them: a plane to a scatter of
+ * points, the eigenvalues of a symmetric 3x3. */
 #ifndef FCT_PLANES_H
 #define FCT_PLANES_H
 
@@ -66,5 +67,28 @@ static inline double fct_plane_distance(const struct fct_plane *pl, const double
 {
 	return pl->n[0] * p[0] + pl->n[1] * p[1] + pl->n[2] * p[2] + pl->d;
 }
+
+/* Fits ---------------------------------------------------------------- */
+
+/* The plane fitted to the scatter of weighted points: centroid c, central
+ * scatter s = {sxx, syy, szz, sxy, syz, sxz}.  Writes the
+ * unit normal (eigenvector of the smallest eigenvalue, by Jacobi rotations)
+ * and d = -n.c into pl, and returns the smallest eigenvalue.  pl->count and
+ * pl->rms are left alone.  A scatter of rank < 2 gives a normal all the
+ * same (some unit vector orthogonal to its spread). */
+double fct_plane_fit(struct fct_plane *pl, const double c[3], const double s[6]);
+
+/* The smallest eigenvalue of the symmetric positive semi-definite 3x3
+ * matrix s = {sxx, syy, szz, sxy, syz, sxz}, 0 for a singular one: a root of
+ * the characteristic polynomial, so its absolute error is of the order of
+ * 1e-16 l1^2 / l2 (l1 >= l2 the other two eigenvalues); Jacobi rotations
+ * when the eigenvalues are nearly equal. */
+double fct_sym3_min_eigenvalue(const double s[6]);
+
+/* Cyclic Jacobi rotations on the symmetric a, which they destroy: v gets
+ * the eigenvectors as columns, ev the eigenvalues: every eigenvector, where
+ * areaflow.h's fct_sym3_eigen (closed form, trigonometric) gives the
+ * largest eigenvalue's only; a plane wants the smallest's. */
+void fct_sym3_jacobi(double v[3][3], double ev[3], double a[3][3]);
 
 #endif

@@ -165,19 +165,4 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
                 const struct fct_mesh *m, const struct fct_segment_params *p,
                 struct fct_segment_stats *stats, struct fct_err *err);
 
-/* The plane fitted to the scatter of weighted points: centroid c, central
- * scatter s = {sxx, syy, szz, sxy, syz, sxz}.  Writes the
- * unit normal (eigenvector of the smallest eigenvalue, by Jacobi rotations)
- * and d = -n.c into pl, and returns the smallest eigenvalue.  pl->count and
- * pl->rms are left alone.  A scatter of rank < 2 gives a normal all the
- * same (some unit vector orthogonal to its spread). */
-double fct_plane_fit(struct fct_plane *pl, const double c[3], const double s[6]);
-
-/* The smallest eigenvalue of the symmetric positive semi-definite 3x3
- * matrix s = {sxx, syy, szz, sxy, syz, sxz}, 0 for a singular one: a root of
- * the characteristic polynomial, so its absolute error is of the order of
- * 1e-16 l1^2 / l2 (l1 >= l2 the other two eigenvalues); Jacobi rotations
- * when the eigenvalues are nearly equal. */
-double fct_sym3_min_eigenvalue(const double s[6]);
-
 #endif
