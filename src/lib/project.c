@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "adj.h"
+#include "arena.h"
 #include "chain.h"
 #include "geom.h"
 #include "header.h"
@@ -754,8 +755,8 @@ static size_t merge_pairs(struct fct_plane_pair *pp, size_t n)
  * (edges among more than four patches, non-manifold clutter, are skipped);
  * the caller weighs them again. */
 static int adjacent_pairs(const struct fct_mesh *m, const struct fct_adj *adj,
-                          const int32_t *patch, struct fct_plane_pair **out, size_t *nout,
-                          struct fct_err *err)
+                          const int32_t *patch, struct fct_arena *arena, struct fct_plane_pair **out,
+                          size_t *nout, struct fct_err *err)
 {
 	struct fct_plane_pair *pp = NULL;
 	size_t n = 0, cap = 0;
@@ -782,10 +783,8 @@ static int adjacent_pairs(const struct fct_mesh *m, const struct fct_adj *adj,
 		                               m->xyz + 3 * (size_t)adj->edge_v[2 * e + 1]));
 		for (int a = 0; a < nl; a++)
 			for (int b = a + 1; b < nl; b++) {
-				if (fct_grow((void **)&pp, &cap, n + 1, sizeof *pp, err)) {
-					free(pp);
+				if (fct_arena_grow(arena, (void **)&pp, &cap, n + 1, sizeof *pp, err))
 					return -1;
-				}
 				pp[n].a = lab[a] < lab[b] ? lab[a] : lab[b];
 				pp[n].b = lab[a] < lab[b] ? lab[b] : lab[a];
 				pp[n].w = len;
@@ -798,10 +797,11 @@ static int adjacent_pairs(const struct fct_mesh *m, const struct fct_adj *adj,
 
 /* The same from a wireframe: each edge between two patches, by its length. */
 static int wire_pairs(const struct fct_mesh *m, const struct fct_wire *w, size_t nw,
-                      struct fct_plane_pair **out, size_t *nout, struct fct_err *err)
+                      struct fct_arena *arena, struct fct_plane_pair **out, size_t *nout,
+                      struct fct_err *err)
 {
-	struct fct_plane_pair *pp = fct_alloc_array(nw, sizeof *pp, err);
-	if (!pp && nw)
+	struct fct_plane_pair *pp = fct_arena_array(arena, nw, sizeof *pp, err);
+	if (!pp)
 		return -1;
 	size_t n = 0;
 	for (size_t i = 0; i < nw; i++) {
@@ -890,15 +890,16 @@ static int wire_moments(const struct fct_mesh *m, const struct fct_wire *w, size
 }
 
 /* Each plane's area and centroid, from the wireframe when wired (else
- * from the patches), into *area and *cen, allocated when NULL.  0 or -1. */
+ * from the patches), into *area and *cen, taken from arena when NULL.
+ * 0 or -1. */
 static int plane_moments(const struct fct_mesh *m, int wired, const struct fct_wire *wire,
                          size_t nwire, const int32_t *patch, const struct fct_plane *pl, size_t npl,
-                         double **area, double **cen, struct fct_err *err)
+                         struct fct_arena *arena, double **area, double **cen, struct fct_err *err)
 {
 	if (!*area)
-		*area = fct_alloc_array(npl, sizeof **area, err);
+		*area = fct_arena_array(arena, npl, sizeof **area, err);
 	if (!*cen)
-		*cen = fct_alloc_array(3 * npl, sizeof **cen, err);
+		*cen = fct_arena_array(arena, 3 * npl, sizeof **cen, err);
 	if (!*area || !*cen)
 		return -1;
 	if (wired)
@@ -975,15 +976,15 @@ static int along_ray(const double *n, const double *d, size_t k, const double c[
 }
 
 /* The distinct planes of each vertex, ascending, as lists lab[lstart[v] ..
- * lstart[v + 1]): the patches of its faces, or of its wires' two sides. */
+ * lstart[v + 1]): the patches of its faces, or of its wires' two sides;
+ * the lists are taken from arena. */
 static int vertex_labels(const struct fct_mesh *m, const struct fct_adj *adj, const int32_t *patch,
-                         const struct fct_wire *wire, size_t nwire, size_t **lstart_out,
-                         uint32_t **lab_out, struct fct_err *err)
+                         const struct fct_wire *wire, size_t nwire, struct fct_arena *arena,
+                         size_t **lstart_out, uint32_t **lab_out, struct fct_err *err)
 {
-	size_t *lstart = fct_alloc_array(m->nv + 1, sizeof *lstart, err);
+	size_t *lstart = fct_arena_zeroed(arena, m->nv + 1, sizeof *lstart, err);
 	if (!lstart)
 		return -1;
-	memset(lstart, 0, (m->nv + 1) * sizeof *lstart);
 	/* Count an upper bound per vertex, fill, then sort and squeeze. */
 	if (wire) {
 		for (size_t i = 0; i < nwire; i++) {
@@ -996,12 +997,10 @@ static int vertex_labels(const struct fct_mesh *m, const struct fct_adj *adj, co
 	}
 	for (size_t v = 0; v < m->nv; v++)
 		lstart[v + 1] += lstart[v];
-	uint32_t *lab = fct_alloc_array(lstart[m->nv] ? lstart[m->nv] : 1, sizeof *lab, err);
-	size_t *fill = fct_alloc_array(m->nv ? m->nv : 1, sizeof *fill, err);
-	if (!lab || !fill) {
-		free(lstart), free(lab), free(fill);
+	uint32_t *lab = fct_arena_array(arena, lstart[m->nv], sizeof *lab, err);
+	size_t *fill = fct_arena_array(arena, m->nv, sizeof *fill, err);
+	if (!lab || !fill)
 		return -1;
-	}
 	memcpy(fill, lstart, m->nv * sizeof *fill);
 	if (wire) {
 		for (size_t i = 0; i < nwire; i++) {
@@ -1029,7 +1028,6 @@ static int vertex_labels(const struct fct_mesh *m, const struct fct_adj *adj, co
 				lab[out++] = l[q];
 	}
 	lstart[m->nv] = out;
-	free(fill);
 	*lstart_out = lstart, *lab_out = lab;
 	return 0;
 }
@@ -1071,20 +1069,19 @@ static int tear_copies(const double *n, const double *d, size_t k, const double 
 /* Tear the vertices tv[0..nt) (ascending; vertex tv[i] has the planes
  * lab[lstart[tv[i]]..] and copies txyz[3 * (tstart[i] + q)] for them) out
  * of m's wireframe *wirep[0..*nwp) as fct_project_mesh describes; the new
- * wires replace the old. */
+ * wires (malloc'd, as fct_wires_get's) replace the old; the scratch
+ * comes from arena. */
 static int tear_apply(struct fct_mesh *m, const size_t *lstart, const uint32_t *lab, const size_t *tv,
-                      const size_t *tstart, size_t nt, const double *txyz, struct fct_wire **wirep,
-                      size_t *nwp, size_t *added, struct fct_err *err)
+                      const size_t *tstart, size_t nt, const double *txyz, struct fct_arena *arena,
+                      struct fct_wire **wirep, size_t *nwp, size_t *added, struct fct_err *err)
 {
 	const struct fct_wire *wire = *wirep;
 	size_t nw = *nwp;
-	int rc = -1;
 	size_t nv = m->nv, extra = tstart[nt] - nt;
-	size_t *src = fct_alloc_array(nv + extra, sizeof *src, err);
-	long *first = fct_alloc_array(nv ? nv : 1, sizeof *first, err);   /* copy index of plane 2.. */
-	struct fct_wire *out = fct_alloc_array(nw ? 2 * nw : 1, sizeof *out, err);
-	if (!src || !first || !out)
-		goto done;
+	size_t *src = fct_arena_array(arena, nv + extra, sizeof *src, err);
+	long *first = fct_arena_array(arena, nv, sizeof *first, err);   /* copy index of plane 2.. */
+	if (!src || !first)
+		return -1;
 	for (size_t v = 0; v < nv; v++)
 		src[v] = v, first[v] = -1;
 	size_t at = nv;
@@ -1094,7 +1091,7 @@ static int tear_apply(struct fct_mesh *m, const size_t *lstart, const uint32_t *
 			src[at++] = tv[i];
 	}
 	if (fct_mesh_gather_vertices(m, src, nv + extra, err))
-		goto done;
+		return -1;
 	for (size_t i = 0; i < nt; i++) {
 		size_t k = tstart[i + 1] - tstart[i];
 		for (size_t q = 0; q < k; q++) {
@@ -1102,6 +1099,9 @@ static int tear_apply(struct fct_mesh *m, const size_t *lstart, const uint32_t *
 			memcpy(m->xyz + 3 * v, txyz + 3 * (tstart[i] + q), 3 * sizeof *m->xyz);
 		}
 	}
+	struct fct_wire *out = fct_alloc_array(2 * nw, sizeof *out, err);
+	if (!out)
+		return -1;
 	/* The vertex standing for v on plane p. */
 #define COPY(v, p) (first[v] < 0 ? (v) : copy_of(lstart, lab, first, (v), (p)))
 	size_t no = 0;
@@ -1121,12 +1121,9 @@ static int tear_apply(struct fct_mesh *m, const size_t *lstart, const uint32_t *
 	}
 #undef COPY
 	free(*wirep);
-	*wirep = out, *nwp = no, out = NULL;
+	*wirep = out, *nwp = no;
 	*added = extra;
-	rc = 0;
-done:
-	free(src), free(first), free(out);
-	return rc;
+	return 0;
 }
 
 /* The wireframe's edges in the image, to refuse a change that would make
@@ -1139,6 +1136,7 @@ struct guard_node {
 	uint32_t edge, next;
 };
 struct wire_guard {
+	struct fct_arena *arena;       /* holds the arrays below */
 	const struct fct_wire *w;
 	const unsigned char *dead;     /* edges to ignore (may be NULL) */
 	double *px;                    /* the pixel of each vertex (NaN: none) */
@@ -1149,12 +1147,6 @@ struct wire_guard {
 	struct guard_node *pool;
 	size_t npool, pool_cap;
 };
-
-static void guard_free(struct wire_guard *g)
-{
-	free(g->px), free(g->head), free(g->stamp), free(g->pool);
-	memset(g, 0, sizeof *g);
-}
 
 static void guard_pixel(const struct fct_camera *cam, const double *inv, const double x[3], double out[2])
 {
@@ -1184,7 +1176,8 @@ static int guard_add(struct wire_guard *g, size_t e, struct fct_err *err)
 	guard_cells(g, a, b, c);
 	for (size_t y = c[1]; y <= c[3]; y++)
 		for (size_t x = c[0]; x <= c[2]; x++) {
-			if (fct_grow((void **)&g->pool, &g->pool_cap, g->npool + 1, sizeof *g->pool, err))
+			if (fct_arena_grow(g->arena, (void **)&g->pool, &g->pool_cap, g->npool + 1, sizeof *g->pool,
+			                   err))
 				return -1;
 			if (g->npool >= UINT32_MAX)
 				return fct_fail(err, "too many wireframe edges");
@@ -1195,16 +1188,18 @@ static int guard_add(struct wire_guard *g, size_t e, struct fct_err *err)
 	return 0;
 }
 
-static int guard_init(struct wire_guard *g, const struct fct_mesh *m, const struct fct_camera *cam,
-                      const double *inv, const struct fct_wire *w, size_t nw, struct fct_err *err)
+/* The guard of wireframe w[0..nw) of m seen by cam, its arrays taken from
+ * arena. */
+static int guard_init(struct wire_guard *g, struct fct_arena *arena, const struct fct_mesh *m,
+                      const struct fct_camera *cam, const double *inv, const struct fct_wire *w,
+                      size_t nw, struct fct_err *err)
 {
 	memset(g, 0, sizeof *g);
-	g->w = w, g->nw = nw;
-	g->px = fct_alloc_array(2 * (m->nv ? m->nv : 1), sizeof *g->px, err);
-	g->stamp = fct_alloc_array(nw ? nw : 1, sizeof *g->stamp, err);
+	g->arena = arena, g->w = w, g->nw = nw;
+	g->px = fct_arena_array(arena, 2 * (m->nv ? m->nv : 1), sizeof *g->px, err);
+	g->stamp = fct_arena_zeroed(arena, nw, sizeof *g->stamp, err);
 	if (!g->px || !g->stamp)
 		return -1;
-	memset(g->stamp, 0, (nw ? nw : 1) * sizeof *g->stamp);
 	double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
 	for (size_t v = 0; v < m->nv; v++) {
 		guard_pixel(cam, inv, m->xyz + 3 * v, g->px + 2 * v);
@@ -1219,7 +1214,7 @@ static int guard_init(struct wire_guard *g, const struct fct_mesh *m, const stru
 	g->h = fmax(sqrt(wx * wy / cells), fmax(wx, wy) / 4096);
 	g->lo[0] = lo[0], g->lo[1] = lo[1];
 	g->nx = (size_t)(wx / g->h) + 1, g->ny = (size_t)(wy / g->h) + 1;
-	g->head = fct_alloc_array(g->nx * g->ny, sizeof *g->head, err);
+	g->head = fct_arena_array(arena, g->nx * g->ny, sizeof *g->head, err);
 	if (!g->head)
 		return -1;
 	memset(g->head, 0xff, g->nx * g->ny * sizeof *g->head);
@@ -1270,31 +1265,26 @@ static int guard_crosses(struct wire_guard *g, uint32_t a, const double pa[2], u
 }
 
 /* Drop the vertices of crease chains that projection put on the line of
- * their two planes (see fct_project_mesh), renumbering the rest. */
+ * their two planes (see fct_project_mesh), renumbering the rest; the
+ * scratch comes from arena. */
 static int straighten(struct fct_mesh *m, const struct fct_plane *pl, double bound,
-                      const struct fct_camera *cam, const double *inv, struct fct_wire **wirep,
-                      size_t *nwp, size_t *dropped, size_t *kept, struct fct_err *err)
+                      const struct fct_camera *cam, const double *inv, struct fct_arena *arena,
+                      struct fct_wire **wirep, size_t *nwp, size_t *dropped, size_t *kept,
+                      struct fct_err *err)
 {
 	struct fct_wire *w = *wirep;
 	size_t nw = *nwp, nv = m->nv;
-	int rc = -1;
 	struct wire_guard g;
 	memset(&g, 0, sizeof g);
 	/* Each vertex's first two edges, and its edge count. */
-	size_t *inc = fct_alloc_array(2 * (nv ? nv : 1), sizeof *inc, err);
-	uint32_t *deg = fct_alloc_array(nv ? nv : 1, sizeof *deg, err);
-	unsigned char *dead = calloc(nw ? nw : 1, 1), *gone = calloc(nv ? nv : 1, 1);
-	size_t *keep = NULL;
-	uint32_t *map = NULL;
-	if (!inc || !deg || !dead || !gone) {
-		if (inc && deg)
-			fct_fail(err, "out of memory");
-		goto done;
-	}
-	memset(deg, 0, nv * sizeof *deg);
+	size_t *inc = fct_arena_array(arena, 2 * nv, sizeof *inc, err);
+	uint32_t *deg = fct_arena_zeroed(arena, nv, sizeof *deg, err);
+	unsigned char *dead = fct_arena_zeroed(arena, nw, 1, err), *gone = fct_arena_zeroed(arena, nv, 1, err);
+	if (!inc || !deg || !dead || !gone)
+		return -1;
 	if (cam) {
-		if (guard_init(&g, m, cam, inv, w, nw, err))
-			goto done;
+		if (guard_init(&g, arena, m, cam, inv, w, nw, err))
+			return -1;
 		g.dead = dead;
 	}
 	for (size_t e = 0; e < nw; e++) {
@@ -1333,17 +1323,17 @@ static int straighten(struct fct_mesh *m, const struct fct_plane *pl, double bou
 		w[e1] = (struct fct_wire){ a.v1, b.v2, a.p1, a.p2 };
 		dead[e2] = 1, gone[v] = 1, ndrop++;
 		if (cam && guard_add(&g, e1, err))
-			goto done;
+			return -1;
 		uint32_t y = b.v2;
 		for (int q = 0; q < 2 && q < (int)deg[y]; q++)
 			if (inc[2 * (size_t)y + q] == e2)
 				inc[2 * (size_t)y + q] = e1;
 	}
 	if (ndrop) {
-		keep = fct_alloc_array(nv - ndrop ? nv - ndrop : 1, sizeof *keep, err);
-		map = fct_alloc_array(nv, sizeof *map, err);
+		size_t *keep = fct_arena_array(arena, nv - ndrop, sizeof *keep, err);
+		uint32_t *map = fct_arena_array(arena, nv, sizeof *map, err);
 		if (!keep || !map)
-			goto done;
+			return -1;
 		size_t nk = 0;
 		for (size_t v = 0; v < nv; v++)
 			if (!gone[v])
@@ -1353,15 +1343,11 @@ static int straighten(struct fct_mesh *m, const struct fct_plane *pl, double bou
 			if (!dead[e])
 				w[ne++] = (struct fct_wire){ map[w[e].v1], map[w[e].v2], w[e].p1, w[e].p2 };
 		if (fct_mesh_gather_vertices(m, keep, nk, err))
-			goto done;
+			return -1;
 		*nwp = ne;
 	}
 	*dropped = ndrop;
-	rc = 0;
-done:
-	guard_free(&g);
-	free(inc), free(deg), free(dead), free(gone), free(keep), free(map);
-	return rc;
+	return 0;
 }
 
 /* How many faces around vertex v (all its faces, fanned from their first
@@ -1400,6 +1386,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	int present = 0, rc = -1;
 	struct fct_adj adj;
 	memset(&adj, 0, sizeof adj);
+	struct fct_arena arena = { 0 };   /* every scratch array, freed at out */
 	double *nbuf = NULL, *dbuf = NULL, *area = NULL, *cen = NULL;
 	uint32_t *lab = NULL;
 	size_t *lstart = NULL;
@@ -1413,7 +1400,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	struct fct_plane_pair *pairs = NULL;
 
 	if (fct_planes_get(m, &pl, &npl, err))
-		return -1;
+		goto out;
 	if (!fct_mesh_find_elem(m, "plane")) {
 		fct_fail(err, "no plane element (the planes of segplanes)");
 		goto out;
@@ -1435,7 +1422,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	st.nvert = m->nv, st.nplanes = npl;
 	if (fct_adj_build(&adj, m, err))
 		goto out;
-	if (vertex_labels(m, &adj, patch, wire, nwire, &lstart, &lab, err))
+	if (vertex_labels(m, &adj, patch, wire, nwire, &arena, &lstart, &lab, err))
 		goto out;
 
 	double sum = 0;
@@ -1472,15 +1459,15 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	/* Section 8: the depth scale first (it changes shape), then snapping. */
 	if (p->depth_scale_fix) {
 		size_t npairs = 0;
-		if (wired ? wire_pairs(m, wire, nwire, &pairs, &npairs, err)
-		          : adjacent_pairs(m, &adj, patch, &pairs, &npairs, err))
+		if (wired ? wire_pairs(m, wire, nwire, &arena, &pairs, &npairs, err)
+		          : adjacent_pairs(m, &adj, patch, &arena, &pairs, &npairs, err))
 			goto out;
 		/* Weigh each adjacent pair by its smaller patch's area, and leave
 		 * out patches under 1% of the labelled area: the planes of large
 		 * patches are the reliable ones, while small patches of a noisy,
 		 * curved or cluttered surface meet at every angle (and more of
 		 * them look orthogonal the more depth is stretched). */
-		if (plane_moments(m, wired, wire, nwire, patch, pl, npl, &area, &cen, err))
+		if (plane_moments(m, wired, wire, nwire, patch, pl, npl, &arena, &area, &cen, err))
 			goto out;
 		double total = 0;
 		for (size_t i = 0; i < npl; i++)
@@ -1511,7 +1498,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	if (p->ortho_angle > 0) {
 		/* The scale fix's moments serve unless it moved the points. */
 		if ((!area || planes_changed) &&
-		    plane_moments(m, wired, wire, nwire, patch, pl, npl, &area, &cen, err))
+		    plane_moments(m, wired, wire, nwire, patch, pl, npl, &arena, &area, &cen, err))
 			goto out;
 		double prior[3], down[3] = { 0, -1, 0 };
 		int use_prior = have_cam || have_pose;
@@ -1535,20 +1522,19 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 	for (size_t v = 0; v < m->nv; v++)
 		if (lstart[v + 1] - lstart[v] > maxdeg)
 			maxdeg = lstart[v + 1] - lstart[v];
-	nbuf = fct_alloc_array(3 * maxdeg, sizeof *nbuf, err);
-	dbuf = fct_alloc_array(maxdeg, sizeof *dbuf, err);
+	nbuf = fct_arena_array(&arena, 3 * maxdeg, sizeof *nbuf, err);
+	dbuf = fct_arena_array(&arena, maxdeg, sizeof *dbuf, err);
 	if (!nbuf || !dbuf)
 		goto out;
 	st.bound = p->max_move >= 0 ? p->max_move : p->max_move_edges * st.mean_edge;
 	int guarded = wired && have_cam;
 	if (guarded) {
-		if (guard_init(&guard, m, &cam, have_pose ? inv : NULL, wire, nwire, err))
+		if (guard_init(&guard, &arena, m, &cam, have_pose ? inv : NULL, wire, nwire, err))
 			goto out;
-		wstart = fct_alloc_array(m->nv + 1, sizeof *wstart, err);
-		wlist = fct_alloc_array(2 * (nwire ? nwire : 1), sizeof *wlist, err);
+		wstart = fct_arena_zeroed(&arena, m->nv + 1, sizeof *wstart, err);
+		wlist = fct_arena_array(&arena, 2 * nwire, sizeof *wlist, err);
 		if (!wstart || !wlist)
 			goto out;
-		memset(wstart, 0, (m->nv + 1) * sizeof *wstart);
 		for (size_t e = 0; e < nwire; e++)
 			wstart[wire[e].v1 + 1]++, wstart[wire[e].v2 + 1]++;
 		for (size_t v = 0; v < m->nv; v++)
@@ -1643,7 +1629,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		 * moves; more: it is torn. */
 		int torn = 0, rayed = 0;
 		if (wired && p->tear && have_cam && !flipped && k >= 1 && (refused || apart || crossing)) {
-			if (fct_grow((void **)&txyz, &txyz_cap, 3 * (tstart_n + k), sizeof *txyz, err))
+			if (fct_arena_grow(&arena, (void **)&txyz, &txyz_cap, 3 * (tstart_n + k), sizeof *txyz, err))
 				goto out;
 			/* A vertex of one plane refused for its distance is far off
 			 * that plane: the ray may take it at most FCT_PROJECT_RAY_EDGES
@@ -1655,8 +1641,9 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 					rayed = 1;
 					st.ray_fallback++;
 				} else {
-					if (fct_grow((void **)&tv, &tv_cap, st.torn + 1, sizeof *tv, err) ||
-					    fct_grow((void **)&tstart, &tstart_cap, st.torn + 2, sizeof *tstart, err))
+					if (fct_arena_grow(&arena, (void **)&tv, &tv_cap, st.torn + 1, sizeof *tv, err) ||
+					    fct_arena_grow(&arena, (void **)&tstart, &tstart_cap, st.torn + 2, sizeof *tstart,
+					                   err))
 						goto out;
 					tv[st.torn] = v, tstart[st.torn] = tstart_n;
 					tstart_n += k;
@@ -1694,11 +1681,12 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		}
 		nres += k;
 	}
-	if (st.torn && tear_apply(m, lstart, lab, tv, tstart, st.torn, txyz, &wire, &nwire, &st.tear_copies, err))
+	if (st.torn && tear_apply(m, lstart, lab, tv, tstart, st.torn, txyz, &arena, &wire, &nwire,
+	                          &st.tear_copies, err))
 		goto out;
 	if (wired && p->straighten &&
-	    straighten(m, pl, st.bound, have_cam ? &cam : NULL, have_pose ? inv : NULL, &wire, &nwire,
-	               &st.straightened, &st.straight_refused, err))
+	    straighten(m, pl, st.bound, have_cam ? &cam : NULL, have_pose ? inv : NULL, &arena, &wire,
+	               &nwire, &st.straightened, &st.straight_refused, err))
 		goto out;
 	if ((st.torn || st.straightened) && fct_wires_set(m, wire, nwire, err))
 		goto out;
@@ -1719,19 +1707,9 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 out:
 	if (st_out)
 		*st_out = st;
-	free(pl);
-	free(patch);
+	fct_arena_free(&arena);
+	/* What the mesh's readers allocated. */
+	free(pl), free(patch), free(wire);
 	fct_adj_free(&adj);
-	free(nbuf);
-	free(dbuf);
-	free(lab);
-	free(lstart);
-	free(wire);
-	free(tv), free(tstart), free(txyz);
-	free(wstart), free(wlist);
-	guard_free(&guard);
-	free(area);
-	free(cen);
-	free(pairs);
 	return rc;
 }
