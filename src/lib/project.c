@@ -1375,6 +1375,21 @@ static size_t faces_against(const struct fct_mesh *m, const struct fct_adj *adj,
 	return bad;
 }
 
+/* What section 5's rules made of a vertex: its one verdict, each rule
+ * taking it from the one before. */
+enum verdict {
+	KEPT,         /* on no plane: nothing to do */
+	MOVED,        /* projected onto its plane, line or point (perhaps along its ray) */
+	OVER_BOUND,   /* the move was longer than the bound: kept, as the paper does */
+	FLIPPED,      /* the move would turn a face against its plane: kept */
+	APART,        /* a rank-deficient move that left it on none of its planes
+	                 (between parallel ones): moved, unless torn or put back */
+	CROSSING,     /* the move would make a patch boundary cross itself in the
+	                 image: kept */
+	RAYED,        /* of one plane, refused: moved along its ray onto the plane */
+	TORN,         /* torn: one copy per plane along its ray */
+};
+
 int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
                      struct fct_project_stats *st_out, struct fct_err *err)
 {
@@ -1564,15 +1579,13 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		memcpy(x0, x, sizeof x0);
 		if (fct_project_point(nbuf, dbuf, k, x, st.bound, p->rank_tol, p->fallback, x, &fit, err))
 			goto out;
-		/* A move must not turn a face around it against its plane (a
-		 * sliver whose corner slides across its opposite edge): such a
-		 * move is refused like one over the bound. */
+		enum verdict vd = fit.used > 0 ? MOVED : fit.rank > 0 ? OVER_BOUND : KEPT;
 		/* Range noise lies along the rays: with along_rays, a vertex on one
 		 * or two planes moves along its own ray (to the plane, or to the
 		 * point of the line nearest the ray) rather than perpendicularly,
 		 * which keeps it on its pixel, so its faces keep their orientation
 		 * in the image. */
-		if (have_cam && p->along_rays && fit.used > 0 && fit.used == fit.rank && (k == 1 || k == 2)) {
+		if (have_cam && p->along_rays && vd == MOVED && fit.used == fit.rank && (k == 1 || k == 2)) {
 			double y[3];
 			if (along_ray(nbuf, dbuf, k, centre, x0, y) && sqrt(fct_v3_dist2(y, x0)) <= st.bound) {
 				memcpy(x, y, sizeof y);
@@ -1580,33 +1593,34 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 				st.along_ray++;
 			}
 		}
-		int flipped = 0;
-		if (fit.used > 0) {
+		/* A move must not turn a face around it against its plane (a
+		 * sliver whose corner slides across its opposite edge): such a
+		 * move is refused like one over the bound. */
+		if (vd == MOVED) {
 			double x1[3];
 			memcpy(x1, x, sizeof x1);
 			memcpy(x, x0, sizeof x0);
 			size_t against = faces_against(m, &adj, patch, pl, v);
 			memcpy(x, x1, sizeof x1);
-			flipped = faces_against(m, &adj, patch, pl, v) > against;
+			if (faces_against(m, &adj, patch, pl, v) > against) {
+				memcpy(x, x0, sizeof x0);
+				vd = FLIPPED;
+				st.flip_refused++;
+			}
 		}
-		if (flipped) {
-			memcpy(x, x0, sizeof x0);
-			fit.used = 0;
-			st.flip_refused++;
-		}
-		/* Refused, or a rank-deficient point that lies on none of the
-		 * planes (parallel planes apart: it went between them). */
-		int refused = fit.used == 0 && fit.rank > 0 && !flipped, apart = 0;
-		if (fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3))
-			for (size_t q = 0; q < k; q++)
-				apart |= fabs(fct_plane_distance(&pl[vl[q]], x)) > FCT_PROJECT_TEAR_APART * st.bound;
+		/* A rank-deficient point that lies on none of the planes (parallel
+		 * planes apart: it went between them). */
+		int deficient = fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3);
+		if (vd == MOVED && deficient)
+			for (size_t q = 0; q < k && vd == MOVED; q++)
+				if (fabs(fct_plane_distance(&pl[vl[q]], x)) > FCT_PROJECT_TEAR_APART * st.bound)
+					vd = APART;
 		/* A move must not make the patch's boundary cross itself in the
 		 * image, where tripatch triangulates it. */
-		int crossing = 0;
-		if (guarded && fit.used > 0 && !apart) {
+		if (guarded && vd == MOVED) {
 			double q[2];
 			guard_pixel(&cam, have_pose ? inv : NULL, x, q);
-			crossing = !isfinite(q[0]);
+			int crossing = !isfinite(q[0]);
 			for (size_t i = wstart[v]; i < wstart[v + 1] && !crossing; i++) {
 				const struct fct_wire *f = wire + wlist[i];
 				uint32_t o = f->v1 == v ? f->v2 : f->v1;
@@ -1615,7 +1629,7 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 			}
 			if (crossing) {
 				memcpy(x, x0, sizeof x0);
-				fit.used = 0;
+				vd = CROSSING;
 				st.cross_refused++;
 			} else {
 				memcpy(guard.px + 2 * v, q, sizeof q);
@@ -1627,18 +1641,17 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 		/* What the image allows instead: along the vertex's ray onto each
 		 * of its planes, which keeps its pixel -- one plane: the vertex
 		 * moves; more: it is torn. */
-		int torn = 0, rayed = 0;
-		if (wired && p->tear && have_cam && !flipped && k >= 1 && (refused || apart || crossing)) {
+		if (wired && p->tear && have_cam && k >= 1 && (vd == OVER_BOUND || vd == APART || vd == CROSSING)) {
 			if (fct_arena_grow(&arena, (void **)&txyz, &txyz_cap, 3 * (tstart_n + k), sizeof *txyz, err))
 				goto out;
 			/* A vertex of one plane refused for its distance is far off
 			 * that plane: the ray may take it at most FCT_PROJECT_RAY_EDGES
 			 * bounds (a small patch's plane is not to be trusted far out). */
-			double reach = k == 1 && refused ? FCT_PROJECT_RAY_EDGES : FCT_PROJECT_TEAR_EDGES;
+			double reach = k == 1 && vd == OVER_BOUND ? FCT_PROJECT_RAY_EDGES : FCT_PROJECT_TEAR_EDGES;
 			if (tear_copies(nbuf, dbuf, k, centre, x0, reach * st.bound, txyz + 3 * tstart_n)) {
 				if (k == 1) {
 					memcpy(x, txyz + 3 * tstart_n, sizeof x0);
-					rayed = 1;
+					vd = RAYED;
 					st.ray_fallback++;
 				} else {
 					if (fct_arena_grow(&arena, (void **)&tv, &tv_cap, st.torn + 1, sizeof *tv, err) ||
@@ -1649,32 +1662,30 @@ int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
 					tstart_n += k;
 					tstart[++st.torn] = tstart_n;
 					memcpy(x, txyz + 3 * (tstart_n - k), sizeof x0);
-					torn = 1;
+					vd = TORN;
 				}
-				fit.used = 0;
-			} else if (apart) {
+			} else if (vd == APART) {
 				/* between the planes is no better than where it was */
 				memcpy(x, x0, sizeof x0);
-				fit.used = 0;
-				refused = 1;
+				vd = OVER_BOUND;
 			}
 		}
 		int kk = k < 3 ? (int)k : 3;
 		st.by_k[kk]++;
-		if (fit.used > 0) {
+		if (vd == MOVED || vd == APART) {
 			st.moved[kk]++;
 			move_sum += fit.move;
 			if (fit.move > st.max_move)
 				st.max_move = fit.move;
 			if (fit.used < fit.rank)
 				st.fallback++;
-		} else if (refused && !torn && !rayed) {
+		} else if (vd == OVER_BOUND) {
 			st.rejected++;
 		}
-		if (fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3))
+		if (deficient)
 			st.rank_deficient++;
 		for (size_t q = 0; q < k; q++) {
-			double r = fct_plane_distance(&pl[vl[q]], torn ? txyz + 3 * (tstart_n - k + q) : x);
+			double r = fct_plane_distance(&pl[vl[q]], vd == TORN ? txyz + 3 * (tstart_n - k + q) : x);
 			r2_after += r * r;
 			if (fabs(r) > st.max_after)
 				st.max_after = fabs(r);
