@@ -46,81 +46,98 @@ static double norm3(const double v[3])
 /* Rows on the stack up to this many planes; more come from the heap. */
 enum { STACK_ROWS = 16 };
 
+/* The plane rule: the foot of the perpendicular from p onto the plane
+ * n.x + d = 0, exactly as the SVD would give it. */
+static void foot_on_plane(const double n[3], double d, const double p[3], double delta[3])
+{
+	double r = -(fct_v3_dot(n, p) + d);
+	for (int c = 0; c < 3; c++)
+		delta[c] = r * n[c];
+}
+
+/* The rules of the line of two planes and of the point of k >= 3 (eq. 2):
+ * the minimum-norm least-squares moves delta[r - 1] = sum over j < r of
+ * v_j (u_j . r) / s_j for r up to the numerical rank, into *rank -- of
+ * rank 2 from two planes the nearest point of their line, of rank 3 the
+ * least-squares point.  0, or -1 when out of memory or LAPACK fails. */
+static int pseudoinverse_moves(const double *normals, const double *offsets, size_t k, const double p[3],
+                               double rank_tol, double delta[3][3], int *rank_out, struct fct_err *err)
+{
+	if (k > (size_t)1 << 26)
+		return fct_fail(err, "vertex on %zu planes: too many", k);
+	int m = (int)k, n = 3, mn = m < 3 ? m : 3, lwork = 64 + 8 * m, info = 0;
+	double stack[STACK_ROWS * 3 * 2 + STACK_ROWS + 64 + 8 * STACK_ROWS];
+	double *buf = stack;
+	size_t need = k * 3 * 2 + k + (size_t)lwork;
+	if (k > STACK_ROWS) {
+		buf = fct_alloc_array(need, sizeof *buf, err);
+		if (!buf)
+			return -1;
+	}
+	double *a = buf, *u = a + 3 * k, *r = u + 3 * k, *work = r + k;
+	double s[3], vt[9];
+	for (size_t i = 0; i < k; i++) {
+		for (int c = 0; c < 3; c++)
+			a[i + k * (size_t)c] = normals[3 * i + (size_t)c];   /* column-major */
+		r[i] = -(fct_v3_dot(normals + 3 * i, p) + offsets[i]);
+	}
+	dgesvd_("S", "S", &m, &n, a, &m, s, u, &m, vt, &mn, work, &lwork, &info);
+	if (info != 0) {
+		if (buf != stack)
+			free(buf);
+		return fct_fail(err, "LAPACK dgesvd failed (info %d)", info);
+	}
+	int rank = 0;
+	while (rank < mn && s[rank] > rank_tol * s[0] && s[rank] > 0)
+		rank++;
+	double acc[3] = { 0, 0, 0 };
+	for (int j = 0; j < rank; j++) {
+		double ur = 0;
+		for (size_t i = 0; i < k; i++)
+			ur += u[i + k * (size_t)j] * r[i];
+		double c = ur / s[j];
+		for (int q = 0; q < 3; q++) {
+			acc[q] += vt[j + mn * q] * c;
+			delta[j][q] = acc[q];
+		}
+	}
+	*rank_out = rank;
+	if (buf != stack)
+		free(buf);
+	return 0;
+}
+
+/* The bound, the paper's refusal of a "drastic shape change": the rank of
+ * the move to apply among delta[0..rank), 0 for none.  The full move when
+ * within bound, else with fallback the longest truncation within it
+ * (|delta_r| grows with r, the terms being orthogonal). */
+static int rank_within_bound(const double delta[3][3], int rank, double bound, int fallback)
+{
+	if (norm3(delta[rank - 1]) <= bound)
+		return rank;
+	if (fallback)
+		for (int j = rank - 1; j >= 1; j--)
+			if (norm3(delta[j - 1]) <= bound)
+				return j;
+	return 0;
+}
+
 int fct_project_point(const double *normals, const double *offsets, size_t k, const double p0[3],
                       double bound, double rank_tol, int fallback, double out[3],
                       struct fct_point_fit *fit, struct fct_err *err)
 {
 	struct fct_point_fit f = { 0, 0, 0, 0 };
 	double p[3] = { p0[0], p0[1], p0[2] };
-	if (k == 0) {
-		out[0] = p[0], out[1] = p[1], out[2] = p[2];
-		if (fit)
-			*fit = f;
-		return 0;
-	}
 	double delta[3][3] = { { 0 } };   /* delta[r-1]: the solution of rank r */
 	if (k == 1) {
-		/* The perpendicular foot, exactly as the SVD would give it. */
-		double r = -(fct_v3_dot(normals, p) + offsets[0]);
-		for (int c = 0; c < 3; c++)
-			delta[0][c] = r * normals[c];
+		foot_on_plane(normals, offsets[0], p, delta[0]);
 		f.rank = 1;
-	} else {
-		if (k > (size_t)1 << 26)
-			return fct_fail(err, "vertex on %zu planes: too many", k);
-		int m = (int)k, n = 3, mn = m < 3 ? m : 3, lwork = 64 + 8 * m, info = 0;
-		double stack[STACK_ROWS * 3 * 2 + STACK_ROWS + 64 + 8 * STACK_ROWS];
-		double *buf = stack;
-		size_t need = k * 3 * 2 + k + (size_t)lwork;
-		if (k > STACK_ROWS) {
-			buf = fct_alloc_array(need, sizeof *buf, err);
-			if (!buf)
-				return -1;
-		}
-		double *a = buf, *u = a + 3 * k, *r = u + 3 * k, *work = r + k;
-		double s[3], vt[9];
-		for (size_t i = 0; i < k; i++) {
-			for (int c = 0; c < 3; c++)
-				a[i + k * (size_t)c] = normals[3 * i + (size_t)c];   /* column-major */
-			r[i] = -(fct_v3_dot(normals + 3 * i, p) + offsets[i]);
-		}
-		dgesvd_("S", "S", &m, &n, a, &m, s, u, &m, vt, &mn, work, &lwork, &info);
-		if (info != 0) {
-			if (buf != stack)
-				free(buf);
-			return fct_fail(err, "LAPACK dgesvd failed (info %d)", info);
-		}
-		int rank = 0;
-		while (rank < mn && s[rank] > rank_tol * s[0] && s[rank] > 0)
-			rank++;
-		double acc[3] = { 0, 0, 0 };
-		for (int j = 0; j < rank; j++) {
-			double ur = 0;
-			for (size_t i = 0; i < k; i++)
-				ur += u[i + k * (size_t)j] * r[i];
-			double c = ur / s[j];
-			for (int q = 0; q < 3; q++) {
-				acc[q] += vt[j + mn * q] * c;
-				delta[j][q] = acc[q];
-			}
-		}
-		f.rank = rank;
-		if (buf != stack)
-			free(buf);
+	} else if (k > 1 && pseudoinverse_moves(normals, offsets, k, p, rank_tol, delta, &f.rank, err)) {
+		return -1;
 	}
 	if (f.rank > 0) {
 		f.want = norm3(delta[f.rank - 1]);
-		/* The longest acceptable truncation: |delta_r| grows with r, the
-		 * terms being orthogonal. */
-		int use = 0;
-		if (f.want <= bound)
-			use = f.rank;
-		else if (fallback)
-			for (int j = f.rank - 1; j >= 1; j--)
-				if (norm3(delta[j - 1]) <= bound) {
-					use = j;
-					break;
-				}
+		int use = rank_within_bound(delta, f.rank, bound, fallback);
 		if (use > 0) {
 			f.used = use;
 			f.move = norm3(delta[use - 1]);
@@ -1375,6 +1392,214 @@ static size_t faces_against(const struct fct_mesh *m, const struct fct_adj *adj,
 	return bad;
 }
 
+/* fct_project_mesh's state: what it read from the mesh, the camera, the
+ * figures, and the scratch of section 5. */
+struct stage {
+	struct fct_mesh *m;
+	const struct fct_project_params *p;
+	struct fct_project_stats st;
+	struct fct_arena arena;          /* every scratch array, freed by stage_free */
+	/* Read from the mesh; malloc'd by the readers. */
+	struct fct_plane *pl;
+	size_t npl;
+	int32_t *patch;                  /* per face; NULL for a wireframe */
+	int wired;                       /* the vertices take their planes from the wires */
+	struct fct_wire *wire;
+	size_t nwire;
+	struct fct_adj adj;
+	/* Each vertex's planes (vertex_labels), from the arena. */
+	size_t *lstart;
+	uint32_t *lab;
+	/* The camera and pose comments. */
+	struct fct_camera cam;
+	int have_cam, have_pose, cyl;
+	double pose[12], inv[12];
+	const double *to_cam;            /* inv, or NULL without a pose */
+	double centre[3];                /* the camera centre in the mesh's frame */
+	/* Section 8. */
+	double *area, *cen;              /* plane_moments, once taken */
+	int planes_changed;
+	/* Section 5: the planes of the vertex at hand, the image guard, the
+	 * torn vertices (vertex tv[i] has copies txyz[3 * (tstart[i] ..
+	 * tstart[i + 1])), one per plane) and the running sums of the figures. */
+	double *nbuf, *dbuf;
+	int guarded;
+	struct wire_guard guard;
+	size_t *wstart, *wlist;          /* each vertex's wires: wlist[wstart[v] .. wstart[v + 1]) */
+	size_t *tv, *tstart, ncopies, tv_cap, tstart_cap, txyz_cap;
+	double *txyz;
+	double move_sum, r2_before, r2_after;
+	size_t nres;
+};
+
+static void stage_free(struct stage *s)
+{
+	fct_arena_free(&s->arena);
+	free(s->pl), free(s->patch), free(s->wire);
+	fct_adj_free(&s->adj);
+}
+
+/* The mean edge length: of the wireframe's edges when wired, else of the
+ * mesh's. */
+static double mean_edge(const struct stage *s)
+{
+	const struct fct_mesh *m = s->m;
+	double sum = 0;
+	size_t nedges = s->wired ? s->nwire : s->adj.ne;
+	for (size_t e = 0; e < nedges; e++)
+		sum += s->wired ? sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)s->wire[e].v1,
+		                                    m->xyz + 3 * (size_t)s->wire[e].v2))
+		                : sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)s->adj.edge_v[2 * e],
+		                                    m->xyz + 3 * (size_t)s->adj.edge_v[2 * e + 1]));
+	return nedges ? sum / (double)nedges : 0;
+}
+
+/* Read the planes, the patches or the wireframe, each vertex's planes, the
+ * camera and the pose from s->m. */
+static int stage_read(struct stage *s, struct fct_err *err)
+{
+	struct fct_mesh *m = s->m;
+	if (fct_planes_get(m, &s->pl, &s->npl, err))
+		return -1;
+	if (!fct_mesh_find_elem(m, "plane"))
+		return fct_fail(err, "no plane element (the planes of segplanes)");
+	int present = 0;
+	if (fct_patches_get(m, &s->patch, &present, (long)s->npl, err))
+		return -1;
+	/* A mesh without faces may be a wireframe (simpchain's output): its
+	 * vertices then take their planes from the edges' two sides. */
+	if (!present || (m->nf == 0 && fct_mesh_find_elem(m, "edge"))) {
+		if (fct_wires_get(m, (long)s->npl, &s->wire, &s->nwire, &s->wired, err))
+			return -1;
+		if (!s->wired)
+			return fct_fail(err, "no face property patch (the labels of segplanes) nor edge element "
+			                     "(simpchain's wireframe)");
+	}
+	s->st.nvert = m->nv, s->st.nplanes = s->npl;
+	if (fct_adj_build(&s->adj, m, err) ||
+	    vertex_labels(m, &s->adj, s->patch, s->wire, s->nwire, &s->arena, &s->lstart, &s->lab, err))
+		return -1;
+	s->st.mean_edge = mean_edge(s);
+
+	s->have_cam = fct_header_camera(m, &s->cam, err);
+	if (s->have_cam < 0)
+		return -1;
+	s->have_pose = fct_header_pose(m, s->pose, err);
+	if (s->have_pose < 0)
+		return -1;
+	if (s->have_pose) {
+		if (fct_pose_check(s->pose, 1e-3, err)) {
+			fct_err_prefix(err, "comment pose");
+			return -1;
+		}
+		fct_pose_invert(s->pose, s->inv);
+		s->to_cam = s->inv;
+		/* Both camera models see from their origin. */
+		s->centre[0] = s->pose[3], s->centre[1] = s->pose[7], s->centre[2] = s->pose[11];
+	}
+	s->cyl = s->have_cam && s->cam.kind == FCT_CAMERA_CYLINDRICAL;
+	return 0;
+}
+
+/* Section 8, Figure 8: scale camera-frame depth so that adjacent planes
+ * become orthogonal (points, planes and the camera's focal length). */
+static int fix_depth_scale(struct stage *s, struct fct_err *err)
+{
+	struct fct_mesh *m = s->m;
+	const struct fct_project_params *p = s->p;
+	struct fct_plane_pair *pairs = NULL;
+	size_t npairs = 0;
+	if (s->wired ? wire_pairs(m, s->wire, s->nwire, &s->arena, &pairs, &npairs, err)
+	             : adjacent_pairs(m, &s->adj, s->patch, &s->arena, &pairs, &npairs, err))
+		return -1;
+	/* Weigh each adjacent pair by its smaller patch's area, and leave
+	 * out patches under 1% of the labelled area: the planes of large
+	 * patches are the reliable ones, while small patches of a noisy,
+	 * curved or cluttered surface meet at every angle (and more of
+	 * them look orthogonal the more depth is stretched). */
+	if (plane_moments(m, s->wired, s->wire, s->nwire, s->patch, s->pl, s->npl, &s->arena, &s->area,
+	                  &s->cen, err))
+		return -1;
+	double total = 0;
+	for (size_t i = 0; i < s->npl; i++)
+		total += s->area[i];
+	size_t kept = 0;
+	for (size_t k = 0; k < npairs; k++) {
+		double a = s->area[pairs[k].a], b = s->area[pairs[k].b], w = a < b ? a : b;
+		if (w >= FCT_PROJECT_SCALE_MIN_AREA * total && w > 0) {
+			pairs[kept] = pairs[k];
+			pairs[kept++].w = w;
+		}
+	}
+	npairs = kept;
+	double angle = p->scale_angle > 0 ? p->scale_angle
+	             : p->ortho_angle > 0 ? p->ortho_angle : FCT_PROJECT_SCALE_ANGLE;
+	struct fct_scale_result *res = &s->st.scale_res;
+	if (fct_depth_scale_solve(s->pl, s->npl, pairs, npairs, s->to_cam, s->cyl, angle, res, err))
+		return -1;
+	s->st.scaled = 1;
+	if (res->scale != 1) {
+		fct_depth_scale_apply(res->scale, s->have_pose ? s->pose : NULL, s->cyl, m->xyz, m->nv, s->pl,
+		                      s->npl, s->have_cam ? &s->cam : NULL);
+		if (s->have_cam && fct_header_set_camera(m, &s->cam, err))
+			return -1;
+		s->planes_changed = 1;
+	}
+	return 0;
+}
+
+/* Section 8: snap the planes to a frame; with a camera or a pose, up is
+ * sought near the camera's -y (image rows run down). */
+static int snap_planes(struct stage *s, struct fct_err *err)
+{
+	/* The scale fix's moments serve unless it moved the points. */
+	if ((!s->area || s->planes_changed) &&
+	    plane_moments(s->m, s->wired, s->wire, s->nwire, s->patch, s->pl, s->npl, &s->arena, &s->area,
+	                  &s->cen, err))
+		return -1;
+	double prior[3], down[3] = { 0, -1, 0 };
+	int use_prior = s->have_cam || s->have_pose;
+	if (s->have_pose) {
+		double o[3] = { 0, 0, 0 }, a[3], b[3];
+		fct_pose_apply(s->pose, down, a);
+		fct_pose_apply(s->pose, o, b);
+		fct_v3_sub(prior, a, b);
+	} else {
+		memcpy(prior, down, sizeof prior);
+	}
+	if (fct_planes_orthogonalize(s->pl, s->npl, s->area, s->cen, use_prior ? prior : NULL,
+	                             s->p->ortho_angle, &s->st.ortho_res, err))
+		return -1;
+	s->st.ortho = 1;
+	s->planes_changed = 1;
+	return 0;
+}
+
+/* The image guard of a wireframe seen by the camera, and each vertex's
+ * wires for it. */
+static int guard_setup(struct stage *s, struct fct_err *err)
+{
+	const struct fct_mesh *m = s->m;
+	const struct fct_wire *wire = s->wire;
+	size_t nwire = s->nwire;
+	if (guard_init(&s->guard, &s->arena, m, &s->cam, s->to_cam, wire, nwire, err))
+		return -1;
+	size_t *wstart = s->wstart = fct_arena_zeroed(&s->arena, m->nv + 1, sizeof *wstart, err);
+	size_t *wlist = s->wlist = fct_arena_array(&s->arena, 2 * nwire, sizeof *wlist, err);
+	if (!wstart || !wlist)
+		return -1;
+	for (size_t e = 0; e < nwire; e++)
+		wstart[wire[e].v1 + 1]++, wstart[wire[e].v2 + 1]++;
+	for (size_t v = 0; v < m->nv; v++)
+		wstart[v + 1] += wstart[v];
+	for (size_t e = 0; e < nwire; e++)
+		wlist[wstart[wire[e].v1]++] = e, wlist[wstart[wire[e].v2]++] = e;
+	for (size_t v = m->nv; v > 0; v--)
+		wstart[v] = wstart[v - 1];
+	wstart[0] = 0;
+	return 0;
+}
+
 /* What section 5's rules made of a vertex: its one verdict, each rule
  * taking it from the one before. */
 enum verdict {
@@ -1390,337 +1615,280 @@ enum verdict {
 	TORN,         /* torn: one copy per plane along its ray */
 };
 
-int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
-                     struct fct_project_stats *st_out, struct fct_err *err)
+/* The vertex at hand: its planes, where it was, where the rules put it. */
+struct vertex {
+	size_t v, k;             /* its index; its number of planes */
+	const uint32_t *vl;      /* its planes, vl[0..k), also in s->nbuf and s->dbuf */
+	double x0[3];            /* where it was */
+	double *x;               /* where it is (in the mesh) */
+	struct fct_point_fit fit;
+	enum verdict vd;
+};
+
+/* Section 5 proper (eq. 2): to the point of the vertex's planes nearest
+ * it -- its foot on one plane, the nearest point of the line of two, the
+ * least-squares point of more (fct_project_point) -- or kept when that is
+ * farther than the bound. */
+static int onto_planes(struct stage *s, struct vertex *c, struct fct_err *err)
 {
-	struct fct_project_stats st;
-	memset(&st, 0, sizeof st);
-	struct fct_plane *pl = NULL;
-	size_t npl = 0;
-	int32_t *patch = NULL;
-	int present = 0, rc = -1;
-	struct fct_adj adj;
-	memset(&adj, 0, sizeof adj);
-	struct fct_arena arena = { 0 };   /* every scratch array, freed at out */
-	double *nbuf = NULL, *dbuf = NULL, *area = NULL, *cen = NULL;
-	uint32_t *lab = NULL;
-	size_t *lstart = NULL;
-	struct wire_guard guard;
-	memset(&guard, 0, sizeof guard);
-	size_t *wstart = NULL, *wlist = NULL;
-	size_t *tv = NULL, *tstart = NULL, tv_cap = 0, tstart_cap = 0, txyz_cap = 0, tstart_n = 0;
-	double *txyz = NULL;
-	struct fct_wire *wire = NULL;
-	size_t nwire = 0;
-	struct fct_plane_pair *pairs = NULL;
+	if (fct_project_point(s->nbuf, s->dbuf, c->k, c->x, s->st.bound, s->p->rank_tol, s->p->fallback, c->x,
+	                      &c->fit, err))
+		return -1;
+	c->vd = c->fit.used > 0 ? MOVED : c->fit.rank > 0 ? OVER_BOUND : KEPT;
+	return 0;
+}
 
-	if (fct_planes_get(m, &pl, &npl, err))
-		goto out;
-	if (!fct_mesh_find_elem(m, "plane")) {
-		fct_fail(err, "no plane element (the planes of segplanes)");
-		goto out;
+/* Range noise lies along the rays: with along_rays, a vertex on one or two
+ * planes moves along its own ray (to the plane, or to the point of the
+ * line nearest the ray) rather than perpendicularly, which keeps it on its
+ * pixel, so its faces keep their orientation in the image. */
+static void move_along_ray(struct stage *s, struct vertex *c)
+{
+	if (!(s->have_cam && s->p->along_rays && c->vd == MOVED && c->fit.used == c->fit.rank &&
+	      (c->k == 1 || c->k == 2)))
+		return;
+	double y[3];
+	if (along_ray(s->nbuf, s->dbuf, c->k, s->centre, c->x0, y) && sqrt(fct_v3_dist2(y, c->x0)) <= s->st.bound) {
+		memcpy(c->x, y, sizeof y);
+		c->fit.move = sqrt(fct_v3_dist2(y, c->x0));
+		s->st.along_ray++;
 	}
-	if (fct_patches_get(m, &patch, &present, (long)npl, err))
-		goto out;
-	/* A mesh without faces may be a wireframe (simpchain's output): its
-	 * vertices then take their planes from the edges' two sides. */
-	int wired = 0;
-	if (!present || (m->nf == 0 && fct_mesh_find_elem(m, "edge"))) {
-		if (fct_wires_get(m, (long)npl, &wire, &nwire, &wired, err))
-			goto out;
-		if (!wired) {
-			fct_fail(err, "no face property patch (the labels of segplanes) nor edge element "
-			              "(simpchain's wireframe)");
-			goto out;
-		}
-	}
-	st.nvert = m->nv, st.nplanes = npl;
-	if (fct_adj_build(&adj, m, err))
-		goto out;
-	if (vertex_labels(m, &adj, patch, wire, nwire, &arena, &lstart, &lab, err))
-		goto out;
+}
 
-	double sum = 0;
-	size_t nedges = wired ? nwire : adj.ne;
-	for (size_t e = 0; e < nedges; e++)
-		sum += wired ? sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)wire[e].v1, m->xyz + 3 * (size_t)wire[e].v2))
-		             : sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
-		                                 m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
-	st.mean_edge = nedges ? sum / (double)nedges : 0;
-
-	struct fct_camera cam;
-	double pose[12], inv[12];
-	int have_cam = fct_header_camera(m, &cam, err);
-	if (have_cam < 0)
-		goto out;
-	int have_pose = fct_header_pose(m, pose, err);
-	if (have_pose < 0)
-		goto out;
-	if (have_pose) {
-		if (fct_pose_check(pose, 1e-3, err)) {
-			fct_err_prefix(err, "comment pose");
-			goto out;
-		}
-		fct_pose_invert(pose, inv);
+/* A move must not turn a face around the vertex against its plane (a
+ * sliver whose corner slides across its opposite edge): such a move is
+ * refused like one over the bound. */
+static void refuse_flip(struct stage *s, struct vertex *c)
+{
+	if (c->vd != MOVED)
+		return;
+	double x1[3];
+	memcpy(x1, c->x, sizeof x1);
+	memcpy(c->x, c->x0, sizeof c->x0);
+	size_t against = faces_against(s->m, &s->adj, s->patch, s->pl, c->v);
+	memcpy(c->x, x1, sizeof x1);
+	if (faces_against(s->m, &s->adj, s->patch, s->pl, c->v) > against) {
+		memcpy(c->x, c->x0, sizeof c->x0);
+		c->vd = FLIPPED;
+		s->st.flip_refused++;
 	}
-	int cyl = have_cam && cam.kind == FCT_CAMERA_CYLINDRICAL;
-	int planes_changed = 0;
-	/* The camera centre in the mesh's frame: both models see from their
-	 * origin. */
-	double centre[3] = { 0, 0, 0 };
-	if (have_pose)
-		centre[0] = pose[3], centre[1] = pose[7], centre[2] = pose[11];
+}
 
-	/* Section 8: the depth scale first (it changes shape), then snapping. */
-	if (p->depth_scale_fix) {
-		size_t npairs = 0;
-		if (wired ? wire_pairs(m, wire, nwire, &arena, &pairs, &npairs, err)
-		          : adjacent_pairs(m, &adj, patch, &arena, &pairs, &npairs, err))
-			goto out;
-		/* Weigh each adjacent pair by its smaller patch's area, and leave
-		 * out patches under 1% of the labelled area: the planes of large
-		 * patches are the reliable ones, while small patches of a noisy,
-		 * curved or cluttered surface meet at every angle (and more of
-		 * them look orthogonal the more depth is stretched). */
-		if (plane_moments(m, wired, wire, nwire, patch, pl, npl, &arena, &area, &cen, err))
-			goto out;
-		double total = 0;
-		for (size_t i = 0; i < npl; i++)
-			total += area[i];
-		size_t kept = 0;
-		for (size_t k = 0; k < npairs; k++) {
-			double a = area[pairs[k].a], b = area[pairs[k].b], w = a < b ? a : b;
-			if (w >= FCT_PROJECT_SCALE_MIN_AREA * total && w > 0) {
-				pairs[kept] = pairs[k];
-				pairs[kept++].w = w;
-			}
-		}
-		npairs = kept;
-		double angle = p->scale_angle > 0 ? p->scale_angle
-		             : p->ortho_angle > 0 ? p->ortho_angle : FCT_PROJECT_SCALE_ANGLE;
-		if (fct_depth_scale_solve(pl, npl, pairs, npairs, have_pose ? inv : NULL, cyl, angle,
-		                          &st.scale_res, err))
-			goto out;
-		st.scaled = 1;
-		if (st.scale_res.scale != 1) {
-			fct_depth_scale_apply(st.scale_res.scale, have_pose ? pose : NULL, cyl, m->xyz, m->nv,
-			                      pl, npl, have_cam ? &cam : NULL);
-			if (have_cam && fct_header_set_camera(m, &cam, err))
-				goto out;
-			planes_changed = 1;
-		}
-	}
-	if (p->ortho_angle > 0) {
-		/* The scale fix's moments serve unless it moved the points. */
-		if ((!area || planes_changed) &&
-		    plane_moments(m, wired, wire, nwire, patch, pl, npl, &arena, &area, &cen, err))
-			goto out;
-		double prior[3], down[3] = { 0, -1, 0 };
-		int use_prior = have_cam || have_pose;
-		if (have_pose) {
-			double o[3] = { 0, 0, 0 }, a[3], b[3];
-			fct_pose_apply(pose, down, a);
-			fct_pose_apply(pose, o, b);
-			fct_v3_sub(prior, a, b);
-		} else {
-			memcpy(prior, down, sizeof prior);
-		}
-		if (fct_planes_orthogonalize(pl, npl, area, cen, use_prior ? prior : NULL,
-		                             p->ortho_angle, &st.ortho_res, err))
-			goto out;
-		st.ortho = 1;
-		planes_changed = 1;
-	}
+/* The numerical rank of the vertex's normals is below min(k, 3). */
+static int rank_deficient(const struct vertex *c)
+{
+	return c->fit.rank > 0 && c->fit.rank < (c->k < 3 ? (int)c->k : 3);
+}
 
-	/* Section 5. */
+/* A rank-deficient point that lies on none of its planes: parallel planes
+ * apart, it went between them. */
+static void between_parallels(const struct stage *s, struct vertex *c)
+{
+	if (c->vd != MOVED || !rank_deficient(c))
+		return;
+	for (size_t q = 0; q < c->k; q++)
+		if (fabs(fct_plane_distance(&s->pl[c->vl[q]], c->x)) > FCT_PROJECT_TEAR_APART * s->st.bound) {
+			c->vd = APART;
+			return;
+		}
+}
+
+/* The image guard: a move must not make a patch's boundary cross itself
+ * in the image, where tripatch triangulates it.  A move it lets through
+ * updates the guard. */
+static int image_guard(struct stage *s, struct vertex *c, struct fct_err *err)
+{
+	if (!s->guarded || c->vd != MOVED)
+		return 0;
+	struct wire_guard *g = &s->guard;
+	uint32_t v = (uint32_t)c->v;
+	double q[2];
+	guard_pixel(&s->cam, s->to_cam, c->x, q);
+	int crossing = !isfinite(q[0]);
+	for (size_t i = s->wstart[v]; i < s->wstart[v + 1] && !crossing; i++) {
+		const struct fct_wire *f = s->wire + s->wlist[i];
+		uint32_t o = f->v1 == v ? f->v2 : f->v1;
+		crossing = guard_crosses(g, v, q, o, g->px + 2 * (size_t)o, f->p1, f->p2, UINT32_MAX, s->wlist[i],
+		                         v, q);
+	}
+	if (crossing) {
+		memcpy(c->x, c->x0, sizeof c->x0);
+		c->vd = CROSSING;
+		s->st.cross_refused++;
+		return 0;
+	}
+	memcpy(g->px + 2 * (size_t)v, q, sizeof q);
+	for (size_t i = s->wstart[v]; i < s->wstart[v + 1]; i++)
+		if (guard_add(g, s->wlist[i], err))
+			return -1;
+	return 0;
+}
+
+/* Tearing along rays, what the image allows instead of a refused move (or
+ * one between parallel planes): along the vertex's ray onto each of its
+ * planes, which keeps its pixel -- one plane: the vertex moves; more: it
+ * is torn, its copies kept for tear_apply. */
+static int tear_along_rays(struct stage *s, struct vertex *c, struct fct_err *err)
+{
+	size_t k = c->k;
+	if (!(s->wired && s->p->tear && s->have_cam && k >= 1 &&
+	      (c->vd == OVER_BOUND || c->vd == APART || c->vd == CROSSING)))
+		return 0;
+	if (fct_arena_grow(&s->arena, (void **)&s->txyz, &s->txyz_cap, 3 * (s->ncopies + k), sizeof *s->txyz,
+	                   err))
+		return -1;
+	double *copies = s->txyz + 3 * s->ncopies;
+	/* A vertex of one plane refused for its distance is far off that
+	 * plane: the ray may take it at most FCT_PROJECT_RAY_EDGES bounds (a
+	 * small patch's plane is not to be trusted far out). */
+	double reach = k == 1 && c->vd == OVER_BOUND ? FCT_PROJECT_RAY_EDGES : FCT_PROJECT_TEAR_EDGES;
+	if (!tear_copies(s->nbuf, s->dbuf, k, s->centre, c->x0, reach * s->st.bound, copies)) {
+		if (c->vd == APART) {
+			/* between the planes is no better than where it was */
+			memcpy(c->x, c->x0, sizeof c->x0);
+			c->vd = OVER_BOUND;
+		}
+		return 0;
+	}
+	memcpy(c->x, copies, sizeof c->x0);
+	if (k == 1) {
+		c->vd = RAYED;
+		s->st.ray_fallback++;
+		return 0;
+	}
+	size_t n = s->st.torn;
+	if (fct_arena_grow(&s->arena, (void **)&s->tv, &s->tv_cap, n + 1, sizeof *s->tv, err) ||
+	    fct_arena_grow(&s->arena, (void **)&s->tstart, &s->tstart_cap, n + 2, sizeof *s->tstart, err))
+		return -1;
+	s->tv[n] = c->v, s->tstart[n] = s->ncopies;
+	s->ncopies += k;
+	s->tstart[n + 1] = s->ncopies;
+	s->st.torn = n + 1;
+	c->vd = TORN;
+	return 0;
+}
+
+/* The figures of the vertex's verdict. */
+static void account(struct stage *s, const struct vertex *c)
+{
+	struct fct_project_stats *st = &s->st;
+	int kk = c->k < 3 ? (int)c->k : 3;
+	st->by_k[kk]++;
+	if (c->vd == MOVED || c->vd == APART) {
+		st->moved[kk]++;
+		s->move_sum += c->fit.move;
+		if (c->fit.move > st->max_move)
+			st->max_move = c->fit.move;
+		if (c->fit.used < c->fit.rank)
+			st->fallback++;
+	} else if (c->vd == OVER_BOUND) {
+		st->rejected++;
+	}
+	if (rank_deficient(c))
+		st->rank_deficient++;
+	/* A torn vertex's copies are the last k of txyz, one per plane. */
+	const double *torn = c->vd == TORN ? s->txyz + 3 * (s->ncopies - c->k) : NULL;
+	for (size_t q = 0; q < c->k; q++) {
+		double r = fct_plane_distance(&s->pl[c->vl[q]], torn ? torn + 3 * q : c->x);
+		s->r2_after += r * r;
+		if (fabs(r) > st->max_after)
+			st->max_after = fabs(r);
+	}
+	s->nres += c->k;
+}
+
+/* Section 5's rules for vertex v, in order, each taking the verdict of the
+ * one before. */
+static int project_vertex(struct stage *s, size_t v, struct fct_err *err)
+{
+	struct vertex c;
+	c.v = v, c.k = s->lstart[v + 1] - s->lstart[v], c.vl = s->lab + s->lstart[v];
+	c.x = s->m->xyz + 3 * v;
+	memcpy(c.x0, c.x, sizeof c.x0);
+	for (size_t q = 0; q < c.k; q++) {
+		const struct fct_plane *pl = &s->pl[c.vl[q]];
+		memcpy(s->nbuf + 3 * q, pl->n, 3 * sizeof *s->nbuf);
+		s->dbuf[q] = pl->d;
+	}
+	for (size_t q = 0; q < c.k; q++) {
+		double r = fct_plane_distance(&s->pl[c.vl[q]], c.x);
+		s->r2_before += r * r;
+	}
+	if (onto_planes(s, &c, err))
+		return -1;
+	move_along_ray(s, &c);
+	refuse_flip(s, &c);
+	between_parallels(s, &c);
+	if (image_guard(s, &c, err) || tear_along_rays(s, &c, err))
+		return -1;
+	account(s, &c);
+	return 0;
+}
+
+/* Section 5 on every vertex, then the means of the figures. */
+static int project_vertices(struct stage *s, struct fct_err *err)
+{
+	const struct fct_mesh *m = s->m;
+	const struct fct_project_params *p = s->p;
 	size_t maxdeg = 1;
 	for (size_t v = 0; v < m->nv; v++)
-		if (lstart[v + 1] - lstart[v] > maxdeg)
-			maxdeg = lstart[v + 1] - lstart[v];
-	nbuf = fct_arena_array(&arena, 3 * maxdeg, sizeof *nbuf, err);
-	dbuf = fct_arena_array(&arena, maxdeg, sizeof *dbuf, err);
-	if (!nbuf || !dbuf)
-		goto out;
-	st.bound = p->max_move >= 0 ? p->max_move : p->max_move_edges * st.mean_edge;
-	int guarded = wired && have_cam;
-	if (guarded) {
-		if (guard_init(&guard, &arena, m, &cam, have_pose ? inv : NULL, wire, nwire, err))
-			goto out;
-		wstart = fct_arena_zeroed(&arena, m->nv + 1, sizeof *wstart, err);
-		wlist = fct_arena_array(&arena, 2 * nwire, sizeof *wlist, err);
-		if (!wstart || !wlist)
-			goto out;
-		for (size_t e = 0; e < nwire; e++)
-			wstart[wire[e].v1 + 1]++, wstart[wire[e].v2 + 1]++;
-		for (size_t v = 0; v < m->nv; v++)
-			wstart[v + 1] += wstart[v];
-		for (size_t e = 0; e < nwire; e++)
-			wlist[wstart[wire[e].v1]++] = e, wlist[wstart[wire[e].v2]++] = e;
-		for (size_t v = m->nv; v > 0; v--)
-			wstart[v] = wstart[v - 1];
-		wstart[0] = 0;
-	}
-	double move_sum = 0, r2_before = 0, r2_after = 0;
-	size_t nres = 0;
-	for (size_t v = 0; v < m->nv; v++) {
-		const uint32_t *vl = lab + lstart[v];
-		size_t k = lstart[v + 1] - lstart[v];
-		for (size_t q = 0; q < k; q++) {
-			memcpy(nbuf + 3 * q, pl[vl[q]].n, 3 * sizeof *nbuf);
-			dbuf[q] = pl[vl[q]].d;
-		}
-		double *x = m->xyz + 3 * v;
-		for (size_t q = 0; q < k; q++) {
-			double r = fct_plane_distance(&pl[vl[q]], x);
-			r2_before += r * r;
-		}
-		struct fct_point_fit fit;
-		double x0[3];
-		memcpy(x0, x, sizeof x0);
-		if (fct_project_point(nbuf, dbuf, k, x, st.bound, p->rank_tol, p->fallback, x, &fit, err))
-			goto out;
-		enum verdict vd = fit.used > 0 ? MOVED : fit.rank > 0 ? OVER_BOUND : KEPT;
-		/* Range noise lies along the rays: with along_rays, a vertex on one
-		 * or two planes moves along its own ray (to the plane, or to the
-		 * point of the line nearest the ray) rather than perpendicularly,
-		 * which keeps it on its pixel, so its faces keep their orientation
-		 * in the image. */
-		if (have_cam && p->along_rays && vd == MOVED && fit.used == fit.rank && (k == 1 || k == 2)) {
-			double y[3];
-			if (along_ray(nbuf, dbuf, k, centre, x0, y) && sqrt(fct_v3_dist2(y, x0)) <= st.bound) {
-				memcpy(x, y, sizeof y);
-				fit.move = sqrt(fct_v3_dist2(y, x0));
-				st.along_ray++;
-			}
-		}
-		/* A move must not turn a face around it against its plane (a
-		 * sliver whose corner slides across its opposite edge): such a
-		 * move is refused like one over the bound. */
-		if (vd == MOVED) {
-			double x1[3];
-			memcpy(x1, x, sizeof x1);
-			memcpy(x, x0, sizeof x0);
-			size_t against = faces_against(m, &adj, patch, pl, v);
-			memcpy(x, x1, sizeof x1);
-			if (faces_against(m, &adj, patch, pl, v) > against) {
-				memcpy(x, x0, sizeof x0);
-				vd = FLIPPED;
-				st.flip_refused++;
-			}
-		}
-		/* A rank-deficient point that lies on none of the planes (parallel
-		 * planes apart: it went between them). */
-		int deficient = fit.rank > 0 && fit.rank < (k < 3 ? (int)k : 3);
-		if (vd == MOVED && deficient)
-			for (size_t q = 0; q < k && vd == MOVED; q++)
-				if (fabs(fct_plane_distance(&pl[vl[q]], x)) > FCT_PROJECT_TEAR_APART * st.bound)
-					vd = APART;
-		/* A move must not make the patch's boundary cross itself in the
-		 * image, where tripatch triangulates it. */
-		if (guarded && vd == MOVED) {
-			double q[2];
-			guard_pixel(&cam, have_pose ? inv : NULL, x, q);
-			int crossing = !isfinite(q[0]);
-			for (size_t i = wstart[v]; i < wstart[v + 1] && !crossing; i++) {
-				const struct fct_wire *f = wire + wlist[i];
-				uint32_t o = f->v1 == v ? f->v2 : f->v1;
-				crossing = guard_crosses(&guard, (uint32_t)v, q, o, guard.px + 2 * (size_t)o, f->p1, f->p2,
-				                         UINT32_MAX, wlist[i], (uint32_t)v, q);
-			}
-			if (crossing) {
-				memcpy(x, x0, sizeof x0);
-				vd = CROSSING;
-				st.cross_refused++;
-			} else {
-				memcpy(guard.px + 2 * v, q, sizeof q);
-				for (size_t i = wstart[v]; i < wstart[v + 1]; i++)
-					if (guard_add(&guard, wlist[i], err))
-						goto out;
-			}
-		}
-		/* What the image allows instead: along the vertex's ray onto each
-		 * of its planes, which keeps its pixel -- one plane: the vertex
-		 * moves; more: it is torn. */
-		if (wired && p->tear && have_cam && k >= 1 && (vd == OVER_BOUND || vd == APART || vd == CROSSING)) {
-			if (fct_arena_grow(&arena, (void **)&txyz, &txyz_cap, 3 * (tstart_n + k), sizeof *txyz, err))
-				goto out;
-			/* A vertex of one plane refused for its distance is far off
-			 * that plane: the ray may take it at most FCT_PROJECT_RAY_EDGES
-			 * bounds (a small patch's plane is not to be trusted far out). */
-			double reach = k == 1 && vd == OVER_BOUND ? FCT_PROJECT_RAY_EDGES : FCT_PROJECT_TEAR_EDGES;
-			if (tear_copies(nbuf, dbuf, k, centre, x0, reach * st.bound, txyz + 3 * tstart_n)) {
-				if (k == 1) {
-					memcpy(x, txyz + 3 * tstart_n, sizeof x0);
-					vd = RAYED;
-					st.ray_fallback++;
-				} else {
-					if (fct_arena_grow(&arena, (void **)&tv, &tv_cap, st.torn + 1, sizeof *tv, err) ||
-					    fct_arena_grow(&arena, (void **)&tstart, &tstart_cap, st.torn + 2, sizeof *tstart,
-					                   err))
-						goto out;
-					tv[st.torn] = v, tstart[st.torn] = tstart_n;
-					tstart_n += k;
-					tstart[++st.torn] = tstart_n;
-					memcpy(x, txyz + 3 * (tstart_n - k), sizeof x0);
-					vd = TORN;
-				}
-			} else if (vd == APART) {
-				/* between the planes is no better than where it was */
-				memcpy(x, x0, sizeof x0);
-				vd = OVER_BOUND;
-			}
-		}
-		int kk = k < 3 ? (int)k : 3;
-		st.by_k[kk]++;
-		if (vd == MOVED || vd == APART) {
-			st.moved[kk]++;
-			move_sum += fit.move;
-			if (fit.move > st.max_move)
-				st.max_move = fit.move;
-			if (fit.used < fit.rank)
-				st.fallback++;
-		} else if (vd == OVER_BOUND) {
-			st.rejected++;
-		}
-		if (deficient)
-			st.rank_deficient++;
-		for (size_t q = 0; q < k; q++) {
-			double r = fct_plane_distance(&pl[vl[q]], vd == TORN ? txyz + 3 * (tstart_n - k + q) : x);
-			r2_after += r * r;
-			if (fabs(r) > st.max_after)
-				st.max_after = fabs(r);
-		}
-		nres += k;
-	}
-	if (st.torn && tear_apply(m, lstart, lab, tv, tstart, st.torn, txyz, &arena, &wire, &nwire,
-	                          &st.tear_copies, err))
-		goto out;
-	if (wired && p->straighten &&
-	    straighten(m, pl, st.bound, have_cam ? &cam : NULL, have_pose ? inv : NULL, &arena, &wire,
-	               &nwire, &st.straightened, &st.straight_refused, err))
-		goto out;
-	if ((st.torn || st.straightened) && fct_wires_set(m, wire, nwire, err))
-		goto out;
-	size_t nmoved = st.moved[1] + st.moved[2] + st.moved[3];
-	st.mean_move = nmoved ? move_sum / (double)nmoved : 0;
-	st.rms_before = nres ? sqrt(r2_before / (double)nres) : 0;
-	st.rms_after = nres ? sqrt(r2_after / (double)nres) : 0;
+		if (s->lstart[v + 1] - s->lstart[v] > maxdeg)
+			maxdeg = s->lstart[v + 1] - s->lstart[v];
+	s->nbuf = fct_arena_array(&s->arena, 3 * maxdeg, sizeof *s->nbuf, err);
+	s->dbuf = fct_arena_array(&s->arena, maxdeg, sizeof *s->dbuf, err);
+	if (!s->nbuf || !s->dbuf)
+		return -1;
+	s->st.bound = p->max_move >= 0 ? p->max_move : p->max_move_edges * s->st.mean_edge;
+	s->guarded = s->wired && s->have_cam;
+	if (s->guarded && guard_setup(s, err))
+		return -1;
+	for (size_t v = 0; v < m->nv; v++)
+		if (project_vertex(s, v, err))
+			return -1;
+	struct fct_project_stats *st = &s->st;
+	size_t nmoved = st->moved[1] + st->moved[2] + st->moved[3];
+	st->mean_move = nmoved ? s->move_sum / (double)nmoved : 0;
+	st->rms_before = s->nres ? sqrt(s->r2_before / (double)s->nres) : 0;
+	st->rms_after = s->nres ? sqrt(s->r2_after / (double)s->nres) : 0;
+	return 0;
+}
 
+int fct_project_mesh(struct fct_mesh *m, const struct fct_project_params *p,
+                     struct fct_project_stats *st, struct fct_err *err)
+{
+	struct stage s;
+	memset(&s, 0, sizeof s);
+	s.m = m, s.p = p;
+	int rc = -1;
+	if (stage_read(&s, err))
+		goto out;
+	/* Section 8: the depth scale first (it changes shape), then snapping. */
+	if ((p->depth_scale_fix && fix_depth_scale(&s, err)) || (p->ortho_angle > 0 && snap_planes(&s, err)))
+		goto out;
+	/* Section 5, then the wireframe's tears and straight creases. */
+	if (project_vertices(&s, err))
+		goto out;
+	if (s.st.torn && tear_apply(m, s.lstart, s.lab, s.tv, s.tstart, s.st.torn, s.txyz, &s.arena, &s.wire,
+	                            &s.nwire, &s.st.tear_copies, err))
+		goto out;
+	if (s.wired && p->straighten &&
+	    straighten(m, s.pl, s.st.bound, s.have_cam ? &s.cam : NULL, s.to_cam, &s.arena, &s.wire, &s.nwire,
+	               &s.st.straightened, &s.st.straight_refused, err))
+		goto out;
+	if ((s.st.torn || s.st.straightened) && fct_wires_set(m, s.wire, s.nwire, err))
+		goto out;
 	/* Section 6. */
-	if (p->texcoords && have_cam && m->nv > 0) {
-		if (fct_camera_texcoords(m, &cam, have_pose ? inv : NULL, &st.no_pixel, err))
+	if (p->texcoords && s.have_cam && m->nv > 0) {
+		if (fct_camera_texcoords(m, &s.cam, s.to_cam, &s.st.no_pixel, err))
 			goto out;
-		st.texcoords = 1;
+		s.st.texcoords = 1;
 	}
-	if (planes_changed && fct_planes_set(m, pl, npl, err))
+	if (s.planes_changed && fct_planes_set(m, s.pl, s.npl, err))
 		goto out;
 	rc = 0;
 out:
-	if (st_out)
-		*st_out = st;
-	fct_arena_free(&arena);
-	/* What the mesh's readers allocated. */
-	free(pl), free(patch), free(wire);
-	fct_adj_free(&adj);
+	if (st)
+		*st = s.st;
+	stage_free(&s);
 	return rc;
 }

@@ -971,13 +971,16 @@ static void test_wire_crease(void)
  * vertices are torn, the box keeps each vertex on z = 2 along its ray and
  * the wall gets a copy on z = 4 along the same ray -- the same pixel.  The
  * two border chains of the box (patch 0 / -1) keep their vertices 3, 4. */
+static const struct fct_wire silhouette[5] = { { 0, 1, 0, 1 }, { 1, 2, 0, 1 }, { 2, 3, 0, -1 },
+                                                { 3, 4, 0, -1 }, { 4, 0, 0, -1 } };
+static const struct fct_plane box_wall[2] = { { { 0, 0, -1 }, 2, 10, 0 }, { { 0, 0, -1 }, 4, 10, 0 } };
+
 static void test_wire_tear(void)
 {
+	const struct fct_wire *w = silhouette;
+	const struct fct_plane *pl = box_wall;
 	double xs[5][3] = { { 0.5, -0.5, 2.5 }, { 0.5, 0, 2.5 }, { 0.5, 0.5, 2.5 }, { -0.5, 0.5, 2 },
 	                    { -0.5, -0.5, 2 } };
-	struct fct_wire w[5] = { { 0, 1, 0, 1 }, { 1, 2, 0, 1 }, { 2, 3, 0, -1 }, { 3, 4, 0, -1 },
-	                         { 4, 0, 0, -1 } };
-	struct fct_plane pl[2] = { { { 0, 0, -1 }, 2, 10, 0 }, { { 0, 0, -1 }, 4, 10, 0 } };
 	struct fct_mesh m;
 	wire_mesh(&m, xs, 5, w, 5, pl, 2, 1);
 	struct fct_project_params par;
@@ -1092,6 +1095,122 @@ static void test_wire_guard(void)
 	fct_mesh_free(&m);
 }
 
+/* The flip rule: vertex 0 at (0.3, 0, 0) lies on the floor z = 0 (patch 0,
+ * normal +z) and the wall x = 0 (patch 1, normal -x), so it goes to the
+ * nearest point of their line, the origin.  Its floor face (0, 2, 1) has
+ * its other corners at (0.1, -+1, 0): the origin lies beyond their edge,
+ * so the move would turn that face from +0.4 (area vector along +z) to
+ * -0.2 and is refused, the vertex kept.  With those corners at x = -0.1
+ * the face stays up (+0.8, then +0.2) and the vertex moves. */
+static void test_flip_refused(void)
+{
+	for (int beyond = 0; beyond < 2; beyond++) {
+		double cx = beyond ? 0.1 : -0.1;
+		double xs[5][3] = { { 0.3, 0, 0 }, { cx, -1, 0 }, { cx, 1, 0 }, { 0, -1, 1 }, { 0, 1, 1 } };
+		struct fct_mesh m;
+		fct_mesh_init(&m);
+		for (int i = 0; i < 5; i++)
+			fct_mesh_add_vertex(&m, xs[i][0], xs[i][1], xs[i][2], &err);
+		/* The wall face (0, 3, 4): area vector (-2, 0, 0) before and after,
+		 * along its normal -x. */
+		uint32_t f[2][3] = { { 0, 2, 1 }, { 0, 3, 4 } };
+		for (int i = 0; i < 2; i++)
+			fct_mesh_add_face(&m, f[i], 3, &err);
+		int32_t lab[2] = { 0, 1 };
+		CHECK_INT(fct_patches_set(&m, lab, &err), 0);
+		struct fct_plane pl[2] = { { { 0, 0, 1 }, 0, 1, 0 }, { { -1, 0, 0 }, 0, 1, 0 } };
+		CHECK_INT(fct_planes_set(&m, pl, 2, &err), 0);
+		struct fct_project_params par;
+		fct_project_params_default(&par);
+		par.max_move = HUGE_VAL;
+		struct fct_project_stats st;
+		CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+		CHECK_INT(st.by_k[2], 1);
+		CHECK_INT(st.flip_refused, beyond);
+		CHECK_INT(st.moved[2], !beyond);
+		CHECK_INT(st.rejected, 0);
+		CHECK_NEAR(m.xyz[0], beyond ? 0.3 : 0, 0);
+		CHECK_NEAR(m.xyz[1], 0, 0);
+		CHECK_NEAR(m.xyz[2], 0, 0);
+		fct_mesh_free(&m);
+	}
+}
+
+/* A vertex of one plane refused for its distance goes along its ray, at
+ * most FCT_PROJECT_RAY_EDGES bounds.  The notch 0-1-2-3-4 of patch 0
+ * (plane z = 2) has vertex 2 at (0.1, 0, 2.5), 0.5 off the plane; its ray
+ * from the camera at the origin meets the plane at 0.8 times it,
+ * (0.08, 0, 2), 0.2 |(0.1, 0, 2.5)| = 0.50040 away.  Bound 0.2: the foot
+ * (0.5) is refused, the ray (0.5004 <= 0.6) taken, pixel (53.5, 49.5)
+ * kept.  Bound 0.15: the ray is too long too (> 0.45), the vertex kept. */
+static void test_ray_reach(void)
+{
+	double xs[5][3] = { { -0.5, -0.5, 2 }, { 0.5, -0.5, 2 }, { 0.1, 0, 2.5 }, { 0.5, 0.5, 2 },
+	                    { -0.5, 0.5, 2 } };
+	struct fct_wire w[5];
+	for (uint32_t i = 0; i < 5; i++)
+		w[i] = (struct fct_wire){ i, (i + 1) % 5, 0, -1 };
+	struct fct_plane pl[1] = { { { 0, 0, -1 }, 2, 10, 0 } };
+	for (int far = 0; far < 2; far++) {
+		struct fct_mesh m;
+		wire_mesh(&m, xs, 5, w, 5, pl, 1, 1);
+		struct fct_project_params par;
+		fct_project_params_default(&par);
+		par.max_move = far ? 0.15 : 0.2;
+		struct fct_project_stats st;
+		CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+		CHECK_INT(st.by_k[1], 5);
+		CHECK_INT(st.moved[1], 4);
+		CHECK_INT(st.ray_fallback, !far);
+		CHECK_INT(st.rejected, far);
+		CHECK_INT(st.torn, 0);
+		CHECK_INT(m.nv, 5);
+		CHECK_NEAR(m.xyz[6], far ? 0.1 : 0.08, 1e-15);
+		CHECK_NEAR(m.xyz[7], 0, 0);
+		CHECK_NEAR(m.xyz[8], far ? 2.5 : 2, 1e-15);
+		const struct fct_prop *ps = fct_elem_find(&m.vertex, "s");
+		CHECK(ps != NULL);
+		if (ps)
+			CHECK_NEAR(fct_prop_get(ps, 2), (53.5 + 0.5) / 100, 1e-7);
+		fct_mesh_free(&m);
+	}
+}
+
+/* Between parallel planes: test_wire_tear's silhouette chain at depth 3,
+ * midway between the box z = 2 and the wall z = 4.  The two normals are one
+ * line (rank 1), whose least-squares move from z = 3 is nil, and the point
+ * stays 1 from both planes.  With tearing, its copies lie 1/3 of the ray
+ * away (|(0.5, y, 3)| / 3 > 1.01): beyond 10 bounds of 0.05, so the vertex
+ * is put back and refused; without tearing that nil move stands. */
+static void test_between_parallels(void)
+{
+	const struct fct_wire *w = silhouette;
+	const struct fct_plane *pl = box_wall;
+	double xs[5][3] = { { 0.5, -0.5, 3 }, { 0.5, 0, 3 }, { 0.5, 0.5, 3 }, { -0.5, 0.5, 2 },
+	                    { -0.5, -0.5, 2 } };
+	for (int tear = 0; tear < 2; tear++) {
+		struct fct_mesh m;
+		wire_mesh(&m, xs, 5, w, 5, pl, 2, 1);
+		struct fct_project_params par;
+		fct_project_params_default(&par);
+		par.max_move = 0.05;
+		par.tear = tear;
+		struct fct_project_stats st;
+		CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+		CHECK_INT(st.by_k[2], 3);
+		CHECK_INT(st.rank_deficient, 3);
+		CHECK_INT(st.torn, 0);
+		CHECK_INT(st.rejected, tear ? 3 : 0);
+		CHECK_INT(st.moved[2], tear ? 0 : 3);
+		CHECK_INT(m.nv, 5);
+		for (int i = 0; i < 3; i++)
+			for (int q = 0; q < 3; q++)
+				CHECK_NEAR(m.xyz[3 * i + q], xs[i][q], 1e-15);
+		CHECK_NEAR(st.max_after, 1, 1e-15);
+		fct_mesh_free(&m);
+	}
+}
+
 int main(void)
 {
 	test_one_plane();
@@ -1110,5 +1229,8 @@ int main(void)
 	test_wire_crease();
 	test_wire_tear();
 	test_wire_guard();
+	test_flip_refused();
+	test_ray_reach();
+	test_between_parallels();
 	CHECK_DONE();
 }
