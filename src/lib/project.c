@@ -315,6 +315,223 @@ static double mod90(double x)
 	return r;
 }
 
+/* Weights: a plane of no weight still counts a little, so that a mesh
+ * without area is snapped all the same. */
+static void snap_weights(const double *weight, size_t n, double *w)
+{
+	double wmax = 0;
+	for (size_t i = 0; i < n; i++) {
+		w[i] = weight && isfinite(weight[i]) && weight[i] > 0 ? weight[i] : 0;
+		if (w[i] > wmax)
+			wmax = w[i];
+	}
+	for (size_t i = 0; i < n; i++)
+		w[i] = wmax > 0 ? w[i] + 1e-9 * wmax : 1;
+}
+
+/* Step 1: up, the candidate normal (of the MAX_CANDIDATES heaviest, order
+ * listing the planes heaviest first; those near up_prior when there are
+ * any) with the largest weight of normals within cos_a of it, refined. */
+static int find_up(const struct fct_plane *pl, size_t n, const double *w, const size_t *order,
+                   const double *up_prior, double cos_a, double up[3], struct fct_err *err)
+{
+	size_t ncand = n < MAX_CANDIDATES ? n : MAX_CANDIDATES;
+	long best = -1;
+	double best_score = -1;
+	for (int pass = up_prior ? 0 : 1; pass < 2 && best < 0; pass++)
+		for (size_t c = 0; c < ncand; c++) {
+			size_t i = order[c];
+			if (pass == 0 && fabs(fct_v3_dot(pl[i].n, up_prior)) < cos(45 * DEG))
+				continue;
+			double sc = 0;
+			for (size_t j = 0; j < n; j++)
+				if (fabs(fct_v3_dot(pl[j].n, pl[i].n)) >= cos_a)
+					sc += w[j];
+			if (sc > best_score || (sc == best_score && (long)i < best))
+				best_score = sc, best = (long)i;
+		}
+	double ref[3];
+	memcpy(up, pl[best].n, 3 * sizeof *up);
+	memcpy(ref, up_prior ? up_prior : pl[best].n, sizeof ref);
+	if (fct_v3_dot(up, ref) < 0)
+		for (int c = 0; c < 3; c++)
+			up[c] = -up[c];
+	return refine_axis(pl, n, w, cos_a, up, ref, err);
+}
+
+/* Two horizontal unit axes ea, eb with ea x eb = up: ea from the axis
+ * along which up is smallest. */
+static void horizontal_basis(const double up[3], double ea[3], double eb[3])
+{
+	int k = 0;
+	for (int c = 1; c < 3; c++)
+		if (fabs(up[c]) < fabs(up[k]))
+			k = c;
+	ea[0] = ea[1] = ea[2] = 0;
+	ea[k] = 1;
+	fct_v3_axpy(ea, ea, -fct_v3_dot(ea, up), up);
+	double len = norm3(ea);
+	for (int c = 0; c < 3; c++)
+		ea[c] /= len;
+	fct_v3_cross(eb, up, ea);
+}
+
+/* Step 2's groups of vertical planes. */
+struct frames {
+	int *of;                 /* per plane: its frame, -1 vertical without one, -2 not vertical */
+	double *phi;             /* per vertical plane: its azimuth modulo 90 degrees */
+	double (*axes)[2][3];    /* per frame: its two horizontal axes */
+	size_t n;
+};
+
+/* The seed of the next frame: among the MAX_CANDIDATES heaviest vertical
+ * planes without a frame, the one with the largest weight of azimuths
+ * within h of its own. */
+static size_t frame_seed(const struct frames *fr, const size_t *order, size_t n, const struct azimuths *az,
+                         double h)
+{
+	long pick = -1;
+	double pick_score = -1;
+	size_t seen = 0;
+	for (size_t c = 0; c < n && seen < MAX_CANDIDATES; c++) {
+		size_t i = order[c];
+		if (fr->of[i] != -1)
+			continue;
+		seen++;
+		double sc = window_weight(az, fr->phi[i] - h, fr->phi[i] + h);
+		if (sc > pick_score || (sc == pick_score && (long)i < pick))
+			pick_score = sc, pick = (long)i;
+	}
+	return (size_t)pick;
+}
+
+/* Step 2: frames of the vertical planes (normal within sin_a of
+ * perpendicular to up), grouped greedily by azimuth, the heaviest group
+ * first; idx (n entries) and az are scratch. */
+static int vertical_frames(const struct fct_plane *pl, size_t n, const double *w, const size_t *order,
+                           const double up[3], double angle, size_t *idx, struct azimuths *az,
+                           struct frames *fr, struct fct_err *err)
+{
+	const double h = angle * DEG;
+	double ea[3], eb[3];
+	horizontal_basis(up, ea, eb);
+	for (size_t i = 0; i < n; i++) {
+		fr->of[i] = -2;
+		if (fabs(fct_v3_dot(pl[i].n, up)) <= sin(h)) {
+			fr->of[i] = -1;
+			fr->phi[i] = mod90(atan2(fct_v3_dot(pl[i].n, eb), fct_v3_dot(pl[i].n, ea)));
+		}
+	}
+	const double *phi = fr->phi;
+	for (fr->n = 0; fr->n < MAX_FRAMES; fr->n++) {
+		/* The unassigned vertical planes, by azimuth. */
+		size_t m = 0;
+		for (size_t i = 0; i < n; i++)
+			if (fr->of[i] == -1)
+				idx[m++] = i;
+		if (m == 0)
+			break;
+		if (sort_by_key(idx, m, phi, err))   /* descending azimuth; reversed below */
+			return -1;
+		az->n = m;
+		az->cum[0] = 0;
+		for (size_t k = 0; k < m; k++) {
+			size_t i = idx[m - 1 - k];
+			az->x[k] = phi[i];
+			az->cum[k + 1] = az->cum[k] + w[i];
+		}
+		size_t pick = frame_seed(fr, order, n, az, h);
+		/* Its azimuth: the weighted circular mean of 4 x azimuth over the
+		 * planes within h, divided by 4, twice. */
+		double psi = phi[pick];
+		for (int it = 0; it < 2; it++) {
+			double sx = 0, sy = 0;
+			for (size_t k = 0; k < m; k++) {
+				size_t i = idx[k];
+				if (dist90(phi[i], psi) <= h) {
+					sx += w[i] * cos(4 * phi[i]);
+					sy += w[i] * sin(4 * phi[i]);
+				}
+			}
+			if (sx != 0 || sy != 0)
+				psi = mod90(atan2(sy, sx) / 4);
+		}
+		int members = 0;
+		for (size_t k = 0; k < m; k++) {
+			size_t i = idx[k];
+			if (dist90(phi[i], psi) <= h)
+				fr->of[i] = (int)fr->n, members++;
+		}
+		if (!members)
+			fr->of[pick] = (int)fr->n, psi = phi[pick];
+		double cs = cos(psi), sn = sin(psi);
+		for (int c = 0; c < 3; c++) {
+			fr->axes[fr->n][0][c] = cs * ea[c] + sn * eb[c];
+			fr->axes[fr->n][1][c] = -sn * ea[c] + cs * eb[c];
+		}
+	}
+	return 0;
+}
+
+/* Step 3 for one normal nv (of frame f in fr->of's terms), counted in r. */
+static void snap_normal(double nv[3], int f, const struct frames *fr, const double up[3], double cos_a,
+                        double sin_a, struct fct_ortho_result *r)
+{
+	double nu = fct_v3_dot(nv, up);
+	if (fabs(nu) >= cos_a) {
+		double sg = nu < 0 ? -1 : 1;
+		for (int c = 0; c < 3; c++)
+			nv[c] = sg * up[c];
+		r->horizontal++;
+	} else if (f >= 0) {
+		const double (*ax)[3] = fr->axes[f];
+		double d0 = fct_v3_dot(nv, ax[0]), d1 = fct_v3_dot(nv, ax[1]);
+		int k = fabs(d1) > fabs(d0);
+		double sg = (k ? d1 : d0) < 0 ? -1 : 1;
+		for (int c = 0; c < 3; c++)
+			nv[c] = sg * ax[k][c];
+		r->vertical++;
+	} else if (f == -1) {
+		/* A vertical plane beyond the frames: only made vertical. */
+		fct_v3_axpy(nv, nv, -nu, up);
+		double len = norm3(nv);
+		for (int c = 0; c < 3; c++)
+			nv[c] /= len;
+	} else {
+		double bestd = HUGE_VAL;
+		const double *bax = NULL;
+		for (size_t g = 0; g < (fr->n ? 1 : 0); g++)   /* the main frame only */
+			for (int k = 0; k < 2; k++) {
+				double dd = fabs(fct_v3_dot(nv, fr->axes[g][k]));
+				if (dd < bestd)
+					bestd = dd, bax = fr->axes[g][k];
+			}
+		if (bax && bestd <= sin_a) {
+			fct_v3_axpy(nv, nv, -fct_v3_dot(nv, bax), bax);
+			double len = norm3(nv);
+			for (int c = 0; c < 3; c++)
+				nv[c] /= len;
+			r->oblique++;
+		}
+	}
+}
+
+/* Step 4: plane p, whose normal was snapped from old's, turns about the
+ * point of old nearest pivot (NULL or not finite: nearest the origin);
+ * the angle turned, in degrees. */
+static double turn_about_pivot(struct fct_plane *p, const struct fct_plane *old, const double *pivot)
+{
+	double q[3];
+	if (pivot && isfinite(pivot[0]) && isfinite(pivot[1]) && isfinite(pivot[2]))
+		fct_v3_axpy(q, pivot, -fct_plane_distance(old, pivot), old->n);
+	else
+		for (int c = 0; c < 3; c++)
+			q[c] = -old->d * old->n[c];
+	p->d = -fct_v3_dot(p->n, q);
+	double cosang = fct_v3_dot(p->n, old->n);
+	return acos(cosang > 1 ? 1 : cosang < -1 ? -1 : cosang) / DEG;
+}
+
 int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weight,
                              const double *pivot, const double *up_prior, double angle,
                              struct fct_ortho_result *res, struct fct_err *err)
@@ -333,195 +550,29 @@ int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weigh
 	}
 	const double cos_a = cos(angle * DEG), sin_a = sin(angle * DEG);
 	int rc = -1;
-	double *w = fct_alloc_array(n, sizeof *w, err);
-	size_t *order = fct_alloc_array(n, sizeof *order, err);
-	int *frame = fct_alloc_array(n, sizeof *frame, err);
-	double *phi = fct_alloc_array(n, sizeof *phi, err);
-	struct azimuths az = { fct_alloc_array(n, sizeof(double), err),
-	                       fct_alloc_array(n + 1, sizeof(double), err), 0 };
-	double (*axes)[2][3] = fct_alloc_array(MAX_FRAMES, sizeof *axes, err);
-	size_t *idx = fct_alloc_array(n, sizeof *idx, err);
-	struct fct_plane *old = fct_alloc_array(n, sizeof *old, err);
-	if (!w || !order || !frame || !phi || !az.x || !az.cum || !axes || !idx || !old)
+	struct fct_arena a = { 0 };
+	double *w = fct_arena_array(&a, n, sizeof *w, err);
+	size_t *order = fct_arena_array(&a, n, sizeof *order, err);
+	size_t *idx = fct_arena_array(&a, n, sizeof *idx, err);
+	struct fct_plane *old = fct_arena_array(&a, n, sizeof *old, err);
+	struct azimuths az = { fct_arena_array(&a, n, sizeof(double), err),
+	                       fct_arena_array(&a, n + 1, sizeof(double), err), 0 };
+	struct frames fr = { fct_arena_array(&a, n, sizeof(int), err), fct_arena_array(&a, n, sizeof(double), err),
+	                     fct_arena_array(&a, MAX_FRAMES, sizeof *fr.axes, err), 0 };
+	if (!w || !order || !idx || !old || !az.x || !az.cum || !fr.of || !fr.phi || !fr.axes)
 		goto out;
 	memcpy(old, pl, n * sizeof *pl);
-
-	/* Weights: a plane of no weight still counts a little, so that a
-	 * mesh without area is snapped all the same. */
-	double wmax = 0;
-	for (size_t i = 0; i < n; i++) {
-		w[i] = weight && isfinite(weight[i]) && weight[i] > 0 ? weight[i] : 0;
-		if (w[i] > wmax)
-			wmax = w[i];
-	}
-	for (size_t i = 0; i < n; i++)
-		w[i] = wmax > 0 ? w[i] + 1e-9 * wmax : 1;
-
-	/* 1. up. */
+	snap_weights(weight, n, w);
 	for (size_t i = 0; i < n; i++)
 		order[i] = i;
-	if (sort_by_key(order, n, w, err))
+	if (sort_by_key(order, n, w, err) || find_up(pl, n, w, order, up_prior, cos_a, r.up, err) ||
+	    vertical_frames(pl, n, w, order, r.up, angle, idx, &az, &fr, err))
 		goto out;
-	size_t ncand = n < MAX_CANDIDATES ? n : MAX_CANDIDATES;
-	long best = -1;
-	double best_score = -1;
-	for (int pass = up_prior ? 0 : 1; pass < 2 && best < 0; pass++)
-		for (size_t c = 0; c < ncand; c++) {
-			size_t i = order[c];
-			if (pass == 0 && fabs(fct_v3_dot(pl[i].n, up_prior)) < cos(45 * DEG))
-				continue;
-			double sc = 0;
-			for (size_t j = 0; j < n; j++)
-				if (fabs(fct_v3_dot(pl[j].n, pl[i].n)) >= cos_a)
-					sc += w[j];
-			if (sc > best_score || (sc == best_score && (long)i < best))
-				best_score = sc, best = (long)i;
-		}
-	double up[3], ref[3];
-	memcpy(up, pl[best].n, sizeof up);
-	memcpy(ref, up_prior ? up_prior : pl[best].n, sizeof ref);
-	if (fct_v3_dot(up, ref) < 0)
-		for (int c = 0; c < 3; c++)
-			up[c] = -up[c];
-	if (refine_axis(pl, n, w, cos_a, up, ref, err))
-		goto out;
-	memcpy(r.up, up, sizeof up);
-
-	/* 2. frames of vertical planes. */
-	double ea[3] = { 0, 0, 0 }, eb[3];
-	{
-		int k = 0;
-		for (int c = 1; c < 3; c++)
-			if (fabs(up[c]) < fabs(up[k]))
-				k = c;
-		ea[k] = 1;
-		fct_v3_axpy(ea, ea, -fct_v3_dot(ea, up), up);
-		double len = norm3(ea);
-		for (int c = 0; c < 3; c++)
-			ea[c] /= len;
-		fct_v3_cross(eb, up, ea);
-	}
+	r.frames = fr.n;
+	for (size_t i = 0; i < n; i++)
+		snap_normal(pl[i].n, fr.of[i], &fr, r.up, cos_a, sin_a, &r);
 	for (size_t i = 0; i < n; i++) {
-		frame[i] = -2;   /* not vertical */
-		double nu = fct_v3_dot(pl[i].n, up);
-		if (fabs(nu) <= sin_a) {
-			frame[i] = -1;   /* vertical, no frame yet */
-			phi[i] = mod90(atan2(fct_v3_dot(pl[i].n, eb), fct_v3_dot(pl[i].n, ea)));
-		}
-	}
-	size_t nframes = 0;
-	while (nframes < MAX_FRAMES) {
-		/* The unassigned vertical planes, by azimuth. */
-		size_t m = 0;
-		for (size_t i = 0; i < n; i++)
-			if (frame[i] == -1)
-				idx[m++] = i;
-		if (m == 0)
-			break;
-		if (sort_by_key(idx, m, phi, err))   /* descending azimuth; reversed below */
-			goto out;
-		az.n = m;
-		az.cum[0] = 0;
-		for (size_t k = 0; k < m; k++) {
-			size_t i = idx[m - 1 - k];
-			az.x[k] = phi[i];
-			az.cum[k + 1] = az.cum[k] + w[i];
-		}
-		long pick = -1;
-		double pick_score = -1;
-		size_t seen = 0;
-		for (size_t c = 0; c < n && seen < MAX_CANDIDATES; c++) {
-			size_t i = order[c];
-			if (frame[i] != -1)
-				continue;
-			seen++;
-			double sc = window_weight(&az, phi[i] - angle * DEG, phi[i] + angle * DEG);
-			if (sc > pick_score || (sc == pick_score && (long)i < pick))
-				pick_score = sc, pick = (long)i;
-		}
-		double psi = phi[pick];
-		for (int it = 0; it < 2; it++) {
-			double sx = 0, sy = 0;
-			for (size_t k = 0; k < m; k++) {
-				size_t i = idx[k];
-				if (dist90(phi[i], psi) <= angle * DEG) {
-					sx += w[i] * cos(4 * phi[i]);
-					sy += w[i] * sin(4 * phi[i]);
-				}
-			}
-			if (sx != 0 || sy != 0)
-				psi = mod90(atan2(sy, sx) / 4);
-		}
-		int members = 0;
-		for (size_t k = 0; k < m; k++) {
-			size_t i = idx[k];
-			if (dist90(phi[i], psi) <= angle * DEG)
-				frame[i] = (int)nframes, members++;
-		}
-		if (!members)
-			frame[pick] = (int)nframes, psi = phi[pick];
-		double cs = cos(psi), sn = sin(psi);
-		for (int c = 0; c < 3; c++) {
-			axes[nframes][0][c] = cs * ea[c] + sn * eb[c];
-			axes[nframes][1][c] = -sn * ea[c] + cs * eb[c];
-		}
-		nframes++;
-	}
-	r.frames = nframes;
-
-	/* 3. snap. */
-	for (size_t i = 0; i < n; i++) {
-		double *nv = pl[i].n, nu = fct_v3_dot(nv, up);
-		if (fabs(nu) >= cos_a) {
-			double sg = nu < 0 ? -1 : 1;
-			for (int c = 0; c < 3; c++)
-				nv[c] = sg * up[c];
-			r.horizontal++;
-		} else if (frame[i] >= 0) {
-			const double (*ax)[3] = axes[frame[i]];
-			double d0 = fct_v3_dot(nv, ax[0]), d1 = fct_v3_dot(nv, ax[1]);
-			int k = fabs(d1) > fabs(d0);
-			double sg = (k ? d1 : d0) < 0 ? -1 : 1;
-			for (int c = 0; c < 3; c++)
-				nv[c] = sg * ax[k][c];
-			r.vertical++;
-		} else if (frame[i] == -1) {
-			/* A vertical plane beyond the frames: only made vertical. */
-			fct_v3_axpy(nv, nv, -nu, up);
-			double len = norm3(nv);
-			for (int c = 0; c < 3; c++)
-				nv[c] /= len;
-		} else {
-			double bestd = HUGE_VAL;
-			const double *bax = NULL;
-			for (size_t f = 0; f < (nframes ? 1 : 0); f++)   /* the main frame only */
-				for (int k = 0; k < 2; k++) {
-					double dd = fabs(fct_v3_dot(nv, axes[f][k]));
-					if (dd < bestd)
-						bestd = dd, bax = axes[f][k];
-				}
-			if (bax && bestd <= sin_a) {
-				fct_v3_axpy(nv, nv, -fct_v3_dot(nv, bax), bax);
-				double len = norm3(nv);
-				for (int c = 0; c < 3; c++)
-					nv[c] /= len;
-				r.oblique++;
-			}
-		}
-	}
-
-	/* 4. turn each plane about its pivot. */
-	for (size_t i = 0; i < n; i++) {
-		double q[3];
-		const double *pv = pivot ? pivot + 3 * i : NULL;
-		if (pv && isfinite(pv[0]) && isfinite(pv[1]) && isfinite(pv[2]))
-			fct_v3_axpy(q, pv, -fct_plane_distance(&old[i], pv), old[i].n);
-		else
-			for (int c = 0; c < 3; c++)
-				q[c] = -old[i].d * old[i].n[c];
-		pl[i].d = -fct_v3_dot(pl[i].n, q);
-		double cosang = fct_v3_dot(pl[i].n, old[i].n);
-		double ang = acos(cosang > 1 ? 1 : cosang < -1 ? -1 : cosang) / DEG;
+		double ang = turn_about_pivot(&pl[i], &old[i], pivot ? pivot + 3 * i : NULL);
 		if (ang > r.max_change)
 			r.max_change = ang;
 	}
@@ -529,15 +580,7 @@ int fct_planes_orthogonalize(struct fct_plane *pl, size_t n, const double *weigh
 		*res = r;
 	rc = 0;
 out:
-	free(w);
-	free(order);
-	free(frame);
-	free(phi);
-	free(az.x);
-	free(az.cum);
-	free(axes);
-	free(idx);
-	free(old);
+	fct_arena_free(&a);
 	return rc;
 }
 

@@ -1211,6 +1211,48 @@ static void test_between_parallels(void)
 	}
 }
 
+/* Snapping by hand (fct_planes_orthogonalize, angle 5): the floor z = 0
+ * is up (step 1); the walls of azimuths 2 and 90 degrees (that is 0,
+ * modulo 90) make one frame (step 2) at their circular mean, 1 degree;
+ * step 3 turns each wall onto the nearer axis of that frame, (cos 1,
+ * sin 1, 0) and (-sin 1, cos 1, 0), and takes from the roof (1, 0, 1) /
+ * sqrt 2 its component along the axis it is nearly perpendicular to:
+ * (cos^2 1, sin 1 cos 1, 1) / sqrt(cos^2 1 + 1).  Step 4: the first wall,
+ * x cos 2 + y sin 2 = 3 cos 2, turns about its point nearest the pivot
+ * (3, 5, 7), (3, 5, 7) - 5 sin 2 (cos 2, sin 2, 0); the others, without a
+ * pivot, about their point nearest the origin. */
+static void test_snap_by_hand(void)
+{
+	const double a2 = 2 * M_PI / 180, a1 = M_PI / 180;
+	struct fct_plane pl[4] = { { { 0, 0, 1 }, 0, 1, 0 },
+	                           { { cos(a2), sin(a2), 0 }, -3 * cos(a2), 1, 0 },
+	                           { { 0, 1, 0 }, -1, 1, 0 },
+	                           { { M_SQRT1_2, 0, M_SQRT1_2 }, -1, 1, 0 } };
+	double pivot[12] = { NAN, NAN, NAN, 3, 5, 7, NAN, 0, 0, NAN, NAN, NAN };
+	double prior[3] = { 0, 0, 1 };
+	struct fct_ortho_result r;
+	CHECK_INT(fct_planes_orthogonalize(pl, 4, NULL, pivot, prior, 5, &r, &err), 0);
+	CHECK_NEAR(r.up[2], 1, 1e-15);
+	CHECK_INT(r.frames, 1);
+	CHECK_INT(r.horizontal, 1);
+	CHECK_INT(r.vertical, 2);
+	CHECK_INT(r.oblique, 1);
+	CHECK_NEAR(r.max_change, 1, 1e-12);
+	double want[4][3] = { { 0, 0, 1 }, { cos(a1), sin(a1), 0 }, { -sin(a1), cos(a1), 0 },
+	                      { cos(a1) * cos(a1), sin(a1) * cos(a1), 1 } };
+	double l = sqrt(cos(a1) * cos(a1) + 1);
+	for (int q = 0; q < 3; q++)
+		want[3][q] /= l;
+	for (int i = 0; i < 4; i++)
+		for (int q = 0; q < 3; q++)
+			CHECK_NEAR(pl[i].n[q], want[i][q], 1e-14);
+	double foot[3] = { 3 - 5 * sin(a2) * cos(a2), 5 - 5 * sin(a2) * sin(a2), 7 };
+	CHECK_NEAR(pl[1].d, -(cos(a1) * foot[0] + sin(a1) * foot[1]), 1e-14);
+	CHECK_NEAR(pl[2].d, -cos(a1), 1e-14);   /* about (0, 1, 0) */
+	CHECK_NEAR(pl[3].d, -(want[3][0] + want[3][2]) * M_SQRT1_2, 1e-14);   /* about (1, 0, 1) / sqrt 2 */
+	CHECK_NEAR(pl[0].d, 0, 0);
+}
+
 int main(void)
 {
 	test_one_plane();
@@ -1232,5 +1274,6 @@ int main(void)
 	test_flip_refused();
 	test_ray_reach();
 	test_between_parallels();
+	test_snap_by_hand();
 	CHECK_DONE();
 }
