@@ -1700,10 +1700,11 @@ static void move_along_ray(struct stage *s, struct vertex *c)
 
 /* A move must not turn a face around the vertex against its plane (a
  * sliver whose corner slides across its opposite edge): such a move is
- * refused like one over the bound. */
+ * refused like one over the bound.  The faces of a wireframe's mesh
+ * (without patches) have no plane to turn against. */
 static void refuse_flip(struct stage *s, struct vertex *c)
 {
-	if (c->vd != MOVED)
+	if (c->vd != MOVED || !s->patch)
 		return;
 	double x1[3];
 	memcpy(x1, c->x, sizeof x1);

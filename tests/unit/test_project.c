@@ -1253,6 +1253,34 @@ static void test_snap_by_hand(void)
 	CHECK_NEAR(pl[0].d, 0, 0);
 }
 
+/* A mesh with faces but no patch property, and a wireframe: the vertices
+ * take their planes from the wires, and the faces, with no patch, have no
+ * plane to turn against (the flip rule read the missing patches: a crash).
+ * Each vertex goes onto z = 2. */
+static void test_faces_without_patches(void)
+{
+	double xs[3][3] = { { 0, 0, 2.1 }, { 1, 0, 2.05 }, { 0, 1, 1.9 } };
+	struct fct_wire w[3] = { { 0, 1, 0, -1 }, { 1, 2, 0, -1 }, { 2, 0, 0, -1 } };
+	struct fct_plane pl[1] = { { { 0, 0, -1 }, 2, 3, 0 } };
+	struct fct_mesh m;
+	wire_mesh(&m, xs, 3, w, 3, pl, 1, 0);
+	uint32_t f[3] = { 0, 1, 2 };
+	fct_mesh_add_face(&m, f, 3, &err);
+	struct fct_project_params par;
+	fct_project_params_default(&par);
+	par.max_move = HUGE_VAL;
+	struct fct_project_stats st;
+	CHECK_INT(fct_project_mesh(&m, &par, &st, &err), 0);
+	CHECK_INT(st.moved[1], 3);
+	CHECK_INT(st.flip_refused, 0);
+	for (int i = 0; i < 3; i++) {
+		CHECK_NEAR(m.xyz[3 * i], xs[i][0], 0);
+		CHECK_NEAR(m.xyz[3 * i + 1], xs[i][1], 0);
+		CHECK_NEAR(m.xyz[3 * i + 2], 2, 1e-15);
+	}
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_one_plane();
@@ -1275,5 +1303,6 @@ int main(void)
 	test_ray_reach();
 	test_between_parallels();
 	test_snap_by_hand();
+	test_faces_without_patches();
 	CHECK_DONE();
 }
