@@ -39,7 +39,7 @@ static const char usage[] =
 	"                 [--min-free k] [--min-plane k] [--outline k] [--atlas-size n]\n"
 	"                 [--blend] [--candidates n] [--fill r,g,b]\n"
 	"                 [--level none | gain | seams] [--max-pages n] [--min-angle deg]\n"
-	"                 [--no-rectify] [--padding n] [--texel-scale s]\n"
+	"                 [--no-rectify] [--one-photo] [--padding n] [--texel-scale s]\n"
 	"                 [--keep dir] folder | depth-image ...\n"
 	"Make one concise textured model of a room from an RGB-D sequence: the depth\n"
 	"images fused (tsdfuse, with the sensor's noise model), the fused surface\n"
@@ -107,7 +107,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 	fct_fuse_opts_init(&o->f, argc, 0.02, 1e-4, 1);
 	fct_seg_opts_init(&o->s);
 	fct_planar_params_default(&o->plan);
-	fct_tex_opts_init(&o->t);
+	fct_tex_opts_init_sequence(&o->t);
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		if (fct_fuse_opt(&o->f, c, optarg) || fct_seg_opt(&o->s, c, optarg) ||
 		    fct_planar_opt(&o->plan, c, optarg) || fct_tex_opt(&o->t, c, optarg))

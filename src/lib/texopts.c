@@ -12,6 +12,13 @@ void fct_tex_opts_init(struct fct_tex_opts *o)
 	o->level_given = 0;
 }
 
+void fct_tex_opts_init_sequence(struct fct_tex_opts *o)
+{
+	fct_tex_opts_init(o);
+	o->p.blend = 1;
+	o->p.texel_scale = 2;
+}
+
 int fct_tex_opt(struct fct_tex_opts *o, int c, const char *arg)
 {
 	static const char *const levels[] = { "none", "gain", "seams" };
@@ -47,6 +54,7 @@ int fct_tex_opt(struct fct_tex_opts *o, int c, const char *arg)
 	case FCT_TOPT_MAXPAGES: p->max_pages = (int)fct_opt_long("--max-pages", arg, 1, 1024); break;
 	case FCT_TOPT_MINANGLE: p->min_cos = sin(fct_opt_double("--min-angle", arg, 0, 89) * M_PI / 180); break;
 	case FCT_TOPT_NORECT: p->rectify = 0; break;
+	case FCT_TOPT_ONEPHOTO: p->blend = 0; break;
 	case FCT_TOPT_PADDING: p->padding = (int)fct_opt_long("--padding", arg, 0, 64); break;
 	case FCT_TOPT_SCALE: p->texel_scale = fct_opt_double("--texel-scale", arg, 0.01, 4); break;
 	default: return 0;

@@ -88,6 +88,17 @@ check_num "the model: closer to the truth than the fused mesh (mean, 0.6)" \
 run_case 0 "viewjudge -K $K $TMP/m/model.obj $held"
 check_num "held-out views: PSNR" "$(judged 3)" ">" 26.5
 check_num "held-out views: covered" "$(judged 2)" ">" 0.88
+# The default texture (blended, 2 texels per photo pixel) at the views left
+# out, against tsdfuse's 1 cm vertex colour of the same views (issue 25's
+# reference) and one photo per face (viewtex's default).
+psnr=$(judged 3) covered=$(judged 2)
+run_case 0 "tsdfuse -K $K --noise kinect --voxel 0.01 $views -o $TMP/ref.ply"
+run_case 0 "viewjudge -K $K $TMP/ref.ply $held"
+check_num "held-out PSNR: at least tsdfuse 1 cm vertex colour's $(judged 3)" "$psnr" ">" "$(judged 3)"
+check_num "held-out coverage: at least 95% of its" "$(ratio "$covered" "$(judged 2)")" ">" 0.95
+run_case 0 "roommodel --one-photo $V -o $TMP/m/one.obj"
+run_case 0 "viewjudge -K $K $TMP/m/one.obj $held"
+check_num "held-out PSNR: above one photo per face's $(judged 3)" "$psnr" ">" "$(judged 3)"
 
 # The same bytes twice (3 cm voxels, for time).
 run_case 0 "roommodel --voxel 0.03 $V -o $TMP/m/a.obj"
