@@ -81,6 +81,13 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
                      const int32_t *clip_hi, int threads, struct fct_mesh *out,
                      struct fct_mcubes_stats *stats, struct fct_err *err);
 
+/* The same output as fct_mcubes, bit for bit, from the plain extraction in
+ * mcubes.c (cube by cube, one thread, a lookup in the grid's hash per
+ * voxel read, 6 KB per block): the reference the tests hold the fast path
+ * to.  Returns 0 or -1 as fct_mcubes. */
+int fct_mcubes_reference(struct fct_mesh *out, const struct fct_voxgrid *g, float min_weight,
+                         const int32_t *clip_lo, const int32_t *clip_hi, struct fct_err *err);
+
 /* Merge vertices with bit-identical positions (x, y, z as doubles): the
  * first vertex of each position in index order is kept with its properties,
  * the others are dropped, faces renumbered (faces are kept as they are, even
