@@ -351,7 +351,7 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 		fct_progress_update(&pr, (double)i + 1, (double)s->n);
 	}
 	fct_progress_end(&pr);
-	if (fct_mcubes_stats(g, 0, NULL, NULL, o->fp.threads, out, NULL, &err))
+	if (fct_mcubes_stats(out, g, 0, NULL, NULL, o->fp.threads, NULL, &err))
 		stage_die("tsdfuse", &err);
 	char noise[256];
 	fct_noise_format(&s->dp.noise, noise, sizeof noise);

@@ -465,8 +465,8 @@ int fct_mcubes_reference(struct fct_mesh *out, const struct fct_voxgrid *g, floa
 
 /* The extraction the programs run ------------------------------------------- */
 
-int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
-                     const int32_t *clip_hi, int threads, struct fct_mesh *out,
+int fct_mcubes_stats(struct fct_mesh *out, const struct fct_voxgrid *g, float min_weight,
+                     const int32_t *clip_lo, const int32_t *clip_hi, int threads,
                      struct fct_mcubes_stats *stats, struct fct_err *err)
 {
 	fct_mesh_init(out);
@@ -475,10 +475,10 @@ int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_
 	return mcubes_fast(out, g, min_weight, clip_lo, clip_hi, threads, stats, err);
 }
 
-int fct_mcubes(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
-               const int32_t *clip_hi, struct fct_mesh *out, struct fct_err *err)
+int fct_mcubes(struct fct_mesh *out, const struct fct_voxgrid *g, float min_weight,
+               const int32_t *clip_lo, const int32_t *clip_hi, struct fct_err *err)
 {
-	return fct_mcubes_stats(g, min_weight, clip_lo, clip_hi, 0, out, NULL, err);
+	return fct_mcubes_stats(out, g, min_weight, clip_lo, clip_hi, 0, NULL, err);
 }
 
 /* Weld ---------------------------------------------------------------------- */

@@ -155,7 +155,7 @@ static void check_reference(const struct fct_voxgrid *g, float min_weight, const
 	struct fct_mesh ref, fast;
 	CHECK_MSG(fct_mcubes_reference(&ref, g, min_weight, lo, hi, &err) == 0, "%s: reference", what);
 	for (int threads = 1; threads <= 2; threads++) {
-		CHECK_MSG(fct_mcubes_stats(g, min_weight, lo, hi, threads, &fast, NULL, &err) == 0,
+		CHECK_MSG(fct_mcubes_stats(&fast, g, min_weight, lo, hi, threads, NULL, &err) == 0,
 		          "%s: fast", what);
 		CHECK_MSG(same_mesh(&ref, &fast), "%s, %d thread(s): %zu/%zu vertices, %zu/%zu faces",
 		          what, threads, ref.nv, fast.nv, ref.nf, fast.nf);
@@ -252,7 +252,7 @@ static void test_all_patterns(void)
 					}
 			struct fct_mesh m;
 			struct fct_mcubes_stats st;
-			if (fct_mcubes_stats(g, 0, NULL, NULL, 1, &m, &st, &err))
+			if (fct_mcubes_stats(&m, g, 0, NULL, NULL, 1, &st, &err))
 				abort();
 			amb_seen += st.ambiguous > 0;
 			if (trial < 4)
@@ -308,8 +308,8 @@ static void test_random_fields(void)
 				}
 		struct fct_mesh m, m2;
 		struct fct_mcubes_stats st;
-		if (fct_mcubes_stats(g, 0.5f, NULL, NULL, 1, &m, &st, &err) ||
-		    fct_mcubes_stats(g, 0.5f, NULL, NULL, 3, &m2, NULL, &err))
+		if (fct_mcubes_stats(&m, g, 0.5f, NULL, NULL, 1, &st, &err) ||
+		    fct_mcubes_stats(&m2, g, 0.5f, NULL, NULL, 3, NULL, &err))
 			abort();
 		amb += st.ambiguous;
 		centres += st.centres;
@@ -352,7 +352,7 @@ static void test_sphere(void)
 	struct fct_voxgrid *g = fill(vox, lo, hi, sphere_f, &s, 3 * vox, 0);
 	struct fct_mesh m;
 	struct fct_mcubes_stats st;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 1, &m, &st, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&m, g, 0, NULL, NULL, 1, &st, &err), 0);
 	struct topo t = topology(&m);
 	CHECK_INT(t.border, 0);
 	CHECK_INT(t.nonmanifold, 0);
@@ -397,12 +397,12 @@ static void test_sparse_lookup(void)
 	double vox = 0.05;
 	struct fct_voxgrid *g = fill(vox, lo, hi, sphere_f, &s, 3 * vox, 0);
 	struct fct_mesh a, b;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 1, &a, NULL, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&a, g, 0, NULL, NULL, 1, NULL, &err), 0);
 	struct fct_voxblock *far = fct_voxgrid_block(g, 100000, -3, 2, 1, &err);
 	CHECK(far != NULL);
 	for (int v = 0; far && v < 512; v++)
 		far->sdf[v] = 0.1f, far->weight[v] = 1;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 2, &b, NULL, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&b, g, 0, NULL, NULL, 2, NULL, &err), 0);
 	CHECK(a.nv > 1000);
 	CHECK_INT(b.nv, a.nv);
 	CHECK_INT(b.nf, a.nf);
@@ -437,7 +437,7 @@ static void test_cancelling_normal(void)
 		b->weight[v] = 1;
 	}
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 1, &m, NULL, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&m, g, 0, NULL, NULL, 1, NULL, &err), 0);
 	check_reference(g, 0, NULL, NULL, "cancelling normals", NULL, NULL);
 	const float *nx = prop(&m, "nx"), *ny = prop(&m, "ny"), *nz = prop(&m, "nz");
 	int seen = 0;
@@ -475,7 +475,7 @@ static void test_torus(void)
 	int lo[3] = { -20, -20, -7 }, hi[3] = { 20, 20, 7 };
 	struct fct_voxgrid *g = fill(0.5, lo, hi, torus_f, &tr, 1.0, 0);
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
 	struct topo t = topology(&m);
 	CHECK_INT(t.border, 0);
 	CHECK_INT(t.nonmanifold, 0);
@@ -496,7 +496,7 @@ static void test_planes(void)
 	int lo[3] = { 0, 0, -3 }, hi[3] = { 16, 16, 9 };
 	struct fct_voxgrid *g = fill(1, lo, hi, plane_f, &p, 100, 0);
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
 	struct topo t = topology(&m);
 	CHECK_INT(t.euler, 1);
 	CHECK_INT(t.nonmanifold, 0);
@@ -527,7 +527,7 @@ static void test_planes(void)
 	struct plane q = { { 0.36, -0.48, 0.8 }, 0.123 };
 	int lo2[3] = { -10, -10, -10 }, hi2[3] = { 10, 10, 10 };
 	g = fill(0.1, lo2, hi2, plane_f, &q, 0.25, 0);
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
 	t = topology(&m);
 	CHECK_INT(t.euler, 1);
 	CHECK_INT(t.nonmanifold, 0);
@@ -553,7 +553,7 @@ static void test_colour(void)
 	int lo[3] = { 0, 0, 0 }, hi[3] = { 6, 4, 4 };
 	struct fct_voxgrid *g = fill(1, lo, hi, plane_f, &p, 100, 1);
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
 	check_reference(g, 0, NULL, NULL, "colour", NULL, NULL);
 	struct fct_prop *r = fct_elem_find(&m.vertex, "red"), *gr = fct_elem_find(&m.vertex, "green"),
 	                *bl = fct_elem_find(&m.vertex, "blue");
@@ -584,8 +584,8 @@ static void test_min_weight(void)
 				B->weight[v] = 0.5f;
 	}
 	struct fct_mesh all, half;
-	CHECK_INT(fct_mcubes(g, 0.5f, NULL, NULL, &all, &err), 0);
-	CHECK_INT(fct_mcubes(g, 0.75f, NULL, NULL, &half, &err), 0);
+	CHECK_INT(fct_mcubes(&all, g, 0.5f, NULL, NULL, &err), 0);
+	CHECK_INT(fct_mcubes(&half, g, 0.75f, NULL, NULL, &err), 0);
 	check_reference(g, 0.75f, NULL, NULL, "min_weight", NULL, NULL);
 	struct topo t = topology(&all), h = topology(&half);
 	CHECK_INT(t.border, 0);
@@ -652,7 +652,7 @@ static void test_tiles(void)
 	int lo[3] = { -12, -12, -12 }, hi[3] = { 12, 12, 12 };
 	struct fct_voxgrid *g = fill(1, lo, hi, sphere_f, &s, 2.5, 0);
 	struct fct_mesh whole;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &whole, &err), 0);
+	CHECK_INT(fct_mcubes(&whole, g, 0, NULL, NULL, &err), 0);
 	fct_voxgrid_free(g);
 	int cut[3][3] = { { -12, 3, 12 }, { -12, -5, 12 }, { -12, 12, 12 } };
 	struct fct_mesh all;
@@ -666,7 +666,7 @@ static void test_tiles(void)
 				flo[k] = clo[k] - 1, fhi[k] = chi[k] + 1;
 			struct fct_voxgrid *tg = fill(1, flo, fhi, sphere_f, &s, 2.5, 0);
 			struct fct_mesh m;
-			CHECK_INT(fct_mcubes(tg, 0, clo, chi, &m, &err), 0);
+			CHECK_INT(fct_mcubes(&m, tg, 0, clo, chi, &err), 0);
 			check_reference(tg, 0, clo, chi, "tile", NULL, NULL);
 			struct topo t = topology(&m);
 			open_ok &= t.border > 0 && t.nonmanifold == 0 && m.nf > 0;
@@ -697,14 +697,14 @@ static void test_tiles(void)
 	g = fill(1, lo, hi, sphere_f, &s, 2.5, 0);
 	int32_t e0[3] = { 0, 0, 0 }, e1[3] = { 0, 5, 5 }, n1[3] = { 2, 2, 2 };
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, e0, e1, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, e0, e1, &err), 0);
 	CHECK_INT(m.nv, 0);
 	CHECK_INT(m.nf, 0);
 	fct_mesh_free(&m);
-	CHECK_INT(fct_mcubes(g, 0, e0, n1, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, e0, n1, &err), 0);
 	CHECK_INT(m.nf, 0);
 	fct_mesh_free(&m);
-	CHECK_INT(fct_mcubes(g, 0, e0, NULL, &m, &err), -1);
+	CHECK_INT(fct_mcubes(&m, g, 0, e0, NULL, &err), -1);
 	CHECK_INT(fct_mcubes_reference(&m, g, 0, NULL, e1, &err), -1);
 	fct_voxgrid_free(g);
 }
