@@ -286,7 +286,7 @@ int main(int argc, char **argv)
 		double f0 = faults_now();
 		t0 = cpu_now();
 		double w0 = wall_now();
-		if (fct_mcubes_stats(g, 0, NULL, NULL, threads, &ms[r], &st, &err))
+		if (fct_mcubes_stats(&ms[r], g, 0, NULL, NULL, threads, &st, &err))
 			fct_die_err(&err);
 		tm[r] = cpu_now() - t0;
 		tw[r] = wall_now() - w0;

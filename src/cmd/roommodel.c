@@ -256,7 +256,7 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 		fct_progress_update(&pr, (double)i + 1, (double)s->n);
 	}
 	fct_progress_end(&pr);
-	if (fct_mcubes_stats(g, 0, NULL, NULL, o->f.fp.threads, out, NULL, &err))
+	if (fct_mcubes_stats(out, g, 0, NULL, NULL, o->f.fp.threads, NULL, &err))
 		fct_die_err_at(&err, "tsdfuse");
 	char noise[256];
 	fct_noise_format(&s->dp.noise, noise, sizeof noise);

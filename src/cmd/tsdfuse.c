@@ -340,8 +340,8 @@ int main(int argc, char **argv)
 		mlo[k] = (int32_t)ceil(o.bbox[k] / vox);
 		mhi[k] = (int32_t)ceil(o.bbox[k + 3] / vox);
 	}
-	if (fct_mcubes_stats(g, (float)o.min_weight, o.has_bbox ? mlo : NULL, o.has_bbox ? mhi : NULL,
-	                     o.f.fp.threads, &out, NULL, &err))
+	if (fct_mcubes_stats(&out, g, (float)o.min_weight, o.has_bbox ? mlo : NULL,
+	                     o.has_bbox ? mhi : NULL, o.f.fp.threads, NULL, &err))
 		fct_die_err(&err);
 	double mc_s = fct_now() - tm, color_s = 0;
 	/* The pages marching cubes faulted in: its output where the memory

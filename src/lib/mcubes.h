@@ -72,14 +72,21 @@ struct fct_mcubes_stats {
  * or both 3 voxel indices, the box [lo, hi) of minimum corners.  Returns 0,
  * or -1 when out of memory or when the mesh would need more than 2^32 - 1
  * vertices (out is then empty). */
-int fct_mcubes(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
-               const int32_t *clip_hi, struct fct_mesh *out, struct fct_err *err);
+int fct_mcubes(struct fct_mesh *out, const struct fct_voxgrid *g, float min_weight,
+               const int32_t *clip_lo, const int32_t *clip_hi, struct fct_err *err);
 /* The same on `threads` threads (0: one per processor; the output is the
  * same bytes for any count), filling *stats (may be NULL) with the figures
  * of the run.  fct_mcubes is this with threads = 0. */
-int fct_mcubes_stats(const struct fct_voxgrid *g, float min_weight, const int32_t *clip_lo,
-                     const int32_t *clip_hi, int threads, struct fct_mesh *out,
+int fct_mcubes_stats(struct fct_mesh *out, const struct fct_voxgrid *g, float min_weight,
+                     const int32_t *clip_lo, const int32_t *clip_hi, int threads,
                      struct fct_mcubes_stats *stats, struct fct_err *err);
+
+/* The same output as fct_mcubes, bit for bit, from the plain extraction in
+ * mcubes.c (cube by cube, one thread, a lookup in the grid's hash per
+ * voxel read, 6 KB per block): the reference the tests hold the fast path
+ * to.  Returns 0 or -1 as fct_mcubes. */
+int fct_mcubes_reference(struct fct_mesh *out, const struct fct_voxgrid *g, float min_weight,
+                         const int32_t *clip_lo, const int32_t *clip_hi, struct fct_err *err);
 
 /* Merge vertices with bit-identical positions (x, y, z as doubles): the
  * first vertex of each position in index order is kept with its properties,

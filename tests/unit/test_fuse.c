@@ -103,7 +103,7 @@ static void test_plane(void)
 	CHECK_NEAR(w, 2, 0);
 	/* Marching cubes puts the surface back at z = 0.503. */
 	struct fct_mesh out;
-	CHECK(fct_mcubes(g, 0, NULL, NULL, &out, &err) == 0);
+	CHECK(fct_mcubes(&out, g, 0, NULL, NULL, &err) == 0);
 	CHECK(out.nv > 100);
 	double worst = 0;
 	for (size_t i = 0; i < out.nv; i++)

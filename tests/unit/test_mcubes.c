@@ -1,7 +1,11 @@
 /* test_mcubes.c - marching cubes on analytic fields with known answers:
  * every sign pattern of one cube closed by a positive shell, random and
  * checkerboard fields (all faces ambiguous), a sphere, a torus, planes,
- * block borders, colour, min_weight, and tiles joined by exact welding. */
+ * block borders, colour, min_weight, and tiles joined by exact welding;
+ * and the fast extraction (fct_mcubes_stats, mcubesfast.c) against the
+ * plain one (fct_mcubes_reference, mcubes.c), bit for bit, on those fields
+ * and on gen_mcubes' room and dense ball, noisy volumes with weights below
+ * min_weight, clip boxes, thin and empty volumes. */
 #include <stdlib.h>
 
 #include "adj.h"
@@ -121,6 +125,49 @@ static const float *prop(const struct fct_mesh *m, const char *name)
 	return p && p->type == FCT_FLOAT32 ? p->data : NULL;
 }
 
+/* The fast extraction against the reference ------------------------------ */
+
+/* a and b are the same bytes: counts, positions, faces, every vertex
+ * property (name, type, values) in order. */
+static int same_mesh(const struct fct_mesh *a, const struct fct_mesh *b)
+{
+	if (a->nv != b->nv || a->nf != b->nf || a->vertex.nprops != b->vertex.nprops ||
+	    (a->nv && memcmp(a->xyz, b->xyz, 3 * a->nv * sizeof *a->xyz)))
+		return 0;
+	if (a->nf && (memcmp(a->fstart, b->fstart, (a->nf + 1) * sizeof *a->fstart) ||
+	              memcmp(a->fvert, b->fvert, a->fstart[a->nf] * sizeof *a->fvert)))
+		return 0;
+	for (size_t k = 0; k < a->vertex.nprops; k++) {
+		const struct fct_prop *p = &a->vertex.props[k], *q = &b->vertex.props[k];
+		if (strcmp(p->name, q->name) || p->type != q->type ||
+		    (a->nv && memcmp(p->data, q->data, a->nv * fct_type_size(p->type))))
+			return 0;
+	}
+	return 1;
+}
+
+/* fct_mcubes_stats on 1 and 2 threads gives the reference's bytes on g
+ * (the clip box lo, hi may be NULL); *nv, *nf (may be NULL): the mesh's
+ * counts, so that the caller can check that something was compared. */
+static void check_reference(const struct fct_voxgrid *g, float min_weight, const int32_t *lo,
+                            const int32_t *hi, const char *what, size_t *nv, size_t *nf)
+{
+	struct fct_mesh ref, fast;
+	CHECK_MSG(fct_mcubes_reference(&ref, g, min_weight, lo, hi, &err) == 0, "%s: reference", what);
+	for (int threads = 1; threads <= 2; threads++) {
+		CHECK_MSG(fct_mcubes_stats(&fast, g, min_weight, lo, hi, threads, NULL, &err) == 0,
+		          "%s: fast", what);
+		CHECK_MSG(same_mesh(&ref, &fast), "%s, %d thread(s): %zu/%zu vertices, %zu/%zu faces",
+		          what, threads, ref.nv, fast.nv, ref.nf, fast.nf);
+		fct_mesh_free(&fast);
+	}
+	if (nv)
+		*nv = ref.nv;
+	if (nf)
+		*nf = ref.nf;
+	fct_mesh_free(&ref);
+}
+
 /* Fields ------------------------------------------------------------------ */
 
 struct sphere {
@@ -155,6 +202,24 @@ static double plane_f(const double p[3], const void *arg)
 	return pl->n[0] * p[0] + pl->n[1] * p[1] + pl->n[2] * p[2] + pl->d;
 }
 
+/* gen_mcubes' room (bench/gen_mcubes.c): the inside of a 4 x 4 x 2.5 m
+ * box, a ball of 0.5 m at (2.6, 1.4, 1.2) and a 1 x 0.6 x 0.75 m table on
+ * the floor; positive in free space. */
+static double room_f(const double p[3], const void *arg)
+{
+	static const double room[3] = { 4, 4, 2.5 }, lo[3] = { 0.8, 2.2, 0 }, hi[3] = { 1.8, 2.8, 0.75 };
+	static const struct sphere ball = { { 2.6, 1.4, 1.2 }, 0.5 };
+	(void)arg;
+	double d = sphere_f(p, &ball), out = 0, in = -1e300;
+	for (int k = 0; k < 3; k++) {
+		d = fmin(d, fmin(p[k], room[k] - p[k]));
+		double q = fabs(p[k] - 0.5 * (lo[k] + hi[k])) - 0.5 * (hi[k] - lo[k]);
+		out += q > 0 ? q * q : 0;
+		in = fmax(in, q);
+	}
+	return fmin(d, out > 0 ? sqrt(out) : in);
+}
+
 /* Tests ------------------------------------------------------------------- */
 
 static int closed_ok(const struct topo *t)
@@ -187,9 +252,11 @@ static void test_all_patterns(void)
 					}
 			struct fct_mesh m;
 			struct fct_mcubes_stats st;
-			if (fct_mcubes_stats(g, 0, NULL, NULL, 1, &m, &st, &err))
+			if (fct_mcubes_stats(&m, g, 0, NULL, NULL, 1, &st, &err))
 				abort();
 			amb_seen += st.ambiguous > 0;
+			if (trial < 4)
+				check_reference(g, 0, NULL, NULL, "sign pattern", NULL, NULL);
 			struct topo t = topology(&m);
 			ok &= closed_ok(&t) && (cfg == 0) == (m.nf == 0);
 			vol_ok &= cfg == 0 || volume(&m) > 0;
@@ -241,11 +308,12 @@ static void test_random_fields(void)
 				}
 		struct fct_mesh m, m2;
 		struct fct_mcubes_stats st;
-		if (fct_mcubes_stats(g, 0.5f, NULL, NULL, 1, &m, &st, &err) ||
-		    fct_mcubes_stats(g, 0.5f, NULL, NULL, 3, &m2, NULL, &err))
+		if (fct_mcubes_stats(&m, g, 0.5f, NULL, NULL, 1, &st, &err) ||
+		    fct_mcubes_stats(&m2, g, 0.5f, NULL, NULL, 3, NULL, &err))
 			abort();
 		amb += st.ambiguous;
 		centres += st.centres;
+		check_reference(g, 0.5f, NULL, NULL, trial ? "random field" : "checkerboard", NULL, NULL);
 		struct topo t = topology(&m);
 		ok &= closed_ok(&t) && t.nonmanifold == 0 && m.nf > 0 && volume(&m) > 0;
 		euler_ok &= t.euler % 2 == 0;
@@ -284,7 +352,7 @@ static void test_sphere(void)
 	struct fct_voxgrid *g = fill(vox, lo, hi, sphere_f, &s, 3 * vox, 0);
 	struct fct_mesh m;
 	struct fct_mcubes_stats st;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 1, &m, &st, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&m, g, 0, NULL, NULL, 1, &st, &err), 0);
 	struct topo t = topology(&m);
 	CHECK_INT(t.border, 0);
 	CHECK_INT(t.nonmanifold, 0);
@@ -329,12 +397,12 @@ static void test_sparse_lookup(void)
 	double vox = 0.05;
 	struct fct_voxgrid *g = fill(vox, lo, hi, sphere_f, &s, 3 * vox, 0);
 	struct fct_mesh a, b;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 1, &a, NULL, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&a, g, 0, NULL, NULL, 1, NULL, &err), 0);
 	struct fct_voxblock *far = fct_voxgrid_block(g, 100000, -3, 2, 1, &err);
 	CHECK(far != NULL);
 	for (int v = 0; far && v < 512; v++)
 		far->sdf[v] = 0.1f, far->weight[v] = 1;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 2, &b, NULL, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&b, g, 0, NULL, NULL, 2, NULL, &err), 0);
 	CHECK(a.nv > 1000);
 	CHECK_INT(b.nv, a.nv);
 	CHECK_INT(b.nf, a.nf);
@@ -369,7 +437,8 @@ static void test_cancelling_normal(void)
 		b->weight[v] = 1;
 	}
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes_stats(g, 0, NULL, NULL, 1, &m, NULL, &err), 0);
+	CHECK_INT(fct_mcubes_stats(&m, g, 0, NULL, NULL, 1, NULL, &err), 0);
+	check_reference(g, 0, NULL, NULL, "cancelling normals", NULL, NULL);
 	const float *nx = prop(&m, "nx"), *ny = prop(&m, "ny"), *nz = prop(&m, "nz");
 	int seen = 0;
 #define S(x, y, z) ((double)b->sdf[(x) + 8 * ((y) + 8 * (z))])
@@ -406,7 +475,7 @@ static void test_torus(void)
 	int lo[3] = { -20, -20, -7 }, hi[3] = { 20, 20, 7 };
 	struct fct_voxgrid *g = fill(0.5, lo, hi, torus_f, &tr, 1.0, 0);
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
 	struct topo t = topology(&m);
 	CHECK_INT(t.border, 0);
 	CHECK_INT(t.nonmanifold, 0);
@@ -427,7 +496,7 @@ static void test_planes(void)
 	int lo[3] = { 0, 0, -3 }, hi[3] = { 16, 16, 9 };
 	struct fct_voxgrid *g = fill(1, lo, hi, plane_f, &p, 100, 0);
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
 	struct topo t = topology(&m);
 	CHECK_INT(t.euler, 1);
 	CHECK_INT(t.nonmanifold, 0);
@@ -458,7 +527,7 @@ static void test_planes(void)
 	struct plane q = { { 0.36, -0.48, 0.8 }, 0.123 };
 	int lo2[3] = { -10, -10, -10 }, hi2[3] = { 10, 10, 10 };
 	g = fill(0.1, lo2, hi2, plane_f, &q, 0.25, 0);
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
 	t = topology(&m);
 	CHECK_INT(t.euler, 1);
 	CHECK_INT(t.nonmanifold, 0);
@@ -484,7 +553,8 @@ static void test_colour(void)
 	int lo[3] = { 0, 0, 0 }, hi[3] = { 6, 4, 4 };
 	struct fct_voxgrid *g = fill(1, lo, hi, plane_f, &p, 100, 1);
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, NULL, NULL, &err), 0);
+	check_reference(g, 0, NULL, NULL, "colour", NULL, NULL);
 	struct fct_prop *r = fct_elem_find(&m.vertex, "red"), *gr = fct_elem_find(&m.vertex, "green"),
 	                *bl = fct_elem_find(&m.vertex, "blue");
 	CHECK(r && gr && bl && r->type == FCT_UINT8);
@@ -514,8 +584,9 @@ static void test_min_weight(void)
 				B->weight[v] = 0.5f;
 	}
 	struct fct_mesh all, half;
-	CHECK_INT(fct_mcubes(g, 0.5f, NULL, NULL, &all, &err), 0);
-	CHECK_INT(fct_mcubes(g, 0.75f, NULL, NULL, &half, &err), 0);
+	CHECK_INT(fct_mcubes(&all, g, 0.5f, NULL, NULL, &err), 0);
+	CHECK_INT(fct_mcubes(&half, g, 0.75f, NULL, NULL, &err), 0);
+	check_reference(g, 0.75f, NULL, NULL, "min_weight", NULL, NULL);
 	struct topo t = topology(&all), h = topology(&half);
 	CHECK_INT(t.border, 0);
 	CHECK(h.border > 0);
@@ -581,7 +652,7 @@ static void test_tiles(void)
 	int lo[3] = { -12, -12, -12 }, hi[3] = { 12, 12, 12 };
 	struct fct_voxgrid *g = fill(1, lo, hi, sphere_f, &s, 2.5, 0);
 	struct fct_mesh whole;
-	CHECK_INT(fct_mcubes(g, 0, NULL, NULL, &whole, &err), 0);
+	CHECK_INT(fct_mcubes(&whole, g, 0, NULL, NULL, &err), 0);
 	fct_voxgrid_free(g);
 	int cut[3][3] = { { -12, 3, 12 }, { -12, -5, 12 }, { -12, 12, 12 } };
 	struct fct_mesh all;
@@ -595,7 +666,8 @@ static void test_tiles(void)
 				flo[k] = clo[k] - 1, fhi[k] = chi[k] + 1;
 			struct fct_voxgrid *tg = fill(1, flo, fhi, sphere_f, &s, 2.5, 0);
 			struct fct_mesh m;
-			CHECK_INT(fct_mcubes(tg, 0, clo, chi, &m, &err), 0);
+			CHECK_INT(fct_mcubes(&m, tg, 0, clo, chi, &err), 0);
+			check_reference(tg, 0, clo, chi, "tile", NULL, NULL);
 			struct topo t = topology(&m);
 			open_ok &= t.border > 0 && t.nonmanifold == 0 && m.nf > 0;
 			concat(&all, &m);
@@ -625,14 +697,130 @@ static void test_tiles(void)
 	g = fill(1, lo, hi, sphere_f, &s, 2.5, 0);
 	int32_t e0[3] = { 0, 0, 0 }, e1[3] = { 0, 5, 5 }, n1[3] = { 2, 2, 2 };
 	struct fct_mesh m;
-	CHECK_INT(fct_mcubes(g, 0, e0, e1, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, e0, e1, &err), 0);
 	CHECK_INT(m.nv, 0);
 	CHECK_INT(m.nf, 0);
 	fct_mesh_free(&m);
-	CHECK_INT(fct_mcubes(g, 0, e0, n1, &m, &err), 0);
+	CHECK_INT(fct_mcubes(&m, g, 0, e0, n1, &err), 0);
 	CHECK_INT(m.nf, 0);
 	fct_mesh_free(&m);
-	CHECK_INT(fct_mcubes(g, 0, e0, NULL, &m, &err), -1);
+	CHECK_INT(fct_mcubes(&m, g, 0, e0, NULL, &err), -1);
+	CHECK_INT(fct_mcubes_reference(&m, g, 0, NULL, e1, &err), -1);
+	fct_voxgrid_free(g);
+}
+
+/* gen_mcubes' scenes, smaller: the room band at 5 cm (4 voxels of
+ * truncation, as the bench's at 1 cm), with colour, and the dense ball (a
+ * 32^3 volume, every voxel observed).  Both cross many block borders. */
+static void test_reference_scenes(void)
+{
+	size_t nv, nf;
+	int lo[3] = { -3, -3, -3 }, hi[3] = { 83, 83, 53 };
+	struct fct_voxgrid *g = fill(0.05, lo, hi, room_f, NULL, 0.2, 1);
+	check_reference(g, 0, NULL, NULL, "room", &nv, &nf);
+	CHECK(nv > 30000 && nf > 60000);
+	int32_t clo[3] = { 10, -3, -3 }, chi[3] = { 45, 50, 27 };
+	check_reference(g, 0, clo, chi, "room, clipped", &nv, NULL);
+	CHECK(nv > 3000);
+	fct_voxgrid_free(g);
+	struct sphere s = { { 15.6, 16.3, 15.9 }, 12.5 };
+	int dlo[3] = { 0, 0, 0 }, dhi[3] = { 31, 31, 31 };
+	g = fill(1, dlo, dhi, sphere_f, &s, 1e9, 0);
+	CHECK_INT(fct_voxgrid_count(g), 64);
+	check_reference(g, 0, NULL, NULL, "dense ball", &nv, NULL);
+	CHECK(nv > 1000);
+	fct_voxgrid_free(g);
+}
+
+/* Noisy volumes: random values (some NaN, infinite, +-0) and weights,
+ * a quarter of the voxels below min_weight, some never written, one block
+ * absent in the middle; with and without colour, min_weight 0.5 and 0;
+ * clip boxes across blocks, of one cube, empty, inverted, outside, and
+ * larger than the grid. */
+static void test_reference_noisy(void)
+{
+	struct fct_rng rng;
+	fct_rng_seed(&rng, 23);
+	size_t total = 0;
+	for (int trial = 0; trial < 6; trial++) {
+		struct fct_voxgrid *g = fct_voxgrid_new(0.25, trial & 1, &err);
+		for (int k = -9; k <= 9; k++)
+			for (int j = -9; j <= 9; j++)
+				for (int i = -9; i <= 9; i++) {
+					int v;
+					if (fct_rng_uniform(&rng) < 0.05 || (trial > 1 && i < 0 && j >= 0 && k < 0))
+						continue;
+					struct fct_voxblock *b = fct_voxgrid_voxel_at(g, i, j, k, 1, &v, &err);
+					if (!b)
+						abort();
+					double u = fct_rng_uniform(&rng);
+					float sdf = (float)(fct_rng_uniform(&rng) - 0.45);
+					if (u < 0.01)
+						sdf = NAN;
+					else if (u < 0.02)
+						sdf = u < 0.015 ? INFINITY : -INFINITY;
+					else if (u < 0.04)
+						sdf = u < 0.03 ? 0.0f : -0.0f;
+					b->sdf[v] = sdf;
+					u = fct_rng_uniform(&rng);
+					b->weight[v] = (float)(u < 0.25 ? 2 * u : 0.5 + u);
+					for (int c = 0; b->rgb && c < 3; c++)
+						b->rgb[3 * v + c] = (float)(256 * fct_rng_uniform(&rng));
+				}
+		size_t nv, nf;
+		check_reference(g, 0.5f, NULL, NULL, "noisy", &nv, &nf);
+		total += nf;
+		check_reference(g, 0, NULL, NULL, "noisy, min_weight 0", NULL, NULL);
+		static const int32_t box[][2][3] = {
+			{ { -5, -5, -5 }, { 5, 5, 5 } },     { { -8, 0, -3 }, { 1, 7, 9 } },
+			{ { 3, 3, 3 }, { 4, 4, 4 } },        { { 0, 0, 0 }, { 0, 5, 5 } },
+			{ { 5, 5, 5 }, { 2, 2, 2 } },        { { 50, 50, 50 }, { 60, 60, 60 } },
+			{ { -100, -100, -100 }, { 100, 100, 100 } },
+		};
+		for (size_t b = 0; b < sizeof box / sizeof box[0]; b++)
+			check_reference(g, 0.5f, box[b][0], box[b][1], "noisy, clipped", NULL, NULL);
+		fct_voxgrid_free(g);
+	}
+	CHECK(total > 1000);
+}
+
+/* Thin and empty volumes: one voxel thick (observed, no cube: an empty
+ * mesh), two voxels thick (one layer of cubes) across a block border, no
+ * block, blocks with nothing observed, observed without a sign change, and
+ * min_weight NaN (nothing observed). */
+static void test_reference_thin_empty(void)
+{
+	struct plane p = { { 0.1, -0.2, 1 }, -0.3 };
+	size_t nv, nf;
+	int lo[3] = { -10, -10, 0 }, hi[3] = { 10, 10, 0 };
+	struct fct_voxgrid *g = fill(1, lo, hi, plane_f, &p, 100, 1);
+	check_reference(g, 0, NULL, NULL, "one voxel thick", &nv, NULL);
+	CHECK_INT(nv, 0);
+	fct_voxgrid_free(g);
+	int lo2[3] = { -10, -10, -1 }, hi2[3] = { 10, 10, 0 };
+	struct plane q = { { 0.01, -0.02, 1 }, 0.5 };
+	g = fill(1, lo2, hi2, plane_f, &q, 100, 1);
+	check_reference(g, 0, NULL, NULL, "two voxels thick", &nv, &nf);
+	CHECK_INT(nf, 2 * 20 * 20);
+	fct_voxgrid_free(g);
+
+	g = fct_voxgrid_new(1, 0, &err);
+	check_reference(g, 0, NULL, NULL, "no block", &nv, NULL);
+	CHECK_INT(nv, 0);
+	struct fct_voxblock *b = fct_voxgrid_block(g, 0, 0, 0, 1, &err);
+	CHECK(b != NULL);
+	for (int v = 0; b && v < 512; v++)
+		b->sdf[v] = (v & 1) ? 1.0f : -1.0f;     /* weights 0 */
+	check_reference(g, 0, NULL, NULL, "nothing observed", &nv, NULL);
+	CHECK_INT(nv, 0);
+	for (int v = 0; b && v < 512; v++)
+		b->weight[v] = 1;
+	check_reference(g, NAN, NULL, NULL, "min_weight NaN", &nv, NULL);
+	CHECK_INT(nv, 0);
+	for (int v = 0; b && v < 512; v++)
+		b->sdf[v] = 1;
+	check_reference(g, 0, NULL, NULL, "no sign change", &nv, NULL);
+	CHECK_INT(nv, 0);
 	fct_voxgrid_free(g);
 }
 
@@ -667,6 +855,9 @@ int main(void)
 	test_colour();
 	test_min_weight();
 	test_tiles();
+	test_reference_scenes();
+	test_reference_noisy();
+	test_reference_thin_empty();
 	test_weld();
 	CHECK_DONE();
 }

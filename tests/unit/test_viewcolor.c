@@ -185,7 +185,7 @@ static void test_room(void)
 		CHECK(fct_fuse_view(g, &views[i], &fp, NULL, &err) == 0);
 	}
 	struct fct_mesh out;
-	CHECK(fct_mcubes(g, 0, NULL, NULL, &out, &err) == 0);
+	CHECK(fct_mcubes(&out, g, 0, NULL, NULL, &err) == 0);
 	CHECK(out.nv > 10000);
 	/* Truth: the scene's colour at the vertex's nearest point on the scene.
 	 * The reference: the same views and sampler colouring those nearest
