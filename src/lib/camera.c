@@ -436,6 +436,20 @@ int fct_pose_read_file(const char *path, double pose[12], struct fct_err *err)
 	return 0;
 }
 
+void fct_quat_pose(double x, double y, double z, double w, double pose[12])
+{
+	pose[0] = 1 - 2 * (y * y + z * z);
+	pose[1] = 2 * (x * y - z * w);
+	pose[2] = 2 * (x * z + y * w);
+	pose[4] = 2 * (x * y + z * w);
+	pose[5] = 1 - 2 * (x * x + z * z);
+	pose[6] = 2 * (y * z - x * w);
+	pose[8] = 2 * (x * z - y * w);
+	pose[9] = 2 * (y * z + x * w);
+	pose[10] = 1 - 2 * (x * x + y * y);
+	pose[3] = pose[7] = pose[11] = 0;
+}
+
 void fct_pose_invert(const double pose[12], double inv[12])
 {
 	/* R^T when R is a rotation to rounding; else the inverse of the

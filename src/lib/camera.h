@@ -108,4 +108,7 @@ static inline void fct_pose_apply(const double pose[12], const double p[3], doub
  * a rotation, as 7-Scenes' have, still maps its points back). */
 void fct_pose_invert(const double pose[12], double inv[12]);
 
+/* The rotation of unit quaternion (x, y, z, w) as the R of pose (t = 0). */
+void fct_quat_pose(double x, double y, double z, double w, double pose[12]);
+
 #endif

@@ -10,7 +10,6 @@
 
 #include "camera.h"
 #include "numparse.h"
-#include "rangegrid.h"
 #include "reader.h"
 
 const char *fct_traj_format_name(enum fct_traj_format f)

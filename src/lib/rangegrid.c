@@ -12,20 +12,6 @@
 #include "path.h"
 #include "reader.h"
 
-void fct_quat_pose(double x, double y, double z, double w, double pose[12])
-{
-	pose[0] = 1 - 2 * (y * y + z * z);
-	pose[1] = 2 * (x * y - z * w);
-	pose[2] = 2 * (x * z + y * w);
-	pose[4] = 2 * (x * y + z * w);
-	pose[5] = 1 - 2 * (x * x + z * z);
-	pose[6] = 2 * (y * z - x * w);
-	pose[8] = 2 * (x * z - y * w);
-	pose[9] = 2 * (y * z + x * w);
-	pose[10] = 1 - 2 * (x * x + y * y);
-	pose[3] = pose[7] = pose[11] = 0;
-}
-
 void fct_conf_free(struct fct_conf *c)
 {
 	if (!c)

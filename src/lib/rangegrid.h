@@ -53,9 +53,6 @@ struct fct_conf {
 int fct_conf_read(struct fct_conf *c, const char *path, struct fct_err *err);
 void fct_conf_free(struct fct_conf *c);
 
-/* The rotation of unit quaternion (x, y, z, w) as the R of pose (t = 0). */
-void fct_quat_pose(double x, double y, double z, double w, double pose[12]);
-
 /* The depth-jump bound of a range-grid scan's mesh (gridmesh.h max_jump):
  * a face whose z changes by more than ten grid steps per step is cut. */
 #define FCT_RANGE_GRID_MAX_JUMP 10
