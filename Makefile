@@ -39,7 +39,7 @@ build/config.mk: tools/install-deps
 	@{ echo "DEP_CFLAGS = $$(pkg-config --cflags libpng libjpeg zlib lapack blas)"; \
 	   echo "DEP_LIBS = $$(pkg-config --libs libpng libjpeg zlib lapack blas)"; } > $@.tmp && mv $@.tmp $@
 
-LIB_SRC = $(sort $(wildcard src/lib/*.c))
+LIB_SRC = $(sort $(wildcard src/lib/*/*.c))
 CMD_SRC = $(sort $(wildcard src/cmd/*.c))
 TOOL_SRC = $(sort $(wildcard tools/*.c))
 UNIT_SRC = $(sort $(wildcard tests/unit/test_*.c))

@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "delaunay.h"
-#include "rng.h"
+#include "cli/cli.h"
+#include "geom/delaunay.h"
+#include "core/rng.h"
 
 static int cmp_d(const void *a, const void *b)
 {

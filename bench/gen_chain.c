@@ -15,12 +15,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "camera.h"
-#include "depthmesh.h"
-#include "header.h"
-#include "meshio.h"
-#include "planes.h"
-#include "scene.h"
+#include "io/camera.h"
+#include "depth/depthmesh.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "geom/planes.h"
+#include "scene/scene.h"
 
 static void die(const struct fct_err *err)
 {

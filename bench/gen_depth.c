@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "image.h"
-#include "rng.h"
+#include "cli/cli.h"
+#include "io/image.h"
+#include "core/rng.h"
 
 /* Depth in metres along the ray (x, y, 1) of normalised image coordinates. */
 static double scene_depth(double x, double y)

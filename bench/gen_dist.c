@@ -11,11 +11,11 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "bvh.h"
-#include "cli.h"
-#include "geom.h"
-#include "meshio.h"
-#include "rng.h"
+#include "geom/bvh.h"
+#include "cli/cli.h"
+#include "geom/geom.h"
+#include "io/meshio.h"
+#include "core/rng.h"
 
 static void surface(double u, double v, double p[3])
 {

@@ -4,8 +4,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "cli.h"
-#include "meshio.h"
+#include "cli/cli.h"
+#include "io/meshio.h"
 
 int main(int argc, char **argv)
 {

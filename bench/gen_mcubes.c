@@ -39,11 +39,11 @@
 #include <sys/resource.h>
 #include <time.h>
 
-#include "cli.h"
-#include "fuse.h"
-#include "header.h"
-#include "mcubes.h"
-#include "meshio.h"
+#include "cli/cli.h"
+#include "fusion/fuse.h"
+#include "io/header.h"
+#include "fusion/mcubes.h"
+#include "io/meshio.h"
 
 struct scene {
 	double room[3];         /* interior from 0 to room */

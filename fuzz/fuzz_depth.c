@@ -7,8 +7,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "depthmesh.h"
-#include "depthsmooth.h"
+#include "depth/depthmesh.h"
+#include "depth/depthsmooth.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

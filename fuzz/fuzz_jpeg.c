@@ -11,8 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "image.h"
-#include "raster.h"
+#include "io/image.h"
+#include "render/raster.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

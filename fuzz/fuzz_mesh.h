@@ -7,9 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "header.h"
-#include "meshio.h"
-#include "noise.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "io/noise.h"
 
 static void fuzz_mesh_bytes(const uint8_t *data, size_t size)
 {

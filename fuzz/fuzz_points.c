@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "sparsemesh.h"
+#include "depth/sparsemesh.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -9,10 +9,10 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "camera.h"
-#include "dataset.h"
-#include "poses.h"
-#include "rangegrid.h"
+#include "io/camera.h"
+#include "io/dataset.h"
+#include "io/poses.h"
+#include "depth/rangegrid.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -19,14 +19,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "adj.h"
-#include "bvh.h"
-#include "cli.h"
-#include "geom.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "planes.h"
+#include "geom/adj.h"
+#include "geom/bvh.h"
+#include "cli/cli.h"
+#include "geom/geom.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "geom/planes.h"
 
 static const char usage[] =
 	"usage: creaseangle [-qv] [-b band] [-m count] A TRUTH\n"

@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cli.h"
-#include "image.h"
-#include "path.h"
+#include "cli/cli.h"
+#include "io/image.h"
+#include "core/path.h"
 
 static const char usage[] =
 	"usage: imginfo [-h] [--version] [file ...]\n"

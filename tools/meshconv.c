@@ -7,14 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "camera.h"
-#include "adj.h"
-#include "cli.h"
-#include "header.h"
-#include "mcubes.h"
-#include "meshio.h"
-#include "path.h"
-#include "rangegrid.h"
+#include "io/camera.h"
+#include "geom/adj.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "fusion/mcubes.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "depth/rangegrid.h"
 
 static const char usage[] =
 	"usage: meshconv [-aqv] [-f format] [-o file] [--conf file] [--grid] [--weld]\n"

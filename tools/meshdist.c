@@ -11,13 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
-#include "cli.h"
-#include "geom.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "rng.h"
+#include "geom/bvh.h"
+#include "cli/cli.h"
+#include "geom/geom.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "core/rng.h"
 
 static const char usage[] =
 	"usage: meshdist [-aHpqv] [-o file] [-s samples] [--seed n] A B\n"

@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "adj.h"
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
+#include "geom/adj.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
 
 static const char usage[] =
 	"usage: meshinfo [file ...]\n"

@@ -10,17 +10,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "bvh.h"
-#include "geom.h"
-#include "header.h"
-#include "image.h"
-#include "meshio.h"
-#include "output.h"
-#include "path.h"
-#include "planes.h"
-#include "raster.h"
-#include "texcoord.h"
+#include "cli/cli.h"
+#include "geom/bvh.h"
+#include "geom/geom.h"
+#include "io/header.h"
+#include "io/image.h"
+#include "io/meshio.h"
+#include "io/output.h"
+#include "core/path.h"
+#include "geom/planes.h"
+#include "render/raster.h"
+#include "io/texcoord.h"
 
 static const char usage[] =
 	"usage: meshshot [-ehqvw] [-m mode] [-o file] [-s WxH] [--bg r,g,b] [--cmap name]\n"

@@ -11,13 +11,13 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cli.h"
-#include "header.h"
-#include "image.h"
-#include "meshio.h"
-#include "output.h"
-#include "path.h"
-#include "scene.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/image.h"
+#include "io/meshio.h"
+#include "io/output.h"
+#include "core/path.h"
+#include "scene/scene.h"
 
 static const char usage[] =
 	"usage: mkscene [-qv] [-K fx,fy,cx,cy] [--albedo checker | grain] [--depth png16 | pfm]\n"

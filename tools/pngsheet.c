@@ -9,11 +9,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cli.h"
-#include "image.h"
-#include "output.h"
-#include "path.h"
-#include "raster.h"
+#include "cli/cli.h"
+#include "io/image.h"
+#include "io/output.h"
+#include "core/path.h"
+#include "render/raster.h"
 
 static const char usage[] =
 	"usage: pngsheet [-qv] [-b pixels] [-c columns] [-o file] [--bg r,g,b]\n"

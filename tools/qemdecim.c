@@ -1,16 +1,16 @@
 /* qemdecim - decimate a triangle mesh by quadric edge collapse (Garland and
- * Heckbert 1997; see src/lib/qem.h): the baseline the planar pipeline of
+ * Heckbert 1997; see src/lib/geom/qem.h): the baseline the planar pipeline of
  * Kang et al. is measured against at the same face count. */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "qem.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "geom/qem.h"
 
 static const char usage[] =
 	"usage: qemdecim [-acqv] [-b weight] [-e error] [-o file] [-n faces | -r ratio]\n"

@@ -15,9 +15,9 @@
 #include <string.h>
 #include <strings.h>
 
-#include "cli.h"
-#include "numparse.h"
-#include "reader.h"
+#include "cli/cli.h"
+#include "core/numparse.h"
+#include "io/reader.h"
 
 static const char usage[] =
 	"usage: tolcmp [-s] [-a abs] [-r rel] file1 file2\n"

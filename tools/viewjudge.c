@@ -11,15 +11,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
-#include "cli.h"
-#include "header.h"
-#include "image.h"
-#include "meshio.h"
-#include "path.h"
-#include "photo.h"
-#include "raster.h"
-#include "texmap.h"
+#include "geom/bvh.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/image.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "render/photo.h"
+#include "render/raster.h"
+#include "render/texmap.h"
 
 static const char usage[] =
 	"usage: viewjudge [-qv] [-K fx,fy,cx,cy | name] [--camera file] [-m mode]\n"

@@ -9,11 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "areaflow.h"
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
+#include "fusion/areaflow.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
 
 static const char usage[] =
 	"usage: areaflow [-aqv] [-o file] [--method name] [--iterations n]\n"

@@ -8,13 +8,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "cylview.h"
-#include "header.h"
-#include "image.h"
-#include "meshio.h"
-#include "output.h"
-#include "path.h"
+#include "cli/cli.h"
+#include "render/cylview.h"
+#include "io/header.h"
+#include "io/image.h"
+#include "io/meshio.h"
+#include "io/output.h"
+#include "core/path.h"
 
 static const char usage[] =
 	"usage: cyl2planar [-qv] [--camera file | --cylindrical f,cy,theta0] [--pose file]\n"

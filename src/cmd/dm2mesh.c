@@ -11,14 +11,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "depthmesh.h"
-#include "depthopts.h"
-#include "header.h"
-#include "image.h"
-#include "meshio.h"
-#include "path.h"
-#include "sparsemesh.h"
+#include "cli/cli.h"
+#include "depth/depthmesh.h"
+#include "cli/depthopts.h"
+#include "io/header.h"
+#include "io/image.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "depth/sparsemesh.h"
 
 static const char usage[] =
 	"usage: dm2mesh [-aqv] [-o file] [-K fx,fy,cx,cy | name] [--camera file]\n"

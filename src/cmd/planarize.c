@@ -13,15 +13,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "cylview.h"
-#include "depthopts.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "planaropts.h"
-#include "pointdist.h"
-#include "segopts.h"
+#include "cli/cli.h"
+#include "render/cylview.h"
+#include "cli/depthopts.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "cli/planaropts.h"
+#include "geom/pointdist.h"
+#include "cli/segopts.h"
 
 static const char usage[] =
 	"usage: planarize [-aqv] [-o model] [-K fx,fy,cx,cy | name] [--camera file]\n"

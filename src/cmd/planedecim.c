@@ -11,11 +11,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "planaropts.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "cli/planaropts.h"
 
 static const char usage[] =
 	"usage: planedecim [-aqv] [-e error] [-o file] [--border k]\n"

@@ -10,11 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "project.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "planar/project.h"
 
 static const char usage[] =
 	"usage: projverts [-aqv] [-o file] [--max-move d] [--orthogonal angle]\n"

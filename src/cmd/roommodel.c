@@ -14,19 +14,19 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "cli.h"
-#include "dataset.h"
-#include "fuse.h"
-#include "fuseopts.h"
-#include "header.h"
-#include "mcubes.h"
-#include "meshio.h"
-#include "path.h"
-#include "photo.h"
-#include "planaropts.h"
-#include "poses.h"
-#include "segopts.h"
-#include "texopts.h"
+#include "cli/cli.h"
+#include "io/dataset.h"
+#include "fusion/fuse.h"
+#include "cli/fuseopts.h"
+#include "io/header.h"
+#include "fusion/mcubes.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "render/photo.h"
+#include "cli/planaropts.h"
+#include "io/poses.h"
+#include "cli/segopts.h"
+#include "cli/texopts.h"
 
 static const char usage[] =
 	"usage: roommodel [-qv] [-o model.obj] [-K fx,fy,cx,cy | name] [--camera file]\n"

@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "segopts.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "cli/segopts.h"
 
 static const char usage[] =
 	"usage: segplanes [-aqv] [-c factor] [-n patches] [-o file] [--area-weighted]\n"

@@ -2,18 +2,18 @@
  * simplified by iterative end-point fit in 3-D, written as a wireframe:
  * Kang, Johnson and Szeliski, "Extraction of Concise and Realistic 3-D
  * Models from Real Data" (DEC CRL 95/7), section 3.  The algorithm is in
- * src/lib/chain.c. */
+ * src/lib/planar/chain.c. */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "chain.h"
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
+#include "planar/chain.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
 
 static const char usage[] =
 	"usage: simpchain [-aqv] [-o file] [-t threshold] [--keep-small-loops] [input]\n"

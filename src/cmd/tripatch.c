@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "tripatch.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "planar/tripatch.h"
 
 static const char usage[] =
 	"usage: tripatch [-aqv] [-o file] [--cdt] [--plane] [input]\n"

@@ -14,13 +14,13 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "cli.h"
-#include "fuse.h"
-#include "fuseopts.h"
-#include "fuseviews.h"
-#include "header.h"
-#include "mcubes.h"
-#include "meshio.h"
+#include "cli/cli.h"
+#include "fusion/fuse.h"
+#include "cli/fuseopts.h"
+#include "cli/fuseviews.h"
+#include "io/header.h"
+#include "fusion/mcubes.h"
+#include "io/meshio.h"
 
 static const char usage[] =
 	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"

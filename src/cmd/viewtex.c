@@ -9,12 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "header.h"
-#include "meshio.h"
-#include "path.h"
-#include "photo.h"
-#include "texopts.h"
+#include "cli/cli.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "core/path.h"
+#include "render/photo.h"
+#include "cli/texopts.h"
 
 static const char usage[] =
 	"usage: viewtex [-aqv] [-K fx,fy,cx,cy | name] [--camera file] [--poses file ...]\n"

@@ -1,4 +1,4 @@
-# Texture coordinates under other programs' names (src/lib/texcoord.h):
+# Texture coordinates under other programs' names (src/lib/io/texcoord.h):
 # vertex texture_u texture_v (MeshLab), u v, and per-corner face lists
 # texcoord (MeshLab's wedge coordinates, cyl2planar's PLY) are drawn by
 # meshshot and written as vt by the OBJ writer, the same as facet's s t.

@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "image.h"
-#include "scene.h"
+#include "io/image.h"
+#include "scene/scene.h"
 
 /* The depth image of a view of s with the noise of `sensor` after `jitter`
  * pixels of lateral noise, as mkscene writes it (float), and the depths

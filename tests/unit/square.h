@@ -6,8 +6,8 @@
 
 #include <stdint.h>
 
-#include "fuse.h"
-#include "mesh.h"
+#include "fusion/fuse.h"
+#include "core/mesh.h"
 
 static void square(struct fct_mesh *m, int n, double z)
 {

@@ -2,7 +2,7 @@
  * degenerate and duplicate faces on hand-made meshes with known answers. */
 #include <stdlib.h>
 
-#include "adj.h"
+#include "geom/adj.h"
 #include "check.h"
 
 static struct fct_err err;

@@ -8,10 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "areaflow.h"
+#include "fusion/areaflow.h"
 #include "check.h"
-#include "geom.h"
-#include "rng.h"
+#include "geom/geom.h"
+#include "core/rng.h"
 
 static struct fct_err err;
 

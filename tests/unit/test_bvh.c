@@ -12,10 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
+#include "geom/bvh.h"
 #include "check.h"
-#include "geom.h"
-#include "rng.h"
+#include "geom/geom.h"
+#include "core/rng.h"
 #include "soup.h"
 
 /* Helpers ------------------------------------------------------------------ */

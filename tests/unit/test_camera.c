@@ -13,7 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "camera.h"
+#include "io/camera.h"
 #include "check.h"
 
 static char dir[] = "/tmp/facet-camera.XXXXXX";

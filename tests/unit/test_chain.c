@@ -3,15 +3,15 @@
  * noisy view of mkscene's room labelled with the true patches. */
 #include <stdlib.h>
 
-#include "camera.h"
-#include "chain.h"
+#include "io/camera.h"
+#include "planar/chain.h"
 #include "check.h"
-#include "depthmesh.h"
-#include "meshio.h"
-#include "planes.h"
-#include "predicates.h"
-#include "rng.h"
-#include "scene.h"
+#include "depth/depthmesh.h"
+#include "io/meshio.h"
+#include "geom/planes.h"
+#include "geom/predicates.h"
+#include "core/rng.h"
+#include "scene/scene.h"
 
 static struct fct_err err;
 

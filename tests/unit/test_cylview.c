@@ -5,9 +5,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "cylview.h"
-#include "header.h"
-#include "scene.h"
+#include "render/cylview.h"
+#include "io/header.h"
+#include "scene/scene.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

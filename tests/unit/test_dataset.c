@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "dataset.h"
+#include "io/dataset.h"
 
 static char top[] = "/tmp/facet-dataset.XXXXXX";
 

@@ -13,9 +13,9 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "delaunay.h"
-#include "predicates.h"
-#include "rng.h"
+#include "geom/delaunay.h"
+#include "geom/predicates.h"
+#include "core/rng.h"
 
 static const double *P(const double *uv, uint32_t i)
 {

@@ -7,12 +7,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "adj.h"
+#include "geom/adj.h"
 #include "check.h"
-#include "depthmesh.h"
-#include "geom.h"
+#include "depth/depthmesh.h"
+#include "geom/geom.h"
 #include "noisy_view.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 /* What a mesh of a view makes of the scene. */
 struct figures {

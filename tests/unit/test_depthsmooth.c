@@ -8,8 +8,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "depthsmooth.h"
-#include "scene.h"
+#include "depth/depthsmooth.h"
+#include "scene/scene.h"
 
 enum { W = 96, H = 72 };
 

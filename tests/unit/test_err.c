@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "err.h"
+#include "core/err.h"
 
 static void test_escape(void)
 {

@@ -10,11 +10,11 @@
 #include <string.h>
 
 #include "check.h"
-#include "depthmesh.h"
-#include "fuse.h"
-#include "geom.h"
-#include "mcubes.h"
-#include "rangegrid.h"
+#include "depth/depthmesh.h"
+#include "fusion/fuse.h"
+#include "geom/geom.h"
+#include "fusion/mcubes.h"
+#include "depth/rangegrid.h"
 #include "square.h"
 
 /* v seeing the 64 x 64 depth image depth(x, y) of view_of's camera,

@@ -5,7 +5,7 @@
 #include <math.h>
 
 #include "check.h"
-#include "geom.h"
+#include "geom/geom.h"
 
 /* The triangle (0,0,0) (1,0,0) (0,1,0) in the plane z = 0. */
 static const double A[3] = {0, 0, 0}, B[3] = {1, 0, 0}, C[3] = {0, 1, 0};

@@ -10,8 +10,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "graphcut.h"
-#include "rng.h"
+#include "render/graphcut.h"
+#include "core/rng.h"
 
 /* A random network of n nodes: terminal capacities and edges. */
 struct net {

@@ -3,11 +3,11 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "camera.h"
+#include "io/camera.h"
 #include "check.h"
-#include "depthmesh.h"
-#include "geom.h"
-#include "gridmesh.h"
+#include "depth/depthmesh.h"
+#include "geom/geom.h"
+#include "depth/gridmesh.h"
 
 static struct fct_err err;
 

@@ -8,9 +8,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "header.h"
-#include "ply.h"
-#include "reader.h"
+#include "io/header.h"
+#include "io/ply.h"
+#include "io/reader.h"
 
 static const char *line_of(const char *text, int obj_info, size_t max, char *buf)
 {

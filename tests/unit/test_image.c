@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "image.h"
+#include "io/image.h"
 
 /* Read an image from bytes in memory (fmemopen: no file descriptor, so the
  * reader takes the pipe path). */

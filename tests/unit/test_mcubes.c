@@ -8,10 +8,10 @@
  * min_weight, clip boxes, thin and empty volumes. */
 #include <stdlib.h>
 
-#include "adj.h"
+#include "geom/adj.h"
 #include "check.h"
-#include "mcubes.h"
-#include "rng.h"
+#include "fusion/mcubes.h"
+#include "core/rng.h"
 
 static struct fct_err err;
 

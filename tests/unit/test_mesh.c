@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "mesh.h"
+#include "core/mesh.h"
 
 static void test_types(void)
 {

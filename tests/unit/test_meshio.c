@@ -15,8 +15,8 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "header.h"
-#include "meshio.h"
+#include "io/header.h"
+#include "io/meshio.h"
 
 static char dir[64];
 

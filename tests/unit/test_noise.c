@@ -8,9 +8,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "depthmesh.h"
-#include "header.h"
-#include "noise.h"
+#include "depth/depthmesh.h"
+#include "io/header.h"
+#include "io/noise.h"
 #include "noisy_view.h"
 
 static struct fct_noise parsed(const char *text)

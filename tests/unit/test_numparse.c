@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "numparse.h"
+#include "core/numparse.h"
 
 static uint64_t rng_state = 88172645463325252ull;
 

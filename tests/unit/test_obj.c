@@ -11,9 +11,9 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "header.h"
-#include "meshio.h"
-#include "obj.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "io/obj.h"
 
 /* Read a mesh from a string (fmemopen: like a pipe); dir as for a file. */
 static int read_str_dir(struct fct_mesh *m, const char *text, size_t n, const char *dir,

@@ -14,8 +14,8 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "cli.h"
-#include "output.h"
+#include "cli/cli.h"
+#include "io/output.h"
 
 static char dir[] = "/tmp/facet-test-output.XXXXXX";
 

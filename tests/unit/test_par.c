@@ -4,7 +4,7 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "par.h"
+#include "core/par.h"
 
 struct seen {
 	size_t n, nchunk;

@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "path.h"
+#include "core/path.h"
 
 static struct fct_err err;
 

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "planes.h"
+#include "geom/planes.h"
 
 static struct fct_err err;
 

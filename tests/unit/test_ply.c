@@ -7,9 +7,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "header.h"
-#include "meshio.h"
-#include "ply.h"
+#include "io/header.h"
+#include "io/meshio.h"
+#include "io/ply.h"
 
 /* Read a mesh from memory (fmemopen: no file size, like a pipe). */
 static int read_mem(struct fct_mesh *m, const void *data, size_t n, struct fct_err *err)

@@ -5,7 +5,7 @@
 #include <math.h>
 
 #include "check.h"
-#include "pointdist.h"
+#include "geom/pointdist.h"
 #include "square.h"
 
 static void test_above(void)

@@ -28,9 +28,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "polytri.h"
-#include "predicates.h"
-#include "rng.h"
+#include "geom/polytri.h"
+#include "geom/predicates.h"
+#include "core/rng.h"
 
 /* A polygon under construction: points and loops. */
 struct poly {

@@ -7,9 +7,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "camera.h"
+#include "io/camera.h"
 #include "check.h"
-#include "poses.h"
+#include "io/poses.h"
 
 static char dir[] = "/tmp/facet-poses.XXXXXX";
 

@@ -11,8 +11,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "predicates.h"
-#include "rng.h"
+#include "geom/predicates.h"
+#include "core/rng.h"
 
 static int sgn(double x)
 {

@@ -5,15 +5,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "chain.h"
+#include "planar/chain.h"
 #include "check.h"
-#include "depthmesh.h"
-#include "geom.h"
-#include "header.h"
-#include "planes.h"
-#include "project.h"
-#include "rng.h"
-#include "scene.h"
+#include "depth/depthmesh.h"
+#include "geom/geom.h"
+#include "io/header.h"
+#include "geom/planes.h"
+#include "planar/project.h"
+#include "core/rng.h"
+#include "scene/scene.h"
 
 static struct fct_err err;
 

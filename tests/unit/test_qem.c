@@ -15,11 +15,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "adj.h"
+#include "geom/adj.h"
 #include "check.h"
-#include "geom.h"
-#include "qem.h"
-#include "rng.h"
+#include "geom/geom.h"
+#include "geom/qem.h"
+#include "core/rng.h"
 
 static struct fct_err err;
 

@@ -8,11 +8,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "camera.h"
+#include "io/camera.h"
 #include "check.h"
-#include "geom.h"
-#include "meshio.h"
-#include "rangegrid.h"
+#include "geom/geom.h"
+#include "io/meshio.h"
+#include "depth/rangegrid.h"
 
 static int read_mem(struct fct_mesh *m, const char *text, struct fct_err *err)
 {

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "raster.h"
+#include "render/raster.h"
 
 /* An identity view: camera frame = world, focal f, principal point (cx, cy). */
 static struct fct_view ident(int w, int h, double f, double cx, double cy)

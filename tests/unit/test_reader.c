@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "reader.h"
+#include "io/reader.h"
 
 static FILE *mem(const char *s)
 {

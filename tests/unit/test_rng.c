@@ -3,7 +3,7 @@
 #include <stdint.h>
 
 #include "check.h"
-#include "rng.h"
+#include "core/rng.h"
 
 static void test_rng(void)
 {

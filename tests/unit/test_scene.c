@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "geom.h"
-#include "scene.h"
+#include "geom/geom.h"
+#include "scene/scene.h"
 
 static struct fct_camera pinhole(int w, int h, double f)
 {

@@ -7,8 +7,8 @@
 #include <stdlib.h>
 
 #include "check.h"
-#include "rng.h"
-#include "segment.h"
+#include "core/rng.h"
+#include "planar/segment.h"
 
 static struct fct_err err;
 

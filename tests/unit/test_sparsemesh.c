@@ -13,8 +13,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "predicates.h"
-#include "sparsemesh.h"
+#include "geom/predicates.h"
+#include "depth/sparsemesh.h"
 
 /* Read pts from the text s, called "pts.txt"; the call's status. */
 static int read_text(struct fct_image_points *pts, const char *s, struct fct_err *err)

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "texmap.h"
+#include "render/texmap.h"
 
 static void two_triangles(struct fct_mesh *m)
 {

@@ -9,9 +9,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "planes.h"
-#include "rng.h"
-#include "tripatch.h"
+#include "geom/planes.h"
+#include "core/rng.h"
+#include "planar/tripatch.h"
 
 /* A wireframe: vertices (x y z, then s t when w is 5), edges (v1 v2 p1
  * p2), planes (nx ny nz d); s t are written when st is set. */

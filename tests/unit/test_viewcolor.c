@@ -10,12 +10,12 @@
 #include <string.h>
 
 #include "check.h"
-#include "depthmesh.h"
-#include "fuse.h"
-#include "mcubes.h"
-#include "scene.h"
+#include "depth/depthmesh.h"
+#include "fusion/fuse.h"
+#include "fusion/mcubes.h"
+#include "scene/scene.h"
 #include "square.h"
-#include "viewcolor.h"
+#include "render/viewcolor.h"
 
 static void add_normals(struct fct_mesh *m)
 {

@@ -12,13 +12,13 @@
 #include <string.h>
 
 #include "check.h"
-#include "geom.h"
-#include "header.h"
-#include "planes.h"
-#include "raster.h"
+#include "geom/geom.h"
+#include "io/header.h"
+#include "geom/planes.h"
+#include "render/raster.h"
 #include "square.h"
-#include "texmap.h"
-#include "viewtex.h"
+#include "render/texmap.h"
+#include "render/viewtex.h"
 
 static const struct fct_camera cam = { FCT_CAMERA_PINHOLE, 96, 72, 70, 70, 47.5, 35.5, 0, 0 };
 

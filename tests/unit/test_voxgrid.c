@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "voxgrid.h"
+#include "fusion/voxgrid.h"
 
 static struct fct_err err;
 

@@ -1,0 +1,248 @@
+/* depthmesh.c - depth images to meshes (see depthmesh.h). */
+#include "depth/depthmesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void fct_depth_params_default(struct fct_depth_params *p)
+{
+	memset(p, 0, sizeof *p);
+	p->depth_scale = 1000;
+	p->max_depth = HUGE_VAL;
+	p->step = 1;
+	p->grid.max_jump = FCT_DEFAULT_MAX_JUMP;
+	p->grid.min_faces = FCT_DEFAULT_MIN_FACES;
+	p->texcoords = 1;
+	p->noise_jump = FCT_DEFAULT_NOISE_JUMP;
+}
+
+/* A sample v (metres, or a disparity) made a depth: 0 for no data. */
+static inline double sample_depth(double v, const struct fct_depth_params *p)
+{
+	if (p->baseline > 0)
+		v = v > 0 && v + p->doffs > 0 ? p->baseline * p->focal / (v + p->doffs) : 0;
+	return v > 0 && v >= p->min_depth && v <= p->max_depth && isfinite(v) ? v : 0;
+}
+
+/* Sample x of an image row as a value before sample_depth. */
+static inline double sample_at(const struct fct_image *img, size_t i, const struct fct_depth_params *p)
+{
+	switch (img->type) {
+	case FCT_PIX_U8:
+		return ((const unsigned char *)img->data)[i] / p->depth_scale;
+	case FCT_PIX_U16: {
+		unsigned s = ((const uint16_t *)img->data)[i];
+		return s == 65535 ? 0 : s / p->depth_scale;
+	}
+	default: {
+		double v = ((const float *)img->data)[i];
+		return p->scale_float ? v / p->depth_scale : v;
+	}
+	}
+}
+
+double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_depth_params *p)
+{
+	return sample_depth(sample_at(img, (size_t)y * (size_t)img->width + (size_t)x, p), p);
+}
+
+/* The depths of every step-th sample of image row y into out[0..n): the
+ * loop of fct_depth_at with the sample type decided once per row. */
+static void depth_row(const struct fct_image *img, int y, int step, const struct fct_depth_params *p,
+                      double *out, int n)
+{
+	size_t base = (size_t)y * (size_t)img->width;
+	switch (img->type) {
+	case FCT_PIX_U16: {
+		const uint16_t *r = (const uint16_t *)img->data + base;
+		for (int i = 0; i < n; i++) {
+			unsigned s = r[(size_t)i * (size_t)step];
+			out[i] = sample_depth(s == 65535 ? 0 : s / p->depth_scale, p);
+		}
+		break;
+	}
+	case FCT_PIX_F32: {
+		const float *r = (const float *)img->data + base;
+		for (int i = 0; i < n; i++) {
+			double v = r[(size_t)i * (size_t)step];
+			out[i] = sample_depth(p->scale_float ? v / p->depth_scale : v, p);
+		}
+		break;
+	}
+	default:
+		for (int i = 0; i < n; i++)
+			out[i] = sample_depth(sample_at(img, base + (size_t)i * (size_t)step, p), p);
+	}
+}
+
+double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params *p)
+{
+	int integer = img->type == FCT_PIX_U8 || img->type == FCT_PIX_U16;
+	return integer && !(p->baseline > 0) ? 1 / p->depth_scale : 0;
+}
+
+/* The float vertex property called name, for the caller to fill; NULL
+ * when out of memory. */
+static float *float_property(struct fct_mesh *m, const char *name, struct fct_err *err)
+{
+	struct fct_prop *p = fct_elem_add_scalar(&m->vertex, name, FCT_FLOAT32, err);
+	return p ? p->data : NULL;
+}
+
+/* The vertex properties that come from each vertex's cell (s t, sigma, and
+ * the kept depths): vertices are in cell order, so the rows are walked
+ * alongside instead of dividing each cell index. */
+static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int step, int gw,
+                           const uint32_t *cell_of, const double *depth, const double *col,
+                           const double *row, const float *cell_sigma, int texcoords, float *kept,
+                           struct fct_err *err)
+{
+	float *s = NULL, *t = NULL, *sigma = NULL;
+	if (texcoords && (!float_property(m, "s", err) || !float_property(m, "t", err)))
+		return -1;
+	if (cell_sigma && !(sigma = float_property(m, "sigma", err)))
+		return -1;
+	if (texcoords)   /* adding a property may move the others */
+		s = fct_elem_find(&m->vertex, "s")->data, t = fct_elem_find(&m->vertex, "t")->data;
+	size_t w = (size_t)img->width, j = 0, start = 0, gwz = (size_t)gw, st = (size_t)step;
+	for (size_t v = 0; v < m->nv; v++) {
+		size_t c = cell_of[v];
+		while (c >= start + gwz)
+			start += gwz, j++;
+		size_t i = c - start;
+		if (texcoords) {
+			s[v] = (float)(((double)(i * st) + 0.5) / img->width);
+			t[v] = (float)(1 - ((double)(j * st) + 0.5) / img->height);
+		}
+		if (sigma) {
+			const double *r = &col[3 * i];
+			sigma[v] = (float)(cell_sigma[c] * sqrt(r[0] * r[0] + row[j] * row[j] + r[2] * r[2]));
+		}
+		if (kept)   /* cell (i, j) is pixel (i step, j step) */
+			kept[j * st * w + i * st] = (float)depth[c];
+	}
+	return 0;
+}
+
+static int cmp_float(const void *a, const void *b)
+{
+	float x = *(const float *)a, y = *(const float *)b;
+	return (x > y) - (x < y);
+}
+
+int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
+                          const struct fct_camera *cam, const struct fct_depth_params *p)
+{
+	double scale = 0;
+	const char *name = fct_camera_known(cam, p->depth_scale, &scale);
+	if (!name || img->channels != 1)
+		return 0;
+	size_t n = 0, cap = ((size_t)img->width / 4 + 1) * ((size_t)img->height / 4 + 1);
+	float *d = malloc(cap * sizeof *d);
+	if (!d)
+		return 0;
+	for (int y = 0; y < img->height; y += 4)
+		for (int x = 0; x < img->width; x += 4) {
+			double v = fct_depth_at(img, x, y, p);
+			if (v > 0)
+				d[n++] = (float)v;
+		}
+	int bad = 0;
+	if (n > 0) {
+		qsort(d, n, sizeof *d, cmp_float);
+		double med = d[n / 2];
+		bad = !(med >= FCT_SENSOR_MIN_DEPTH && med <= FCT_SENSOR_MAX_DEPTH);
+		int integer = img->type != FCT_PIX_F32 || p->scale_float;
+		if (bad && integer && scale != p->depth_scale)
+			snprintf(msg, size, "median depth %.3g m: implausible for an RGB-D sensor (%g to %g "
+			         "m); the camera is %s's, whose depth units are %g a metre, not %g "
+			         "(--depth-scale)", med, FCT_SENSOR_MIN_DEPTH, FCT_SENSOR_MAX_DEPTH, name,
+			         scale, p->depth_scale);
+		else if (bad)
+			snprintf(msg, size, "median depth %.3g m: implausible for an RGB-D sensor (%g to %g "
+			         "m; the camera is %s's): is the depth scale right?", med,
+			         FCT_SENSOR_MIN_DEPTH, FCT_SENSOR_MAX_DEPTH, name);
+	}
+	free(d);
+	return bad;
+}
+
+int fct_depth_mesh(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
+                   const struct fct_depth_params *p, struct fct_grid_stats *stats,
+                   struct fct_err *err)
+{
+	return fct_depth_mesh_kept(m, img, cam, p, stats, NULL, err);
+}
+
+int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *p, struct fct_grid_stats *stats, float **kept,
+                        struct fct_err *err)
+{
+	fct_mesh_init(m);
+	if (kept)
+		*kept = NULL;
+	if (img->channels != 1)
+		return fct_fail(err, "depth image has %d channels; one is needed", img->channels);
+	if (cam->kind == FCT_CAMERA_NONE)
+		return fct_fail(err, "no camera");
+	if (cam->width != img->width || cam->height != img->height)
+		return fct_fail(err, "the camera is %dx%d but the depth image is %dx%d",
+		                cam->width, cam->height, img->width, img->height);
+	if (p->step < 1)
+		return fct_fail(err, "step must be at least 1");
+	int step = p->step, gw = (img->width + step - 1) / step, gh = (img->height + step - 1) / step;
+	size_t ncells = (size_t)gw * (size_t)gh;
+	double *depth = fct_alloc_array(ncells, sizeof *depth, err);
+	double *col = fct_alloc_array((size_t)gw, 3 * sizeof *col, err);
+	double *row = fct_alloc_array((size_t)gh, sizeof *row, err);
+	uint32_t *cell_of = NULL;
+	float *sigma = NULL;
+	int rc = -1;
+	if (!depth || !col || !row)
+		goto out;
+
+	/* Rays factor into a column part and a row part for both models:
+	 * pinhole ((u-cx)/fx, (v-cy)/fy, 1), cylindrical (sin, (v-cy)/f, cos). */
+	for (int i = 0; i < gw; i++)
+		fct_camera_ray(cam, (double)i * step, 0, &col[3 * i]);
+	for (int j = 0; j < gh; j++) {
+		double ray[3];
+		fct_camera_ray(cam, 0, (double)j * step, ray);
+		row[j] = ray[1];
+		depth_row(img, j * step, step, p, depth + (size_t)j * (size_t)gw, gw);
+	}
+	int noisy = p->noise.model != FCT_NOISE_UNKNOWN;
+	if (noisy) {
+		if (!(sigma = fct_alloc_array(ncells, sizeof *sigma, err)))
+			goto out;
+		fct_noise_sigmas(&p->noise, depth, sigma, ncells);
+	}
+	struct fct_range_grid g = { gw, gh, NULL, col, row, depth, step * fct_camera_pixel_angle(cam),
+	                            cam->kind == FCT_CAMERA_CYLINDRICAL, sigma, noisy ? p->noise_jump : 0 };
+	if (fct_grid_mesh(m, &g, &p->grid, &cell_of, stats, err))
+		goto out;
+
+	if (kept && !(*kept = calloc((size_t)img->width * (size_t)img->height, sizeof **kept))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	if (cell_properties(m, img, step, gw, cell_of, depth, col, row, sigma, p->texcoords,
+	                    kept ? *kept : NULL, err))
+		goto out;
+	rc = 0;
+out:
+	free(depth);
+	free(sigma);
+	free(col);
+	free(row);
+	free(cell_of);
+	if (rc) {
+		fct_mesh_free(m);
+		if (kept) {
+			free(*kept);
+			*kept = NULL;
+		}
+	}
+	return rc;
+}

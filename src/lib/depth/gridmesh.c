@@ -1,0 +1,342 @@
+/* gridmesh.c - organised range data to triangles (see gridmesh.h). */
+#include "depth/gridmesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom/geom.h"
+
+/* What one grid square becomes: which of its two triangles are made and
+ * along which diagonal.  Corners: a = (i, j), b = (i+1, j), c = (i, j+1),
+ * d = (i+1, j+1).  Diagonal bc: (a, c, b) and (b, c, d); diagonal ad:
+ * (a, c, d) and (a, d, b) -- all clockwise in (u, v), which faces the sensor. */
+enum { FIRST = 1, SECOND = 2, DIAG_AD = 4 };
+
+struct grid {
+	const struct fct_range_grid *g;
+	double limit;            /* max_jump * footprint */
+	double noise;            /* noise_jump * sqrt(2) */
+	int w, h, wrap;
+};
+
+static inline int has_data(const struct grid *G, size_t c)
+{
+	double d = G->g->depth[c];
+	return d > 0 && d < HUGE_VAL;
+}
+
+/* Cell (i, j) or -1 outside the grid; columns wrap on a full cylinder. */
+static inline long cell_at(const struct grid *G, long i, long j)
+{
+	if (j < 0 || j >= G->h)
+		return -1;
+	if (i < 0 || i >= G->w) {
+		if (!G->wrap)
+			return -1;
+		i = (i + G->w) % G->w;
+	}
+	return j * (long)G->w + i;
+}
+
+/* Both cells on one surface: the depth jump between them, steps grid steps
+ * apart, is within the limit. */
+static inline int joined(const struct grid *G, size_t a, size_t b, double steps)
+{
+	const float *s = G->g->sigma;
+	double allow = s ? G->noise * (s[a] > s[b] ? s[a] : s[b]) : 0;
+	return fct_depth_joined(G->g->depth[a], G->g->depth[b], G->limit, steps, allow);
+}
+
+/* The position of cell c, which is (i, j). */
+static inline void P(const struct grid *G, size_t c, size_t i, size_t j, double p[3])
+{
+	const struct fct_range_grid *g = G->g;
+	if (g->xyz) {
+		memcpy(p, g->xyz + 3 * c, 3 * sizeof *p);
+		return;
+	}
+	double d = g->depth[c];
+	p[0] = d * g->col[3 * i], p[1] = d * g->row[j], p[2] = d * g->col[3 * i + 2];
+}
+
+
+/* Squared distance of point p from the line through a and b. */
+static inline double line_distance2(const double p[3], const double a[3], const double b[3])
+{
+	double ab[3], ap[3], x[3];
+	fct_v3_sub(ab, b, a);
+	fct_v3_sub(ap, p, a);
+	fct_v3_cross(x, ab, ap);
+	double l2 = fct_v3_dot(ab, ab);
+	return l2 > 0 ? fct_v3_dot(x, x) / l2 : fct_v3_dot(ap, ap);
+}
+
+/* The position of cell (i, j), columns wrapped on a full cylinder; 0 when
+ * it is outside the grid or has no data. */
+static int position_at(const struct grid *G, long i, long j, double p[3])
+{
+	long c = cell_at(G, i, j);
+	if (c < 0 || !has_data(G, (size_t)c))
+		return 0;
+	if (i < 0 || i >= G->w)
+		i = (i + G->w) % G->w;
+	P(G, (size_t)c, (size_t)i, (size_t)j, p);
+	return 1;
+}
+
+/* Choose the diagonal of the full square (i, j) whose triangles fit the
+ * surface better: 1 for ad, 0 for bc.  The bend along a diagonal from p to
+ * q is the sum of squared distances of p and q from the lines through their
+ * neighbours along it (pp before p, qq after q). */
+static int prefer_ad(const struct grid *G, long i, long j)
+{
+	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3];
+	int around;
+	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h) {
+		/* Inside the grid: the same positions without the border's checks. */
+		size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i, I = (size_t)i, J = (size_t)j;
+		P(G, ca, I, J, a), P(G, ca + 1, I + 1, J, b);
+		P(G, ca + W, I, J + 1, c), P(G, ca + W + 1, I + 1, J + 1, d);
+		size_t caa = ca - W - 1, cdd = ca + 2 * W + 2, cbb = ca - W + 2, ccc = ca + 2 * W - 1;
+		around = has_data(G, caa) && has_data(G, cdd) && has_data(G, cbb) && has_data(G, ccc);
+		if (around) {
+			P(G, caa, I - 1, J - 1, aa), P(G, cdd, I + 2, J + 2, dd);
+			P(G, cbb, I + 2, J - 1, bb), P(G, ccc, I - 1, J + 2, cc);
+		}
+	} else {
+		position_at(G, i, j, a), position_at(G, i + 1, j, b);
+		position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
+		around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
+		         position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
+	}
+	double lad = fct_v3_dist2(a, d), lbc = fct_v3_dist2(b, c);
+	if (around) {
+		double bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
+		double bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
+		/* Bends that are both rounding noise (a plane) decide nothing:
+		 * then the shorter diagonal makes the better-shaped triangles. */
+		double noise = 1e-18 * (lad > lbc ? lad : lbc);
+		if (fabs(bad - bbc) > noise)
+			return bad < bbc;
+	}
+	return lad < lbc;
+}
+
+/* The corners of square (i, j): a b / c d. */
+struct square {
+	uint32_t a, b, c, d;
+};
+
+static inline struct square square_at(const struct grid *G, long i, long j)
+{
+	uint32_t row = (uint32_t)(j * G->w), next = row + (uint32_t)G->w;
+	uint32_t i1 = (uint32_t)(i + 1 == G->w ? 0 : i + 1);
+	return (struct square){ row + (uint32_t)i, row + i1, next + (uint32_t)i, next + i1 };
+}
+
+/* The triangles of square (i, j); *possible gets how many its corners with
+ * data would allow. */
+static unsigned square_code(const struct grid *G, long i, long j, struct square q, unsigned *possible)
+{
+	uint32_t a = q.a, b = q.b, c = q.c, d = q.d;
+	int ha = has_data(G, a), hb = has_data(G, b), hc = has_data(G, c), hd = has_data(G, d);
+	const double S = 1.0, D = M_SQRT2;
+	*possible = 0;
+	if (ha + hb + hc + hd < 3)
+		return 0;
+	if (!hd) {
+		*possible = 1;
+		return joined(G, a, c, S) && joined(G, c, b, D) && joined(G, b, a, S) ? FIRST : 0;
+	}
+	if (!ha) {
+		*possible = 1;
+		return joined(G, b, c, D) && joined(G, c, d, S) && joined(G, d, b, S) ? SECOND : 0;
+	}
+	if (!hb) {
+		*possible = 1;
+		return joined(G, a, c, S) && joined(G, c, d, S) && joined(G, d, a, D) ? DIAG_AD | FIRST : 0;
+	}
+	if (!hc) {
+		*possible = 1;
+		return joined(G, a, d, D) && joined(G, d, b, S) && joined(G, b, a, S) ? DIAG_AD | SECOND : 0;
+	}
+	*possible = 2;
+	int ab = joined(G, a, b, S), cd = joined(G, c, d, S), ac = joined(G, a, c, S), bd = joined(G, b, d, S);
+	int jad = joined(G, a, d, D), jbc = joined(G, b, c, D);
+	int ad = jad && jbc ? prefer_ad(G, i, j) : jad;
+	if (ad)
+		return DIAG_AD | (ac && cd ? FIRST : 0) | (bd && ab ? SECOND : 0);
+	if (!jbc)
+		return 0;
+	return (ac && ab ? FIRST : 0) | (cd && bd ? SECOND : 0);
+}
+
+/* The triangle `which` (FIRST or SECOND) of square q made with code. */
+static inline void square_triangle(struct square q, unsigned code, unsigned which, uint32_t t[3])
+{
+	if (code & DIAG_AD) {
+		if (which == FIRST)
+			t[0] = q.a, t[1] = q.c, t[2] = q.d;
+		else
+			t[0] = q.a, t[1] = q.d, t[2] = q.b;
+	} else {
+		if (which == FIRST)
+			t[0] = q.a, t[1] = q.c, t[2] = q.b;
+		else
+			t[0] = q.b, t[1] = q.c, t[2] = q.d;
+	}
+}
+
+/* Union-find over cells; the smaller index is the root, so the result does
+ * not depend on the order of the unions and a parent always precedes its
+ * child. */
+static uint32_t find_root(uint32_t *parent, uint32_t x)
+{
+	while (parent[x] != x) {
+		parent[x] = parent[parent[x]];
+		x = parent[x];
+	}
+	return x;
+}
+
+static void unite(uint32_t *parent, uint32_t x, uint32_t y)
+{
+	x = find_root(parent, x), y = find_root(parent, y);
+	if (x < y)
+		parent[y] = x;
+	else if (y < x)
+		parent[x] = y;
+}
+
+int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
+                  const struct fct_grid_params *p, uint32_t **cell_of,
+                  struct fct_grid_stats *stats, struct fct_err *err)
+{
+	struct grid G = { g, p->max_jump * g->footprint, M_SQRT2 * g->noise_jump, g->width, g->height,
+	                  g->wrap && g->width > 2 };
+	size_t ncells, nsq;
+	if (cell_of)
+		*cell_of = NULL;
+	if (g->width < 1 || g->height < 1 || fct_mul_size((size_t)g->width, (size_t)g->height, &ncells))
+		return fct_fail(err, "grid: bad size %d x %d", g->width, g->height);
+	if (ncells > UINT32_MAX / 2)
+		return fct_fail(err, "grid: %zu cells are too many", ncells);
+	long sw = G.wrap ? G.w : G.w - 1, sh = G.h - 1;   /* squares per row, rows of squares */
+	nsq = sw > 0 && sh > 0 ? (size_t)sw * (size_t)sh : 0;
+	int pieces = p->min_faces > 1;
+
+	unsigned char *code = fct_alloc_array(nsq, 1, err);
+	uint32_t *parent = pieces ? fct_alloc_array(ncells, sizeof *parent, err) : NULL;
+	uint32_t *vindex = fct_alloc_array(ncells, sizeof *vindex, err);
+	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
+	int rc = -1;
+	if (!code || (pieces && !parent) || !vindex || !used) {
+		if (!used)
+			fct_fail(err, "out of memory");
+		goto out;
+	}
+
+	/* The triangles of every square, and the pieces they join. */
+	size_t possible = 0, made = 0;
+	if (pieces)
+		for (size_t c = 0; c < ncells; c++)
+			parent[c] = (uint32_t)c;
+	for (long j = 0; j < sh; j++)
+		for (long i = 0; i < sw; i++) {
+			struct square q = square_at(&G, i, j);
+			unsigned pos, k = square_code(&G, i, j, q, &pos);
+			code[j * sw + i] = (unsigned char)k;
+			possible += pos;
+			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
+				if (k & which) {
+					uint32_t t[3];
+					square_triangle(q, k, which, t);
+					made++;
+					if (pieces) {
+						unite(parent, t[0], t[1]);
+						unite(parent, t[0], t[2]);
+					} else {
+						used[t[0]] = used[t[1]] = used[t[2]] = 1;
+					}
+				}
+		}
+
+	/* Drop the triangles of small pieces.  Every root is the smallest cell
+	 * of its piece, so one ascending pass points each cell at its root;
+	 * count each piece's triangles there (vindex doubles as the counter).
+	 * FIRST triangles all have corner a, SECOND ones corner b. */
+	size_t nf = made;
+	if (pieces) {
+		for (size_t c = 0; c < ncells; c++)
+			parent[c] = parent[parent[c]];
+		memset(vindex, 0, ncells * sizeof *vindex);
+		for (long j = 0; j < sh; j++)
+			for (long i = 0; i < sw; i++) {
+				unsigned k = code[j * sw + i];
+				struct square q = square_at(&G, i, j);
+				if (k & FIRST)
+					vindex[parent[q.a]]++;
+				if (k & SECOND)
+					vindex[parent[q.b]]++;
+			}
+		for (long j = 0; j < sh; j++)
+			for (long i = 0; i < sw; i++) {
+				unsigned char *k = &code[j * sw + i];
+				if (!*k)
+					continue;
+				struct square q = square_at(&G, i, j);
+				if ((*k & FIRST) && vindex[parent[q.a]] < p->min_faces)
+					*k &= (unsigned char)~FIRST, nf--;
+				if ((*k & SECOND) && vindex[parent[q.b]] < p->min_faces)
+					*k &= (unsigned char)~SECOND, nf--;
+				for (unsigned which = FIRST; which <= SECOND; which <<= 1)
+					if (*k & which) {
+						uint32_t t[3];
+						square_triangle(q, *k, which, t);
+						used[t[0]] = used[t[1]] = used[t[2]] = 1;
+					}
+			}
+	}
+
+	/* Vertices: the cells used by a kept triangle, in cell order. */
+	size_t nv = 0;
+	for (size_t c = 0; c < ncells; c++)
+		vindex[c] = used[c] ? (uint32_t)nv++ : UINT32_MAX;
+	if (fct_mesh_set_vertex_count(m, nv, err) || fct_mesh_set_triangle_count(m, nf, err))
+		goto out;
+	if (cell_of && !(*cell_of = fct_alloc_array(nv, sizeof **cell_of, err)))
+		goto out;
+	for (size_t c = 0, j = 0; j < (size_t)G.h; j++)
+		for (size_t i = 0; i < (size_t)G.w; i++, c++) {
+			uint32_t v = vindex[c];
+			if (v == UINT32_MAX)
+				continue;
+			P(&G, c, i, j, m->xyz + 3 * (size_t)v);
+			if (cell_of)
+				(*cell_of)[v] = (uint32_t)c;
+		}
+	uint32_t *fv = m->fvert;
+	for (long j = 0; j < sh; j++)
+		for (long i = 0; i < sw; i++) {
+			unsigned k = code[j * sw + i];
+			struct square q = square_at(&G, i, j);
+			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
+				if (k & which) {
+					uint32_t t[3];
+					square_triangle(q, k, which, t);
+					*fv++ = vindex[t[0]], *fv++ = vindex[t[1]], *fv++ = vindex[t[2]];
+				}
+		}
+	if (stats) {
+		stats->jump_faces = possible - made;
+		stats->speck_faces = made - nf;
+	}
+	rc = 0;
+out:
+	free(code);
+	free(parent);
+	free(vindex);
+	free(used);
+	return rc;
+}

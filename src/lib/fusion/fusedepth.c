@@ -1,0 +1,45 @@
+/* fusedepth.c - a depth image made a view for fusion (fct_fuse_depth_view,
+ * fuse.h): smoothed and meshed with the sensor's noise model, moved to the
+ * world frame.  tsdfuse and roommodel read their depth images through it. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "depth/depthsmooth.h"
+#include "fusion/fuse.h"
+
+int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **depth,
+                        const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *dp, const struct fct_depth_smooth *smooth,
+                        const double pose[12], struct fct_err *err)
+{
+	memset(v, 0, sizeof *v);
+	if (depth)
+		*depth = NULL;
+	/* With a noise model: smoothed in units of it, then meshed with it
+	 * (the jump test's noise term and each vertex's sigma, which the
+	 * fusion weighs by; depthsmooth.h, depthmesh.h). */
+	struct fct_depth_params vp = *dp;
+	if (vp.noise.model != FCT_NOISE_UNKNOWN && vp.noise.unit == 0)
+		vp.noise.unit = fct_depth_unit(img, &vp);
+	struct fct_image sm;
+	const struct fct_image *src = img;
+	if (smooth->radius > 0 && vp.noise.model != FCT_NOISE_UNKNOWN) {
+		if (fct_depth_smooth_image(&sm, img, cam, &vp, smooth, err))
+			return -1;
+		src = &sm;
+	}
+	int rc = fct_depth_mesh_kept(mesh, src, cam, &vp, NULL, depth, err);
+	if (src == &sm)
+		fct_image_free(&sm);
+	if (rc)
+		return -1;
+	for (size_t i = 0; i < mesh->nv; i++)
+		fct_pose_apply(pose, &mesh->xyz[3 * i], &mesh->xyz[3 * i]);
+	v->mesh = mesh;
+	v->cam = *cam;
+	memcpy(v->pose, pose, sizeof v->pose);
+	v->depth = depth ? *depth : NULL;
+	struct fct_prop *sp = fct_elem_find(&mesh->vertex, "sigma");
+	v->sigma = sp && sp->type == FCT_FLOAT32 ? sp->data : NULL;
+	return 0;
+}

@@ -1,0 +1,451 @@
+/* adj.c - edge and face adjacency, components, degenerate and duplicate
+ * faces (see adj.h). */
+#include "geom/adj.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void fct_adj_free(struct fct_adj *a)
+{
+	if (!a)
+		return;
+	free(a->edge_v);
+	free(a->edge_fstart);
+	free(a->edge_f);
+	free(a->face_e);
+	free(a->vert_fstart);
+	free(a->vert_f);
+	memset(a, 0, sizeof *a);
+}
+
+/* The index arrays are 32-bit, like the mesh's own; a mesh too large for
+ * them is refused rather than silently wrapped. */
+static int check_size(const struct fct_mesh *m, struct fct_err *err)
+{
+	if (m->nv >= UINT32_MAX || m->nf >= UINT32_MAX)
+		return fct_fail(err, "adjacency: more than %u vertices or faces", (unsigned)UINT32_MAX - 1);
+	return 0;
+}
+
+/* Stable counting sort of the n corner numbers in src by key[corner] (each
+ * key < nkeys) into dst; count has nkeys + 1 entries. */
+static void counting_sort(uint32_t *dst, const uint32_t *src, size_t n, const uint32_t *key,
+                          uint32_t *count, size_t nkeys)
+{
+	memset(count, 0, (nkeys + 1) * sizeof *count);
+	for (size_t i = 0; i < n; i++)
+		count[key[src[i]] + 1]++;
+	for (size_t k = 0; k < nkeys; k++)
+		count[k + 1] += count[k];
+	for (size_t i = 0; i < n; i++)
+		dst[count[key[src[i]]]++] = src[i];
+}
+
+/* The edges: sort the non-degenerate corners by (lo, hi, corner) and give
+ * each run of equal (lo, hi) one edge number. */
+static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
+{
+	size_t nc = m->nf ? m->fstart[m->nf] : 0;
+	uint32_t *lo = fct_alloc_array(nc, sizeof *lo, err);
+	uint32_t *hi = fct_alloc_array(nc, sizeof *hi, err);
+	uint32_t *cf = fct_alloc_array(nc, sizeof *cf, err);
+	uint32_t *p1 = fct_alloc_array(nc, sizeof *p1, err);
+	uint32_t *p2 = fct_alloc_array(nc, sizeof *p2, err);
+	uint32_t *count = fct_alloc_array(m->nv + 1, sizeof *count, err);
+	a->face_e = fct_alloc_array(nc, sizeof *a->face_e, err);
+	int rc = -1;
+	if (!lo || !hi || !cf || !p1 || !p2 || !count || !a->face_e)
+		goto out;
+
+	size_t nk = 0;  /* corners that give an edge, in corner order */
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t s = m->fstart[f], e = m->fstart[f + 1];
+		for (uint32_t c = s; c < e; c++) {
+			uint32_t u = m->fvert[c], v = m->fvert[c + 1 == e ? s : c + 1];
+			cf[c] = (uint32_t)f;
+			a->face_e[c] = FCT_ADJ_NONE;
+			if (u == v) {
+				a->nskipped++;
+				continue;
+			}
+			lo[c] = u < v ? u : v;
+			hi[c] = u < v ? v : u;
+			p2[nk++] = c;
+		}
+	}
+	/* LSD radix: by hi, then stably by lo, gives (lo, hi, corner) order. */
+	counting_sort(p1, p2, nk, hi, count, m->nv);
+	counting_sort(p2, p1, nk, lo, count, m->nv);
+	free(p1);
+	p1 = NULL;
+
+	size_t ne = 0;
+	for (size_t i = 0; i < nk; i++)
+		if (i == 0 || lo[p2[i]] != lo[p2[i - 1]] || hi[p2[i]] != hi[p2[i - 1]])
+			ne++;
+	a->ne = ne;
+	a->edge_v = fct_alloc_array(2 * ne, sizeof *a->edge_v, err);
+	a->edge_fstart = fct_alloc_array(ne + 1, sizeof *a->edge_fstart, err);
+	a->edge_f = fct_alloc_array(nk, sizeof *a->edge_f, err);
+	if (!a->edge_v || !a->edge_fstart || !a->edge_f)
+		goto out;
+	size_t e = (size_t)-1;
+	for (size_t i = 0; i < nk; i++) {
+		uint32_t c = p2[i];
+		if (i == 0 || lo[c] != lo[p2[i - 1]] || hi[c] != hi[p2[i - 1]]) {
+			e++;
+			a->edge_v[2 * e] = lo[c];
+			a->edge_v[2 * e + 1] = hi[c];
+			a->edge_fstart[e] = (uint32_t)i;
+		}
+		a->edge_f[i] = cf[c];
+		a->face_e[c] = (uint32_t)e;
+	}
+	a->edge_fstart[ne] = (uint32_t)nk;
+	for (size_t k = 0; k < ne; k++) {
+		uint32_t n = fct_adj_edge_nfaces(a, k);
+		if (n == 1)
+			a->nborder++;
+		else if (n == 2)
+			a->nmanifold++;
+		else
+			a->nnonmanifold++;
+	}
+	rc = 0;
+out:
+	free(lo);
+	free(hi);
+	free(cf);
+	free(p1);
+	free(p2);
+	free(count);
+	return rc;
+}
+
+/* The faces of each vertex, each face once: a face's stamp in last[v]
+ * tells that it was already counted for v. */
+int fct_vertex_faces(const struct fct_mesh *m, uint32_t **vert_fstart, uint32_t **vert_f,
+                     struct fct_err *err)
+{
+	*vert_fstart = NULL, *vert_f = NULL;
+	uint32_t *last = fct_alloc_array(m->nv, sizeof *last, err);
+	uint32_t *start = fct_alloc_array(m->nv + 1, sizeof *start, err);
+	if (!last || !start) {
+		free(last);
+		free(start);
+		return -1;
+	}
+	memset(start, 0, (m->nv + 1) * sizeof *start);
+	memset(last, 0xff, m->nv * sizeof *last);
+	for (size_t f = 0; f < m->nf; f++)
+		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+			uint32_t v = m->fvert[c];
+			if (last[v] != f) {
+				last[v] = (uint32_t)f;
+				start[v + 1]++;
+			}
+		}
+	for (size_t v = 0; v < m->nv; v++)
+		start[v + 1] += start[v];
+	uint32_t *list = fct_alloc_array(start[m->nv], sizeof *list, err);
+	if (!list) {
+		free(last);
+		free(start);
+		return -1;
+	}
+	/* Fill with start[v] as the cursor, then shift the starts back. */
+	memset(last, 0xff, m->nv * sizeof *last);
+	for (size_t f = 0; f < m->nf; f++)
+		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+			uint32_t v = m->fvert[c];
+			if (last[v] != f) {
+				last[v] = (uint32_t)f;
+				list[start[v]++] = (uint32_t)f;
+			}
+		}
+	for (size_t v = m->nv; v > 0; v--)
+		start[v] = start[v - 1];
+	start[0] = 0;
+	free(last);
+	*vert_fstart = start, *vert_f = list;
+	return 0;
+}
+
+int fct_adj_build(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
+{
+	memset(a, 0, sizeof *a);
+	if (check_size(m, err))
+		return -1;
+	a->nv = m->nv;
+	a->nf = m->nf;
+	if (build_edges(a, m, err) || fct_vertex_faces(m, &a->vert_fstart, &a->vert_f, err)) {
+		fct_adj_free(a);
+		return -1;
+	}
+	return 0;
+}
+
+/* Union-find root with path halving. */
+static uint32_t find_root(uint32_t *parent, uint32_t x)
+{
+	while (parent[x] != x) {
+		parent[x] = parent[parent[x]];
+		x = parent[x];
+	}
+	return x;
+}
+
+long fct_adj_components(const struct fct_adj *a, uint32_t *label, struct fct_err *err)
+{
+	uint32_t *parent = fct_alloc_array(a->nf, sizeof *parent, err);
+	if (!parent)
+		return -1;
+	for (size_t f = 0; f < a->nf; f++)
+		parent[f] = (uint32_t)f;
+	/* The smaller root always wins, so a root is its component's smallest face. */
+	for (size_t e = 0; e < a->ne; e++) {
+		uint32_t r0 = find_root(parent, a->edge_f[a->edge_fstart[e]]);
+		for (uint32_t i = a->edge_fstart[e] + 1; i < a->edge_fstart[e + 1]; i++) {
+			uint32_t r = find_root(parent, a->edge_f[i]);
+			if (r < r0)
+				parent[r0] = r, r0 = r;
+			else if (r > r0)
+				parent[r] = r0;
+		}
+	}
+	long n = 0;
+	for (size_t f = 0; f < a->nf; f++) {
+		uint32_t r = find_root(parent, (uint32_t)f);
+		label[f] = r == f ? (uint32_t)n++ : label[r];  /* r < f is labelled already */
+	}
+	free(parent);
+	return n;
+}
+
+size_t fct_adj_isolated_vertices(const struct fct_adj *a)
+{
+	size_t n = 0;
+	for (size_t v = 0; v < a->nv; v++)
+		n += a->vert_fstart[v] == a->vert_fstart[v + 1];
+	return n;
+}
+
+/* Face checks ------------------------------------------------------------- */
+
+/* Half the norm of the vector area of face f (a fan from corner 0). */
+static double face_area(const struct fct_mesh *m, size_t f)
+{
+	const uint32_t *v = m->fvert + m->fstart[f];
+	uint32_t n = fct_face_size(m, f);
+	const double *p0 = m->xyz + 3 * (size_t)v[0];
+	double s[3] = {0, 0, 0};
+	for (uint32_t i = 1; i + 1 < n; i++) {
+		const double *p = m->xyz + 3 * (size_t)v[i], *q = m->xyz + 3 * (size_t)v[i + 1];
+		double u[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
+		double w[3] = {q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]};
+		s[0] += u[1] * w[2] - u[2] * w[1];
+		s[1] += u[2] * w[0] - u[0] * w[2];
+		s[2] += u[0] * w[1] - u[1] * w[0];
+	}
+	return 0.5 * sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+}
+
+long fct_mesh_degenerate_faces(const struct fct_mesh *m, double min_area, unsigned char *flag,
+                               struct fct_err *err)
+{
+	if (check_size(m, err))
+		return -1;
+	uint32_t *last = fct_alloc_array(m->nv, sizeof *last, err);
+	if (!last)
+		return -1;
+	memset(last, 0xff, m->nv * sizeof *last);
+	long n = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		int bad = fct_face_size(m, f) < 3;
+		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+			uint32_t v = m->fvert[c];
+			bad |= last[v] == f;
+			last[v] = (uint32_t)f;
+		}
+		if (!bad)
+			bad = face_area(m, f) <= min_area;
+		if (flag)
+			flag[f] = (unsigned char)bad;
+		n += bad;
+	}
+	free(last);
+	return n;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+	uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* Sort v[0..n) and drop repeats; returns the new length. */
+static uint32_t sort_unique(uint32_t *v, uint32_t n)
+{
+	if (n <= 32) {
+		for (uint32_t i = 1; i < n; i++) {
+			uint32_t x = v[i], j = i;
+			for (; j > 0 && v[j - 1] > x; j--)
+				v[j] = v[j - 1];
+			v[j] = x;
+		}
+	} else {
+		qsort(v, n, sizeof *v, cmp_u32);
+	}
+	uint32_t k = 0;
+	for (uint32_t i = 0; i < n; i++)
+		if (k == 0 || v[i] != v[k - 1])
+			v[k++] = v[i];
+	return k;
+}
+
+static uint64_t mix64(uint64_t x)
+{
+	x ^= x >> 33;
+	x *= 0xff51afd7ed558ccdULL;
+	x ^= x >> 33;
+	x *= 0xc4ceb9fe1a85ec53ULL;
+	x ^= x >> 33;
+	return x;
+}
+
+/* The sorted vertex sets of the faces: set f is set[start[f] .. + len[f]). */
+struct face_sets {
+	const uint32_t *start;
+	uint32_t *set;
+	uint32_t *len;
+};
+
+/* Order of two faces' sets (length, then lexicographic), then of the faces. */
+static int cmp_sets(const struct face_sets *s, uint32_t f, uint32_t g)
+{
+	if (s->len[f] != s->len[g])
+		return s->len[f] < s->len[g] ? -1 : 1;
+	int c = 0;
+	for (uint32_t i = 0; i < s->len[f] && !c; i++) {
+		uint32_t x = s->set[s->start[f] + i], y = s->set[s->start[g] + i];
+		c = (x > y) - (x < y);
+	}
+	return c ? c : (f > g) - (f < g);
+}
+
+static int same_set(const struct face_sets *s, uint32_t f, uint32_t g)
+{
+	return s->len[f] == s->len[g] &&
+	       !memcmp(s->set + s->start[f], s->set + s->start[g], s->len[f] * sizeof *s->set);
+}
+
+/* Merge sort of faces v[0..n) by cmp_sets (tmp holds n entries); used only
+ * on runs of equal hash keys, so it rarely sees more than two faces unless
+ * they are true duplicates. */
+static void sort_by_set(const struct face_sets *s, uint32_t *v, uint32_t *tmp, size_t n)
+{
+	if (n < 2)
+		return;
+	size_t h = n / 2;
+	sort_by_set(s, v, tmp, h);
+	sort_by_set(s, v + h, tmp, n - h);
+	size_t i = 0, j = h, k = 0;
+	while (i < h && j < n)
+		tmp[k++] = cmp_sets(s, v[i], v[j]) <= 0 ? v[i++] : v[j++];
+	while (i < h)
+		tmp[k++] = v[i++];
+	while (j < n)
+		tmp[k++] = v[j++];
+	memcpy(v, tmp, n * sizeof *v);
+}
+
+struct hashed {
+	uint64_t h;
+	uint32_t f;
+};
+
+/* The hash bits faces are sorted by: the top 33, in three 11-bit digits
+ * whose counts fit in L1.  Faces that agree on them (about n^2 / 2^34 pairs
+ * by chance) are then ordered by their sets. */
+#define KEY_SHIFT 31
+#define DIGIT_BITS 11
+#define DIGITS (1u << DIGIT_BITS)
+
+static uint64_t sort_key(const struct hashed *x)
+{
+	return x->h >> KEY_SHIFT;
+}
+
+/* Stable LSD radix sort of x[0..n) by sort_key (tmp: n entries). */
+static void radix_sort_hashes(struct hashed *x, struct hashed *tmp, size_t n)
+{
+	size_t count[DIGITS + 1];
+	for (int shift = 0; shift < 64 - KEY_SHIFT; shift += DIGIT_BITS) {
+		memset(count, 0, sizeof count);
+		for (size_t i = 0; i < n; i++)
+			count[((sort_key(&x[i]) >> shift) & (DIGITS - 1)) + 1]++;
+		for (size_t k = 0; k < DIGITS; k++)
+			count[k + 1] += count[k];
+		for (size_t i = 0; i < n; i++)
+			tmp[count[(sort_key(&x[i]) >> shift) & (DIGITS - 1)]++] = x[i];
+		memcpy(x, tmp, n * sizeof *x);
+	}
+}
+
+/* Faces are hashed on their sorted vertex sets and radix-sorted by hash, so
+ * the work is linear; faces of equal hash are then ordered by their sets, so
+ * a hash collision can cost time but never a wrong answer. */
+long fct_mesh_duplicate_faces(const struct fct_mesh *m, uint32_t *first, struct fct_err *err)
+{
+	if (check_size(m, err))
+		return -1;
+	size_t nc = m->nf ? m->fstart[m->nf] : 0;
+	struct face_sets s = {m->fstart, NULL, NULL};
+	s.set = fct_alloc_array(nc, sizeof *s.set, err);
+	s.len = fct_alloc_array(m->nf, sizeof *s.len, err);
+	struct hashed *x = fct_alloc_array(m->nf, sizeof *x, err);
+	struct hashed *tmp = fct_alloc_array(m->nf, sizeof *tmp, err);
+	uint32_t *run = fct_alloc_array(m->nf, sizeof *run, err);
+	uint32_t *rtmp = fct_alloc_array(m->nf, sizeof *rtmp, err);
+	long n = -1;
+	if (!s.set || !s.len || !x || !tmp || !run || !rtmp)
+		goto out;
+	if (nc)
+		memcpy(s.set, m->fvert, nc * sizeof *s.set);
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t *v = s.set + m->fstart[f];
+		uint32_t k = s.len[f] = sort_unique(v, fct_face_size(m, f));
+		uint64_t h = mix64(k + 0x9e3779b97f4a7c15ULL);
+		for (uint32_t i = 0; i < k; i++)
+			h = mix64(h ^ (v[i] + 0x9e3779b97f4a7c15ULL));
+		x[f].h = h;
+		x[f].f = (uint32_t)f;
+	}
+	radix_sort_hashes(x, tmp, m->nf);
+	n = 0;
+	for (size_t i = 0, j; i < m->nf; i = j) {
+		for (j = i; j < m->nf && sort_key(&x[j]) == sort_key(&x[i]); j++)
+			run[j - i] = x[j].f;
+		sort_by_set(&s, run, rtmp, j - i);
+		/* In each group of equal sets the smallest face comes first. */
+		uint32_t lead = run[0];
+		for (size_t k = 0; k < j - i; k++) {
+			uint32_t f = run[k];
+			if (k > 0 && same_set(&s, lead, f))
+				n++;
+			else
+				lead = f;
+			if (first)
+				first[f] = lead;
+		}
+	}
+out:
+	free(s.set);
+	free(s.len);
+	free(x);
+	free(tmp);
+	free(run);
+	free(rtmp);
+	return n;
+}

@@ -1,0 +1,1358 @@
+/* planemodel.c - the planar model's preparation of a segmentation (see
+ * planemodel.h). */
+#include "planar/planemodel.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom/adj.h"
+#include "io/camera.h"
+#include "io/header.h"
+#include "io/noise.h"
+#include "planar/project.h"
+#include "geom/geom.h"
+#include "geom/polytri.h"
+#include "planar/segment.h"
+
+/* Union-find root of x (negative entries: roots, minus their size). */
+static uint32_t uf_find(int32_t *parent, uint32_t x)
+{
+	while (parent[x] >= 0) {
+		int32_t p = parent[x];
+		if (parent[p] >= 0)
+			parent[x] = parent[p];
+		x = (uint32_t)p;
+	}
+	return x;
+}
+
+/* A patch of at least 1 / LARGE_PATCH of the faces is worth keeping a plane
+ * with its outline as sampled rather than made free-form. */
+#define LARGE_PATCH 50
+/* Narrower than this many samples, a piece of faces is a sliver. */
+#define SLIVER_WIDTH 3
+
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                     size_t np, size_t min_plane, size_t min_free, struct fct_tidy_stats *st,
+                     struct fct_err *err)
+{
+	memset(st, 0, sizeof *st);
+	size_t nf = m->nf;
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, m, err))
+		return -1;
+	int32_t *root = fct_alloc_array(nf ? nf : 1, sizeof *root, err);
+	int32_t *host = fct_alloc_array(nf ? nf : 1, sizeof *host, err);
+	uint32_t *count = fct_alloc_array(nf ? nf : 1, sizeof *count, err);
+	if (!root || !host || !count) {
+		free(root), free(host), free(count);
+		fct_adj_free(&adj);
+		return -1;
+	}
+	/* Patches of fewer than min_plane faces are free-form. */
+	memset(count, 0, nf * sizeof *count);
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0 && (size_t)patch[f] < nf)
+			count[patch[f]]++;
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0 && (size_t)patch[f] < nf && count[patch[f]] < min_plane) {
+			patch[f] = -1;
+			st->small_faces++;
+		}
+	/* Pieces of faces of one label (joined across edges), their size and
+	 * the one other label around them (-2: none yet, -3: more than one). */
+	for (size_t f = 0; f < nf; f++)
+		root[f] = -1, host[f] = -2;
+	for (size_t e = 0; e < adj.ne; e++) {
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		for (uint32_t i = 0; i < k; i++)
+			for (uint32_t j = i + 1; j < k; j++)
+				if (patch[fs[i]] == patch[fs[j]]) {
+					uint32_t a = uf_find(root, fs[i]), b = uf_find(root, fs[j]);
+					if (a != b) {
+						if (root[a] > root[b] || (root[a] == root[b] && a > b)) {
+							uint32_t t = a;
+							a = b, b = t;
+						}
+						root[a] += root[b];
+						root[b] = (int32_t)a;
+					}
+				}
+	}
+	/* count: each piece's boundary edges (to another label or none). */
+	memset(count, 0, nf * sizeof *count);
+	for (size_t e = 0; e < adj.ne; e++) {
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		if (k == 1)
+			count[uf_find(root, fs[0])]++;
+		for (uint32_t i = 0; i < k; i++)
+			for (uint32_t j = 0; j < k; j++) {
+				if (patch[fs[i]] == patch[fs[j]])
+					continue;
+				uint32_t r = uf_find(root, fs[i]);
+				if (j == (i + 1) % k)
+					count[r]++;
+				if (host[r] == -2)
+					host[r] = patch[fs[j]];
+				else if (host[r] != patch[fs[j]])
+					host[r] = -3;
+			}
+	}
+	/* A piece with one label around it joins it when small, or narrow: a
+	 * strip w samples wide and L long has about 2 w L faces and 2 L
+	 * boundary edges, so faces < SLIVER_WIDTH boundary edges is a strip
+	 * narrower than that.  Such slivers between two parts of one patch
+	 * would close up when decimated, and the patch's outline would run
+	 * both ways along them. */
+	for (size_t f = 0; f < nf; f++) {
+		uint32_t r = uf_find(root, (uint32_t)f);
+		size_t size = (size_t)(-root[r]);
+		if (host[r] >= -1 && (size < min_free || size < SLIVER_WIDTH * (size_t)count[r])) {
+			patch[f] = host[r];
+			st->speck_faces++;
+		}
+	}
+	/* Two patches turned away from each other (normals more than 120
+	 * degrees apart: the two sides of a board thinner than the noise)
+	 * that meet along an edge have no rim between them: their polygons
+	 * would span the same outline, in the same triangles, and one copy of
+	 * each be dropped as a duplicate, leaving the board open.  The faces
+	 * along such a seam become free-form: a rim of their own. */
+	if (planes)
+		for (size_t e = 0; e < adj.ne; e++) {
+			const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+			if (fct_adj_edge_nfaces(&adj, e) != 2)
+				continue;
+			int32_t a = patch[fs[0]], b = patch[fs[1]];
+			if (a < 0 || b < 0 || a == b || (size_t)a >= np || (size_t)b >= np ||
+			    !(fct_v3_dot(planes[a].n, planes[b].n) < -0.5))
+				continue;
+			patch[fs[0]] = patch[fs[1]] = -1;
+			st->seam_faces += 2;
+		}
+	/* A patch with no edge to another label or the mesh's border is a
+	 * whole closed piece (a blob whose top was a patch, its rest a speck
+	 * that joined it): no outline bounds it, and its polygon would be
+	 * nothing.  Free-form. */
+	unsigned char *bounded = calloc(nf ? nf : 1, 1);
+	if (!bounded) {
+		free(root), free(host), free(count);
+		fct_adj_free(&adj);
+		return fct_fail(err, "out of memory");
+	}
+	for (size_t e = 0; e < adj.ne; e++) {
+		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		for (uint32_t i = 0; i < k; i++)
+			if (patch[fs[i]] >= 0 && (size_t)patch[fs[i]] < nf && (k != 2 || patch[fs[0]] != patch[fs[1]]))
+				bounded[patch[fs[i]]] = 1;
+	}
+	for (size_t f = 0; f < nf; f++)
+		if (patch[f] >= 0 && (size_t)patch[f] < nf && !bounded[patch[f]]) {
+			patch[f] = -1;
+			st->closed_faces++;
+		}
+	free(bounded);
+	free(root), free(host), free(count);
+	fct_adj_free(&adj);
+	return 0;
+}
+
+/* A facet of a curved surface has at least this many neighbours at shallow
+ * creases; a plane that noise or a sensor's distortion split has one or
+ * two. */
+#define SHALLOW_NEIGHBOURS 3
+/* Planes within 3 degrees of parallel make no crease: a sheet of paper on a
+ * table, a door in its frame. */
+#define COS_PARALLEL 0.99862953475457383
+
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                        size_t nplanes, double max_angle, double min_share, size_t *facets,
+                        struct fct_err *err)
+{
+	*facets = 0;
+	if (nplanes == 0)
+		return 0;
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, m, err))
+		return -1;
+	double *shared = calloc(2 * nplanes, sizeof *shared);   /* shallow, all */
+	unsigned char *facet = calloc(nplanes, 1);
+	/* Each patch's first shallow neighbours (up to SHALLOW_NEIGHBOURS). */
+	int32_t *nb = malloc(nplanes * SHALLOW_NEIGHBOURS * sizeof *nb);
+	if (!shared || !facet || !nb) {
+		free(shared), free(facet), free(nb);
+		fct_adj_free(&adj);
+		return fct_fail(err, "out of memory");
+	}
+	double cos_max = cos(max_angle * M_PI / 180);
+	for (size_t i = 0; i < nplanes * SHALLOW_NEIGHBOURS; i++)
+		nb[i] = -1;
+	for (size_t e = 0; e < adj.ne; e++) {
+		/* Every edge of a patch's outline counts: to another patch, to the
+		 * free-form surface, to the outside. */
+		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+		int32_t a = patch[adj.edge_f[adj.edge_fstart[e]]];
+		int32_t b = k == 2 ? patch[adj.edge_f[adj.edge_fstart[e] + 1]] : -1;
+		if (k > 2 || a == b)
+			continue;
+		double len = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
+		                               m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+		if (a < 0 || b < 0) {
+			int32_t l = a >= 0 ? a : b;
+			if (l >= 0)
+				shared[2 * l + 1] += len;
+			continue;
+		}
+		double c = fct_v3_dot(planes[a].n, planes[b].n);
+		int shallow = c >= cos_max && c <= COS_PARALLEL;
+		for (int k = 0; k < 2; k++) {
+			int32_t l = k ? b : a, o = k ? a : b;
+			shared[2 * l] += shallow ? len : 0;
+			shared[2 * l + 1] += len;
+			int32_t *list = nb + (size_t)l * SHALLOW_NEIGHBOURS;
+			for (int i = 0; shallow && i < SHALLOW_NEIGHBOURS; i++) {
+				if (list[i] == o)
+					break;
+				if (list[i] < 0) {
+					list[i] = o;
+					break;
+				}
+			}
+		}
+	}
+	for (size_t l = 0; l < nplanes; l++)
+		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1] &&
+		    nb[l * SHALLOW_NEIGHBOURS + SHALLOW_NEIGHBOURS - 1] >= 0)
+			facet[l] = 1, ++*facets;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0 && facet[patch[f]])
+			patch[f] = -1;
+	free(shared), free(facet), free(nb);
+	fct_adj_free(&adj);
+	return 0;
+}
+
+/* A unit frame (u, v) of the plane with normal n, u x v = n. */
+static void plane_frame(const double n[3], double u[3], double v[3])
+{
+	double a[3] = {0, 0, 0};
+	int k = fabs(n[0]) < fabs(n[1]) ? (fabs(n[0]) < fabs(n[2]) ? 0 : 2) : (fabs(n[1]) < fabs(n[2]) ? 1 : 2);
+	a[k] = 1;
+	fct_v3_cross(u, a, n);
+	double l = sqrt(fct_v3_dot(u, u));
+	u[0] /= l, u[1] /= l, u[2] /= l;
+	fct_v3_cross(v, n, u);
+}
+
+/* Edges as 64-bit keys (lower vertex high), in an open-addressing set. */
+struct edge_set {
+	uint64_t *key;   /* 0: empty (no edge joins vertex 0 to itself) */
+	size_t mask;
+};
+
+static uint64_t edge_key(uint32_t a, uint32_t b)
+{
+	return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+static size_t edge_slot(const struct edge_set *h, uint64_t k)
+{
+	size_t i = (size_t)((k * 0x9e3779b97f4a7c15u) >> 17) & h->mask;
+	while (h->key[i] && h->key[i] != k)
+		i = (i + 1) & h->mask;
+	return i;
+}
+
+/* Does edge (a, b) exist: in the mesh's adjacency, or added by a fill? */
+static int edge_exists(const struct fct_adj *adj, const struct edge_set *h, uint32_t a, uint32_t b)
+{
+	uint64_t k = edge_key(a, b);
+	if (h->key[edge_slot(h, k)] == k)
+		return 1;
+	size_t lo = 0, hi = adj->ne;
+	uint32_t x = a < b ? a : b, y = a < b ? b : a;
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		const uint32_t *e = adj->edge_v + 2 * mid;
+		if (e[0] < x || (e[0] == x && e[1] < y))
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < adj->ne && adj->edge_v[2 * lo] == x && adj->edge_v[2 * lo + 1] == y;
+}
+
+/* Fill one hole: loop[0..k) in border order (faces on its left), inside
+ * patch p; not when a new triangle's inner edge exists already (the hole's
+ * corners are joined elsewhere, across a fold or a thin wall, and the fill
+ * would make that edge non-manifold). */
+static int fill_loop(struct fct_mesh *m, int32_t **patch, const struct fct_plane *pl, int32_t p,
+                     const uint32_t *loop, size_t k, const struct fct_adj *adj, struct edge_set *h,
+                     size_t *filled, struct fct_err *err)
+{
+	double u[3], v[3], *xy = fct_alloc_array(2 * k, sizeof *xy, err);
+	uint32_t *lv = fct_alloc_array(k, sizeof *lv, err), lstart[2] = {0, (uint32_t)k};
+	uint32_t *tri = NULL;
+	size_t ntri = 0;
+	int rc = -1;
+	if (!xy || !lv)
+		goto out;
+	plane_frame(pl->n, u, v);
+	for (size_t i = 0; i < k; i++) {
+		/* Reversed, so that the hole is on the left. */
+		const double *x = m->xyz + 3 * (size_t)loop[k - 1 - i];
+		xy[2 * i] = fct_v3_dot(x, u);
+		xy[2 * i + 1] = fct_v3_dot(x, v);
+		lv[i] = (uint32_t)i;
+	}
+	if (!(fct_polytri_loop_area2(xy, lv, k) > 0)) {
+		rc = 0;   /* the outer boundary of a piece, not a hole */
+		goto out;
+	}
+	struct fct_err local;
+	int r = fct_polytri(&tri, &ntri, xy, k, lstart, 1, lv, FCT_POLYTRI_GREEDY, NULL, &local);
+	if (r != 0) {
+		rc = r > 0 ? 0 : fct_fail(err, "%s", local.msg);
+		goto out;
+	}
+	for (size_t t = 0; t < ntri; t++)
+		for (int c = 0; c < 3; c++) {
+			uint32_t i = tri[3 * t + (size_t)c], j = tri[3 * t + (size_t)(c + 1) % 3];
+			if ((i + 1) % k == j || (j + 1) % k == i)
+				continue;   /* a loop edge */
+			if (edge_exists(adj, h, loop[k - 1 - i], loop[k - 1 - j])) {
+				rc = 0;
+				goto out;
+			}
+		}
+	for (size_t t = 0; t < ntri; t++)
+		for (int c = 0; c < 3; c++) {
+			uint64_t key = edge_key(loop[k - 1 - tri[3 * t + (size_t)c]],
+			                        loop[k - 1 - tri[3 * t + (size_t)(c + 1) % 3]]);
+			h->key[edge_slot(h, key)] = key;
+		}
+	int32_t *np = realloc(*patch, (m->nf + ntri) * sizeof *np);
+	if (!np) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	*patch = np;
+	for (size_t t = 0; t < ntri; t++) {
+		uint32_t f[3];
+		for (int c = 0; c < 3; c++)
+			f[c] = loop[k - 1 - tri[3 * t + (size_t)c]];
+		long idx = fct_mesh_add_face(m, f, 3, err);
+		if (idx < 0)
+			goto out;
+		np[idx] = p;
+	}
+	++*filled;
+	rc = 0;
+out:
+	free(xy), free(lv), free(tri);
+	return rc;
+}
+
+int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
+                         size_t nplanes, size_t max_edges, size_t *filled, struct fct_err *err)
+{
+	*filled = 0;
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, m, err))
+		return -1;
+	size_t nv1 = m->nv ? m->nv : 1;
+	uint32_t *next = fct_alloc_array(nv1, sizeof *next, err);
+	uint32_t *face = fct_alloc_array(nv1, sizeof *face, err);
+	unsigned char *outdeg = fct_alloc_array(nv1, 1, err);
+	uint32_t *loop = fct_alloc_array(max_edges + 1, sizeof *loop, err);
+	struct edge_set h = {NULL, 0};
+	int rc = -1;
+	if (!next || !face || !outdeg || !loop)
+		goto out;
+	/* Room for every edge the fills can add: at most three per border edge. */
+	size_t cap = 64;
+	while (cap < 8 * (adj.nborder + 8))
+		cap *= 2;
+	if (!(h.key = calloc(cap, sizeof *h.key))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	h.mask = cap - 1;
+	memset(outdeg, 0, nv1);
+	/* Each border edge as its face walks it: a -> b, the face on its left. */
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
+		for (uint32_t c = 0; c < n; c++) {
+			uint32_t e = adj.face_e[s + c];
+			if (e == FCT_ADJ_NONE || fct_adj_edge_nfaces(&adj, e) != 1)
+				continue;
+			uint32_t a = m->fvert[s + c], b = m->fvert[s + (c + 1) % n];
+			next[a] = b, face[a] = (uint32_t)f;
+			outdeg[a] += outdeg[a] < 2;
+		}
+	}
+	size_t nf0 = m->nf;
+	for (size_t a = 0; a < m->nv; a++) {
+		if (outdeg[a] != 1)
+			continue;
+		/* Walk the loop from its lowest vertex only, once. */
+		size_t k = 0;
+		uint32_t x = (uint32_t)a;
+		int ok = 1;
+		do {
+			if (outdeg[x] != 1 || x < a || k == max_edges) {
+				ok = 0;
+				break;
+			}
+			loop[k++] = x;
+			x = next[x];
+		} while (x != a);
+		if (!ok || k < 3)
+			continue;
+		int32_t p = face[loop[0]] < nf0 ? (*patch)[face[loop[0]]] : -1;
+		for (size_t i = 1; i < k && p >= 0; i++)
+			if ((*patch)[face[loop[i]]] != p)
+				p = -1;
+		if (p < 0 || (size_t)p >= nplanes)
+			continue;
+		if (fill_loop(m, patch, &planes[p], p, loop, k, &adj, &h, filled, err))
+			goto out;
+	}
+	rc = 0;
+out:
+	free(next), free(face), free(outdeg), free(loop), free(h.key);
+	fct_adj_free(&adj);
+	return rc;
+}
+
+/* Drop the vertices no face uses, keeping the others in order. */
+static int drop_unused_vertices(struct fct_mesh *m, struct fct_err *err)
+{
+	unsigned char *used = calloc(m->nv ? m->nv : 1, 1);
+	size_t *keep = fct_alloc_array(m->nv ? m->nv : 1, sizeof *keep, err);
+	if (!used || !keep) {
+		free(used), free(keep);
+		return used ? -1 : fct_fail(err, "out of memory");
+	}
+	for (size_t c = 0; c < (m->nf ? m->fstart[m->nf] : 0); c++)
+		used[m->fvert[c]] = 1;
+	size_t n = 0;
+	for (size_t v = 0; v < m->nv; v++)
+		if (used[v])
+			keep[n++] = v;
+	int rc = n == m->nv ? 0 : fct_mesh_gather_vertices(m, keep, n, err);
+	free(used), free(keep);
+	return rc;
+}
+
+/* Planes closer than this to parallel (the sine of their angle, squared)
+ * have no line worth moving a vertex to: 10 degrees. */
+#define MIN_SIN2 0.0301536896
+/* Three or more planes whose normals' scatter has a least eigenvalue below
+ * this meet at no point worth moving a vertex to. */
+#define MIN_SPREAD 0.1
+/* A move may not leave a triangle thinner than this (twice its area over
+ * its longest edge squared) and thinner than it was: next to nothing. */
+#define MIN_QUALITY 1e-6
+
+/* The distinct patches (>= 0) of the faces fs[0..n), up to 8, into ls. */
+static int face_labels(const int32_t *patch, const uint32_t *fs, size_t n, int32_t ls[8])
+{
+	int k = 0;
+	for (size_t i = 0; i < n; i++) {
+		int32_t lab = patch[fs[i]];
+		int seen = lab < 0;
+		for (int j = 0; j < k && !seen; j++)
+			seen = ls[j] == lab;
+		if (!seen && k < 8)
+			ls[k++] = lab;
+	}
+	return k;
+}
+
+/* The point nearest p on the planes ls[0..n): x = p - N^T (N N^T)^-1
+ * (N p + d) for one or two, the least-squares point of three or more.
+ * 0 when they meet nowhere useful (MIN_SIN2, MIN_SPREAD). */
+static int onto_planes(const struct fct_plane *P, const int32_t *ls, int n, const double p[3],
+                       double x[3])
+{
+	if (n == 1) {
+		double r = fct_v3_dot(P[ls[0]].n, p) + P[ls[0]].d;
+		fct_v3_axpy(x, p, -r, P[ls[0]].n);
+		return 1;
+	}
+	if (n == 2) {
+		const double *n1 = P[ls[0]].n, *n2 = P[ls[1]].n;
+		double c = fct_v3_dot(n1, n2), det = 1 - c * c;
+		if (!(det >= MIN_SIN2))
+			return 0;
+		double r1 = fct_v3_dot(n1, p) + P[ls[0]].d, r2 = fct_v3_dot(n2, p) + P[ls[1]].d;
+		double l1 = (r1 - c * r2) / det, l2 = (r2 - c * r1) / det;
+		for (int i = 0; i < 3; i++)
+			x[i] = p[i] - l1 * n1[i] - l2 * n2[i];
+		return 1;
+	}
+	/* Least squares relative to p, for precision: A y = -sum r n, x = p + y. */
+	double a[3][3] = {{0}}, b[3] = {0, 0, 0};
+	for (int k = 0; k < n; k++) {
+		const double *m = P[ls[k]].n;
+		double r = fct_v3_dot(m, p) + P[ls[k]].d;
+		for (int i = 0; i < 3; i++) {
+			b[i] -= r * m[i];
+			for (int j = 0; j < 3; j++)
+				a[i][j] += m[i] * m[j];
+		}
+	}
+	double s6[6] = {a[0][0], a[1][1], a[2][2], a[0][1], a[1][2], a[0][2]};
+	if (!(fct_sym3_min_eigenvalue(s6) >= MIN_SPREAD))
+		return 0;
+	double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+	             a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+	             a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+	double y[3];
+	for (int c = 0; c < 3; c++) {
+		double m[3][3];
+		memcpy(m, a, sizeof m);
+		for (int i = 0; i < 3; i++)
+			m[i][c] = b[i];
+		y[c] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+		        m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+		        m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) / det;
+	}
+	for (int i = 0; i < 3; i++)
+		x[i] = p[i] + y[i];
+	return isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]);
+}
+
+/* With a viewpoint vp: the point where the ray through p meets the plane
+ * (n == 1), or the point of the two planes' line nearest that ray (n == 2,
+ * x holding onto_planes' point of the line); 0 (x kept) when the ray runs
+ * within a milliradian of the plane or the line, or meets the plane behind
+ * vp.  A sensor measures along its rays: this keeps a vertex on the ray of
+ * its pixel. */
+static int along_ray(const struct fct_plane *P, const int32_t *ls, int n, const double vp[3],
+                     const double p[3], double x[3])
+{
+	double r[3];
+	fct_v3_sub(r, p, vp);
+	double rl = sqrt(fct_v3_dot(r, r));
+	if (!(rl > 0))
+		return 0;
+	if (n == 1) {
+		const double *m = P[ls[0]].n;
+		double nr = fct_v3_dot(m, r);
+		if (!(fabs(nr) > 1e-3 * rl))
+			return 0;
+		double t = -(fct_v3_dot(m, vp) + P[ls[0]].d) / nr;
+		if (!(t > 0))
+			return 0;
+		fct_v3_axpy(x, vp, t, r);
+		return 1;
+	}
+	double u[3];
+	fct_v3_cross(u, P[ls[0]].n, P[ls[1]].n);
+	double ul = sqrt(fct_v3_dot(u, u));
+	if (!(ul > 0))
+		return 0;
+	u[0] /= ul, u[1] /= ul, u[2] /= ul;
+	r[0] /= rl, r[1] /= rl, r[2] /= rl;
+	double w[3];
+	fct_v3_sub(w, x, vp);
+	double c = fct_v3_dot(u, r), den = 1 - c * c;
+	if (!(den > 1e-6))
+		return 0;
+	fct_v3_axpy(x, x, (c * fct_v3_dot(w, r) - fct_v3_dot(w, u)) / den, u);
+	return 1;
+}
+
+int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                       const double *viewpoint, size_t *moved, struct fct_err *err)
+{
+	*moved = 0;
+	uint32_t *vstart, *vf;
+	if (fct_vertex_faces(m, &vstart, &vf, err))
+		return -1;
+	for (size_t v = 0; v < m->nv; v++) {
+		int32_t ls[8];
+		int n = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		double *p = m->xyz + 3 * v, best[3], x[3], bd = INFINITY;
+		for (int i = 0; i < n; i++) {
+			double r = fabs(fct_v3_dot(planes[ls[i]].n, p) + planes[ls[i]].d);
+			if (!(r < bd))
+				continue;
+			bd = r;
+			onto_planes(planes, &ls[i], 1, p, best);
+			/* Along the ray, unless that is far longer than across. */
+			if (viewpoint && along_ray(planes, &ls[i], 1, viewpoint, p, x) &&
+			    fct_v3_dist2(x, p) <= 16 * fct_v3_dist2(best, p))
+				memcpy(best, x, sizeof x);
+		}
+		if (n && (best[0] != p[0] || best[1] != p[1] || best[2] != p[2])) {
+			memcpy(p, best, sizeof best);
+			++*moved;
+		}
+	}
+	free(vstart), free(vf);
+	return 0;
+}
+
+/* Is face f turned over or thinned (positions m->xyz against before)?
+ * Turned: against its patch's plane normal, or its own normal before when
+ * free-form; thinned: below MIN_QUALITY and below what it was.  Faces are
+ * taken as fans from their first corner. */
+static int spoilt(const struct fct_mesh *m, size_t f, int32_t lab, const struct fct_plane *planes,
+                  const double *before)
+{
+	uint32_t s = m->fstart[f], k = m->fstart[f + 1] - s;
+	for (uint32_t i = 1; i + 1 < k; i++) {
+		uint32_t tv[3] = {m->fvert[s], m->fvert[s + i], m->fvert[s + i + 1]};
+		double n0[3], n1[3], q[2];
+		for (int pass = 0; pass < 2; pass++) {
+			const double *P = pass ? m->xyz : before;
+			const double *a = P + 3 * (size_t)tv[0], *b = P + 3 * (size_t)tv[1];
+			const double *c = P + 3 * (size_t)tv[2];
+			double e1[3], e2[3], e3[3], *n = pass ? n1 : n0;
+			fct_v3_sub(e1, b, a);
+			fct_v3_sub(e2, c, a);
+			fct_v3_sub(e3, c, b);
+			fct_v3_cross(n, e1, e2);
+			double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
+			l2 = m2 > l2 ? m2 : l2;
+			l2 = k2 > l2 ? k2 : l2;
+			q[pass] = l2 > 0 ? sqrt(fct_v3_dot(n, n)) / l2 : 0;
+		}
+		const double *ref = lab >= 0 ? planes[lab].n : n0;
+		if (fct_v3_dot(ref, n1) <= 0 || (q[1] < MIN_QUALITY && q[1] < q[0]))
+			return 1;
+	}
+	return 0;
+}
+
+/* A vertex still off the plane of one of its patches by more than its
+ * uncertainty (sigma along its ray, across it its sample spacing) is torn:
+ * that patch's faces get a copy of it on their plane, where its ray meets
+ * the plane (when that is within max_move of its uncertainty; else, or
+ * without a viewpoint, straight across).  Where no line or point of the
+ * planes lies near (an occlusion: a box's edge in front of the wall, the
+ * noise's own folds), a shared vertex would tilt every face of the patch
+ * that is not its own; the tear leaves a crack there instead, which is
+ * what the sensor saw.  The copy has every property of the vertex. */
+static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                          const double *sigma, const double *spacing, double max_move,
+                          const double *viewpoint, const uint32_t *vstart, const uint32_t *vf,
+                          struct fct_meet_stats *st, struct fct_err *err)
+{
+	struct tear {
+		uint32_t v;
+		int32_t label;
+		double x[3];
+	} *tears = NULL;
+	size_t n = 0, cap = 0, nv0 = m->nv;
+	for (size_t v = 0; v < nv0; v++) {
+		int32_t ls[8];
+		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls), other = k >= 2;
+		for (uint32_t j = vstart[v]; j < vstart[v + 1] && !other; j++)
+			other = patch[vf[j]] < 0;   /* beside the free-form surface */
+		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
+		if (k < 1 || !other || !(e2 > 0))
+			continue;
+		for (int i = 0; i < k; i++) {
+			const struct fct_plane *pl = &planes[ls[i]];
+			const double *p = m->xyz + 3 * v;
+			double r = fct_v3_dot(pl->n, p) + pl->d, x[3];
+			if (r * r <= e2)
+				continue;
+			onto_planes(planes, &ls[i], 1, p, x);
+			if (viewpoint && along_ray(planes, &ls[i], 1, viewpoint, p, x) &&
+			    !(fct_v3_dist2(x, p) <= max_move * max_move * e2))
+				onto_planes(planes, &ls[i], 1, p, x);
+			if (n == cap && fct_grow((void **)&tears, &cap, n + 1, sizeof *tears, err)) {
+				free(tears);
+				return -1;
+			}
+			tears[n].v = (uint32_t)v, tears[n].label = ls[i];
+			memcpy(tears[n++].x, x, sizeof x);
+		}
+	}
+	if (n && fct_mesh_set_vertex_count(m, nv0 + n, err)) {
+		free(tears);
+		return -1;
+	}
+	for (size_t t = 0; t < n; t++) {
+		size_t c = nv0 + t;
+		uint32_t v = tears[t].v;
+		for (size_t j = 0; j < m->vertex.nprops; j++) {
+			struct fct_prop *pr = &m->vertex.props[j];
+			if (pr->count_type == FCT_NONE)
+				fct_prop_set(pr, c, fct_prop_get(pr, v));
+		}
+		memcpy(m->xyz + 3 * c, tears[t].x, sizeof tears[t].x);
+		for (uint32_t k = vstart[v]; k < vstart[v + 1]; k++) {
+			uint32_t f = vf[k];
+			if (patch[f] != tears[t].label)
+				continue;
+			for (uint32_t q = m->fstart[f]; q < m->fstart[f + 1]; q++)
+				if (m->fvert[q] == v)
+					m->fvert[q] = (uint32_t)c;
+		}
+	}
+	st->torn = n;
+	free(tears);
+	return 0;
+}
+
+int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                    const double *sigma, const double *spacing, double max_move,
+                    const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err)
+{
+	memset(st, 0, sizeof *st);
+	uint32_t *vstart = NULL, *vf = NULL;
+	size_t nv1 = m->nv ? m->nv : 1;
+	double *before = fct_alloc_array(3 * nv1, sizeof *before, err);
+	unsigned char *kind = fct_alloc_array(nv1, 1, err);
+	int rc = -1;
+	if (!before || !kind || fct_vertex_faces(m, &vstart, &vf, err))
+		goto out;
+	memcpy(before, m->xyz, 3 * m->nv * sizeof *before);
+	for (size_t v = 0; v < m->nv; v++) {
+		int32_t ls[8];
+		int n = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		kind[v] = 0;
+		if (n < 2)
+			continue;
+		const double *p = before + 3 * v;
+		double e2 = (sigma ? sigma[v] * sigma[v] : 0) + (spacing ? spacing[v] * spacing[v] : 0);
+		double bound2 = e2 > 0 && max_move > 0 ? max_move * max_move * e2 : INFINITY;
+		double x[3], best[3], bd = INFINITY;
+		if (n >= 3 && onto_planes(planes, ls, n, p, x) && fct_v3_dist2(x, p) <= bound2) {
+			memcpy(best, x, sizeof x);
+			kind[v] = 3;
+		}
+		for (int i = 0; i < n && !kind[v]; i++)
+			for (int j = i + 1; j < n; j++) {
+				int32_t pair[2] = {ls[i], ls[j]};
+				if (!onto_planes(planes, pair, 2, p, x))
+					continue;
+				if (viewpoint)
+					along_ray(planes, pair, 2, viewpoint, p, x);
+				double d2 = fct_v3_dist2(x, p);
+				if (d2 <= bound2 && d2 < bd)
+					bd = d2, memcpy(best, x, sizeof x);
+			}
+		if (!kind[v] && bd < INFINITY)
+			kind[v] = 2;
+		if (kind[v])
+			memcpy(m->xyz + 3 * v, best, sizeof best);
+		else
+			st->stayed++;
+	}
+	/* Moves that spoil a face are taken back, in rounds. */
+	for (int round = 0; round < 16; round++) {
+		size_t undone = 0;
+		for (size_t f = 0; f < m->nf; f++) {
+			if (!spoilt(m, f, patch[f], planes, before))
+				continue;
+			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+				uint32_t v = m->fvert[c];
+				if (kind[v]) {
+					memcpy(m->xyz + 3 * (size_t)v, before + 3 * (size_t)v, sizeof(double[3]));
+					kind[v] = 0;
+					undone++;
+				}
+			}
+		}
+		st->undone += undone;
+		if (!undone)
+			break;
+	}
+	for (size_t v = 0; v < m->nv; v++) {
+		st->lines += kind[v] == 2;
+		st->corners += kind[v] == 3;
+	}
+	if (tear_off_plane(m, patch, planes, sigma, spacing, max_move, viewpoint, vstart, vf, st, err))
+		goto out;
+	rc = 0;
+out:
+	free(before), free(kind), free(vstart), free(vf);
+	return rc;
+}
+
+void fct_planar_params_default(struct fct_planar_params *p)
+{
+	p->max_error = 1.5;
+	p->border_tol = 1;
+	p->outline_tol = 3;
+	p->max_move = 4;
+	p->min_free = 64;
+	p->min_plane = 64;
+	p->max_hole = 64;
+	p->facet_angle = 20;
+}
+
+/* Each vertex's sigma: the property, else the noise the data show, else
+ * the planes' median rms for all (too few vertices to tell). */
+static int vertex_sigma(const struct fct_mesh *m, const struct fct_plane *pl, size_t np,
+                        double **out, int *estimated, struct fct_err *err)
+{
+	double *sg = fct_alloc_array(m->nv ? m->nv : 1, sizeof *sg, err);
+	if (!sg)
+		return -1;
+	*out = sg;
+	*estimated = 0;
+	const struct fct_prop *p = fct_elem_find(&m->vertex, "sigma");
+	if (p && p->count_type == FCT_NONE) {
+		for (size_t v = 0; v < m->nv; v++)
+			sg[v] = fct_prop_get(p, v);
+		return 0;
+	}
+	float *f = fct_alloc_array(m->nv ? m->nv : 1, sizeof *f, err);
+	if (!f)
+		return -1;
+	struct fct_err ignored;
+	if (!fct_noise_estimate_vertices(f, m, &ignored)) {
+		for (size_t v = 0; v < m->nv; v++)
+			sg[v] = f[v];
+		*estimated = 1;
+		free(f);
+		return 0;
+	}
+	free(f);
+	double *r = fct_alloc_array(np ? np : 1, sizeof *r, err);
+	if (!r)
+		return -1;
+	size_t n = 0;
+	for (size_t l = 0; l < np; l++)
+		if (pl[l].rms > 0)
+			r[n++] = pl[l].rms;
+	qsort(r, n, sizeof *r, fct_cmp_double);
+	double s = n ? r[n / 2] : 0;
+	free(r);
+	for (size_t v = 0; v < m->nv; v++)
+		sg[v] = s;
+	return 0;
+}
+
+/* The mean length of the faces' edges (shared ones counted twice). */
+static double mean_edge(const struct fct_mesh *m)
+{
+	double sum = 0;
+	size_t n = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t s = m->fstart[f], k = m->fstart[f + 1] - s;
+		for (uint32_t i = 0; i < k; i++) {
+			const double *a = m->xyz + 3 * (size_t)m->fvert[s + i];
+			const double *b = m->xyz + 3 * (size_t)m->fvert[s + (i + 1) % k];
+			sum += sqrt(fct_v3_dist2(a, b));
+			n++;
+		}
+	}
+	return n ? sum / (double)n : 0;
+}
+
+/* Each vertex's sample spacing: what one pixel of the camera spans at its
+ * distance from centre c, or without a camera the input's mean edge. */
+static double *sample_spacing(const struct fct_mesh *m, const struct fct_camera *cam,
+                              const double c[3], double fallback, struct fct_err *err)
+{
+	double *s = fct_alloc_array(m->nv ? m->nv : 1, sizeof *s, err);
+	if (!s)
+		return NULL;
+	double angle = cam ? fct_camera_pixel_angle(cam) : 0;
+	for (size_t v = 0; v < m->nv; v++)
+		s[v] = angle > 0 ? angle * sqrt(fct_v3_dist2(m->xyz + 3 * v, c)) : fallback;
+	return s;
+}
+
+/* The free-form faces of m (patch -1) decimated alone by quadric edge
+ * collapse (qem.h) in units of sigma, their borders held and corner[v]
+ * kept: into F, whose faces are renumbered to m's vertices; its vertex
+ * arrays keep the decimation's numbering, and vmap[i] is m's number of its
+ * vertex i (nmap of them). */
+static int decimate_free(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, const struct fct_mesh *m,
+                         const int32_t *patch, const double *sigma, const unsigned char *corner,
+                         const double *vp, const struct fct_planar_params *p,
+                         struct fct_qem_stats *qs, struct fct_err *err)
+{
+	size_t nfree = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		nfree += patch[f] < 0;
+	size_t *keep = fct_alloc_array(nfree ? nfree : 1, sizeof *keep, err);
+	int rc = -1;
+	if (!keep || fct_mesh_copy(F, m, err))
+		goto out;
+	size_t k = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] < 0)
+			keep[k++] = f;
+	struct fct_prop *idx = fct_elem_add_scalar(&F->vertex, "fct_vertex", FCT_UINT32, err);
+	if (!idx || fct_mesh_gather_faces(F, keep, nfree, err))
+		goto out;
+	for (size_t v = 0; v < F->nv; v++)
+		fct_prop_set(idx, v, (double)v);
+	struct fct_qem_params qp;
+	fct_qem_params_default(&qp);
+	qp.max_error = p->max_error;
+	qp.border_tol = p->border_tol;
+	qp.hold_borders = 1;
+	qp.sigma = sigma;
+	qp.corner = corner;
+	if (vp) {
+		qp.use_viewpoint = 1;
+		memcpy(qp.viewpoint, vp, sizeof qp.viewpoint);
+	}
+	if (fct_qem_decimate(F, &qp, qs, err))
+		goto out;
+	idx = fct_elem_find(&F->vertex, "fct_vertex");
+	if (!(*vmap = fct_alloc_array(F->nv ? F->nv : 1, sizeof **vmap, err)))
+		goto out;
+	*nmap = F->nv;
+	for (size_t v = 0; v < F->nv; v++)
+		(*vmap)[v] = (uint32_t)fct_prop_get(idx, v);
+	for (size_t c = 0; c < (F->nf ? F->fstart[F->nf] : 0); c++)
+		F->fvert[c] = (*vmap)[F->fvert[c]];
+	rc = 0;
+out:
+	free(keep);
+	return rc;
+}
+
+/* The patches' outlines as wires (m's vertex numbers): each kept segment of
+ * each chain, its right side -1 when that is free-form or the outside. */
+static struct fct_wire *outline_wires(const struct fct_chains *c, size_t *n, struct fct_err *err)
+{
+	size_t ne = 0;
+	for (size_t i = 0; i < c->n; i++)
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++)
+			ne += c->keep[q];
+	struct fct_wire *w = fct_alloc_array(ne ? ne : 1, sizeof *w, err);
+	if (!w)
+		return NULL;
+	size_t row = 0;
+	for (size_t i = 0; i < c->n; i++) {
+		size_t last = c->start[i];
+		for (size_t q = c->start[i] + 1; q < c->start[i + 1]; q++) {
+			if (!c->keep[q] || c->vert[q] == c->vert[last])
+				continue;   /* dropped, or a lasso left with no point between */
+			w[row++] = (struct fct_wire){ c->vert[last], c->vert[q], c->left[i],
+			                              c->right[i] >= 0 ? c->right[i] : -1 };
+			last = q;
+		}
+	}
+	*n = row;
+	return w;
+}
+
+static int tri_cmp(const void *x, const void *y)
+{
+	const uint32_t *a = x, *b = y;
+	for (int i = 0; i < 4; i++)
+		if (a[i] != b[i])
+			return a[i] < b[i] ? -1 : 1;
+	return 0;
+}
+
+/* Drop each triangle of w (triangles only) with the corners of another,
+ * keeping the free-form one (or the first): a patch's polygon laid over an
+ * island of the free-form surface that its decimation left as one triangle
+ * there.  lab follows.  The count dropped into *dropped. */
+static int drop_duplicate_triangles(struct fct_mesh *w, int32_t *lab, size_t *dropped,
+                                    struct fct_err *err)
+{
+	uint32_t (*key)[4] = fct_alloc_array(w->nf ? w->nf : 1, sizeof *key, err);
+	size_t *keep = fct_alloc_array(w->nf ? w->nf : 1, sizeof *keep, err);
+	unsigned char *gone = calloc(w->nf ? w->nf : 1, 1);
+	int rc = -1;
+	if (!key || !keep || !gone) {
+		if (key && keep)
+			fct_fail(err, "out of memory");
+		goto out;
+	}
+	for (size_t f = 0; f < w->nf; f++) {
+		uint32_t v[3];
+		memcpy(v, w->fvert + w->fstart[f], sizeof v);
+		for (int i = 0; i < 2; i++)
+			for (int j = 0; j < 2 - i; j++)
+				if (v[j] > v[j + 1]) {
+					uint32_t t = v[j];
+					v[j] = v[j + 1], v[j + 1] = t;
+				}
+		/* free-form first among equals, then by face index */
+		key[f][0] = v[0], key[f][1] = v[1], key[f][2] = v[2];
+		key[f][3] = (uint32_t)f;
+	}
+	qsort(key, w->nf, sizeof *key, tri_cmp);
+	for (size_t i = 0; i < w->nf;) {
+		size_t j = i + 1;
+		while (j < w->nf && !memcmp(key[j], key[i], 3 * sizeof(uint32_t)))
+			j++;
+		if (j - i > 1) {
+			size_t best = i;
+			for (size_t k = i; k < j; k++)
+				if (lab[key[k][3]] < 0) {
+					best = k;
+					break;
+				}
+			for (size_t k = i; k < j; k++)
+				if (k != best)
+					gone[key[k][3]] = 1;
+		}
+		i = j;
+	}
+	size_t n = 0;
+	for (size_t f = 0; f < w->nf; f++)
+		if (!gone[f])
+			lab[n] = lab[f], keep[n++] = f;
+	*dropped = w->nf - n;
+	rc = n == w->nf ? 0 : fct_mesh_gather_faces(w, keep, n, err);
+out:
+	free(key), free(keep), free(gone);
+	return rc;
+}
+
+/* A chain is simplified to its tolerance halved k times, and kept as
+ * sampled from k = AS_SAMPLED on, where k is the largest of its patches'
+ * tight[] and its points' pin[]. */
+#define AS_SAMPLED 3
+
+/* The rounds of build_model that may pin points and tighten outlines
+ * (enough for AS_SAMPLED steps and a few rounds of their consequences). */
+#define LAST_TIGHTENING 6
+
+static int chain_tightness(const struct fct_chains *c, size_t i, const unsigned char *tight,
+                           const unsigned char *pin)
+{
+	int k = tight[c->left[i]];
+	if (c->right[i] >= 0 && tight[c->right[i]] > k)
+		k = tight[c->right[i]];
+	for (size_t q = c->start[i]; q < c->start[i + 1]; q++)
+		if (pin[c->vert[q]] > k)
+			k = pin[c->vert[q]];
+	return k;
+}
+
+/* The edges of w that three or more faces share: a diagonal of a rebuilt
+ * patch that exists elsewhere already (its ends are joined across a fold, or
+ * by the free-form faces).  Their ends are pinned once more (the chains
+ * through them are simplified more tightly in the next try, which changes
+ * the patches' outlines there); when both ends were kept as sampled
+ * already, or may_pin is 0, the patches of the faces on the edge are
+ * flagged unclean.  *npinned counts the edges pinned. */
+static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, int may_pin, unsigned char *pin,
+                           unsigned char *unclean, size_t *npinned, struct fct_err *err)
+{
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, w, err))
+		return -1;
+	for (size_t e = 0; e < adj.ne; e++) {
+		if (fct_adj_edge_nfaces(&adj, e) <= 2)
+			continue;
+		uint32_t a = adj.edge_v[2 * e], b = adj.edge_v[2 * e + 1];
+		if (may_pin && (pin[a] < AS_SAMPLED || pin[b] < AS_SAMPLED)) {
+			(*npinned)++;
+			pin[a] += pin[a] < AS_SAMPLED;
+			pin[b] += pin[b] < AS_SAMPLED;
+			continue;
+		}
+		for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
+			if (lab[adj.edge_f[k]] >= 0)
+				unclean[lab[adj.edge_f[k]]] = 1;
+	}
+	fct_adj_free(&adj);
+	return 0;
+}
+
+/* Each chain's own tolerance in tol[]: for a chain between two patches
+ * whose every point lies within max_move of its uncertainty of the planes'
+ * line (a crease), twice the largest such bound, as fct_planes_meet will
+ * move its points onto the line anyway and only its ends matter; 0 (the
+ * simplification's default) for the others. */
+static void crease_tolerances(double *tol, const struct fct_chains *c, const struct fct_mesh *m,
+                              const struct fct_plane *pl, const double *sigma,
+                              const double *spacing, double max_move, const double *vp)
+{
+	for (size_t i = 0; i < c->n; i++) {
+		tol[i] = 0;
+		if (c->right[i] < 0 || c->closed[i] || max_move <= 0)
+			continue;
+		int32_t pair[2] = {c->left[i], c->right[i]};
+		double worst = 0;
+		size_t q;
+		for (q = c->start[i]; q < c->start[i + 1]; q++) {
+			uint32_t v = c->vert[q];
+			const double *p = m->xyz + 3 * (size_t)v;
+			double x[3], bound = max_move * sqrt(sigma[v] * sigma[v] + spacing[v] * spacing[v]);
+			if (!onto_planes(pl, pair, 2, p, x))
+				break;
+			if (vp)
+				along_ray(pl, pair, 2, vp, p, x);
+			if (!(fct_v3_dist2(x, p) <= bound * bound))
+				break;
+			if (bound > worst)
+				worst = bound;
+		}
+		if (q == c->start[i + 1])
+			tol[i] = 2 * worst;
+	}
+}
+
+/* One try at the model from the dense m and its labels: the free-form faces
+ * decimated alone, their outline's surviving vertices frozen into the
+ * chains, the other chains simplified, each patch triangulated from its
+ * outline (tripatch), all assembled into w.  unclean[l] is set for the
+ * patches tripatch could not triangulate cleanly or whose triangles would
+ * share an edge with two other faces. */
+static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
+                       const struct fct_plane *pl, size_t np, const double *sigma,
+                       const double *spacing, const double *vp, const struct fct_planar_params *p,
+                       const unsigned char *tight, int may_pin, unsigned char *pin,
+                       unsigned char *unclean, size_t *npinned, struct fct_planar_stats *st,
+                       struct fct_err *err)
+{
+	struct fct_chains c;
+	memset(&c, 0, sizeof c);
+	struct fct_mesh F;
+	fct_mesh_init(&F);
+	uint32_t *vmap = NULL;
+	size_t nmap = 0;
+	unsigned char *corner = calloc(m->nv ? m->nv : 1, 1), *alive = calloc(m->nv ? m->nv : 1, 1);
+	struct fct_wire *wires = NULL;
+	int32_t *lab = NULL;
+	double *tol = NULL;
+	int rc = -1;
+	if (!corner || !alive) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	if (fct_chains_extract(&c, m, patch, err))
+		goto out;
+	/* The junctions stay, where the chains meet, and a loop's first point,
+	 * where its wire starts and ends.  So does every point of a chain
+	 * against the free-form surface whose ends another chain of one of its
+	 * patches joins too: with its inner points gone, the patch's outline
+	 * would run to and fro along one segment there (a sliver of the patch
+	 * between the free-form surface and the border, say). */
+	if (!(c.frozen = calloc(c.n ? c.n : 1, 1))) {
+		fct_fail(err, "out of memory");
+		goto out;
+	}
+	for (size_t i = 0; i < c.n; i++) {
+		corner[c.vert[c.start[i]]] = 1;
+		corner[c.vert[c.start[i + 1] - 1]] = 1;
+		/* The chains tightened to the last stay as sampled. */
+		if (chain_tightness(&c, i, tight, pin) < AS_SAMPLED)
+			continue;
+		c.frozen[i] = 1;
+		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+			corner[c.vert[q]] = 1;
+	}
+	for (size_t i = 0; i < c.n; i++) {
+		if (c.right[i] != -1 || c.closed[i])
+			continue;
+		uint32_t a = c.vert[c.start[i]], b = c.vert[c.start[i + 1] - 1];
+		for (size_t j = 0; j < c.n; j++) {
+			uint32_t x = c.vert[c.start[j]], y = c.vert[c.start[j + 1] - 1];
+			if (j == i || !((x == a && y == b) || (x == b && y == a)) ||
+			    (c.left[j] != c.left[i] && c.right[j] != c.left[i]))
+				continue;
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				corner[c.vert[q]] = 1;
+			break;
+		}
+	}
+	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
+		goto out;
+	for (size_t i = 0; i < nmap; i++)
+		alive[vmap[i]] = 1;
+	/* A chain against the free-form surface keeps what its decimation kept;
+	 * the others are simplified to their tolerance. */
+	for (size_t i = 0; i < c.n; i++) {
+		if (c.right[i] != -1 && !c.frozen[i])
+			continue;
+		c.frozen[i] = 1;
+		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+			c.keep[q] = alive[c.vert[q]];
+	}
+	struct fct_chain_params cp;
+	fct_chain_params_default(&cp);
+	cp.scale = spacing;
+	cp.scale_factor = p->outline_tol;
+	if (!(tol = fct_alloc_array(c.n ? c.n : 1, sizeof *tol, err)))
+		goto out;
+	crease_tolerances(tol, &c, m, pl, sigma, spacing, p->max_move, vp);
+	for (size_t i = 0; i < c.n; i++) {
+		int k = chain_tightness(&c, i, tight, pin);
+		if (!k)
+			continue;
+		if (!(tol[i] > 0)) {
+			double sum = 0;
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
+				sum += spacing[c.vert[q]];
+			tol[i] = p->outline_tol * sum / (double)(c.start[i + 1] - c.start[i]);
+		}
+		tol[i] = ldexp(tol[i], -k);
+	}
+	cp.tolerance = tol;
+	size_t ne;
+	if (fct_chains_simplify(&c, m, patch, pl, np, &cp, &st->chains, err) ||
+	    !(wires = outline_wires(&c, &ne, err)))
+		goto out;
+	/* The planes' triangles, on m's vertices with the decimation's moves. */
+	if (fct_mesh_copy(w, m, err) || fct_mesh_gather_faces(w, NULL, 0, err))
+		goto out;
+	w->has_faces = 0;
+	while (w->face.nprops)
+		fct_elem_remove(&w->face, w->face.props[0].name);
+	for (size_t i = 0; i < nmap; i++) {
+		memcpy(w->xyz + 3 * (size_t)vmap[i], F.xyz + 3 * i, sizeof(double[3]));
+		for (size_t j = 0; j < w->vertex.nprops; j++) {
+			struct fct_prop *dst = &w->vertex.props[j];
+			const struct fct_prop *src = fct_elem_find(&F.vertex, dst->name);
+			if (src && src->count_type == FCT_NONE && dst->count_type == FCT_NONE)
+				fct_prop_set(dst, vmap[i], fct_prop_get(src, i));
+		}
+	}
+	struct fct_tripatch_params tp;
+	fct_tripatch_params_default(&tp);
+	tp.unclean = unclean;
+	if (fct_wires_set(w, wires, ne, err) || fct_tripatch(w, &tp, &st->tri, err))
+		goto out;
+	/* Then the free-form faces. */
+	size_t nplanar = w->nf;
+	if (!(lab = fct_alloc_array(nplanar + F.nf ? nplanar + F.nf : 1, sizeof *lab, err)))
+		goto out;
+	const struct fct_prop *wp = fct_elem_find(&w->face, "patch");
+	for (size_t f = 0; f < nplanar; f++)
+		lab[f] = wp ? (int32_t)fct_prop_get(wp, f) : -1;
+	for (size_t f = 0; f < F.nf; f++) {
+		long k = fct_mesh_add_face(w, F.fvert + F.fstart[f], fct_face_size(&F, f), err);
+		if (k < 0)
+			goto out;
+		lab[k] = -1;
+	}
+	size_t dup = 0;
+	if (drop_duplicate_triangles(w, lab, &dup, err) || fct_patches_set(w, lab, err) ||
+	    pin_nonmanifold(w, lab, may_pin, pin, unclean, npinned, err))
+		goto out;
+	st->duplicates_dropped += dup;
+	st->planar_triangles = nplanar;
+	st->free_faces = F.nf;
+	rc = 0;
+out:
+	fct_chains_free(&c);
+	fct_mesh_free(&F);
+	free(vmap), free(corner), free(alive), free(wires), free(lab), free(tol);
+	return rc;
+}
+
+int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
+                     struct fct_planar_stats *st, struct fct_err *err)
+{
+	memset(st, 0, sizeof *st);
+	struct fct_plane *pl = NULL;
+	size_t np = 0;
+	int32_t *patch = NULL;
+	double *sigma = NULL, *spacing = NULL;
+	unsigned char *unclean = NULL, *tight = NULL, *pin = NULL;
+	size_t *nfaces = NULL;
+	struct fct_mesh w;
+	fct_mesh_init(&w);
+	int present = 0, rc = -1;
+	double input_spacing = 0;
+	st->vertices_in = m->nv, st->faces_in = m->nf;
+	if (fct_planes_get(m, &pl, &np, err) || fct_patches_get(m, &patch, &present, (long)np, err))
+		goto out;
+	if (!present) {
+		fct_fail(err, "no face property patch: segment it first (segplanes)");
+		goto out;
+	}
+	st->planes = np;
+	struct fct_camera cam;
+	double pose[12], inv[12], vp[3] = {0, 0, 0};
+	int have_cam = fct_header_camera(m, &cam, err), have_pose = 0;
+	if (have_cam < 0 || (have_cam > 0 && (have_pose = fct_header_pose(m, pose, err)) < 0))
+		goto out;
+	if (have_pose) {
+		fct_pose_invert(pose, inv);
+		vp[0] = pose[3], vp[1] = pose[7], vp[2] = pose[11];
+	}
+	if (vertex_sigma(m, pl, np, &sigma, &st->sigma_estimated, err) ||
+	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
+	    fct_patches_tidy(patch, m, have_cam ? NULL : pl, np, p->min_plane, p->min_free, &st->tidy, err) ||
+	    (p->max_hole >= 3 &&
+	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
+	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
+	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
+	    !(unclean = calloc(np ? np : 1, 1)) || !(tight = calloc(np ? np : 1, 1)) ||
+	    !(pin = calloc(m->nv ? m->nv : 1, 1)) ||
+	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)))
+		goto out;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0)
+			nfaces[patch[f]]++;
+	/* Rounds, until every patch triangulates cleanly from its outline: a
+	 * diagonal that exists elsewhere pins its ends (their chains stay as
+	 * sampled); a patch whose loops cross in its plane, or that such a
+	 * diagonal spoils again, has its outline tightened if large, and
+	 * becomes free-form if small or still unclean.  From round
+	 * LAST_TIGHTENING on nothing is pinned or tightened any more: each
+	 * round makes a patch free-form or ends, so the rounds end (a fused
+	 * scan's 50 patches were still pinning after 8). */
+	for (int round = 0;; round++) {
+		int may_tighten = round < LAST_TIGHTENING;
+		memset(unclean, 0, np ? np : 1);
+		fct_mesh_free(&w);
+		fct_mesh_init(&w);
+		size_t more = 0;
+		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
+		                may_tighten, pin, unclean, &more, st, err))
+			goto out;
+		st->pinned += more;
+		/* Unclean: a large patch's outline is tightened (halved, then
+		 * halved again, then kept as sampled), a small one (or a large
+		 * one still unclean) becomes free-form. */
+		for (size_t l = 0; l < np; l++)
+			if (may_tighten && unclean[l] && tight[l] < AS_SAMPLED && nfaces[l] >= m->nf / LARGE_PATCH) {
+				tight[l]++, unclean[l] = 0, more++;
+				st->tightened++;
+				st->dense_patches += tight[l] == AS_SAMPLED;
+			}
+		for (size_t f = 0; f < m->nf; f++)
+			if (patch[f] >= 0 && unclean[patch[f]])
+				patch[f] = -1, more++;
+		if (!more)
+			break;
+		st->rounds++;
+		for (size_t l = 0; l < np; l++)
+			st->unclean_patches += unclean[l];
+	}
+	fct_mesh_free(m);
+	*m = w;
+	fct_mesh_init(&w);
+	free(patch), free(sigma);
+	patch = NULL, sigma = NULL;
+	int estimated, dummy;
+	if (fct_patches_get(m, &patch, &dummy, (long)np, err) || drop_unused_vertices(m, err) ||
+	    vertex_sigma(m, pl, np, &sigma, &estimated, err))
+		goto out;
+	free(patch);
+	patch = NULL;
+	free(spacing);
+	if (fct_patches_get(m, &patch, &dummy, (long)np, err) ||
+	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing, err)) ||
+	    fct_planes_meet(m, patch, pl, sigma, spacing, p->max_move, have_cam ? vp : NULL, &st->meet,
+	                    err))
+		goto out;
+	if (have_cam && fct_elem_find(&m->vertex, "s") && fct_elem_find(&m->vertex, "t") &&
+	    fct_camera_texcoords(m, &cam, have_pose ? inv : NULL, &st->no_pixel, err))
+		goto out;
+	st->vertices_out = m->nv, st->faces_out = m->nf;
+	rc = 0;
+out:
+	fct_mesh_free(&w);
+	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(pin), free(nfaces);
+	return rc;
+}

@@ -1,0 +1,173 @@
+/* planemodel.h - what the planar model makes of a segmentation before its
+ * decimation (planedecim; qem.h's "Planes"): patches too small to be planes
+ * become free-form, specks of free-form faces inside a patch join it, and
+ * small holes inside a patch are filled in its plane.  Kang, Johnson and
+ * Szeliski (DEC CRL 95/7) model the planes of a room; noise leaves specks
+ * and holes in them that a concise model should not keep. */
+#ifndef FCT_PLANEMODEL_H
+#define FCT_PLANEMODEL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/err.h"
+#include "core/mesh.h"
+#include "planar/chain.h"
+#include "geom/planes.h"
+#include "geom/qem.h"
+#include "planar/tripatch.h"
+
+struct fct_tidy_stats {
+	size_t small_faces;   /* faces of patches too small, made free-form */
+	size_t speck_faces;   /* faces of specks, given to the one label around them */
+	size_t closed_faces;  /* faces of patches with no outline (whole closed pieces), made free-form */
+	size_t seam_faces;    /* faces along seams of patches facing apart (no viewpoint), free-form */
+};
+
+/* Tidy a segmentation for the planar model: patches of fewer than min_plane
+ * faces become free-form (-1), too small to be worth a plane of their own;
+ * then each piece of faces of one label (joined across edges; free-form
+ * counts as a label) of fewer than min_free faces, or narrower than three
+ * samples (fewer faces than three times its boundary edges), with one
+ * other label all around it joins that label: specks of outliers inside a plane, which
+ * the model puts on the plane, and the islands that a crease's noise leaves
+ * on either side of it, each of which would cost the model a boundary.
+ * Without a viewpoint (planes: the np planes; NULL for a view's mesh),
+ * the faces along an edge between two patches whose normals are more than
+ * 120 degrees apart (the two sides of a board thinner than the noise,
+ * which would span one outline in the same triangles) become free-form: a
+ * rim between them.
+ * Last, a patch with no edge to another label or the mesh's border (a
+ * whole closed piece: a blob whose top was a patch and whose rest joined
+ * it as a speck) becomes free-form: no outline bounds its polygon.
+ * patch: m->nf labels, changed in place. */
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                     size_t np, size_t min_plane, size_t min_free,
+                     struct fct_tidy_stats *st, struct fct_err *err);
+
+/* Facets of curved surfaces become free-form: each patch whose outline
+ * (to other patches, the free-form surface and the outside) runs, for at
+ * least min_share of its length, along
+ * creases shallower than max_angle degrees (the angle between the planes'
+ * normals; but 3 degrees at least: planes nearer parallel make no crease, a
+ * sheet of paper on a table) with three or more patches.  Noise large enough lets planes fit
+ * a sphere piecewise; such facets meet several others at shallow creases
+ * all round, which walls, floors and boxes, meeting at right angles or at
+ * the image's edge, do not, nor a plane that noise split in two.  patch changes in place; *facets gets the count. */
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+                        size_t nplanes, double max_angle, double min_share, size_t *facets,
+                        struct fct_err *err);
+
+/* Fill the holes of the mesh inside one patch: each border loop of at most
+ * max_edges edges whose faces are all in one patch p >= 0 and which bounds
+ * a hole (the loop, projected on p's plane, turns clockwise about its
+ * normal, against the faces' winding) is triangulated in that plane
+ * (fct_polytri, greedy) and the triangles appended to m as faces of patch
+ * p.  *patch (m->nf labels, malloc'd) is grown to match.  Loops through a
+ * vertex on more than one border loop, and loops the triangulation refuses
+ * (self-crossing in the plane), are left open.  *filled gets the holes
+ * filled; 0, or -1 out of memory. */
+int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
+                         size_t nplanes, size_t max_edges, size_t *filled, struct fct_err *err);
+
+
+/* Every vertex of a face of a patch onto the nearest of its patches' planes:
+ * along its ray from viewpoint (when not NULL, and no more than four times
+ * as far as straight across), which keeps its pixel and so every face's
+ * orientation in the image; else straight across.  *moved gets the count.
+ * 0, or -1 out of memory. */
+int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                       const double *viewpoint, size_t *moved, struct fct_err *err);
+
+struct fct_meet_stats {
+	size_t lines;     /* vertices put on the line of two planes */
+	size_t corners;   /* ... on the point of three or more */
+	size_t stayed;    /* where patches meet, but no line or point near enough */
+	size_t undone;    /* moves taken back: a face turned over or thinned */
+	size_t torn;      /* copies of vertices off a plane of theirs, on it */
+};
+
+/* Every vertex where patches meet onto their point (three or more planes
+ * whose normals spread: least eigenvalue of their scatter at least 0.1) or
+ * else the nearest line of two of them (not within 10 degrees of parallel;
+ * its point nearest the vertex's ray with a viewpoint), when that is within
+ * max_move times the vertex's uncertainty, sqrt(sigma^2 + spacing^2): its
+ * noise along its ray and its sample spacing across it (no bound when both
+ * are NULL; where creases meet is known to a sample); a move that
+ * turns a face over (against its plane's normal) or leaves it a sliver is
+ * taken back, in rounds: Kang et al.'s section 5.  A vertex then still off
+ * one of its planes by more than its uncertainty (where patches meet, or
+ * where a patch meets the free-form surface) is torn: that patch's
+ * faces get a copy of it on their plane (along its ray), so that no plane
+ * is tilted by another's vertex; the surface has a crack there, as the
+ * sensor saw it (an occlusion).  0, or -1 out of memory. */
+int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                    const double *sigma, const double *spacing, double max_move,
+                    const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err);
+
+/* The planar model of a segmented mesh (planedecim, planarize). */
+struct fct_planar_params {
+	double max_error;     /* the free-form decimation's quadric distance, in sigma
+	                         (default 1.5) */
+	double border_tol;    /* its border distances in edge lengths (default 1) */
+	double outline_tol;   /* outlines simplified to this many sample spacings
+	                         (default 3) */
+	double max_move;      /* moves onto lines and points, in sigma (default 4) */
+	size_t min_free;      /* specks of fewer faces join the label around them (64) */
+	size_t min_plane;     /* patches of fewer faces are free-form (64) */
+	size_t max_hole;      /* holes of at most this many edges inside a patch are
+	                         filled (64; 0: none) */
+	double facet_angle;   /* a patch whose boundary with other patches runs
+	                         mostly (half its length) along creases shallower
+	                         than this is a facet of a curved surface: free-form
+	                         (20 degrees; 0: none) */
+};
+
+struct fct_planar_stats {
+	size_t vertices_in, faces_in, vertices_out, faces_out, planes;
+	int sigma_estimated;             /* no sigma property: estimated (noise.h) */
+	size_t facets;                   /* patches found facets of curved surfaces */
+	struct fct_tidy_stats tidy;
+	size_t holes_filled, projected;
+	struct fct_qem_stats qem;        /* the free-form faces' decimation */
+	struct fct_chain_stats chains;   /* the outlines' simplification */
+	struct fct_tripatch_stats tri;   /* their triangulation */
+	size_t planar_triangles, free_faces;
+	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
+	size_t rounds, dense_patches;    /* patches whose outline was kept as sampled */
+	size_t pinned;                   /* diagonals found elsewhere whose ends were pinned */
+	size_t tightened;                /* outlines simplified more tightly */
+	size_t unclean_patches;          /* ... and made free-form, still not clean */
+	struct fct_meet_stats meet;
+	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
+};
+
+void fct_planar_params_default(struct fct_planar_params *p);
+
+/* Make the planar model of m in place (Kang, Johnson and Szeliski, DEC CRL
+ * 95/7, sections 3 to 5, with free-form surfaces, their section 9's open
+ * case): m needs the face property patch and the plane element
+ * (segplanes).  Its vertex property sigma, or else the noise its data show
+ * (fct_noise_estimate_vertices), measures every bound; its camera and pose
+ * comments, when present, give the viewpoint (moves along rays) and the
+ * sample spacing (one pixel's span; else the mean edge), and s t are
+ * computed again from the camera when m has them.  The steps:
+ *  1. fct_patches_tidy, fct_fill_plane_holes, fct_planes_project;
+ *  2. the free-form faces (-1) alone decimated by quadric edge collapse
+ *     (qem.h, in units of sigma), the junctions of the patch boundaries kept;
+ *  3. the patch boundaries as chains (chain.h): those against the free-form
+ *     surface keep the vertices its decimation kept, the others simplified
+ *     by end-point fit to outline_tol sample spacings without crossings;
+ *  4. each patch the polygon of its outline, triangulated (tripatch.h), and
+ *     the free-form faces beside them: one surface, edge for edge;
+ *  5. a patch whose outline does not triangulate cleanly (its loops cross,
+ *     or a diagonal would be an edge of three faces) becomes free-form, or
+ *     when it holds a fiftieth of the faces or more, keeps its outline as
+ *     sampled (and free-form only if even that fails); the model is made
+ *     again, until none is left;
+ *  6. fct_planes_meet: vertices onto the planes' lines and corners.
+ * 0, or -1 (message set; m may be half done). */
+int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
+                     struct fct_planar_stats *st, struct fct_err *err);
+
+#endif
