@@ -14,6 +14,7 @@
 #include "geom/bvh.h"
 #include "cli/cli.h"
 #include "geom/geom.h"
+#include "geom/pointdist.h"
 #include "io/header.h"
 #include "io/meshio.h"
 #include "core/path.h"
@@ -39,11 +40,9 @@ static const char usage[] =
 	"  -h, --help    this help\n"
 	"      --version print the version\n";
 
-/* Running figures of one direction.  Welford's update keeps the variance
- * exact when every distance is the same (a constant offset gives stdev 0). */
+/* Running figures of one direction. */
 struct stats {
-	size_t count;
-	double mean, m2, max;
+	struct fct_dist_run run;
 	float *all;          /* -p: every distance, for the percentiles */
 	size_t cap;
 };
@@ -54,19 +53,14 @@ static int keep_all;
 static void stats_add(struct stats *s, double d)
 {
 	if (keep_all) {
-		if (s->count == s->cap) {
+		if (s->run.count == s->cap) {
 			struct fct_err err;
-			if (fct_grow((void **)&s->all, &s->cap, s->count + 1, sizeof *s->all, &err))
+			if (fct_grow((void **)&s->all, &s->cap, s->run.count + 1, sizeof *s->all, &err))
 				fct_die_err(&err);
 		}
-		s->all[s->count] = (float)d;
+		s->all[s->run.count] = (float)d;
 	}
-	s->count++;
-	double delta = d - s->mean;
-	s->mean += delta / (double)s->count;
-	s->m2 += delta * (d - s->mean);
-	if (d > s->max)
-		s->max = d;
+	fct_dist_run_add(&s->run, d);
 }
 
 static int cmp_float(const void *x, const void *y)
@@ -80,19 +74,20 @@ static int cmp_float(const void *x, const void *y)
  * precision). */
 static void stats_print(const struct stats *s, const char *prefix)
 {
-	double var = s->count ? s->m2 / (double)s->count : 0;
-	printf("%scount %zu\n", prefix, s->count);
-	printf("%smean %.17g\n", prefix, s->mean);
-	printf("%sstdev %.17g\n", prefix, sqrt(var));
-	printf("%srms %.17g\n", prefix, sqrt(s->mean * s->mean + var));
-	printf("%smax %.17g\n", prefix, s->max);
-	if (!keep_all || s->count == 0)
+	struct fct_dist_stats f;
+	fct_dist_run_stats(&f, &s->run);
+	printf("%scount %zu\n", prefix, f.count);
+	printf("%smean %.17g\n", prefix, f.mean);
+	printf("%sstdev %.17g\n", prefix, f.stdev);
+	printf("%srms %.17g\n", prefix, f.rms);
+	printf("%smax %.17g\n", prefix, f.max);
+	if (!keep_all || f.count == 0)
 		return;
-	qsort(s->all, s->count, sizeof *s->all, cmp_float);
+	qsort(s->all, f.count, sizeof *s->all, cmp_float);
 	static const int pct[] = {50, 90, 95, 99};
 	for (size_t i = 0; i < sizeof pct / sizeof *pct; i++) {
 		/* The nearest rank: the smallest distance with pct% of them at or below it. */
-		size_t rank = (size_t)ceil(pct[i] / 100.0 * (double)s->count);
+		size_t rank = (size_t)ceil(pct[i] / 100.0 * (double)f.count);
 		printf("%sp%d %.9g\n", prefix, pct[i], (double)s->all[rank ? rank - 1 : 0]);
 	}
 }
@@ -363,7 +358,7 @@ int main(int argc, char **argv)
 	stats_print(&ab.st, "");
 	if (sym) {
 		stats_print(&ba.st, "ba_");
-		printf("hausdorff %.17g\n", ab.st.max > ba.st.max ? ab.st.max : ba.st.max);
+		printf("hausdorff %.17g\n", ab.st.run.max > ba.st.run.max ? ab.st.run.max : ba.st.run.max);
 	}
 	if (fflush(stdout) || ferror(stdout))
 		fct_die(1, "standard output: write error");
@@ -393,8 +388,10 @@ int main(int argc, char **argv)
 	fct_report("queries", "%zu", nq);
 	fct_report("query_s", "%.3f", qs);
 	fct_report("queries_per_s", "%.0f", qs > 0 ? (double)nq / qs : 0);
-	fct_report("max", "%.9g", ab.st.max);
-	fct_report("rms", "%.9g", sqrt(ab.st.mean * ab.st.mean + (ab.st.count ? ab.st.m2 / (double)ab.st.count : 0)));
+	struct fct_dist_stats f;
+	fct_dist_run_stats(&f, &ab.st.run);
+	fct_report("max", "%.9g", f.max);
+	fct_report("rms", "%.9g", f.rms);
 
 	free(per_vertex);
 	fct_bvh_free(&tree_a);

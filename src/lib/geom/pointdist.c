@@ -6,6 +6,16 @@
 
 #include "geom/bvh.h"
 
+void fct_dist_run_stats(struct fct_dist_stats *st, const struct fct_dist_run *r)
+{
+	double var = r->count ? r->m2 / (double)r->count : 0;
+	st->count = r->count;
+	st->mean = r->mean;
+	st->stdev = sqrt(var);
+	st->rms = sqrt(r->mean * r->mean + var);
+	st->max = r->max;
+}
+
 int fct_point_distances(struct fct_dist_stats *st, const double *xyz, size_t n,
                         const struct fct_mesh *m, struct fct_err *err)
 {
@@ -13,24 +23,13 @@ int fct_point_distances(struct fct_dist_stats *st, const double *xyz, size_t n,
 	struct fct_bvh tree;
 	if (fct_bvh_build_mesh(&tree, m, err))
 		return -1;
-	double mean = 0, m2 = 0, max = 0;
-	size_t count = 0;
+	struct fct_dist_run run = { 0 };
 	for (size_t i = 0; i < n && tree.ntri; i++) {
 		struct fct_bvh_hit hit;
-		if (!fct_bvh_closest(&tree, xyz + 3 * i, INFINITY, &hit))
-			continue;
-		double d = sqrt(hit.d2), delta = d - mean;
-		count++;
-		mean += delta / (double)count;
-		m2 += delta * (d - mean);
-		max = fmax(max, d);
+		if (fct_bvh_closest(&tree, xyz + 3 * i, INFINITY, &hit))
+			fct_dist_run_add(&run, sqrt(hit.d2));
 	}
 	fct_bvh_free(&tree);
-	double var = count ? m2 / (double)count : 0;
-	st->count = count;
-	st->mean = mean;
-	st->stdev = sqrt(var);
-	st->rms = sqrt(mean * mean + var);
-	st->max = max;
+	fct_dist_run_stats(st, &run);
 	return 0;
 }
