@@ -28,3 +28,12 @@ bench_dir() {
 		trap 'rm -rf "$dir"' EXIT
 	fi
 }
+
+# kitchen_frames: sets kitchen to the shared 7-Scenes kitchen frames' folder
+# (../shared/data/7scenes_redkitchen/frames or /work/shared/...), or empty.
+kitchen_frames() {
+	kitchen=
+	for k in ../shared/data/7scenes_redkitchen /work/shared/data/7scenes_redkitchen; do
+		[ -f "$k/frames/frame-000000.depth.png" ] && kitchen=$k/frames && break
+	done
+}

@@ -17,10 +17,7 @@ PATH=$FCT_BIN:$PATH
 . bench/lib.sh
 bench_dir real
 
-kitchen=
-for k in ../shared/data/7scenes_redkitchen /work/shared/data/7scenes_redkitchen; do
-	[ -f "$k/frames/frame-000000.depth.png" ] && kitchen=$k/frames && break
-done
+kitchen_frames
 # The frames, as "name camera depth-image" lines.
 {
 	if [ -n "$kitchen" ]; then

@@ -32,8 +32,8 @@ static const char usage[] =
 	"                 [--area-weighted] [--fit k] [--max-dev k] [--max-rms r]\n"
 	"                 [--min-extent k] [--min-faces k] [--tls] [-e error]\n"
 	"                 [--border k] [--max-hole k] [--max-move k] [--min-free k]\n"
-	"                 [--min-plane k] [--outline k] [--count n] [--fov deg]\n"
-	"                 [--keep dir] [depth-image | mesh] [image]\n"
+	"                 [--min-piece k] [--min-plane k] [--outline k] [--count n]\n"
+	"                 [--fov deg] [--keep dir] [depth-image | mesh] [image]\n"
 	"Make a concise model of a scene's planes from a depth image (PNG, PFM) and its\n"
 	"co-registered image, or from a mesh (PLY, OBJ), told by content: the depth\n"
 	"meshed (dm2mesh), its faces grouped into planar patches (segplanes), planes\n"
@@ -250,6 +250,8 @@ static void report_model(const struct fct_planar_stats *st)
 	fct_report_stage("planedecim", "sigma_estimated", "%d", st->sigma_estimated);
 	fct_report_stage("planedecim", "facets", "%zu", st->facets);
 	fct_report_stage("planedecim", "small_faces", "%zu", st->tidy.small_faces);
+	fct_report_stage("planedecim", "debris_pieces", "%zu", st->debris_pieces);
+	fct_report_stage("planedecim", "debris_faces", "%zu", st->debris_faces);
 	fct_report_stage("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
 	fct_report_stage("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
 	fct_report_stage("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);

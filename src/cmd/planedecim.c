@@ -19,8 +19,8 @@
 
 static const char usage[] =
 	"usage: planedecim [-aqv] [-e error] [-o file] [--border k]\n"
-	"                  [--max-hole k] [--max-move k] [--min-free k] [--min-plane k]\n"
-	"                  [--outline k] [input]\n"
+	"                  [--max-hole k] [--max-move k] [--min-free k] [--min-piece k]\n"
+	"                  [--min-plane k] [--outline k] [input]\n"
 	"Make the planar model of a mesh segmented by segplanes: the free-form faces\n"
 	"(patch -1) decimated to an error bound, each patch the polygon of its\n"
 	"simplified outline in its plane, vertices where patches meet on their line\n"
@@ -39,6 +39,10 @@ static const char usage[] =
 	"      --min-free k\n"
 	"                 a speck of fewer than k faces joins the label around it\n"
 	"                 (default 64)\n"
+	"      --min-piece k\n"
+	"                 without a camera (a fused scan), drop the pieces of fewer\n"
+	"                 than k faces: the fusion's floating debris (default 64;\n"
+	"                 0: keep every piece)\n"
 	"      --min-plane k\n"
 	"                 a patch of fewer than k faces is free-form (default 64)\n"
 	"      --outline k\n"
@@ -105,6 +109,8 @@ int main(int argc, char **argv)
 	fct_report("sigma_estimated", "%d", st.sigma_estimated);
 	fct_report("facets", "%zu", st.facets);
 	fct_report("small_faces", "%zu", st.tidy.small_faces);
+	fct_report("debris_pieces", "%zu", st.debris_pieces);
+	fct_report("debris_faces", "%zu", st.debris_faces);
 	fct_report("speck_faces", "%zu", st.tidy.speck_faces);
 	fct_report("closed_faces", "%zu", st.tidy.closed_faces);
 	fct_report("seam_faces", "%zu", st.tidy.seam_faces);

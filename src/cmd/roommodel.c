@@ -36,8 +36,8 @@ static const char usage[] =
 	"                 [-c factor | -n patches] [--area-weighted] [--fit k]\n"
 	"                 [--max-dev k] [--max-rms r] [--min-extent k] [--min-faces k]\n"
 	"                 [--tls] [-e error] [--border k] [--max-hole k] [--max-move k]\n"
-	"                 [--min-free k] [--min-plane k] [--outline k] [--atlas-size n]\n"
-	"                 [--blend] [--candidates n] [--fill r,g,b]\n"
+	"                 [--min-free k] [--min-piece k] [--min-plane k] [--outline k]\n"
+	"                 [--atlas-size n] [--blend] [--candidates n] [--fill r,g,b]\n"
 	"                 [--level none | gain | seams] [--max-pages n] [--min-angle deg]\n"
 	"                 [--no-rectify] [--one-photo] [--padding n] [--texel-scale s]\n"
 	"                 [--keep dir] folder | depth-image ...\n"
@@ -296,6 +296,8 @@ static void planar_model(struct fct_mesh *m, struct options *o, const char *keep
 	if (fct_planar_model(m, &o->plan, &pst, &err))
 		fct_die_err_at(&err, "planedecim");
 	fct_report_stage("planedecim", "planes", "%zu", pst.planes);
+	fct_report_stage("planedecim", "debris_pieces", "%zu", pst.debris_pieces);
+	fct_report_stage("planedecim", "debris_faces", "%zu", pst.debris_faces);
 	fct_report_stage("planedecim", "planar_triangles", "%zu", pst.planar_triangles);
 	fct_report_stage("planedecim", "free_faces", "%zu", pst.free_faces);
 	fct_report_stage("planedecim", "collapses", "%zu", pst.qem.collapses);

@@ -16,6 +16,7 @@
 
 #include "cli/cli.h"
 #include "fusion/fuse.h"
+#include "geom/adj.h"
 #include "cli/fuseopts.h"
 #include "cli/fuseviews.h"
 #include "io/header.h"
@@ -25,11 +26,12 @@
 static const char usage[] =
 	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"
 	"               [--carve] [--weight constant | incidence | depth2]\n"
-	"               [--curvature-flow iter] [--min-weight w] [--projective]\n"
-	"               [-K fx,fy,cx,cy | name | --camera file] [--depth-scale s]\n"
-	"               [--baseline b] [--doffs d] [--noise model | file] [--smooth px]\n"
-	"               [--poses file ...] [--max-difference s]\n"
-	"               [--color] [--image file ...] [--conf file] [--threads n] [view ...]\n"
+	"               [--curvature-flow iter] [--min-piece k] [--min-weight w]\n"
+	"               [--projective] [-K fx,fy,cx,cy | name | --camera file]\n"
+	"               [--depth-scale s] [--baseline b] [--doffs d]\n"
+	"               [--noise model | file] [--smooth px] [--poses file ...]\n"
+	"               [--max-difference s] [--color] [--image file ...]\n"
+	"               [--conf file] [--threads n] [view ...]\n"
 	"Fuse registered views (meshes carrying their camera and pose comments, depth\n"
 	"images with -K and --poses, or the range-grid scans of a --conf file) by\n"
 	"the true signed distance to each view's surface, and extract the surface.\n"
@@ -59,6 +61,9 @@ static const char usage[] =
 	"      --max-difference s\n"
 	"                     TUM trajectory: a depth image's pose is the nearest in\n"
 	"                     time to the timestamp in its name, within s (default 0.02)\n"
+	"      --min-piece k  drop the extracted surface's pieces of fewer than k\n"
+	"                     faces, the floating debris of noise (default 0: keep\n"
+	"                     all; the largest piece always stays)\n"
 	"      --min-weight w extract only voxels of at least this weight (default 0)\n"
 	"      --noise model  the depth images' noise: none, kinect[:F,B[,SD[,STEP]]],\n"
 	"                     tof[:A,B], poly:A,B,C, stereo:FB,SD[,DOFFS], or a file\n"
@@ -80,13 +85,14 @@ static const char usage[] =
 	"      --version      print the version\n";
 
 enum { OPT_BBOX = 256, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW, OPT_PROJ, OPT_CONF, OPT_VERSION,
-       OPT_COLOR, OPT_BASELINE, OPT_DOFFS };
+       OPT_COLOR, OPT_BASELINE, OPT_DOFFS, OPT_MINPIECE };
 
 struct options {
 	const char *out, *conf;
 	int color;
 	int ascii, carve, flow, has_bbox, doffs_given;
 	double min_weight, bbox[6], baseline, doffs;
+	size_t min_piece;         /* --min-piece: smaller pieces dropped (0: none) */
 	struct fct_fuse_opts f;   /* shared with roommodel; f.fp the fusion's parameters */
 	char **views;
 	size_t nviews;
@@ -102,6 +108,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"carve", no_argument, NULL, OPT_CARVE},
 		{"weight", required_argument, NULL, OPT_WEIGHT},
 		{"curvature-flow", required_argument, NULL, OPT_FLOW},
+		{"min-piece", required_argument, NULL, OPT_MINPIECE},
 		{"min-weight", required_argument, NULL, OPT_MINW},
 		{"projective", no_argument, NULL, OPT_PROJ},
 		{"conf", required_argument, NULL, OPT_CONF},
@@ -143,6 +150,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 				fct_usage_error("--weight: \"%s\": expected constant, incidence or depth2", optarg);
 			break;
 		case OPT_FLOW: o->flow = (int)fct_opt_long("--curvature-flow", optarg, 0, 10000); break;
+		case OPT_MINPIECE: o->min_piece = (size_t)fct_opt_long("--min-piece", optarg, 0, 0x7fffffffL); break;
 		case OPT_MINW: o->min_weight = fct_opt_double("--min-weight", optarg, 0, 1e30); break;
 		case OPT_PROJ: o->f.fp.projective = 1; break;
 		case OPT_CONF: o->conf = optarg; break;
@@ -355,8 +363,14 @@ int main(int argc, char **argv)
 		reread_s += vs.read_s - r0;
 		color_s = fct_now() - tc;
 	}
+	size_t npieces = 0;
+	long ndebris = fct_mesh_drop_small_pieces(&out, o.min_piece, &npieces, &err);
+	if (ndebris < 0)
+		fct_die_err(&err);
 	fct_report("views", "%zu", nv);
 	fct_report("view_faces", "%zu", st.faces);
+	fct_report("debris_pieces", "%zu", npieces);
+	fct_report("debris_faces", "%ld", ndebris);
 	fct_report("voxels_updated", "%zu", st.voxels);
 	fct_report("border_skipped", "%zu", st.border);
 	fct_report("blocks", "%zu", nblocks);

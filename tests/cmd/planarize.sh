@@ -177,8 +177,10 @@ run_case 0 "meshdist -s 100000 $V/m2.ply $V/scene.ply > $V/m2.dist"
 run_case 0 "meshdist -s 100000 $V/k/1-mesh.ply $V/scene.ply > $V/dense.dist"
 check_num "no camera: closer to the truth than the dense mesh (half)" \
 	"$(ratio "$(figure mean "$V/m2.dist")" "$(figure mean "$V/dense.dist")")" "<" 0.5
-# A fused scan (tsdfuse --carve of four views: watertight, 149 pieces, no
-# camera) stays watertight, as many pieces (measured: 143x).
+# A fused scan (tsdfuse --carve of four views: watertight, 145 pieces, no
+# camera) stays watertight; its floating debris (pieces of fewer than 64
+# faces, --min-piece) is dropped, every other piece stays; with
+# --min-piece 0, as many pieces as the fusion.
 mkscene -q --views 4 --size 160x120 --fx 131.25 --noise kinect -o "$TMP/fv" >/dev/null
 for i in 0 1 2 3; do
 	dm2mesh -q --camera "$TMP/fv/view0$i.camera" --pose "$TMP/fv/view0$i.pose" \
@@ -189,7 +191,13 @@ run_case 0 "planarize -v -o $TMP/fv/model.ply $TMP/fv/fused.ply 2>$TMP/fv/err"
 check_num "fused: reduction 80x" "$(field reduction "$TMP/fv/err")" ">=" 80
 check_num "fused: watertight in" "$(info border_edges "$TMP/fv/fused.ply")" == 0
 check_num "fused: watertight out" "$(info border_edges "$TMP/fv/model.ply")" == 0
-check_num "fused: as many pieces" "$(info components "$TMP/fv/model.ply")" == "$(info components "$TMP/fv/fused.ply")"
+check_num "fused: debris dropped" "$(field "planedecim: debris_pieces" "$TMP/fv/err")" ">" 0
+check_num "fused: the other pieces kept" "$(info components "$TMP/fv/model.ply")" == \
+	"$(($(info components "$TMP/fv/fused.ply") - $(field "planedecim: debris_pieces" "$TMP/fv/err")))"
+run_case 0 "planarize -v --min-piece 0 -o $TMP/fv/all.ply $TMP/fv/fused.ply 2>$TMP/fv/all.err"
+check_num "--min-piece 0: as many pieces" "$(info components "$TMP/fv/all.ply")" == "$(info components "$TMP/fv/fused.ply")"
+check_num "--min-piece 0: watertight out" "$(info border_edges "$TMP/fv/all.ply")" == 0
+check_num "--min-piece 0: nothing dropped" "$(field "planedecim: debris_faces" "$TMP/fv/all.err")" == 0
 valid fused "$TMP/fv/model.ply"
 # An OBJ with a texture (planarize's own) keeps it; an image given replaces it.
 run_case 0 "planarize $C -o $V/h.obj $V/view00.depth.pfm $V/view00.color.png"

@@ -343,6 +343,64 @@ static void test_empty(void)
 	fct_mesh_free(&m);
 }
 
+/* Small pieces dropped: a strip of three quads (6 triangles), a triangle
+ * apart, a quad of two triangles apart and an isolated vertex; each face
+ * labelled with its index, each vertex with its own, to see what follows. */
+static void test_drop_small_pieces(void)
+{
+	static const int faces[] = {
+		0, 1, 5, -1, 0, 5, 4, -1, 1, 2, 6, -1, 1, 6, 5, -1, 2, 3, 7, -1, 2, 7, 6, -1,  /* strip */
+		8, 9, 10, -1,                                                              /* triangle */
+		11, 12, 13, -1, 11, 13, 14, -1,                                            /* quad */
+	};
+	struct fct_mesh m;
+	make_mesh(&m, 16, NULL, faces, sizeof faces / sizeof *faces);   /* 15: isolated */
+	struct fct_prop *fl = fct_elem_add_scalar(&m.face, "label", FCT_INT32, &err);
+	struct fct_prop *vl = fct_elem_add_scalar(&m.vertex, "label", FCT_INT32, &err);
+	CHECK(fl && vl);
+	for (size_t f = 0; f < m.nf; f++)
+		fct_prop_set(fl, f, (double)f);
+	for (size_t v = 0; v < m.nv; v++)
+		fct_prop_set(vl, v, (double)v);
+	size_t pieces = 99;
+	/* 0 and 1 drop nothing. */
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 1, &pieces, &err), 0);
+	CHECK_INT(pieces, 0);
+	CHECK_INT(m.nf, 9);
+	/* Fewer than 3 faces: the triangle and the quad go, with their 7
+	 * vertices; the isolated vertex stays. */
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 3, &pieces, &err), 3);
+	CHECK_INT(pieces, 2);
+	CHECK_INT(m.nf, 6);
+	CHECK_INT(m.nv, 9);
+	fl = fct_elem_find(&m.face, "label");
+	vl = fct_elem_find(&m.vertex, "label");
+	for (size_t f = 0; f < m.nf; f++)
+		CHECK_INT((long)fct_prop_get(fl, f), (long)f);
+	for (size_t v = 0; v < 8; v++)
+		CHECK_INT((long)fct_prop_get(vl, v), (long)v);
+	CHECK_INT((long)fct_prop_get(vl, 8), 15);
+	CHECK_INT(m.fvert[m.fstart[5] + 2], 6);
+	fct_mesh_free(&m);
+	/* Every piece small: the largest stays (the first of equals). */
+	make_mesh(&m, 16, NULL, faces, sizeof faces / sizeof *faces);
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 100, &pieces, &err), 3);
+	CHECK_INT(pieces, 2);
+	CHECK_INT(m.nf, 6);
+	fct_mesh_free(&m);
+	static const int two[] = { 0, 1, 2, -1, 3, 4, 5, -1 };
+	make_mesh(&m, 6, NULL, two, sizeof two / sizeof *two);
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 2, &pieces, &err), 1);
+	CHECK_INT(m.nf, 1);
+	CHECK_INT(m.nv, 3);
+	CHECK_INT(m.fvert[0], 0);
+	fct_mesh_free(&m);
+	/* No faces: nothing to do. */
+	fct_mesh_init(&m);
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 5, &pieces, &err), 0);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_cube();
@@ -352,5 +410,6 @@ int main(void)
 	test_degenerate();
 	test_duplicates();
 	test_empty();
+	test_drop_small_pieces();
 	CHECK_DONE();
 }

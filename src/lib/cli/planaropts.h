@@ -19,7 +19,7 @@
  * other option modules'. */
 enum {
 	FCT_POPT_BORDER = 0x1300, FCT_POPT_MAXHOLE, FCT_POPT_MAXMOVE, FCT_POPT_MINFREE,
-	FCT_POPT_MINPLANE, FCT_POPT_OUTLINE
+	FCT_POPT_MINPLANE, FCT_POPT_OUTLINE, FCT_POPT_MINPIECE
 };
 
 /* The long options' entries, for a program's struct option table. */
@@ -28,6 +28,7 @@ enum {
 	{"max-hole", required_argument, NULL, FCT_POPT_MAXHOLE}, \
 	{"max-move", required_argument, NULL, FCT_POPT_MAXMOVE}, \
 	{"min-free", required_argument, NULL, FCT_POPT_MINFREE}, \
+	{"min-piece", required_argument, NULL, FCT_POPT_MINPIECE}, \
 	{"min-plane", required_argument, NULL, FCT_POPT_MINPLANE}, \
 	{"outline", required_argument, NULL, FCT_POPT_OUTLINE}
 
@@ -41,6 +42,8 @@ enum {
 	"      --max-move k   move a vertex onto a line or corner by at most k sigma\n" \
 	"                     (default 4)\n" \
 	"      --min-free k   a speck of fewer faces joins the label around it (64)\n" \
+	"      --min-piece k  without a camera, drop pieces of fewer faces (64; 0:\n" \
+	"                     keep all)\n" \
 	"      --min-plane k  a patch of fewer faces is free-form (default 64)\n" \
 	"      --outline k    simplify outlines to k sample spacings (default 3)\n"
 

@@ -223,6 +223,69 @@ long fct_adj_components(const struct fct_adj *a, uint32_t *label, struct fct_err
 	return n;
 }
 
+long fct_mesh_drop_small_pieces(struct fct_mesh *m, size_t min_faces, size_t *dropped,
+                                struct fct_err *err)
+{
+	if (dropped)
+		*dropped = 0;
+	if (min_faces <= 1 || !m->nf)
+		return 0;
+	struct fct_adj a;
+	if (fct_adj_build(&a, m, err))
+		return -1;
+	uint32_t *label = fct_alloc_array(m->nf, sizeof *label, err);
+	long n = label ? fct_adj_components(&a, label, err) : -1;
+	size_t *size = n >= 0 ? fct_alloc_array((size_t)n + 1, sizeof *size, err) : NULL;
+	size_t *keep = size ? fct_alloc_array(m->nf + m->nv, sizeof *keep, err) : NULL;
+	long rc = -1;
+	if (keep) {
+		memset(size, 0, ((size_t)n + 1) * sizeof *size);
+		for (size_t f = 0; f < m->nf; f++)
+			size[label[f]]++;
+		/* The largest piece (the first of them) always stays: a mesh of
+		 * one small piece is an object, not debris. */
+		long largest = 0;
+		for (long c = 1; c < n; c++)
+			if (size[c] > size[largest])
+				largest = c;
+		size[largest] = min_faces > size[largest] ? min_faces : size[largest];
+		size_t nkeep = 0, small = 0;
+		for (long c = 0; c < n; c++)
+			small += size[c] < min_faces;
+		for (size_t f = 0; f < m->nf; f++)
+			if (size[label[f]] >= min_faces)
+				keep[nkeep++] = f;
+		rc = (long)(m->nf - nkeep);
+		if (rc > 0) {
+			/* The vertices kept: those a kept face uses, and those no face
+			 * used (a vertex only the dropped pieces used goes with them). */
+			unsigned char *gone = fct_alloc_array(m->nv ? m->nv : 1, 1, err);
+			if (!gone || fct_mesh_gather_faces(m, keep, nkeep, err)) {
+				rc = -1;
+			} else {
+				for (size_t v = 0; v < m->nv; v++)
+					gone[v] = a.vert_fstart[v] < a.vert_fstart[v + 1];
+				for (size_t k = 0; k < m->fstart[m->nf]; k++)
+					gone[m->fvert[k]] = 0;
+				size_t nvkeep = 0;
+				for (size_t v = 0; v < m->nv; v++)
+					if (!gone[v])
+						keep[nvkeep++] = v;
+				if (fct_mesh_gather_vertices(m, keep, nvkeep, err))
+					rc = -1;
+			}
+			free(gone);
+		}
+		if (rc >= 0 && dropped)
+			*dropped = small;
+	}
+	free(keep);
+	free(size);
+	free(label);
+	fct_adj_free(&a);
+	return rc;
+}
+
 size_t fct_adj_isolated_vertices(const struct fct_adj *a)
 {
 	size_t n = 0;

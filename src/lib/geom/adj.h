@@ -85,6 +85,17 @@ static inline uint32_t fct_adj_edge_nfaces(const struct fct_adj *a, size_t e)
  * or -1 when out of memory. */
 long fct_adj_components(const struct fct_adj *a, uint32_t *label, struct fct_err *err);
 
+/* Drop the pieces (connected components, as fct_adj_components) of m with
+ * fewer than min_faces faces, and the vertices only they used: a fusion's
+ * floating debris.  The faces and vertices kept stay in their order, with
+ * all their properties; a vertex no face used stays, and so does the
+ * largest piece (the first of them), however small: a mesh of one small
+ * piece is an object, not debris.  dropped (may be NULL)
+ * gets the number of pieces dropped.  min_faces 0 or 1 drops nothing.
+ * Returns the number of faces dropped, or -1 when out of memory. */
+long fct_mesh_drop_small_pieces(struct fct_mesh *m, size_t min_faces, size_t *dropped,
+                                struct fct_err *err);
+
 /* Number of vertices used by no face. */
 size_t fct_adj_isolated_vertices(const struct fct_adj *a);
 

@@ -789,6 +789,7 @@ void fct_planar_params_default(struct fct_planar_params *p)
 	p->max_move = 4;
 	p->min_free = 64;
 	p->min_plane = 64;
+	p->min_piece = 64;
 	p->max_hole = 64;
 	p->facet_angle = 20;
 }
@@ -1248,6 +1249,25 @@ out:
 	return rc;
 }
 
+/* Without a camera, drop the pieces of fewer than min_faces faces: a
+ * fusion's floating debris (a fused scan's noise leaves thousands of small
+ * pieces beside the room: tsdfuse's 20 7-Scenes frames at 1 cm, 2567 of
+ * 2693 pieces under 64 faces, 3% of the faces).  A view's mesh keeps its
+ * pieces: each is a surface the camera saw. */
+static int drop_debris(struct fct_mesh *m, size_t min_faces, struct fct_planar_stats *st,
+                       struct fct_err *err)
+{
+	struct fct_camera cam;
+	int have_cam = fct_header_camera(m, &cam, err);
+	if (have_cam)
+		return have_cam < 0 ? -1 : 0;
+	long n = fct_mesh_drop_small_pieces(m, min_faces, &st->debris_pieces, err);
+	if (n < 0)
+		return -1;
+	st->debris_faces = (size_t)n;
+	return 0;
+}
+
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
                      struct fct_planar_stats *st, struct fct_err *err)
 {
@@ -1268,6 +1288,14 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	if (!present) {
 		fct_fail(err, "no face property patch: segment it first (segplanes)");
 		goto out;
+	}
+	if (drop_debris(m, p->min_piece, st, err))
+		goto out;
+	if (st->debris_faces) {   /* the labels of the faces kept */
+		free(patch);
+		patch = NULL;
+		if (fct_patches_get(m, &patch, &present, (long)np, err))
+			goto out;
 	}
 	st->planes = np;
 	struct fct_camera cam;

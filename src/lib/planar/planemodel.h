@@ -115,6 +115,8 @@ struct fct_planar_params {
 	double max_move;      /* moves onto lines and points, in sigma (default 4) */
 	size_t min_free;      /* specks of fewer faces join the label around them (64) */
 	size_t min_plane;     /* patches of fewer faces are free-form (64) */
+	size_t min_piece;     /* without a camera, pieces of fewer faces are
+	                         dropped: a fusion's floating debris (64; 0: none) */
 	size_t max_hole;      /* holes of at most this many edges inside a patch are
 	                         filled (64; 0: none) */
 	double facet_angle;   /* a patch whose boundary with other patches runs
@@ -125,6 +127,7 @@ struct fct_planar_params {
 
 struct fct_planar_stats {
 	size_t vertices_in, faces_in, vertices_out, faces_out, planes;
+	size_t debris_pieces, debris_faces;  /* pieces dropped (no camera), their faces */
 	int sigma_estimated;             /* no sigma property: estimated (noise.h) */
 	size_t facets;                   /* patches found facets of curved surfaces */
 	struct fct_tidy_stats tidy;
@@ -152,6 +155,10 @@ void fct_planar_params_default(struct fct_planar_params *p);
  * comments, when present, give the viewpoint (moves along rays) and the
  * sample spacing (one pixel's span; else the mean edge), and s t are
  * computed again from the camera when m has them.  The steps:
+ *  0. without a camera (a fused scan, another tool's mesh), the pieces
+ *     (connected components) of fewer than min_piece faces are dropped
+ *     (fct_mesh_drop_small_pieces): the floating debris a fusion's noise
+ *     leaves, which no user wants in a model of the room;
  *  1. fct_patches_tidy, fct_fill_plane_holes, fct_planes_project;
  *  2. the free-form faces (-1) alone decimated by quadric edge collapse
  *     (qem.h, in units of sigma), the junctions of the patch boundaries kept;
