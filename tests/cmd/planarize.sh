@@ -74,6 +74,24 @@ check_true "kinect: each stage's line" grep -q '^planarize: planedecim  *[0-9]* 
 check_true "kinect: stage figures" grep -q '^planarize: segplanes: patches=[0-9]*$' "$R/err"
 check_true "kinect: --keep files" test "$(ls "$R/k" | tr '\n' ' ')" = "1-mesh.ply 2-patches.ply 3-model.ply "
 
+# Missing pixels, as sensors drop them (speckle, dark or shiny spots): 5%
+# of the room's pixels at random, 320x240.  Each leaves a small hole in a
+# plane, which planedecim fills; half of them touch another hole at a
+# corner, and noise along the rays folds such a small loop in the plane
+# unless it is filled after the projection onto the plane.  Measured when
+# that came in: 121x, 1.9 mm from the truth, dense mesh 16 (the frame
+# without missing pixels 297x, 1.7 mm); 33x when those holes stayed open.
+M=$TMP/missing
+mkscene -q --size 320x240 --fx 262.5 --noise kinect --missing 0.05 -o "$M" >/dev/null
+run_case 0 "planarize -v --camera $M/view00.camera --pose $M/view00.pose --noise $M/view00.noise --keep $M/k -o $M/model.ply $M/view00.depth.pfm 2>$M/err"
+check_num "5% missing pixels: reduction 100x" "$(field reduction "$M/err")" ">=" 100
+check_num "5% missing pixels: holes filled" "$(sed -n 's/^planarize: planedecim: holes_filled=//p' "$M/err")" ">" 2000
+meshdist -p -s 200000 "$M/k/1-mesh.ply" "$M/scene.ply" >"$M/dense"
+meshdist -p -s 200000 "$M/model.ply" "$M/scene.ply" >"$M/model"
+check_num "5% missing pixels: closer to the truth than the dense mesh (mean, a quarter)" \
+	"$(ratio "$(figure mean "$M/model")" "$(figure mean "$M/dense")")" "<" 0.25
+valid "5% missing pixels" "$M/model.ply"
+
 # The real TUM frame, defaults: an OBJ with its material library naming the
 # photo relative to the model's folder (measured with planedecim's -e 1.5
 # default: 53x, E_mean 8.6 mm, E_max 220 mm; QEM at the same count is

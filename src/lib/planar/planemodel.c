@@ -357,6 +357,87 @@ out:
 	return rc;
 }
 
+/* The border half-edges of a mesh, each as its face walks it (a -> to,
+ * the face on its left), grouped by a: those from vertex a are
+ * start[a] .. start[a + 1). */
+struct border {
+	uint32_t *start, *to, *face, *from;
+};
+
+static void border_free(struct border *b)
+{
+	free(b->start), free(b->to), free(b->face), free(b->from);
+}
+
+static int border_build(struct border *b, const struct fct_mesh *m, const struct fct_adj *adj,
+                        struct fct_err *err)
+{
+	memset(b, 0, sizeof *b);
+	size_t nb = adj->nborder ? adj->nborder : 1;
+	b->start = fct_alloc_array(m->nv + 1, sizeof *b->start, err);
+	b->to = fct_alloc_array(nb, sizeof *b->to, err);
+	b->face = fct_alloc_array(nb, sizeof *b->face, err);
+	b->from = fct_alloc_array(nb, sizeof *b->from, err);
+	if (!b->start || !b->to || !b->face || !b->from)
+		return -1;
+	memset(b->start, 0, (m->nv + 1) * sizeof *b->start);
+	for (int pass = 0; pass < 2; pass++) {
+		for (size_t f = 0; f < m->nf; f++) {
+			uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
+			for (uint32_t c = 0; c < n; c++) {
+				uint32_t e = adj->face_e[s + c];
+				if (e == FCT_ADJ_NONE || fct_adj_edge_nfaces(adj, e) != 1)
+					continue;
+				uint32_t a = m->fvert[s + c];
+				if (!pass) {
+					b->start[a + 1]++;
+					continue;
+				}
+				uint32_t h = b->start[a]++;
+				b->to[h] = m->fvert[s + (c + 1) % n], b->face[h] = (uint32_t)f, b->from[h] = a;
+			}
+		}
+		if (!pass)
+			for (size_t v = 0; v < m->nv; v++)
+				b->start[v + 1] += b->start[v];
+		else
+			for (size_t v = m->nv; v > 0; v--)
+				b->start[v] = b->start[v - 1];
+	}
+	b->start[0] = 0;
+	return 0;
+}
+
+/* The border half-edge that goes on around the hole after h (x -> a):
+ * a's only one, or at a vertex several holes touch (two missing depth
+ * pixels a pixel apart) the first met turning from a's edge back to x
+ * counterclockwise about normal n, across the hole, on h's right.
+ * UINT32_MAX: none. */
+static uint32_t border_next(const struct border *b, const struct fct_mesh *m, uint32_t h, const double n[3])
+{
+	uint32_t a = b->to[h], lo = b->start[a], hi = b->start[a + 1];
+	if (hi - lo == 1)
+		return lo;
+	if (hi == lo || !n)
+		return UINT32_MAX;
+	const double *pa = m->xyz + 3 * (size_t)a;
+	double back[3];
+	fct_v3_sub(back, m->xyz + 3 * (size_t)b->from[h], pa);
+	uint32_t best = UINT32_MAX;
+	double best_angle = INFINITY;
+	for (uint32_t o = lo; o < hi; o++) {
+		double d[3], c[3];
+		fct_v3_sub(d, m->xyz + 3 * (size_t)b->to[o], pa);
+		fct_v3_cross(c, back, d);
+		double angle = atan2(fct_v3_dot(c, n), fct_v3_dot(back, d));
+		if (!(angle > 0))
+			angle += 2 * M_PI;
+		if (angle < best_angle)
+			best_angle = angle, best = o;
+	}
+	return best;
+}
+
 int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
                          size_t nplanes, size_t max_edges, size_t *filled, struct fct_err *err)
 {
@@ -364,15 +445,15 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 	struct fct_adj adj;
 	if (fct_adj_build(&adj, m, err))
 		return -1;
-	size_t nv1 = m->nv ? m->nv : 1;
-	uint32_t *next = fct_alloc_array(nv1, sizeof *next, err);
-	uint32_t *face = fct_alloc_array(nv1, sizeof *face, err);
-	unsigned char *outdeg = fct_alloc_array(nv1, 1, err);
+	struct border b;
 	uint32_t *loop = fct_alloc_array(max_edges + 1, sizeof *loop, err);
+	uint32_t *loopface = fct_alloc_array(max_edges + 1, sizeof *loopface, err);
+	uint32_t *stamp = fct_alloc_array(m->nv ? m->nv : 1, sizeof *stamp, err);
 	struct edge_set h = {NULL, 0};
 	int rc = -1;
-	if (!next || !face || !outdeg || !loop)
+	if (border_build(&b, m, &adj, err) || !loop || !loopface || !stamp)
 		goto out;
+	memset(stamp, 0, (m->nv ? m->nv : 1) * sizeof *stamp);
 	/* Room for every edge the fills can add: at most three per border edge. */
 	size_t cap = 64;
 	while (cap < 8 * (adj.nborder + 8))
@@ -382,49 +463,41 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 		goto out;
 	}
 	h.mask = cap - 1;
-	memset(outdeg, 0, nv1);
-	/* Each border edge as its face walks it: a -> b, the face on its left. */
-	for (size_t f = 0; f < m->nf; f++) {
-		uint32_t s = m->fstart[f], n = m->fstart[f + 1] - s;
-		for (uint32_t c = 0; c < n; c++) {
-			uint32_t e = adj.face_e[s + c];
-			if (e == FCT_ADJ_NONE || fct_adj_edge_nfaces(&adj, e) != 1)
-				continue;
-			uint32_t a = m->fvert[s + c], b = m->fvert[s + (c + 1) % n];
-			next[a] = b, face[a] = (uint32_t)f;
-			outdeg[a] += outdeg[a] < 2;
-		}
-	}
 	size_t nf0 = m->nf;
-	for (size_t a = 0; a < m->nv; a++) {
-		if (outdeg[a] != 1)
-			continue;
-		/* Walk the loop from its lowest vertex only, once. */
-		size_t k = 0;
-		uint32_t x = (uint32_t)a;
-		int ok = 1;
-		do {
-			if (outdeg[x] != 1 || x < a || k == max_edges) {
-				ok = 0;
-				break;
-			}
-			loop[k++] = x;
-			x = next[x];
-		} while (x != a);
-		if (!ok || k < 3)
-			continue;
-		int32_t p = face[loop[0]] < nf0 ? (*patch)[face[loop[0]]] : -1;
-		for (size_t i = 1; i < k && p >= 0; i++)
-			if ((*patch)[face[loop[i]]] != p)
-				p = -1;
-		if (p < 0 || (size_t)p >= nplanes)
-			continue;
-		if (fill_loop(m, patch, &planes[p], p, loop, k, &adj, &h, filled, err))
-			goto out;
-	}
+	for (size_t a = 0; a < m->nv; a++)
+		for (uint32_t h0 = b.start[a]; h0 < b.start[a + 1]; h0++) {
+			/* Walk each loop from its lowest vertex only, once; a loop
+			 * through a vertex twice is no simple hole. */
+			int32_t p = (*patch)[b.face[h0]];
+			const double *n = p >= 0 && (size_t)p < nplanes ? planes[p].n : NULL;
+			size_t k = 0;
+			uint32_t e = h0;
+			int ok = 1;
+			do {
+				uint32_t x = b.from[e];
+				if (x < a || k == max_edges || stamp[x] == h0 + 1) {
+					ok = 0;
+					break;
+				}
+				stamp[x] = h0 + 1;
+				loopface[k] = b.face[e];
+				loop[k++] = x;
+				e = border_next(&b, m, e, n);
+			} while (e != UINT32_MAX && e != h0);
+			if (!ok || e == UINT32_MAX || k < 3 || !n)
+				continue;
+			for (size_t i = 1; i < k && p >= 0; i++)
+				if (loopface[i] >= nf0 || (*patch)[loopface[i]] != p)
+					p = -1;
+			if (p < 0)
+				continue;
+			if (fill_loop(m, patch, &planes[p], p, loop, k, &adj, &h, filled, err))
+				goto out;
+		}
 	rc = 0;
 out:
-	free(next), free(face), free(outdeg), free(loop), free(h.key);
+	border_free(&b);
+	free(loop), free(loopface), free(stamp), free(h.key);
 	fct_adj_free(&adj);
 	return rc;
 }
@@ -1310,9 +1383,9 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	if (vertex_sigma(m, pl, np, &sigma, &st->sigma_estimated, err) ||
 	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
 	    fct_patches_tidy(patch, m, have_cam ? NULL : pl, np, p->min_plane, p->min_free, &st->tidy, err) ||
+	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
-	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
 	    !(unclean = calloc(np ? np : 1, 1)) || !(tight = calloc(np ? np : 1, 1)) ||
 	    !(pin = calloc(m->nv ? m->nv : 1, 1)) ||

@@ -63,8 +63,10 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
  * a hole (the loop, projected on p's plane, turns clockwise about its
  * normal, against the faces' winding) is triangulated in that plane
  * (fct_polytri, greedy) and the triangles appended to m as faces of patch
- * p.  *patch (m->nf labels, malloc'd) is grown to match.  Loops through a
- * vertex on more than one border loop, and loops the triangulation refuses
+ * p.  *patch (m->nf labels, malloc'd) is grown to match.  Where several
+ * border loops pass one vertex (holes touching at a corner), each goes on
+ * along the edge that turns first across its hole about p's normal.
+ * Loops through a vertex twice, and loops the triangulation refuses
  * (self-crossing in the plane), are left open.  *filled gets the holes
  * filled; 0, or -1 out of memory. */
 int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,

@@ -1,0 +1,148 @@
+/* test_planemodel - fct_fill_plane_holes on a flat grid with missing
+ * vertices, as missing depth pixels leave them: one hole, two holes that
+ * touch at a corner (which a walk that gives up at a shared vertex leaves
+ * open), holes too long for max_edges, a hole along two patches, and a
+ * piece's outer boundary, which is no hole.  Each fill is checked by what
+ * it must give: the square's whole area back, its four sides as the only
+ * border, every new triangle turned as the faces around it. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "geom/adj.h"
+#include "planar/planemodel.h"
+#include "square.h"
+
+#define N 8 /* cells a side of the square [-1,1]^2 at z = 1 (square.h: faces turned to -z) */
+
+static uint32_t vertex_at(int i, int j)
+{
+	return (uint32_t)(j * (N + 1) + i);
+}
+
+/* The square with every face through the listed vertices removed. */
+static void square_without(struct fct_mesh *m, const uint32_t *gone, size_t ngone)
+{
+	struct fct_err err;
+	square(m, N, 1);
+	size_t *keep = malloc(m->nf * sizeof *keep), n = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		int hit = 0;
+		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++)
+			for (size_t g = 0; g < ngone; g++)
+				hit |= m->fvert[c] == gone[g];
+		if (!hit)
+			keep[n++] = f;
+	}
+	CHECK_INT(fct_mesh_gather_faces(m, keep, n, &err), 0);
+	free(keep);
+}
+
+/* The faces' total area and the count of those turned towards +z. */
+static double area(const struct fct_mesh *m, size_t *up)
+{
+	double sum = 0;
+	*up = 0;
+	for (size_t f = 0; f < m->nf; f++) {
+		const double *a = m->xyz + 3 * (size_t)m->fvert[m->fstart[f]];
+		const double *b = m->xyz + 3 * (size_t)m->fvert[m->fstart[f] + 1];
+		const double *c = m->xyz + 3 * (size_t)m->fvert[m->fstart[f] + 2];
+		double z = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+		sum += fabs(z) / 2;
+		*up += z > 0;
+	}
+	return sum;
+}
+
+static size_t border_edges(const struct fct_mesh *m)
+{
+	struct fct_adj adj;
+	struct fct_err err;
+	if (fct_adj_build(&adj, m, &err))
+		return SIZE_MAX;
+	size_t n = adj.nborder;
+	fct_adj_free(&adj);
+	return n;
+}
+
+/* Fill the holes of the square without gone[], every face in patch 0 (or
+ * split at x = 0 into patches 0 and 1 with two_patches), the plane z = 1
+ * facing -z as the faces do.  The holes filled; the area, border and
+ * turned-over faces after. */
+static size_t fill(const uint32_t *gone, size_t ngone, size_t max_edges, int two_patches, double *a,
+                   size_t *border, size_t *up)
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	square_without(&m, gone, ngone);
+	int32_t *patch = malloc((m.nf ? m.nf : 1) * sizeof *patch);
+	for (size_t f = 0; f < m.nf; f++) {
+		const double *p = m.xyz + 3 * (size_t)m.fvert[m.fstart[f]];
+		patch[f] = two_patches && p[0] >= -1e-9 ? 1 : 0;
+	}
+	struct fct_plane pl[2] = { { { 0, 0, -1 }, 1, 0, 0 }, { { 0, 0, -1 }, 1, 0, 0 } };
+	size_t filled = 99;
+	CHECK_INT(fct_fill_plane_holes(&m, &patch, pl, 2, max_edges, &filled, &err), 0);
+	for (size_t f = 0; f < m.nf; f++)
+		CHECK(patch[f] == 0 || patch[f] == 1);
+	*a = area(&m, up);
+	*border = border_edges(&m);
+	free(patch);
+	fct_mesh_free(&m);
+	return filled;
+}
+
+int main(void)
+{
+	double a;
+	size_t border, up;
+
+	/* Nothing missing: nothing to fill, and the outer boundary is no hole. */
+	CHECK_INT(fill(NULL, 0, 64, 0, &a, &border, &up), 0);
+	CHECK_NEAR(a, 4, 1e-12);
+	CHECK_INT(border, 4 * N);
+
+	/* One missing vertex: a hexagon of 6 edges, 4 triangles. */
+	uint32_t one[] = { vertex_at(2, 2) };
+	CHECK_INT(fill(one, 1, 64, 0, &a, &border, &up), 1);
+	CHECK_NEAR(a, 4, 1e-12);
+	CHECK_INT(border, 4 * N);
+	CHECK_INT(up, 0);
+	/* ... but not with loops of at most 5 edges. */
+	CHECK_INT(fill(one, 1, 5, 0, &a, &border, &up), 0);
+	CHECK_NEAR(a, 4 - 6 * 0.25 * 0.25 / 2, 1e-12);
+
+	/* Two missing vertices two apart on a row: their hexagons touch at
+	 * (3, 2), which is on both loops; each is filled. */
+	uint32_t two[] = { vertex_at(2, 2), vertex_at(4, 2) };
+	CHECK_INT(fill(two, 2, 64, 0, &a, &border, &up), 2);
+	CHECK_NEAR(a, 4, 1e-12);
+	CHECK_INT(border, 4 * N);
+	CHECK_INT(up, 0);
+	/* Six missing vertices making four holes (faces joined across
+	 * edges: (4,2) with (3,4), (5,4) with (6,4)) in a chain, each touching
+	 * the next at one corner, (3,2), (4,4) and (6,5): all four filled. */
+	uint32_t many[] = { vertex_at(2, 2), vertex_at(4, 2), vertex_at(3, 4), vertex_at(5, 4), vertex_at(6, 6),
+	                    vertex_at(6, 4) };
+	CHECK_INT(fill(many, 6, 64, 0, &a, &border, &up), 4);
+	CHECK_NEAR(a, 4, 1e-12);
+	CHECK_INT(border, 4 * N);
+	CHECK_INT(up, 0);
+
+	/* A hole on the line between two patches is in neither: left open. */
+	uint32_t mid[] = { vertex_at(N / 2, 3) };
+	CHECK_INT(fill(mid, 1, 64, 1, &a, &border, &up), 0);
+	CHECK_INT(border, 4 * N + 6);
+	/* ... while one inside patch 1 beside it is filled. */
+	uint32_t side[] = { vertex_at(N / 2, 3), vertex_at(N / 2 + 2, 3) };
+	CHECK_INT(fill(side, 2, 64, 1, &a, &border, &up), 1);
+	CHECK_INT(border, 4 * N + 6);
+
+	/* The square's whole border walked as a loop is the outer boundary of
+	 * the piece, not a hole, however many edges max_edges allows. */
+	CHECK_INT(fill(NULL, 0, 1000, 0, &a, &border, &up), 0);
+	CHECK_INT(border, 4 * N);
+	CHECK_DONE();
+}
