@@ -89,31 +89,11 @@ static int position_at(const struct grid *G, long i, long j, double p[3])
  * surface better: 1 for ad, 0 for bc.  The bend along a diagonal from p to
  * q is the sum of squared distances of p and q from the lines through their
  * neighbours along it (pp before p, qq after q). */
-static int prefer_ad(const struct grid *G, long i, long j)
+static int choose_ad(double bad, double bbc, int around, const double a[3], const double b[3],
+                     const double c[3], const double d[3])
 {
-	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3];
-	int around;
-	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h) {
-		/* Inside the grid: the same positions without the border's checks. */
-		size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i, I = (size_t)i, J = (size_t)j;
-		P(G, ca, I, J, a), P(G, ca + 1, I + 1, J, b);
-		P(G, ca + W, I, J + 1, c), P(G, ca + W + 1, I + 1, J + 1, d);
-		size_t caa = ca - W - 1, cdd = ca + 2 * W + 2, cbb = ca - W + 2, ccc = ca + 2 * W - 1;
-		around = has_data(G, caa) && has_data(G, cdd) && has_data(G, cbb) && has_data(G, ccc);
-		if (around) {
-			P(G, caa, I - 1, J - 1, aa), P(G, cdd, I + 2, J + 2, dd);
-			P(G, cbb, I + 2, J - 1, bb), P(G, ccc, I - 1, J + 2, cc);
-		}
-	} else {
-		position_at(G, i, j, a), position_at(G, i + 1, j, b);
-		position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
-		around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
-		         position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
-	}
 	double lad = fct_v3_dist2(a, d), lbc = fct_v3_dist2(b, c);
 	if (around) {
-		double bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
-		double bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
 		/* Bends that are both rounding noise (a plane) decide nothing:
 		 * then the shorter diagonal makes the better-shaped triangles. */
 		double noise = 1e-18 * (lad > lbc ? lad : lbc);
@@ -121,6 +101,90 @@ static int prefer_ad(const struct grid *G, long i, long j)
 			return bad < bbc;
 	}
 	return lad < lbc;
+}
+
+/* prefer_ad on the border of the grid, where neighbours may be missing or
+ * wrap around a full cylinder. */
+static int prefer_ad_border(const struct grid *G, long i, long j)
+{
+	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3], bad = 0, bbc = 0;
+	position_at(G, i, j, a), position_at(G, i + 1, j, b);
+	position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
+	int around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
+	             position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
+	if (around) {
+		bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
+		bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
+	}
+	return choose_ad(bad, bbc, around, a, b, c, d);
+}
+
+/* Inside the grid a square's bends are sums of per-cell terms: the bend
+ * along ad is bend_ad(a) + bend_ad(d), bend_ad(x) being x's squared
+ * distance from the line through its neighbours up-left and down-right
+ * (line_distance2 with the same arguments in the same order, so the same
+ * bits), and the bend along bc is bend_bc(b) + bend_bc(c) with the
+ * neighbours up-right and down-left.  Each cell's terms are computed once
+ * instead of once for each of the two squares that use them, from the
+ * positions of the rows around it, which are computed once too.  Rows are
+ * kept in rings: positions of rows j-1 .. j+2 and bends of rows j, j+1 while
+ * the squares of row j are decided. */
+struct bend_rows {
+	double *pos[4];          /* 3 per cell, row r in pos[r % 4] */
+	double *ad[2], *bc[2];   /* per cell, row r in [r % 2] */
+	long npos, nbend;        /* rows computed so far */
+};
+
+static void position_row(const struct grid *G, long j, double *out)
+{
+	for (long i = 0; i < G->w; i++)
+		P(G, (size_t)(j * G->w + i), (size_t)i, (size_t)j, out + 3 * i);
+}
+
+/* The bends of the cells 1 .. w-2 of row j (0 < j < h-1); cells without data
+ * or beside one get values that are never used. */
+static void bend_row(const struct bend_rows *R, long j, long w, double *ad, double *bc)
+{
+	const double *up = R->pos[(j - 1) % 4], *mid = R->pos[j % 4], *down = R->pos[(j + 1) % 4];
+	for (long i = 1; i + 1 < w; i++) {
+		ad[i] = line_distance2(mid + 3 * i, up + 3 * (i - 1), down + 3 * (i + 1));
+		bc[i] = line_distance2(mid + 3 * i, up + 3 * (i + 1), down + 3 * (i - 1));
+	}
+}
+
+/* Make the rings hold what the squares of row j need. */
+static void bend_rows_advance(const struct grid *G, struct bend_rows *R, long j)
+{
+	for (; R->npos <= j + 2 && R->npos < G->h; R->npos++)
+		position_row(G, R->npos, R->pos[R->npos % 4]);
+	for (; R->nbend <= j + 1 && R->nbend + 1 < G->h; R->nbend++)
+		if (R->nbend > 0)
+			bend_row(R, R->nbend, G->w, R->ad[R->nbend % 2], R->bc[R->nbend % 2]);
+}
+
+/* prefer_ad of square (i, j) with 1 <= i, i + 2 < w, 1 <= j, j + 2 < h from
+ * the rings (bend_rows_advance(j) done). */
+static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, long i, long j)
+{
+	size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i;
+	const double *r0 = R->pos[j % 4], *r1 = R->pos[(j + 1) % 4];
+	int around = has_data(G, ca - W - 1) && has_data(G, ca + 2 * W + 2) &&
+	             has_data(G, ca - W + 2) && has_data(G, ca + 2 * W - 1);
+	double bad = 0, bbc = 0;
+	if (around) {
+		const double *ad0 = R->ad[j % 2], *ad1 = R->ad[(j + 1) % 2];
+		const double *bc0 = R->bc[j % 2], *bc1 = R->bc[(j + 1) % 2];
+		bad = ad0[i] + ad1[i + 1];
+		bbc = bc0[i + 1] + bc1[i];
+	}
+	return choose_ad(bad, bbc, around, r0 + 3 * i, r0 + 3 * (i + 1), r1 + 3 * i, r1 + 3 * (i + 1));
+}
+
+static int prefer_ad(const struct grid *G, const struct bend_rows *R, long i, long j)
+{
+	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h)
+		return prefer_ad_inside(G, R, i, j);
+	return prefer_ad_border(G, i, j);
 }
 
 /* The corners of square (i, j): a b / c d. */
@@ -137,7 +201,8 @@ static inline struct square square_at(const struct grid *G, long i, long j)
 
 /* The triangles of square (i, j); *possible gets how many its corners with
  * data would allow. */
-static unsigned square_code(const struct grid *G, long i, long j, struct square q, unsigned *possible)
+static unsigned square_code(const struct grid *G, const struct bend_rows *R, long i, long j,
+                            struct square q, unsigned *possible)
 {
 	uint32_t a = q.a, b = q.b, c = q.c, d = q.d;
 	int ha = has_data(G, a), hb = has_data(G, b), hc = has_data(G, c), hd = has_data(G, d);
@@ -164,7 +229,7 @@ static unsigned square_code(const struct grid *G, long i, long j, struct square 
 	*possible = 2;
 	int ab = joined(G, a, b, S), cd = joined(G, c, d, S), ac = joined(G, a, c, S), bd = joined(G, b, d, S);
 	int jad = joined(G, a, d, D), jbc = joined(G, b, c, D);
-	int ad = jad && jbc ? prefer_ad(G, i, j) : jad;
+	int ad = jad && jbc ? prefer_ad(G, R, i, j) : jad;
 	if (ad)
 		return DIAG_AD | (ac && cd ? FIRST : 0) | (bd && ab ? SECOND : 0);
 	if (!jbc)
@@ -230,8 +295,10 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	uint32_t *parent = pieces ? fct_alloc_array(ncells, sizeof *parent, err) : NULL;
 	uint32_t *vindex = fct_alloc_array(ncells, sizeof *vindex, err);
 	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
+	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
+	struct bend_rows R = { {NULL}, {NULL}, {NULL}, 0, 0 };
 	int rc = -1;
-	if (!code || (pieces && !parent) || !vindex || !used) {
+	if (!code || (pieces && !parent) || !vindex || !used || !rings) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -242,10 +309,15 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	if (pieces)
 		for (size_t c = 0; c < ncells; c++)
 			parent[c] = (uint32_t)c;
-	for (long j = 0; j < sh; j++)
+	for (int r = 0; r < 4; r++)
+		R.pos[r] = rings + (size_t)r * 3 * (size_t)G.w;
+	for (int r = 0; r < 2; r++)
+		R.ad[r] = rings + (12 + (size_t)r) * (size_t)G.w, R.bc[r] = rings + (14 + (size_t)r) * (size_t)G.w;
+	for (long j = 0; j < sh; j++) {
+		bend_rows_advance(&G, &R, j);
 		for (long i = 0; i < sw; i++) {
 			struct square q = square_at(&G, i, j);
-			unsigned pos, k = square_code(&G, i, j, q, &pos);
+			unsigned pos, k = square_code(&G, &R, i, j, q, &pos);
 			code[j * sw + i] = (unsigned char)k;
 			possible += pos;
 			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
@@ -261,6 +333,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 					}
 				}
 		}
+	}
 
 	/* Drop the triangles of small pieces.  Every root is the smallest cell
 	 * of its piece, so one ascending pass points each cell at its root;
@@ -338,5 +411,6 @@ out:
 	free(parent);
 	free(vindex);
 	free(used);
+	free(rings);
 	return rc;
 }
