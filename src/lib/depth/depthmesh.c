@@ -125,10 +125,38 @@ static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int 
 	return 0;
 }
 
-static int cmp_float(const void *a, const void *b)
+/* The value that d[k] would hold were d[0..n) sorted ascending (k < n),
+ * d partly reordered: Hoare's selection, linear on average where a sort of
+ * the 19200 samples of a 640x480 image took 0.7 ms.  The values are finite. */
+static float select_kth(float *d, size_t n, size_t k)
 {
-	float x = *(const float *)a, y = *(const float *)b;
-	return (x > y) - (x < y);
+	size_t lo = 0, hi = n - 1;
+	while (lo < hi) {
+		float pivot = d[lo + (hi - lo) / 2];
+		size_t i = lo, j = hi;
+		while (i <= j) {
+			while (d[i] < pivot)
+				i++;
+			while (d[j] > pivot)
+				j--;
+			if (i <= j) {
+				float t = d[i];
+				d[i] = d[j], d[j] = t;
+				i++;
+				if (j == 0)
+					break;
+				j--;
+			}
+		}
+		/* d[lo..j] <= pivot <= d[i..hi], and between them equal to it */
+		if (k <= j)
+			hi = j;
+		else if (k >= i)
+			lo = i;
+		else
+			return d[k];
+	}
+	return d[k];
 }
 
 int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
@@ -150,8 +178,7 @@ int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
 		}
 	int bad = 0;
 	if (n > 0) {
-		qsort(d, n, sizeof *d, cmp_float);
-		double med = d[n / 2];
+		double med = select_kth(d, n, n / 2);
 		bad = !(med >= FCT_SENSOR_MIN_DEPTH && med <= FCT_SENSOR_MAX_DEPTH);
 		int integer = img->type != FCT_PIX_F32 || p->scale_float;
 		if (bad && integer && scale != p->depth_scale)
