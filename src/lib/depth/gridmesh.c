@@ -265,13 +265,32 @@ static uint32_t find_root(uint32_t *parent, uint32_t x)
 	return x;
 }
 
-static void unite(uint32_t *parent, uint32_t x, uint32_t y)
+/* Join cell x to the piece whose root is r; returns the root after. */
+static inline uint32_t join_root(uint32_t *parent, uint32_t r, uint32_t x)
 {
-	x = find_root(parent, x), y = find_root(parent, y);
-	if (x < y)
-		parent[y] = x;
-	else if (y < x)
-		parent[x] = y;
+	uint32_t y = find_root(parent, x);
+	if (y < r) {
+		parent[r] = y;
+		return y;
+	}
+	if (r < y)
+		parent[y] = r;
+	return r;
+}
+
+/* Join the corners of the triangles that code k makes of square q: the
+ * corners of one triangle, and the fourth corner when both are made (they
+ * share the diagonal) -- three or four finds where uniting each triangle's
+ * corners pairwise took four or eight. */
+static inline void join_square(uint32_t *parent, struct square q, unsigned k)
+{
+	uint32_t t[3];
+	square_triangle(q, k, k & FIRST ? FIRST : SECOND, t);
+	uint32_t r = find_root(parent, t[0]);
+	r = join_root(parent, r, t[1]);
+	r = join_root(parent, r, t[2]);
+	if ((k & FIRST) && (k & SECOND))
+		join_root(parent, r, k & DIAG_AD ? q.b : q.d);
 }
 
 int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
@@ -320,17 +339,18 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 			unsigned pos, k = square_code(&G, &R, i, j, q, &pos);
 			code[j * sw + i] = (unsigned char)k;
 			possible += pos;
+			if (!(k & (FIRST | SECOND)))
+				continue;
+			made += (k & FIRST ? 1 : 0) + (k & SECOND ? 1 : 0);
+			if (pieces) {
+				join_square(parent, q, k);
+				continue;
+			}
 			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
 				if (k & which) {
 					uint32_t t[3];
 					square_triangle(q, k, which, t);
-					made++;
-					if (pieces) {
-						unite(parent, t[0], t[1]);
-						unite(parent, t[0], t[2]);
-					} else {
-						used[t[0]] = used[t[1]] = used[t[2]] = 1;
-					}
+					used[t[0]] = used[t[1]] = used[t[2]] = 1;
 				}
 		}
 	}
