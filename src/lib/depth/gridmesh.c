@@ -199,42 +199,72 @@ static inline struct square square_at(const struct grid *G, long i, long j)
 	return (struct square){ row + (uint32_t)i, row + i1, next + (uint32_t)i, next + i1 };
 }
 
-/* The triangles of square (i, j); *possible gets how many its corners with
- * data would allow. */
+/* Which corners of a square have data and which of its six edges join
+ * their ends (fct_depth_joined; 0 where an end has no data).  The test is
+ * symmetric in its ends, so a square's top edge is the bottom edge of the
+ * square above and its left edge the right edge of the square before: four
+ * tests a square instead of six. */
+enum { HA = 1, HB = 2, HC = 4, HD = 8, JAB = 16, JCD = 32, JAC = 64, JBD = 128, JAD = 256, JBC = 512 };
+
+/* The triangles of square (i, j) whose corners and edges are e;
+ * *possible gets how many its corners with data would allow. */
 static unsigned square_code(const struct grid *G, const struct bend_rows *R, long i, long j,
-                            struct square q, unsigned *possible)
+                            unsigned e, unsigned *possible)
 {
-	uint32_t a = q.a, b = q.b, c = q.c, d = q.d;
-	int ha = has_data(G, a), hb = has_data(G, b), hc = has_data(G, c), hd = has_data(G, d);
-	const double S = 1.0, D = M_SQRT2;
+	int ha = !!(e & HA), hb = !!(e & HB), hc = !!(e & HC), hd = !!(e & HD);
 	*possible = 0;
 	if (ha + hb + hc + hd < 3)
 		return 0;
+	int ab = !!(e & JAB), cd = !!(e & JCD), ac = !!(e & JAC), bd = !!(e & JBD);
+	int jad = !!(e & JAD), jbc = !!(e & JBC);
 	if (!hd) {
 		*possible = 1;
-		return joined(G, a, c, S) && joined(G, c, b, D) && joined(G, b, a, S) ? FIRST : 0;
+		return ac && jbc && ab ? FIRST : 0;
 	}
 	if (!ha) {
 		*possible = 1;
-		return joined(G, b, c, D) && joined(G, c, d, S) && joined(G, d, b, S) ? SECOND : 0;
+		return jbc && cd && bd ? SECOND : 0;
 	}
 	if (!hb) {
 		*possible = 1;
-		return joined(G, a, c, S) && joined(G, c, d, S) && joined(G, d, a, D) ? DIAG_AD | FIRST : 0;
+		return ac && cd && jad ? DIAG_AD | FIRST : 0;
 	}
 	if (!hc) {
 		*possible = 1;
-		return joined(G, a, d, D) && joined(G, d, b, S) && joined(G, b, a, S) ? DIAG_AD | SECOND : 0;
+		return jad && bd && ab ? DIAG_AD | SECOND : 0;
 	}
 	*possible = 2;
-	int ab = joined(G, a, b, S), cd = joined(G, c, d, S), ac = joined(G, a, c, S), bd = joined(G, b, d, S);
-	int jad = joined(G, a, d, D), jbc = joined(G, b, c, D);
 	int ad = jad && jbc ? prefer_ad(G, R, i, j) : jad;
 	if (ad)
 		return DIAG_AD | (ac && cd ? FIRST : 0) | (bd && ab ? SECOND : 0);
 	if (!jbc)
 		return 0;
 	return (ac && ab ? FIRST : 0) | (cd && bd ? SECOND : 0);
+}
+
+/* Do cells x and y, both with data or not, join across an edge `steps`
+ * grid steps long?  0 when either has no data. */
+static inline int joined_data(const struct grid *G, int hx, int hy, size_t x, size_t y, double steps)
+{
+	return hx && hy && joined(G, x, y, steps);
+}
+
+/* The corners and edges of square q, the square before it in its row
+ * having given *bd_before its right edge (or -1 for none) and the square
+ * above having left its bottom edge in *cd_above (or -1 for none); both are
+ * updated for the next ones. */
+static inline unsigned square_edges(const struct grid *G, struct square q, int *bd_before,
+                                    signed char *cd_above)
+{
+	const double S = 1.0, D = M_SQRT2;
+	int ha = has_data(G, q.a), hb = has_data(G, q.b), hc = has_data(G, q.c), hd = has_data(G, q.d);
+	int ab = *cd_above >= 0 ? *cd_above : joined_data(G, ha, hb, q.a, q.b, S);
+	int ac = *bd_before >= 0 ? *bd_before : joined_data(G, ha, hc, q.a, q.c, S);
+	int cd = joined_data(G, hc, hd, q.c, q.d, S), bd = joined_data(G, hb, hd, q.b, q.d, S);
+	int ad = joined_data(G, ha, hd, q.a, q.d, D), bc = joined_data(G, hb, hc, q.b, q.c, D);
+	*cd_above = (signed char)cd, *bd_before = bd;
+	return (unsigned)(ha * HA | hb * HB | hc * HC | hd * HD | ab * JAB | cd * JCD | ac * JAC |
+	                  bd * JBD | ad * JAD | bc * JBC);
 }
 
 /* The triangle `which` (FIRST or SECOND) of square q made with code. */
@@ -315,9 +345,10 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	uint32_t *vindex = fct_alloc_array(ncells, sizeof *vindex, err);
 	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
 	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
+	signed char *cd_above = fct_alloc_array((size_t)G.w, 1, err);
 	struct bend_rows R = { {NULL}, {NULL}, {NULL}, 0, 0 };
 	int rc = -1;
-	if (!code || (pieces && !parent) || !vindex || !used || !rings) {
+	if (!code || (pieces && !parent) || !vindex || !used || !rings || !cd_above) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -332,11 +363,14 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 		R.pos[r] = rings + (size_t)r * 3 * (size_t)G.w;
 	for (int r = 0; r < 2; r++)
 		R.ad[r] = rings + (12 + (size_t)r) * (size_t)G.w, R.bc[r] = rings + (14 + (size_t)r) * (size_t)G.w;
+	memset(cd_above, -1, (size_t)sw);
 	for (long j = 0; j < sh; j++) {
 		bend_rows_advance(&G, &R, j);
+		int bd_before = -1;
 		for (long i = 0; i < sw; i++) {
 			struct square q = square_at(&G, i, j);
-			unsigned pos, k = square_code(&G, &R, i, j, q, &pos);
+			unsigned e = square_edges(&G, q, &bd_before, &cd_above[i]);
+			unsigned pos, k = square_code(&G, &R, i, j, e, &pos);
 			code[j * sw + i] = (unsigned char)k;
 			possible += pos;
 			if (!(k & (FIRST | SECOND)))
@@ -432,5 +466,6 @@ out:
 	free(vindex);
 	free(used);
 	free(rings);
+	free(cd_above);
 	return rc;
 }
