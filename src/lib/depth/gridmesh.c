@@ -340,15 +340,17 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	nsq = sw > 0 && sh > 0 ? (size_t)sw * (size_t)sh : 0;
 	int pieces = p->min_faces > 1;
 
+	/* With pieces, parent becomes the piece labels and then vindex. */
 	unsigned char *code = fct_alloc_array(nsq, 1, err);
 	uint32_t *parent = pieces ? fct_alloc_array(ncells, sizeof *parent, err) : NULL;
-	uint32_t *vindex = fct_alloc_array(ncells, sizeof *vindex, err);
+	uint32_t *vindex = pieces ? NULL : fct_alloc_array(ncells, sizeof *vindex, err);
+	uint32_t *count = NULL;
 	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
 	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
 	signed char *cd_above = fct_alloc_array((size_t)G.w, 1, err);
 	struct bend_rows R = { {NULL}, {NULL}, {NULL}, 0, 0 };
 	int rc = -1;
-	if (!code || (pieces && !parent) || !vindex || !used || !rings || !cd_above) {
+	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !cd_above) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -390,22 +392,28 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	}
 
 	/* Drop the triangles of small pieces.  Every root is the smallest cell
-	 * of its piece, so one ascending pass points each cell at its root;
-	 * count each piece's triangles there (vindex doubles as the counter).
-	 * FIRST triangles all have corner a, SECOND ones corner b. */
+	 * of its piece and a parent precedes its child, so one ascending pass
+	 * labels the pieces 0, 1, ... in the order of their roots: a root takes
+	 * the next label, any other cell its parent's, already a label.  Count
+	 * each piece's triangles; FIRST triangles all have corner a, SECOND
+	 * ones corner b. */
 	size_t nf = made;
 	if (pieces) {
+		uint32_t npieces = 0;
 		for (size_t c = 0; c < ncells; c++)
-			parent[c] = parent[parent[c]];
-		memset(vindex, 0, ncells * sizeof *vindex);
+			parent[c] = parent[c] == c ? npieces++ : parent[parent[c]];
+		if (!(count = calloc(npieces ? npieces : 1, sizeof *count))) {
+			fct_fail(err, "out of memory");
+			goto out;
+		}
 		for (long j = 0; j < sh; j++)
 			for (long i = 0; i < sw; i++) {
 				unsigned k = code[j * sw + i];
 				struct square q = square_at(&G, i, j);
 				if (k & FIRST)
-					vindex[parent[q.a]]++;
+					count[parent[q.a]]++;
 				if (k & SECOND)
-					vindex[parent[q.b]]++;
+					count[parent[q.b]]++;
 			}
 		for (long j = 0; j < sh; j++)
 			for (long i = 0; i < sw; i++) {
@@ -413,9 +421,9 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 				if (!*k)
 					continue;
 				struct square q = square_at(&G, i, j);
-				if ((*k & FIRST) && vindex[parent[q.a]] < p->min_faces)
+				if ((*k & FIRST) && count[parent[q.a]] < p->min_faces)
 					*k &= (unsigned char)~FIRST, nf--;
-				if ((*k & SECOND) && vindex[parent[q.b]] < p->min_faces)
+				if ((*k & SECOND) && count[parent[q.b]] < p->min_faces)
 					*k &= (unsigned char)~SECOND, nf--;
 				for (unsigned which = FIRST; which <= SECOND; which <<= 1)
 					if (*k & which) {
@@ -424,6 +432,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 						used[t[0]] = used[t[1]] = used[t[2]] = 1;
 					}
 			}
+		vindex = parent, parent = NULL;
 	}
 
 	/* Vertices: the cells used by a kept triangle, in cell order. */
@@ -432,17 +441,6 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 		vindex[c] = used[c] ? (uint32_t)nv++ : UINT32_MAX;
 	if (fct_mesh_set_vertex_count(m, nv, err) || fct_mesh_set_triangle_count(m, nf, err))
 		goto out;
-	if (cell_of && !(*cell_of = fct_alloc_array(nv, sizeof **cell_of, err)))
-		goto out;
-	for (size_t c = 0, j = 0; j < (size_t)G.h; j++)
-		for (size_t i = 0; i < (size_t)G.w; i++, c++) {
-			uint32_t v = vindex[c];
-			if (v == UINT32_MAX)
-				continue;
-			P(&G, c, i, j, m->xyz + 3 * (size_t)v);
-			if (cell_of)
-				(*cell_of)[v] = (uint32_t)c;
-		}
 	uint32_t *fv = m->fvert;
 	for (long j = 0; j < sh; j++)
 		for (long i = 0; i < sw; i++) {
@@ -455,6 +453,21 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 					*fv++ = vindex[t[0]], *fv++ = vindex[t[1]], *fv++ = vindex[t[2]];
 				}
 		}
+	/* The positions; vindex becomes cell_of in place (vertex v is a cell
+	 * c >= v, and entry v has been read by the time c is reached). */
+	for (size_t c = 0, j = 0; j < (size_t)G.h; j++)
+		for (size_t i = 0; i < (size_t)G.w; i++, c++) {
+			uint32_t v = vindex[c];
+			if (v == UINT32_MAX)
+				continue;
+			P(&G, c, i, j, m->xyz + 3 * (size_t)v);
+			vindex[v] = (uint32_t)c;
+		}
+	if (cell_of) {
+		uint32_t *shrunk = realloc(vindex, (nv ? nv : 1) * sizeof *vindex);
+		*cell_of = shrunk ? shrunk : vindex;
+		vindex = NULL;
+	}
 	if (stats) {
 		stats->jump_faces = possible - made;
 		stats->speck_faces = made - nf;
@@ -464,6 +477,7 @@ out:
 	free(code);
 	free(parent);
 	free(vindex);
+	free(count);
 	free(used);
 	free(rings);
 	free(cd_above);
