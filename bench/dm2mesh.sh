@@ -28,9 +28,10 @@ row() { printf '%-56s %10s %12s\n' "$1" "$2" "$3"; }
 "$FCT_BENCH/gen_depth" -p 1000000 >"$dir/pts.txt"
 K640=512,512,319.5,239.5 K4k=3276.8,3276.8,2047.5,1535.5
 
-echo "dm2mesh: synthetic depth maps (bench/gen_depth: a wall with a box, 1 mm noise, 2% holes), the real TUM frame of samples/ (-K tum implies the kinect noise model: sigma per vertex and the noise term of the jump test; numeric -K none), 1M random sparse points; medians of $RUNS runs"
+echo "dm2mesh: synthetic depth maps (bench/gen_depth: a wall with a box, 1 mm noise, 2% holes), the real 7-Scenes and TUM frames of samples/ (-K 7scenes and -K tum imply the kinect noise model: sigma per vertex and the noise term of the jump test; numeric -K none), 1M random sparse points; medians of $RUNS runs"
 row "what" "seconds" "M faces/s"
-for case in "640x480 -K $K640 $dir/d640.png" "TUM 640x480 -K tum samples/tum/TUM_depth.png" \
+for case in "640x480 -K $K640 $dir/d640.png" "7-Scenes -K 7scenes samples/7scenes/frame-000000.depth.png" \
+	"TUM 640x480 -K tum samples/tum/TUM_depth.png" \
 	"TUM no model -K 525,525,319.5,239.5 --depth-scale 5000 samples/tum/TUM_depth.png" \
 	"640x480/5 -K $K640 --step 5 $dir/d640.png" "4096x3072 -K $K4k $dir/d4k.png"; do
 	name=${case%% -*}
@@ -45,6 +46,7 @@ dm2mesh -K "$K640" -o "$dir/m640.ply" "$dir/d640.png"
 dm2mesh -K "$K4k" -o "$dir/m4k.ply" "$dir/d4k.png"
 row "reference: decode the 640x480 PNG (imginfo, whole run)" "$($T "imginfo '$dir/d640.png' >/dev/null")" ""
 row "reference: meshconv the 640x480 output (whole run)" "$($T "meshconv '$dir/m640.ply' >/dev/null")" ""
+row "reference: decode the 7-Scenes PNG (imginfo, whole run)" "$($T "imginfo samples/7scenes/frame-000000.depth.png >/dev/null")" ""
 row "reference: decode the 4096x3072 PNG (imginfo, whole run)" "$($T "imginfo '$dir/d4k.png' >/dev/null")" ""
 row "reference: meshconv the 4096x3072 output (whole run)" "$($T "meshconv '$dir/m4k.ply' >/dev/null")" ""
 cpu=$(figure cpu_s --points -K 525,525,319.5,239.5 "$dir/pts.txt")

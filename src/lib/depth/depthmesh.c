@@ -92,8 +92,11 @@ static float *float_property(struct fct_mesh *m, const char *name, struct fct_er
 
 /* The vertex properties that come from each vertex's cell (s t, sigma, and
  * the kept depths): vertices are in cell order, so the rows are walked
- * alongside instead of dividing each cell index. */
-static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int step, int gw,
+ * alongside instead of dividing each cell index.  s depends on the column
+ * alone and t on the row, and the sum of squares under sigma's root is
+ * made of a column's and a row's squares: each is computed once, by the
+ * same expressions in the same order. */
+static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int step, int gw, int gh,
                            const uint32_t *cell_of, const double *depth, const double *col,
                            const double *row, const float *cell_sigma, int texcoords, float *kept,
                            struct fct_err *err)
@@ -106,29 +109,67 @@ static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int 
 	if (texcoords)   /* adding a property may move the others */
 		s = fct_elem_find(&m->vertex, "s")->data, t = fct_elem_find(&m->vertex, "t")->data;
 	size_t w = (size_t)img->width, j = 0, start = 0, gwz = (size_t)gw, st = (size_t)step;
+	/* per column: s, x^2, z^2 of the ray; per row: t, y^2 */
+	double *tab = fct_alloc_array(3 * gwz + 2 * (size_t)gh, sizeof *tab, err);
+	if (!tab)
+		return -1;
+	double *s_col = tab, *xx = tab + gwz, *zz = tab + 2 * gwz, *t_row = tab + 3 * gwz, *yy = t_row + gh;
+	for (size_t i = 0; i < gwz; i++) {
+		s_col[i] = (float)(((double)(i * st) + 0.5) / img->width);
+		xx[i] = col[3 * i] * col[3 * i], zz[i] = col[3 * i + 2] * col[3 * i + 2];
+	}
+	for (size_t r = 0; r < (size_t)gh; r++) {
+		t_row[r] = (float)(1 - ((double)(r * st) + 0.5) / img->height);
+		yy[r] = row[r] * row[r];
+	}
 	for (size_t v = 0; v < m->nv; v++) {
 		size_t c = cell_of[v];
 		while (c >= start + gwz)
 			start += gwz, j++;
 		size_t i = c - start;
-		if (texcoords) {
-			s[v] = (float)(((double)(i * st) + 0.5) / img->width);
-			t[v] = (float)(1 - ((double)(j * st) + 0.5) / img->height);
-		}
-		if (sigma) {
-			const double *r = &col[3 * i];
-			sigma[v] = (float)(cell_sigma[c] * sqrt(r[0] * r[0] + row[j] * row[j] + r[2] * r[2]));
-		}
+		if (texcoords)
+			s[v] = (float)s_col[i], t[v] = (float)t_row[j];
+		if (sigma)
+			sigma[v] = (float)(cell_sigma[c] * sqrt(xx[i] + yy[j] + zz[i]));
 		if (kept)   /* cell (i, j) is pixel (i step, j step) */
 			kept[j * st * w + i * st] = (float)depth[c];
 	}
+	free(tab);
 	return 0;
 }
 
-static int cmp_float(const void *a, const void *b)
+/* The value that d[k] would hold were d[0..n) sorted ascending (k < n),
+ * d partly reordered: Hoare's selection, linear on average where a sort of
+ * the 19200 samples of a 640x480 image took 0.7 ms.  The values are finite. */
+static float select_kth(float *d, size_t n, size_t k)
 {
-	float x = *(const float *)a, y = *(const float *)b;
-	return (x > y) - (x < y);
+	size_t lo = 0, hi = n - 1;
+	while (lo < hi) {
+		float pivot = d[lo + (hi - lo) / 2];
+		size_t i = lo, j = hi;
+		while (i <= j) {
+			while (d[i] < pivot)
+				i++;
+			while (d[j] > pivot)
+				j--;
+			if (i <= j) {
+				float t = d[i];
+				d[i] = d[j], d[j] = t;
+				i++;
+				if (j == 0)
+					break;
+				j--;
+			}
+		}
+		/* d[lo..j] <= pivot <= d[i..hi], and between them equal to it */
+		if (k <= j)
+			hi = j;
+		else if (k >= i)
+			lo = i;
+		else
+			return d[k];
+	}
+	return d[k];
 }
 
 int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
@@ -150,8 +191,7 @@ int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
 		}
 	int bad = 0;
 	if (n > 0) {
-		qsort(d, n, sizeof *d, cmp_float);
-		double med = d[n / 2];
+		double med = select_kth(d, n, n / 2);
 		bad = !(med >= FCT_SENSOR_MIN_DEPTH && med <= FCT_SENSOR_MAX_DEPTH);
 		int integer = img->type != FCT_PIX_F32 || p->scale_float;
 		if (bad && integer && scale != p->depth_scale)
@@ -227,7 +267,7 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 		fct_fail(err, "out of memory");
 		goto out;
 	}
-	if (cell_properties(m, img, step, gw, cell_of, depth, col, row, sigma, p->texcoords,
+	if (cell_properties(m, img, step, gw, gh, cell_of, depth, col, row, sigma, p->texcoords,
 	                    kept ? *kept : NULL, err))
 		goto out;
 	rc = 0;

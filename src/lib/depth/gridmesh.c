@@ -89,31 +89,11 @@ static int position_at(const struct grid *G, long i, long j, double p[3])
  * surface better: 1 for ad, 0 for bc.  The bend along a diagonal from p to
  * q is the sum of squared distances of p and q from the lines through their
  * neighbours along it (pp before p, qq after q). */
-static int prefer_ad(const struct grid *G, long i, long j)
+static int choose_ad(double bad, double bbc, int around, const double a[3], const double b[3],
+                     const double c[3], const double d[3])
 {
-	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3];
-	int around;
-	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h) {
-		/* Inside the grid: the same positions without the border's checks. */
-		size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i, I = (size_t)i, J = (size_t)j;
-		P(G, ca, I, J, a), P(G, ca + 1, I + 1, J, b);
-		P(G, ca + W, I, J + 1, c), P(G, ca + W + 1, I + 1, J + 1, d);
-		size_t caa = ca - W - 1, cdd = ca + 2 * W + 2, cbb = ca - W + 2, ccc = ca + 2 * W - 1;
-		around = has_data(G, caa) && has_data(G, cdd) && has_data(G, cbb) && has_data(G, ccc);
-		if (around) {
-			P(G, caa, I - 1, J - 1, aa), P(G, cdd, I + 2, J + 2, dd);
-			P(G, cbb, I + 2, J - 1, bb), P(G, ccc, I - 1, J + 2, cc);
-		}
-	} else {
-		position_at(G, i, j, a), position_at(G, i + 1, j, b);
-		position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
-		around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
-		         position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
-	}
 	double lad = fct_v3_dist2(a, d), lbc = fct_v3_dist2(b, c);
 	if (around) {
-		double bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
-		double bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
 		/* Bends that are both rounding noise (a plane) decide nothing:
 		 * then the shorter diagonal makes the better-shaped triangles. */
 		double noise = 1e-18 * (lad > lbc ? lad : lbc);
@@ -121,6 +101,90 @@ static int prefer_ad(const struct grid *G, long i, long j)
 			return bad < bbc;
 	}
 	return lad < lbc;
+}
+
+/* prefer_ad on the border of the grid, where neighbours may be missing or
+ * wrap around a full cylinder. */
+static int prefer_ad_border(const struct grid *G, long i, long j)
+{
+	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3], bad = 0, bbc = 0;
+	position_at(G, i, j, a), position_at(G, i + 1, j, b);
+	position_at(G, i, j + 1, c), position_at(G, i + 1, j + 1, d);
+	int around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
+	             position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
+	if (around) {
+		bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
+		bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
+	}
+	return choose_ad(bad, bbc, around, a, b, c, d);
+}
+
+/* Inside the grid a square's bends are sums of per-cell terms: the bend
+ * along ad is bend_ad(a) + bend_ad(d), bend_ad(x) being x's squared
+ * distance from the line through its neighbours up-left and down-right
+ * (line_distance2 with the same arguments in the same order, so the same
+ * bits), and the bend along bc is bend_bc(b) + bend_bc(c) with the
+ * neighbours up-right and down-left.  Each cell's terms are computed once
+ * instead of once for each of the two squares that use them, from the
+ * positions of the rows around it, which are computed once too.  Rows are
+ * kept in rings: positions of rows j-1 .. j+2 and bends of rows j, j+1 while
+ * the squares of row j are decided. */
+struct bend_rows {
+	double *pos[4];          /* 3 per cell, row r in pos[r % 4] */
+	double *ad[2], *bc[2];   /* per cell, row r in [r % 2] */
+	long npos, nbend;        /* rows computed so far */
+};
+
+static void position_row(const struct grid *G, long j, double *out)
+{
+	for (long i = 0; i < G->w; i++)
+		P(G, (size_t)(j * G->w + i), (size_t)i, (size_t)j, out + 3 * i);
+}
+
+/* The bends of the cells 1 .. w-2 of row j (0 < j < h-1); cells without data
+ * or beside one get values that are never used. */
+static void bend_row(const struct bend_rows *R, long j, long w, double *ad, double *bc)
+{
+	const double *up = R->pos[(j - 1) % 4], *mid = R->pos[j % 4], *down = R->pos[(j + 1) % 4];
+	for (long i = 1; i + 1 < w; i++) {
+		ad[i] = line_distance2(mid + 3 * i, up + 3 * (i - 1), down + 3 * (i + 1));
+		bc[i] = line_distance2(mid + 3 * i, up + 3 * (i + 1), down + 3 * (i - 1));
+	}
+}
+
+/* Make the rings hold what the squares of row j need. */
+static void bend_rows_advance(const struct grid *G, struct bend_rows *R, long j)
+{
+	for (; R->npos <= j + 2 && R->npos < G->h; R->npos++)
+		position_row(G, R->npos, R->pos[R->npos % 4]);
+	for (; R->nbend <= j + 1 && R->nbend + 1 < G->h; R->nbend++)
+		if (R->nbend > 0)
+			bend_row(R, R->nbend, G->w, R->ad[R->nbend % 2], R->bc[R->nbend % 2]);
+}
+
+/* prefer_ad of square (i, j) with 1 <= i, i + 2 < w, 1 <= j, j + 2 < h from
+ * the rings (bend_rows_advance(j) done). */
+static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, long i, long j)
+{
+	size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i;
+	const double *r0 = R->pos[j % 4], *r1 = R->pos[(j + 1) % 4];
+	int around = has_data(G, ca - W - 1) && has_data(G, ca + 2 * W + 2) &&
+	             has_data(G, ca - W + 2) && has_data(G, ca + 2 * W - 1);
+	double bad = 0, bbc = 0;
+	if (around) {
+		const double *ad0 = R->ad[j % 2], *ad1 = R->ad[(j + 1) % 2];
+		const double *bc0 = R->bc[j % 2], *bc1 = R->bc[(j + 1) % 2];
+		bad = ad0[i] + ad1[i + 1];
+		bbc = bc0[i + 1] + bc1[i];
+	}
+	return choose_ad(bad, bbc, around, r0 + 3 * i, r0 + 3 * (i + 1), r1 + 3 * i, r1 + 3 * (i + 1));
+}
+
+static int prefer_ad(const struct grid *G, const struct bend_rows *R, long i, long j)
+{
+	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h)
+		return prefer_ad_inside(G, R, i, j);
+	return prefer_ad_border(G, i, j);
 }
 
 /* The corners of square (i, j): a b / c d. */
@@ -135,41 +199,72 @@ static inline struct square square_at(const struct grid *G, long i, long j)
 	return (struct square){ row + (uint32_t)i, row + i1, next + (uint32_t)i, next + i1 };
 }
 
-/* The triangles of square (i, j); *possible gets how many its corners with
- * data would allow. */
-static unsigned square_code(const struct grid *G, long i, long j, struct square q, unsigned *possible)
+/* Which corners of a square have data and which of its six edges join
+ * their ends (fct_depth_joined; 0 where an end has no data).  The test is
+ * symmetric in its ends, so a square's top edge is the bottom edge of the
+ * square above and its left edge the right edge of the square before: four
+ * tests a square instead of six. */
+enum { HA = 1, HB = 2, HC = 4, HD = 8, JAB = 16, JCD = 32, JAC = 64, JBD = 128, JAD = 256, JBC = 512 };
+
+/* The triangles of square (i, j) whose corners and edges are e;
+ * *possible gets how many its corners with data would allow. */
+static unsigned square_code(const struct grid *G, const struct bend_rows *R, long i, long j,
+                            unsigned e, unsigned *possible)
 {
-	uint32_t a = q.a, b = q.b, c = q.c, d = q.d;
-	int ha = has_data(G, a), hb = has_data(G, b), hc = has_data(G, c), hd = has_data(G, d);
-	const double S = 1.0, D = M_SQRT2;
+	int ha = !!(e & HA), hb = !!(e & HB), hc = !!(e & HC), hd = !!(e & HD);
 	*possible = 0;
 	if (ha + hb + hc + hd < 3)
 		return 0;
+	int ab = !!(e & JAB), cd = !!(e & JCD), ac = !!(e & JAC), bd = !!(e & JBD);
+	int jad = !!(e & JAD), jbc = !!(e & JBC);
 	if (!hd) {
 		*possible = 1;
-		return joined(G, a, c, S) && joined(G, c, b, D) && joined(G, b, a, S) ? FIRST : 0;
+		return ac && jbc && ab ? FIRST : 0;
 	}
 	if (!ha) {
 		*possible = 1;
-		return joined(G, b, c, D) && joined(G, c, d, S) && joined(G, d, b, S) ? SECOND : 0;
+		return jbc && cd && bd ? SECOND : 0;
 	}
 	if (!hb) {
 		*possible = 1;
-		return joined(G, a, c, S) && joined(G, c, d, S) && joined(G, d, a, D) ? DIAG_AD | FIRST : 0;
+		return ac && cd && jad ? DIAG_AD | FIRST : 0;
 	}
 	if (!hc) {
 		*possible = 1;
-		return joined(G, a, d, D) && joined(G, d, b, S) && joined(G, b, a, S) ? DIAG_AD | SECOND : 0;
+		return jad && bd && ab ? DIAG_AD | SECOND : 0;
 	}
 	*possible = 2;
-	int ab = joined(G, a, b, S), cd = joined(G, c, d, S), ac = joined(G, a, c, S), bd = joined(G, b, d, S);
-	int jad = joined(G, a, d, D), jbc = joined(G, b, c, D);
-	int ad = jad && jbc ? prefer_ad(G, i, j) : jad;
+	int ad = jad && jbc ? prefer_ad(G, R, i, j) : jad;
 	if (ad)
 		return DIAG_AD | (ac && cd ? FIRST : 0) | (bd && ab ? SECOND : 0);
 	if (!jbc)
 		return 0;
 	return (ac && ab ? FIRST : 0) | (cd && bd ? SECOND : 0);
+}
+
+/* Do cells x and y, both with data or not, join across an edge `steps`
+ * grid steps long?  0 when either has no data. */
+static inline int joined_data(const struct grid *G, int hx, int hy, size_t x, size_t y, double steps)
+{
+	return hx && hy && joined(G, x, y, steps);
+}
+
+/* The corners and edges of square q, the square before it in its row
+ * having given *bd_before its right edge (or -1 for none) and the square
+ * above having left its bottom edge in *cd_above (or -1 for none); both are
+ * updated for the next ones. */
+static inline unsigned square_edges(const struct grid *G, struct square q, int *bd_before,
+                                    signed char *cd_above)
+{
+	const double S = 1.0, D = M_SQRT2;
+	int ha = has_data(G, q.a), hb = has_data(G, q.b), hc = has_data(G, q.c), hd = has_data(G, q.d);
+	int ab = *cd_above >= 0 ? *cd_above : joined_data(G, ha, hb, q.a, q.b, S);
+	int ac = *bd_before >= 0 ? *bd_before : joined_data(G, ha, hc, q.a, q.c, S);
+	int cd = joined_data(G, hc, hd, q.c, q.d, S), bd = joined_data(G, hb, hd, q.b, q.d, S);
+	int ad = joined_data(G, ha, hd, q.a, q.d, D), bc = joined_data(G, hb, hc, q.b, q.c, D);
+	*cd_above = (signed char)cd, *bd_before = bd;
+	return (unsigned)(ha * HA | hb * HB | hc * HC | hd * HD | ab * JAB | cd * JCD | ac * JAC |
+	                  bd * JBD | ad * JAD | bc * JBC);
 }
 
 /* The triangle `which` (FIRST or SECOND) of square q made with code. */
@@ -200,13 +295,32 @@ static uint32_t find_root(uint32_t *parent, uint32_t x)
 	return x;
 }
 
-static void unite(uint32_t *parent, uint32_t x, uint32_t y)
+/* Join cell x to the piece whose root is r; returns the root after. */
+static inline uint32_t join_root(uint32_t *parent, uint32_t r, uint32_t x)
 {
-	x = find_root(parent, x), y = find_root(parent, y);
-	if (x < y)
-		parent[y] = x;
-	else if (y < x)
-		parent[x] = y;
+	uint32_t y = find_root(parent, x);
+	if (y < r) {
+		parent[r] = y;
+		return y;
+	}
+	if (r < y)
+		parent[y] = r;
+	return r;
+}
+
+/* Join the corners of the triangles that code k makes of square q: the
+ * corners of one triangle, and the fourth corner when both are made (they
+ * share the diagonal) -- three or four finds where uniting each triangle's
+ * corners pairwise took four or eight. */
+static inline void join_square(uint32_t *parent, struct square q, unsigned k)
+{
+	uint32_t t[3];
+	square_triangle(q, k, k & FIRST ? FIRST : SECOND, t);
+	uint32_t r = find_root(parent, t[0]);
+	r = join_root(parent, r, t[1]);
+	r = join_root(parent, r, t[2]);
+	if ((k & FIRST) && (k & SECOND))
+		join_root(parent, r, k & DIAG_AD ? q.b : q.d);
 }
 
 int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
@@ -226,12 +340,17 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	nsq = sw > 0 && sh > 0 ? (size_t)sw * (size_t)sh : 0;
 	int pieces = p->min_faces > 1;
 
+	/* With pieces, parent becomes the piece labels and then vindex. */
 	unsigned char *code = fct_alloc_array(nsq, 1, err);
 	uint32_t *parent = pieces ? fct_alloc_array(ncells, sizeof *parent, err) : NULL;
-	uint32_t *vindex = fct_alloc_array(ncells, sizeof *vindex, err);
+	uint32_t *vindex = pieces ? NULL : fct_alloc_array(ncells, sizeof *vindex, err);
+	uint32_t *count = NULL;
 	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
+	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
+	signed char *cd_above = fct_alloc_array((size_t)G.w, 1, err);
+	struct bend_rows R = { {NULL}, {NULL}, {NULL}, 0, 0 };
 	int rc = -1;
-	if (!code || (pieces && !parent) || !vindex || !used) {
+	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !cd_above) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -242,43 +361,59 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	if (pieces)
 		for (size_t c = 0; c < ncells; c++)
 			parent[c] = (uint32_t)c;
-	for (long j = 0; j < sh; j++)
+	for (int r = 0; r < 4; r++)
+		R.pos[r] = rings + (size_t)r * 3 * (size_t)G.w;
+	for (int r = 0; r < 2; r++)
+		R.ad[r] = rings + (12 + (size_t)r) * (size_t)G.w, R.bc[r] = rings + (14 + (size_t)r) * (size_t)G.w;
+	memset(cd_above, -1, (size_t)sw);
+	for (long j = 0; j < sh; j++) {
+		bend_rows_advance(&G, &R, j);
+		int bd_before = -1;
 		for (long i = 0; i < sw; i++) {
 			struct square q = square_at(&G, i, j);
-			unsigned pos, k = square_code(&G, i, j, q, &pos);
+			unsigned e = square_edges(&G, q, &bd_before, &cd_above[i]);
+			unsigned pos, k = square_code(&G, &R, i, j, e, &pos);
 			code[j * sw + i] = (unsigned char)k;
 			possible += pos;
+			if (!(k & (FIRST | SECOND)))
+				continue;
+			made += (k & FIRST ? 1 : 0) + (k & SECOND ? 1 : 0);
+			if (pieces) {
+				join_square(parent, q, k);
+				continue;
+			}
 			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
 				if (k & which) {
 					uint32_t t[3];
 					square_triangle(q, k, which, t);
-					made++;
-					if (pieces) {
-						unite(parent, t[0], t[1]);
-						unite(parent, t[0], t[2]);
-					} else {
-						used[t[0]] = used[t[1]] = used[t[2]] = 1;
-					}
+					used[t[0]] = used[t[1]] = used[t[2]] = 1;
 				}
 		}
+	}
 
 	/* Drop the triangles of small pieces.  Every root is the smallest cell
-	 * of its piece, so one ascending pass points each cell at its root;
-	 * count each piece's triangles there (vindex doubles as the counter).
-	 * FIRST triangles all have corner a, SECOND ones corner b. */
+	 * of its piece and a parent precedes its child, so one ascending pass
+	 * labels the pieces 0, 1, ... in the order of their roots: a root takes
+	 * the next label, any other cell its parent's, already a label.  Count
+	 * each piece's triangles; FIRST triangles all have corner a, SECOND
+	 * ones corner b. */
 	size_t nf = made;
 	if (pieces) {
+		uint32_t npieces = 0;
 		for (size_t c = 0; c < ncells; c++)
-			parent[c] = parent[parent[c]];
-		memset(vindex, 0, ncells * sizeof *vindex);
+			parent[c] = parent[c] == c ? npieces++ : parent[parent[c]];
+		if (!(count = calloc(npieces ? npieces : 1, sizeof *count))) {
+			fct_fail(err, "out of memory");
+			goto out;
+		}
 		for (long j = 0; j < sh; j++)
 			for (long i = 0; i < sw; i++) {
 				unsigned k = code[j * sw + i];
 				struct square q = square_at(&G, i, j);
 				if (k & FIRST)
-					vindex[parent[q.a]]++;
+					count[parent[q.a]]++;
 				if (k & SECOND)
-					vindex[parent[q.b]]++;
+					count[parent[q.b]]++;
 			}
 		for (long j = 0; j < sh; j++)
 			for (long i = 0; i < sw; i++) {
@@ -286,9 +421,9 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 				if (!*k)
 					continue;
 				struct square q = square_at(&G, i, j);
-				if ((*k & FIRST) && vindex[parent[q.a]] < p->min_faces)
+				if ((*k & FIRST) && count[parent[q.a]] < p->min_faces)
 					*k &= (unsigned char)~FIRST, nf--;
-				if ((*k & SECOND) && vindex[parent[q.b]] < p->min_faces)
+				if ((*k & SECOND) && count[parent[q.b]] < p->min_faces)
 					*k &= (unsigned char)~SECOND, nf--;
 				for (unsigned which = FIRST; which <= SECOND; which <<= 1)
 					if (*k & which) {
@@ -297,6 +432,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 						used[t[0]] = used[t[1]] = used[t[2]] = 1;
 					}
 			}
+		vindex = parent, parent = NULL;
 	}
 
 	/* Vertices: the cells used by a kept triangle, in cell order. */
@@ -305,17 +441,6 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 		vindex[c] = used[c] ? (uint32_t)nv++ : UINT32_MAX;
 	if (fct_mesh_set_vertex_count(m, nv, err) || fct_mesh_set_triangle_count(m, nf, err))
 		goto out;
-	if (cell_of && !(*cell_of = fct_alloc_array(nv, sizeof **cell_of, err)))
-		goto out;
-	for (size_t c = 0, j = 0; j < (size_t)G.h; j++)
-		for (size_t i = 0; i < (size_t)G.w; i++, c++) {
-			uint32_t v = vindex[c];
-			if (v == UINT32_MAX)
-				continue;
-			P(&G, c, i, j, m->xyz + 3 * (size_t)v);
-			if (cell_of)
-				(*cell_of)[v] = (uint32_t)c;
-		}
 	uint32_t *fv = m->fvert;
 	for (long j = 0; j < sh; j++)
 		for (long i = 0; i < sw; i++) {
@@ -328,6 +453,21 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 					*fv++ = vindex[t[0]], *fv++ = vindex[t[1]], *fv++ = vindex[t[2]];
 				}
 		}
+	/* The positions; vindex becomes cell_of in place (vertex v is a cell
+	 * c >= v, and entry v has been read by the time c is reached). */
+	for (size_t c = 0, j = 0; j < (size_t)G.h; j++)
+		for (size_t i = 0; i < (size_t)G.w; i++, c++) {
+			uint32_t v = vindex[c];
+			if (v == UINT32_MAX)
+				continue;
+			P(&G, c, i, j, m->xyz + 3 * (size_t)v);
+			vindex[v] = (uint32_t)c;
+		}
+	if (cell_of) {
+		uint32_t *shrunk = realloc(vindex, (nv ? nv : 1) * sizeof *vindex);
+		*cell_of = shrunk ? shrunk : vindex;
+		vindex = NULL;
+	}
 	if (stats) {
 		stats->jump_faces = possible - made;
 		stats->speck_faces = made - nf;
@@ -337,6 +477,9 @@ out:
 	free(code);
 	free(parent);
 	free(vindex);
+	free(count);
 	free(used);
+	free(rings);
+	free(cd_above);
 	return rc;
 }
