@@ -10,6 +10,7 @@
 #include "io/camera.h"
 #include "io/header.h"
 #include "io/noise.h"
+#include "planar/freedecim.h"
 #include "planar/project.h"
 #include "geom/geom.h"
 #include "geom/polytri.h"
@@ -943,30 +944,20 @@ static double *sample_spacing(const struct fct_mesh *m, const struct fct_camera 
 
 /* The free-form faces of m (patch -1) decimated alone by quadric edge
  * collapse (qem.h) in units of sigma, their borders held and corner[v]
- * kept: into F, whose faces are renumbered to m's vertices; its vertex
- * arrays keep the decimation's numbering, and vmap[i] is m's number of its
- * vertex i (nmap of them). */
+ * kept: into F, whose faces are numbered as m's vertices; its vertex
+ * arrays hold the survivors, and vmap[i] is m's number of its vertex i
+ * (nmap of them).  The pieces that have not changed since the last round
+ * are cache's (freedecim.h). */
 static int decimate_free(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, const struct fct_mesh *m,
                          const int32_t *patch, const double *sigma, const unsigned char *corner,
                          const double *vp, const struct fct_planar_params *p,
-                         struct fct_qem_stats *qs, struct fct_err *err)
+                         struct fct_free_cache *cache, struct fct_qem_stats *qs, struct fct_err *err)
 {
-	size_t nfree = 0;
+	unsigned char *free_face = fct_alloc_array(m->nf ? m->nf : 1, 1, err);
+	if (!free_face)
+		return -1;
 	for (size_t f = 0; f < m->nf; f++)
-		nfree += patch[f] < 0;
-	size_t *keep = fct_alloc_array(nfree ? nfree : 1, sizeof *keep, err);
-	int rc = -1;
-	if (!keep || fct_mesh_copy(F, m, err))
-		goto out;
-	size_t k = 0;
-	for (size_t f = 0; f < m->nf; f++)
-		if (patch[f] < 0)
-			keep[k++] = f;
-	struct fct_prop *idx = fct_elem_add_scalar(&F->vertex, "fct_vertex", FCT_UINT32, err);
-	if (!idx || fct_mesh_gather_faces(F, keep, nfree, err))
-		goto out;
-	for (size_t v = 0; v < F->nv; v++)
-		fct_prop_set(idx, v, (double)v);
+		free_face[f] = patch[f] < 0;
 	struct fct_qem_params qp;
 	fct_qem_params_default(&qp);
 	qp.max_error = p->max_error;
@@ -978,19 +969,8 @@ static int decimate_free(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, cons
 		qp.use_viewpoint = 1;
 		memcpy(qp.viewpoint, vp, sizeof qp.viewpoint);
 	}
-	if (fct_qem_decimate(F, &qp, qs, err))
-		goto out;
-	idx = fct_elem_find(&F->vertex, "fct_vertex");
-	if (!(*vmap = fct_alloc_array(F->nv ? F->nv : 1, sizeof **vmap, err)))
-		goto out;
-	*nmap = F->nv;
-	for (size_t v = 0; v < F->nv; v++)
-		(*vmap)[v] = (uint32_t)fct_prop_get(idx, v);
-	for (size_t c = 0; c < (F->nf ? F->fstart[F->nf] : 0); c++)
-		F->fvert[c] = (*vmap)[F->fvert[c]];
-	rc = 0;
-out:
-	free(keep);
+	int rc = fct_free_decimate(F, vmap, nmap, m, free_face, &qp, cache, qs, err);
+	free(free_face);
 	return rc;
 }
 
@@ -1183,8 +1163,8 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
                        const unsigned char *tight, int may_pin, unsigned char *pin,
-                       unsigned char *unclean, size_t *npinned, struct fct_planar_stats *st,
-                       struct fct_err *err)
+                       unsigned char *unclean, size_t *npinned, struct fct_free_cache *cache,
+                       struct fct_planar_stats *st, struct fct_err *err)
 {
 	struct fct_chains c;
 	memset(&c, 0, sizeof c);
@@ -1237,7 +1217,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 			break;
 		}
 	}
-	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
+	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, cache, &st->qem, err))
 		goto out;
 	for (size_t i = 0; i < nmap; i++)
 		alive[vmap[i]] = 1;
@@ -1353,6 +1333,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t *nfaces = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
+	struct fct_free_cache cache;
+	memset(&cache, 0, sizeof cache);
 	int present = 0, rc = -1;
 	double input_spacing = 0;
 	st->vertices_in = m->nv, st->faces_in = m->nf;
@@ -1409,7 +1391,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		fct_mesh_init(&w);
 		size_t more = 0;
 		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
-		                may_tighten, pin, unclean, &more, st, err))
+		                may_tighten, pin, unclean, &more, &cache, st, err))
 			goto out;
 		st->pinned += more;
 		/* Unclean: a large patch's outline is tightened (halved, then
@@ -1454,6 +1436,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	rc = 0;
 out:
 	fct_mesh_free(&w);
+	fct_free_cache_free(&cache);
 	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(pin), free(nfaces);
 	return rc;
 }
