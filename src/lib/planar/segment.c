@@ -936,6 +936,53 @@ static int narrow(const struct region *r, double min_extent)
 	return width2 < min_extent * min_extent * noise2;
 }
 
+/* The face pairs of each face, for the rounds below to visit only the
+ * faces next to a change: the pairs of face f are
+ * pairs[start[f] .. start[f + 1]), in increasing order. */
+struct face_pairs {
+	uint32_t *start, *pairs;
+};
+
+static int face_pairs(struct face_pairs *fp, struct seg *S, struct fct_err *err)
+{
+	size_t nf = S->m->nf;
+	fp->start = fct_arena_zeroed(&S->arena, nf + 1, sizeof *fp->start, err);
+	fp->pairs = fct_arena_array(&S->arena, 2 * S->nfpairs + 1, sizeof *fp->pairs, err);
+	if (!fp->start || !fp->pairs)
+		return -1;
+	for (size_t i = 0; i < S->nfpairs; i++)
+		fp->start[S->fpair[i][0] + 1]++, fp->start[S->fpair[i][1] + 1]++;
+	for (size_t f = 0; f < nf; f++)
+		fp->start[f + 1] += fp->start[f];
+	for (size_t i = 0; i < S->nfpairs; i++)
+		for (int side = 0; side < 2; side++)
+			fp->pairs[fp->start[S->fpair[i][side]]++] = (uint32_t)i;
+	for (size_t f = nf; f > 0; f--)
+		fp->start[f] = fp->start[f - 1];
+	fp->start[0] = 0;
+	return 0;
+}
+
+/* The other face of pair i than f. */
+static uint32_t other_face(const struct seg *S, uint32_t i, uint32_t f)
+{
+	return S->fpair[i][0] == f ? S->fpair[i][1] : S->fpair[i][0];
+}
+
+/* Add f and the faces next to it to the list (*n of them), each once a
+ * round: seen[f] == round marks those in it. */
+static void visit(const struct seg *S, const struct face_pairs *fp, uint32_t f, uint32_t round,
+                  uint32_t *seen, uint32_t *list, size_t *n)
+{
+	if (seen[f] != round)
+		seen[f] = round, list[(*n)++] = f;
+	for (uint32_t k = fp->start[f]; k < fp->start[f + 1]; k++) {
+		uint32_t g = other_face(S, fp->pairs[k], f);
+		if (seen[g] != round)
+			seen[g] = round, list[(*n)++] = g;
+	}
+}
+
 /* Grow the patches into the free-form faces their planes fit: in rounds,
  * each free-form face next to a patch joins the neighbouring patch whose
  * plane it is nearest (face_deviation, ties to the lower label) when that
@@ -943,41 +990,56 @@ static int narrow(const struct region *r, double min_extent)
  * boundary to whichever side got there first, and peeling frees some that
  * the plane beside them fits; without this, labels along boundaries
  * alternate and every alternation is a corner of the model.  Stops when a
- * round takes none. */
+ * round takes none.  A face stays free until a neighbour is taken, so after
+ * the first round only the faces next to those taken in the last are
+ * looked at (the choice is the least deviation, whatever the order). */
 static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane *pl,
-                          struct fct_err *err)
+                          const struct face_pairs *fp, struct fct_err *err)
 {
-	size_t nf = S->m->nf;
-	int32_t *best = fct_alloc_array(nf ? nf : 1, sizeof *best, err);
-	double *dev = fct_alloc_array(nf ? nf : 1, sizeof *dev, err);
-	if (!best || !dev) {
-		free(best), free(dev);
+	size_t nf = S->m->nf, n = 0, nt = 0;
+	struct fct_arena ar = { 0 };
+	int32_t *best = fct_arena_array(&ar, nf ? nf : 1, sizeof *best, err);
+	double *dev = fct_arena_array(&ar, nf ? nf : 1, sizeof *dev, err);
+	uint32_t *seen = fct_arena_zeroed(&ar, nf ? nf : 1, sizeof *seen, err);
+	uint32_t *list = fct_arena_array(&ar, nf ? nf : 1, sizeof *list, err);
+	uint32_t *taken = fct_arena_array(&ar, nf ? nf : 1, sizeof *taken, err);
+	if (!best || !dev || !seen || !list || !taken) {
+		fct_arena_free(&ar);
 		return -1;
 	}
-	for (;;) {
-		for (size_t f = 0; f < nf; f++)
-			best[f] = -1, dev[f] = S->p->max_dev;
-		for (size_t i = 0; i < S->nfpairs; i++)
-			for (int side = 0; side < 2; side++) {
-				uint32_t f = S->fpair[i][side], g = S->fpair[i][!side];
-				if (patch[f] >= 0 || patch[g] < 0)
+	for (size_t f = 0; f < nf; f++)
+		list[n++] = (uint32_t)f;
+	for (uint32_t round = 1;; round++) {
+		for (size_t i = 0; i < n; i++)
+			best[list[i]] = -1, dev[list[i]] = S->p->max_dev;
+		for (size_t i = 0; i < n; i++) {
+			uint32_t f = list[i];
+			if (patch[f] >= 0)
+				continue;
+			for (uint32_t k = fp->start[f]; k < fp->start[f + 1]; k++) {
+				uint32_t g = other_face(S, fp->pairs[k], f);
+				if (patch[g] < 0)
 					continue;
 				double d = face_deviation(S, f, &pl[patch[g]]);
 				if (d < dev[f] || (d == dev[f] && best[f] >= 0 && patch[g] < best[f]) ||
 				    (d <= dev[f] && best[f] < 0))
 					best[f] = patch[g], dev[f] = d;
 			}
-		size_t taken = 0;
-		for (size_t f = 0; f < nf; f++)
-			if (best[f] >= 0) {
-				patch[f] = best[f];
-				taken++;
+		}
+		nt = 0;
+		for (size_t i = 0; i < n; i++)
+			if (best[list[i]] >= 0) {
+				patch[list[i]] = best[list[i]];
+				taken[nt++] = list[i];
 			}
-		S->st.grown += taken;
-		if (!taken)
+		S->st.grown += nt;
+		if (!nt)
 			break;
+		n = 0;
+		for (size_t i = 0; i < nt; i++)
+			visit(S, fp, taken[i], round, seen, list, &n);
 	}
-	free(best), free(dev);
+	fct_arena_free(&ar);
 	return 0;
 }
 
@@ -988,28 +1050,36 @@ static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane 
  * boundary runs in teeth on either side of the planes' line, which no
  * model of straight edges can follow; nearer-plane labels put it on the
  * line, to the noise.  A face only moves nearer a plane, so none ends
- * farther from its plane than max_dev. */
+ * farther from its plane than max_dev.  Only where a label changed last
+ * round can one change now: a round looks at the faces that moved and
+ * their neighbours, and weighs a face's neighbours across the pairs with
+ * a face that moved. */
 static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_plane *pl,
-                             struct fct_err *err)
+                             const struct face_pairs *fp, struct fct_err *err)
 {
-	size_t nf = S->m->nf;
-	int32_t *best = fct_alloc_array(nf ? nf : 1, sizeof *best, err);
-	double *dev = fct_alloc_array(nf ? nf : 1, sizeof *dev, err);
-	unsigned char *changed = malloc(nf ? nf : 1);
-	if (!best || !dev || !changed) {
-		free(best), free(dev), free(changed);
-		return fct_fail(err, "out of memory");
+	size_t nf = S->m->nf, n = 0, nc = 0;
+	struct fct_arena ar = { 0 };
+	int32_t *best = fct_arena_array(&ar, nf ? nf : 1, sizeof *best, err);
+	double *dev = fct_arena_array(&ar, nf ? nf : 1, sizeof *dev, err);
+	unsigned char *changed = fct_arena_array(&ar, nf ? nf : 1, 1, err);
+	uint32_t *seen = fct_arena_zeroed(&ar, nf ? nf : 1, sizeof *seen, err);
+	uint32_t *list = fct_arena_array(&ar, nf ? nf : 1, sizeof *list, err);
+	uint32_t *moved = fct_arena_array(&ar, nf ? nf : 1, sizeof *moved, err);
+	if (!best || !dev || !changed || !seen || !list || !moved) {
+		fct_arena_free(&ar);
+		return -1;
 	}
 	memset(changed, 1, nf);
-	for (int round = 0; round < 64; round++) {
-		for (size_t f = 0; f < nf; f++)
-			best[f] = -1;
-		for (size_t i = 0; i < S->nfpairs; i++)
-			for (int side = 0; side < 2; side++) {
-				uint32_t f = S->fpair[i][side], g = S->fpair[i][!side];
-				int32_t a = patch[f], b = patch[g];
-				/* Only where a label changed last round can one change now. */
-				if (a < 0 || b < 0 || a == b || (!changed[f] && !changed[g]))
+	for (size_t f = 0; f < nf; f++)
+		list[n++] = (uint32_t)f, best[f] = -1;
+	for (uint32_t round = 1; round <= 64; round++) {
+		for (size_t i = 0; i < n; i++) {
+			uint32_t f = list[i];
+			int32_t a = patch[f];
+			for (uint32_t k = fp->start[f]; a >= 0 && k < fp->start[f + 1]; k++) {
+				uint32_t g = other_face(S, fp->pairs[k], f);
+				int32_t b = patch[g];
+				if (b < 0 || a == b || (!changed[f] && !changed[g]))
 					continue;
 				if (best[f] < 0) {
 					best[f] = a;
@@ -1019,19 +1089,27 @@ static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_pla
 				if (d < dev[f] || (d == dev[f] && b < best[f]))
 					best[f] = b, dev[f] = d;
 			}
-		size_t moved = 0;
-		for (size_t f = 0; f < nf; f++) {
+		}
+		/* Every face that moved last round is in the list: all are
+		 * decided afresh. */
+		nc = 0;
+		for (size_t i = 0; i < n; i++) {
+			uint32_t f = list[i];
 			changed[f] = best[f] >= 0 && best[f] != patch[f];
 			if (changed[f]) {
 				patch[f] = best[f];
-				moved++;
+				moved[nc++] = f;
 			}
+			best[f] = -1;
 		}
-		S->st.settled += moved;
-		if (!moved)
+		S->st.settled += nc;
+		if (!nc)
 			break;
+		n = 0;
+		for (size_t i = 0; i < nc; i++)
+			visit(S, fp, moved[i], round, seen, list, &n);
 	}
-	free(best), free(dev), free(changed);
+	fct_arena_free(&ar);
 	return 0;
 }
 
@@ -1118,9 +1196,10 @@ static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region
 		if (round == PEEL_ROUNDS || !peel(S, patch, pl))
 			break;
 	}
-	if (S->p->max_dev > 0 && grow_into_free(S, patch, pl, err))
+	struct face_pairs fp;
+	if (face_pairs(&fp, S, err) || (S->p->max_dev > 0 && grow_into_free(S, patch, pl, &fp, err)))
 		return -1;
-	if (settle_boundaries(S, patch, pl, err) || drop_small(S, patch, np, R, map, err))
+	if (settle_boundaries(S, patch, pl, &fp, err) || drop_small(S, patch, np, R, map, err))
 		return -1;
 	/* The guarantee: the planes fitted again to what the patches now hold
 	 * (growing and settling judged faces by the planes before), and every
