@@ -98,6 +98,9 @@ struct seg {
 	int two_sided;           /* no viewpoint: a plane may be seen from both sides */
 	size_t patches;
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
+	const struct region *face;   /* finish: each face's moments (face_moments) */
+	double *vray;            /* finish, fit along the rays without area weights: each
+	                          * vertex's terms of patch_moments' q, or NULL */
 	struct fct_segment_stats st;
 	struct fct_err *err;
 	struct fct_arena arena;  /* the run's scratch, freed at fct_segment's exit */
@@ -827,6 +830,31 @@ static int ray_fit(struct fct_plane *pl, const double q[9], const double o[3])
 	return 1;
 }
 
+/* Each vertex's terms of patch_moments' fit along the rays (unit
+ * weight: no area weighting), computed once for the fits of finish: the
+ * same products in the same order, so the sums come out bit for bit; a
+ * vertex at the viewpoint adds nothing (zeros: the sums start at +0 and
+ * never become -0). */
+static void vertex_ray_terms(double *vray, const struct seg *S)
+{
+	const struct fct_mesh *m = S->m;
+	const double *vp = S->p->viewpoint;
+	for (size_t v = 0; v < m->nv; v++) {
+		double *r = &vray[9 * v], w = 1;
+		const double *p = &m->xyz[3 * v];
+		double u[3] = { p[0] - vp[0], p[1] - vp[1], p[2] - vp[2] };
+		double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+		memset(r, 0, 9 * sizeof *r);
+		if (!(len > 0))
+			continue;
+		u[0] /= len, u[1] /= len, u[2] /= len;
+		double x = w * len * len * len * len * S->wv[v];
+		r[0] = x * u[0] * u[0], r[1] = x * u[1] * u[1], r[2] = x * u[2] * u[2];
+		r[3] = x * u[0] * u[1], r[4] = x * u[1] * u[2], r[5] = x * u[0] * u[2];
+		r[6] = x * u[0] / len, r[7] = x * u[1] / len, r[8] = x * u[2] / len;
+	}
+}
+
 /* The moments of each patch of label (np patches; -1 faces skipped) from
  * its faces: R[np], and ray[9 np] for the fit along the rays when ray is
  * not NULL. */
@@ -841,8 +869,7 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 	for (size_t f = 0; f < m->nf; f++) {
 		if (label[f] < 0)
 			continue;
-		struct region t;
-		face_moments(&t, m, f, S->p->area_weighted, S->wv, S->area_unit);
+		struct region t = S->face[f];
 		struct region *r = &R[label[f]];
 		if (r->n == 0 && r->w == 0)
 			*r = t;
@@ -852,6 +879,14 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 			continue;
 		double *q = &ray[9 * (size_t)label[f]];
 		uint32_t s0 = m->fstart[f], n = m->fstart[f + 1] - s0;
+		if (S->vray) {
+			for (uint32_t k = 0; k < n; k++) {
+				const double *x = &S->vray[9 * (size_t)m->fvert[s0 + k]];
+				for (int i = 0; i < 9; i++)
+					q[i] += x[i];
+			}
+			continue;
+		}
 		double w = S->p->area_weighted && n ? t.n / n : 1;
 		for (uint32_t k = 0; k < n; k++) {
 			const double *p = &m->xyz[3 * (size_t)m->fvert[s0 + k]];
@@ -892,19 +927,16 @@ static void patch_plane(struct fct_plane *pl, const struct region *r, const doub
  * over its corners of their signed distances over their sigma (the
  * distance of its centroid, where the corners' noise is alike).  A face
  * turned away from a two-sided mesh's plane (patch_plane) is on the
- * other side of a board, not on this plane: infinitely far. */
+ * other side of a board, not on this plane: infinitely far (its vector
+ * area from S->face, made once for finish). */
 static double face_deviation(const struct seg *S, size_t f, const struct fct_plane *pl)
 {
 	const struct fct_mesh *m = S->m;
 	uint32_t c0 = m->fstart[f], n = m->fstart[f + 1] - c0;
 	if (n == 0)
 		return 0;
-	if (S->two_sided) {
-		double va[3];
-		face_vector_area(m, f, va);
-		if (turned_away(va, pl->n))
-			return HUGE_VAL;
-	}
+	if (S->two_sided && turned_away(S->face[f].va, pl->n))
+		return HUGE_VAL;
 	double dev = 0;
 	for (uint32_t c = c0; c < c0 + n; c++) {
 		uint32_t v = m->fvert[c];
@@ -1361,6 +1393,16 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 		return -1;
 	for (size_t f = 0; f < nf; f++)
 		patch[f] = (int32_t)find(S->parent, (uint32_t)f);
+	/* The patches' moments are done with: their memory holds each face's
+	 * from now on, for the fits to sum. */
+	for (size_t f = 0; f < nf; f++)
+		face_moments(&S->region[f], S->m, f, S->p->area_weighted, S->wv, S->area_unit);
+	S->face = S->region;
+	if (S->p->use_viewpoint && !S->p->area_weighted) {
+		if (!(S->vray = fct_arena_array(&S->arena, 9 * (S->m->nv ? S->m->nv : 1), sizeof *S->vray, err)))
+			return -1;
+		vertex_ray_terms(S->vray, S);
+	}
 	size_t np = renumber(patch, nf, map);
 	struct region *R = fct_arena_array(&S->arena, np ? np : 1, sizeof *R, err);
 	double *ray = S->p->use_viewpoint
