@@ -1153,6 +1153,55 @@ static void crease_tolerances(double *tol, const struct fct_chains *c, const str
 	}
 }
 
+/* What the rounds of fct_planar_model carry from one to the next: the
+ * mesh's adjacency (the mesh stays the same), the chains of the last
+ * labelling with that labelling (a round that only pins or tightens keeps
+ * it), the free-form decimation's pieces. */
+struct rounds {
+	struct fct_adj adj;
+	int have_adj;
+	struct fct_chains chains;
+	int32_t *patch;
+	struct fct_free_cache free;
+};
+
+static void rounds_free(struct rounds *r)
+{
+	if (r->have_adj)
+		fct_adj_free(&r->adj);
+	fct_chains_free(&r->chains);
+	free(r->patch);
+	fct_free_cache_free(&r->free);
+}
+
+/* The chains of m's labelling patch (fct_chains_extract), from r when
+ * the labelling is the last round's. */
+static int extract_chains(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                          struct rounds *r, struct fct_err *err)
+{
+	if (r->patch && (!m->nf || !memcmp(r->patch, patch, m->nf * sizeof *patch)))
+		return fct_chains_copy(c, &r->chains, err);
+	if (!r->have_adj) {
+		if (fct_adj_build(&r->adj, m, err))
+			return -1;
+		r->have_adj = 1;
+	}
+	if (fct_chains_extract_adj(c, m, &r->adj, patch, err))
+		return -1;
+	fct_chains_free(&r->chains);
+	free(r->patch);
+	if (!(r->patch = fct_alloc_array(m->nf ? m->nf : 1, sizeof *r->patch, err)))
+		return -1;
+	if (m->nf)
+		memcpy(r->patch, patch, m->nf * sizeof *patch);
+	if (fct_chains_copy(&r->chains, c, err)) {
+		free(r->patch);
+		r->patch = NULL;
+		return -1;
+	}
+	return 0;
+}
+
 /* One try at the model from the dense m and its labels: the free-form faces
  * decimated alone, their outline's surviving vertices frozen into the
  * chains, the other chains simplified, each patch triangulated from its
@@ -1163,7 +1212,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
                        const unsigned char *tight, int may_pin, unsigned char *pin,
-                       unsigned char *unclean, size_t *npinned, struct fct_free_cache *cache,
+                       unsigned char *unclean, size_t *npinned, struct rounds *carry,
                        struct fct_planar_stats *st, struct fct_err *err)
 {
 	struct fct_chains c;
@@ -1181,7 +1230,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		fct_fail(err, "out of memory");
 		goto out;
 	}
-	if (fct_chains_extract(&c, m, patch, err))
+	if (extract_chains(&c, m, patch, carry, err))
 		goto out;
 	/* The junctions stay, where the chains meet, and a loop's first point,
 	 * where its wire starts and ends.  So does every point of a chain
@@ -1217,7 +1266,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 			break;
 		}
 	}
-	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, cache, &st->qem, err))
+	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &carry->free, &st->qem, err))
 		goto out;
 	for (size_t i = 0; i < nmap; i++)
 		alive[vmap[i]] = 1;
@@ -1333,8 +1382,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t *nfaces = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
-	struct fct_free_cache cache;
-	memset(&cache, 0, sizeof cache);
+	struct rounds carry;
+	memset(&carry, 0, sizeof carry);
 	int present = 0, rc = -1;
 	double input_spacing = 0;
 	st->vertices_in = m->nv, st->faces_in = m->nf;
@@ -1391,7 +1440,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		fct_mesh_init(&w);
 		size_t more = 0;
 		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
-		                may_tighten, pin, unclean, &more, &cache, st, err))
+		                may_tighten, pin, unclean, &more, &carry, st, err))
 			goto out;
 		st->pinned += more;
 		/* Unclean: a large patch's outline is tightened (halved, then
@@ -1436,7 +1485,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	rc = 0;
 out:
 	fct_mesh_free(&w);
-	fct_free_cache_free(&cache);
+	rounds_free(&carry);
 	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(pin), free(nfaces);
 	return rc;
 }
