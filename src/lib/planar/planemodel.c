@@ -1309,14 +1309,14 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	w->has_faces = 0;
 	while (w->face.nprops)
 		fct_elem_remove(&w->face, w->face.props[0].name);
-	for (size_t i = 0; i < nmap; i++) {
+	for (size_t i = 0; i < nmap; i++)
 		memcpy(w->xyz + 3 * (size_t)vmap[i], F.xyz + 3 * i, sizeof(double[3]));
-		for (size_t j = 0; j < w->vertex.nprops; j++) {
-			struct fct_prop *dst = &w->vertex.props[j];
-			const struct fct_prop *src = fct_elem_find(&F.vertex, dst->name);
-			if (src && src->count_type == FCT_NONE && dst->count_type == FCT_NONE)
+	for (size_t j = 0; j < w->vertex.nprops; j++) {
+		struct fct_prop *dst = &w->vertex.props[j];
+		const struct fct_prop *src = fct_elem_find(&F.vertex, dst->name);
+		if (src && src->count_type == FCT_NONE && dst->count_type == FCT_NONE)
+			for (size_t i = 0; i < nmap; i++)
 				fct_prop_set(dst, vmap[i], fct_prop_get(src, i));
-		}
 	}
 	struct fct_tripatch_params tp;
 	fct_tripatch_params_default(&tp);
