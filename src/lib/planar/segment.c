@@ -100,7 +100,7 @@ struct seg {
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
 	const struct region *face;   /* finish: each face's moments (face_moments) */
 	double *vray;            /* finish, fit along the rays without area weights: each
-	                          * vertex's terms of patch_moments' q, or NULL */
+	                          * vertex's terms of patch_moments' q, or NULL (malloc'd) */
 	struct fct_segment_stats st;
 	struct fct_err *err;
 	struct fct_arena arena;  /* the run's scratch, freed at fct_segment's exit */
@@ -855,6 +855,18 @@ static void vertex_ray_terms(double *vray, const struct seg *S)
 	}
 }
 
+/* S->vray made (fitting along the rays without area weights); -1 when
+ * out of memory. */
+static int ray_terms(struct seg *S, struct fct_err *err)
+{
+	if (!S->p->use_viewpoint || S->p->area_weighted)
+		return 0;
+	if (!(S->vray = fct_alloc_array(9 * (S->m->nv ? S->m->nv : 1), sizeof *S->vray, err)))
+		return -1;
+	vertex_ray_terms(S->vray, S);
+	return 0;
+}
+
 /* The moments of each patch of label (np patches; -1 faces skipped) from
  * its faces: R[np], and ray[9 np] for the fit along the rays when ray is
  * not NULL. */
@@ -975,13 +987,22 @@ struct face_pairs {
 	uint32_t *start, *pairs;
 };
 
+static void face_pairs_free(struct face_pairs *fp)
+{
+	free(fp->start), free(fp->pairs);
+	fp->start = fp->pairs = NULL;
+}
+
 static int face_pairs(struct face_pairs *fp, struct seg *S, struct fct_err *err)
 {
 	size_t nf = S->m->nf;
-	fp->start = fct_arena_zeroed(&S->arena, nf + 1, sizeof *fp->start, err);
-	fp->pairs = fct_arena_array(&S->arena, 2 * S->nfpairs + 1, sizeof *fp->pairs, err);
-	if (!fp->start || !fp->pairs)
+	fp->start = fct_alloc_array(nf + 1, sizeof *fp->start, err);
+	fp->pairs = fct_alloc_array(2 * S->nfpairs + 1, sizeof *fp->pairs, err);
+	if (!fp->start || !fp->pairs) {
+		face_pairs_free(fp);
 		return -1;
+	}
+	memset(fp->start, 0, (nf + 1) * sizeof *fp->start);
 	for (size_t i = 0; i < S->nfpairs; i++)
 		fp->start[S->fpair[i][0] + 1]++, fp->start[S->fpair[i][1] + 1]++;
 	for (size_t f = 0; f < nf; f++)
@@ -1001,18 +1022,51 @@ static uint32_t other_face(const struct seg *S, uint32_t i, uint32_t f)
 	return S->fpair[i][0] == f ? S->fpair[i][1] : S->fpair[i][0];
 }
 
-/* Add f and the faces next to it to the list (*n of them), each once a
- * round: seen[f] == round marks those in it. */
-static void visit(const struct seg *S, const struct face_pairs *fp, uint32_t f, uint32_t round,
-                  uint32_t *seen, uint32_t *list, size_t *n)
+/* The next round's faces: those of list[0 .. n) and their neighbours, each
+ * once, into next; returns how many.  seen: all 0, left so. */
+static size_t next_faces(const struct seg *S, const struct face_pairs *fp, const uint32_t *list,
+                         size_t n, unsigned char *seen, uint32_t *next)
 {
-	if (seen[f] != round)
-		seen[f] = round, list[(*n)++] = f;
-	for (uint32_t k = fp->start[f]; k < fp->start[f + 1]; k++) {
-		uint32_t g = other_face(S, fp->pairs[k], f);
-		if (seen[g] != round)
-			seen[g] = round, list[(*n)++] = g;
+	size_t m = 0;
+	for (size_t i = 0; i < n; i++) {
+		uint32_t f = list[i];
+		if (!seen[f])
+			seen[f] = 1, next[m++] = f;
+		for (uint32_t k = fp->start[f]; k < fp->start[f + 1]; k++) {
+			uint32_t g = other_face(S, fp->pairs[k], f);
+			if (!seen[g])
+				seen[g] = 1, next[m++] = g;
+		}
 	}
+	for (size_t i = 0; i < m; i++)
+		seen[next[i]] = 0;
+	return m;
+}
+
+/* Scratch of the rounds below: the faces of a round (list), of the next
+ * (next), each listed face's choice (best), and a flag per face (seen). */
+struct rounds_scratch {
+	struct fct_arena ar;
+	uint32_t *list, *next;
+	int32_t *best;
+	unsigned char *seen;
+};
+
+static int rounds_scratch(struct rounds_scratch *r, size_t nf, struct fct_err *err)
+{
+	memset(r, 0, sizeof *r);
+	size_t n = nf ? nf : 1;
+	r->list = fct_arena_array(&r->ar, n, sizeof *r->list, err);
+	r->next = fct_arena_array(&r->ar, n, sizeof *r->next, err);
+	r->best = fct_arena_array(&r->ar, n, sizeof *r->best, err);
+	r->seen = fct_arena_zeroed(&r->ar, n, 1, err);
+	if (r->list && r->next && r->best && r->seen) {
+		for (size_t f = 0; f < nf; f++)
+			r->list[f] = (uint32_t)f;
+		return 0;
+	}
+	fct_arena_free(&r->ar);
+	return -1;
 }
 
 /* Grow the patches into the free-form faces their planes fit: in rounds,
@@ -1028,50 +1082,40 @@ static void visit(const struct seg *S, const struct face_pairs *fp, uint32_t f, 
 static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane *pl,
                           const struct face_pairs *fp, struct fct_err *err)
 {
-	size_t nf = S->m->nf, n = 0, nt = 0;
-	struct fct_arena ar = { 0 };
-	int32_t *best = fct_arena_array(&ar, nf ? nf : 1, sizeof *best, err);
-	double *dev = fct_arena_array(&ar, nf ? nf : 1, sizeof *dev, err);
-	uint32_t *seen = fct_arena_zeroed(&ar, nf ? nf : 1, sizeof *seen, err);
-	uint32_t *list = fct_arena_array(&ar, nf ? nf : 1, sizeof *list, err);
-	uint32_t *taken = fct_arena_array(&ar, nf ? nf : 1, sizeof *taken, err);
-	if (!best || !dev || !seen || !list || !taken) {
-		fct_arena_free(&ar);
+	struct rounds_scratch r;
+	if (rounds_scratch(&r, S->m->nf, err))
 		return -1;
-	}
-	for (size_t f = 0; f < nf; f++)
-		list[n++] = (uint32_t)f;
-	for (uint32_t round = 1;; round++) {
-		for (size_t i = 0; i < n; i++)
-			best[list[i]] = -1, dev[list[i]] = S->p->max_dev;
+	size_t n = S->m->nf;
+	for (;;) {
 		for (size_t i = 0; i < n; i++) {
-			uint32_t f = list[i];
-			if (patch[f] >= 0)
-				continue;
-			for (uint32_t k = fp->start[f]; k < fp->start[f + 1]; k++) {
+			uint32_t f = r.list[i];
+			int32_t best = -1;
+			double dev = S->p->max_dev;
+			for (uint32_t k = fp->start[f]; patch[f] < 0 && k < fp->start[f + 1]; k++) {
 				uint32_t g = other_face(S, fp->pairs[k], f);
 				if (patch[g] < 0)
 					continue;
 				double d = face_deviation(S, f, &pl[patch[g]]);
-				if (d < dev[f] || (d == dev[f] && best[f] >= 0 && patch[g] < best[f]) ||
-				    (d <= dev[f] && best[f] < 0))
-					best[f] = patch[g], dev[f] = d;
+				if (d < dev || (d == dev && best >= 0 && patch[g] < best) || (d <= dev && best < 0))
+					best = patch[g], dev = d;
 			}
+			r.best[i] = best;
 		}
-		nt = 0;
+		/* The faces taken, to the front of the list. */
+		size_t nt = 0;
 		for (size_t i = 0; i < n; i++)
-			if (best[list[i]] >= 0) {
-				patch[list[i]] = best[list[i]];
-				taken[nt++] = list[i];
+			if (r.best[i] >= 0) {
+				patch[r.list[i]] = r.best[i];
+				r.list[nt++] = r.list[i];
 			}
 		S->st.grown += nt;
 		if (!nt)
 			break;
-		n = 0;
-		for (size_t i = 0; i < nt; i++)
-			visit(S, fp, taken[i], round, seen, list, &n);
+		n = next_faces(S, fp, r.list, nt, r.seen, r.next);
+		uint32_t *t = r.list;
+		r.list = r.next, r.next = t;
 	}
-	fct_arena_free(&ar);
+	fct_arena_free(&r.ar);
 	return 0;
 }
 
@@ -1089,59 +1133,55 @@ static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane 
 static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_plane *pl,
                              const struct face_pairs *fp, struct fct_err *err)
 {
-	size_t nf = S->m->nf, n = 0, nc = 0;
-	struct fct_arena ar = { 0 };
-	int32_t *best = fct_arena_array(&ar, nf ? nf : 1, sizeof *best, err);
-	double *dev = fct_arena_array(&ar, nf ? nf : 1, sizeof *dev, err);
-	unsigned char *changed = fct_arena_array(&ar, nf ? nf : 1, 1, err);
-	uint32_t *seen = fct_arena_zeroed(&ar, nf ? nf : 1, sizeof *seen, err);
-	uint32_t *list = fct_arena_array(&ar, nf ? nf : 1, sizeof *list, err);
-	uint32_t *moved = fct_arena_array(&ar, nf ? nf : 1, sizeof *moved, err);
-	if (!best || !dev || !changed || !seen || !list || !moved) {
-		fct_arena_free(&ar);
+	size_t nf = S->m->nf, n = nf;
+	struct rounds_scratch r;
+	if (rounds_scratch(&r, nf, err))
+		return -1;
+	unsigned char *changed = fct_arena_array(&r.ar, nf ? nf : 1, 1, err);
+	if (!changed) {
+		fct_arena_free(&r.ar);
 		return -1;
 	}
 	memset(changed, 1, nf);
-	for (size_t f = 0; f < nf; f++)
-		list[n++] = (uint32_t)f, best[f] = -1;
-	for (uint32_t round = 1; round <= 64; round++) {
+	for (int round = 0; round < 64; round++) {
 		for (size_t i = 0; i < n; i++) {
-			uint32_t f = list[i];
-			int32_t a = patch[f];
+			uint32_t f = r.list[i];
+			int32_t a = patch[f], best = -1;
+			double dev = 0;
 			for (uint32_t k = fp->start[f]; a >= 0 && k < fp->start[f + 1]; k++) {
 				uint32_t g = other_face(S, fp->pairs[k], f);
 				int32_t b = patch[g];
 				if (b < 0 || a == b || (!changed[f] && !changed[g]))
 					continue;
-				if (best[f] < 0) {
-					best[f] = a;
-					dev[f] = face_deviation(S, f, &pl[a]);
+				if (best < 0) {
+					best = a;
+					dev = face_deviation(S, f, &pl[a]);
 				}
 				double d = face_deviation(S, f, &pl[b]);
-				if (d < dev[f] || (d == dev[f] && b < best[f]))
-					best[f] = b, dev[f] = d;
+				if (d < dev || (d == dev && b < best))
+					best = b, dev = d;
 			}
+			r.best[i] = best;
 		}
 		/* Every face that moved last round is in the list: all are
-		 * decided afresh. */
-		nc = 0;
+		 * decided afresh; those that move now go to its front. */
+		size_t nc = 0;
 		for (size_t i = 0; i < n; i++) {
-			uint32_t f = list[i];
-			changed[f] = best[f] >= 0 && best[f] != patch[f];
+			uint32_t f = r.list[i];
+			changed[f] = r.best[i] >= 0 && r.best[i] != patch[f];
 			if (changed[f]) {
-				patch[f] = best[f];
-				moved[nc++] = f;
+				patch[f] = r.best[i];
+				r.list[nc++] = f;
 			}
-			best[f] = -1;
 		}
 		S->st.settled += nc;
 		if (!nc)
 			break;
-		n = 0;
-		for (size_t i = 0; i < nc; i++)
-			visit(S, fp, moved[i], round, seen, list, &n);
+		n = next_faces(S, fp, r.list, nc, r.seen, r.next);
+		uint32_t *t = r.list;
+		r.list = r.next, r.next = t;
 	}
-	fct_arena_free(&ar);
+	fct_arena_free(&r.ar);
 	return 0;
 }
 
@@ -1228,10 +1268,20 @@ static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region
 		if (round == PEEL_ROUNDS || !peel(S, patch, pl))
 			break;
 	}
+	/* The ray terms give their memory to the pairs of each face while
+	 * patches grow and settle. */
+	free(S->vray);
+	S->vray = NULL;
 	struct face_pairs fp;
-	if (face_pairs(&fp, S, err) || (S->p->max_dev > 0 && grow_into_free(S, patch, pl, &fp, err)))
+	if (face_pairs(&fp, S, err))
 		return -1;
-	if (settle_boundaries(S, patch, pl, &fp, err) || drop_small(S, patch, np, R, map, err))
+	if ((S->p->max_dev > 0 && grow_into_free(S, patch, pl, &fp, err)) ||
+	    settle_boundaries(S, patch, pl, &fp, err)) {
+		face_pairs_free(&fp);
+		return -1;
+	}
+	face_pairs_free(&fp);
+	if (drop_small(S, patch, np, R, map, err) || ray_terms(S, err))
 		return -1;
 	/* The guarantee: the planes fitted again to what the patches now hold
 	 * (growing and settling judged faces by the planes before), and every
@@ -1398,11 +1448,8 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	for (size_t f = 0; f < nf; f++)
 		face_moments(&S->region[f], S->m, f, S->p->area_weighted, S->wv, S->area_unit);
 	S->face = S->region;
-	if (S->p->use_viewpoint && !S->p->area_weighted) {
-		if (!(S->vray = fct_arena_array(&S->arena, 9 * (S->m->nv ? S->m->nv : 1), sizeof *S->vray, err)))
-			return -1;
-		vertex_ray_terms(S->vray, S);
-	}
+	if (ray_terms(S, err))
+		return -1;
 	size_t np = renumber(patch, nf, map);
 	struct region *R = fct_arena_array(&S->arena, np ? np : 1, sizeof *R, err);
 	double *ray = S->p->use_viewpoint
@@ -1656,6 +1703,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	rc = 0;
 out:
 	free(S.pair);
+	free(S.vray);
 	rh_free(&S.q);
 	fct_arena_free(&S.arena);
 	S.st.seconds = fct_now() - t0;
