@@ -99,8 +99,6 @@ struct seg {
 	size_t patches;
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
 	const struct region *face;   /* finish: each face's moments (face_moments) */
-	double *vray;            /* finish, fit along the rays without area weights: each
-	                          * vertex's terms of patch_moments' q, or NULL (malloc'd) */
 	struct fct_segment_stats st;
 	struct fct_err *err;
 	struct fct_arena arena;  /* the run's scratch, freed at fct_segment's exit */
@@ -830,43 +828,6 @@ static int ray_fit(struct fct_plane *pl, const double q[9], const double o[3])
 	return 1;
 }
 
-/* Each vertex's terms of patch_moments' fit along the rays (unit
- * weight: no area weighting), computed once for the fits of finish: the
- * same products in the same order, so the sums come out bit for bit; a
- * vertex at the viewpoint adds nothing (zeros: the sums start at +0 and
- * never become -0). */
-static void vertex_ray_terms(double *vray, const struct seg *S)
-{
-	const struct fct_mesh *m = S->m;
-	const double *vp = S->p->viewpoint;
-	for (size_t v = 0; v < m->nv; v++) {
-		double *r = &vray[9 * v], w = 1;
-		const double *p = &m->xyz[3 * v];
-		double u[3] = { p[0] - vp[0], p[1] - vp[1], p[2] - vp[2] };
-		double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-		memset(r, 0, 9 * sizeof *r);
-		if (!(len > 0))
-			continue;
-		u[0] /= len, u[1] /= len, u[2] /= len;
-		double x = w * len * len * len * len * S->wv[v];
-		r[0] = x * u[0] * u[0], r[1] = x * u[1] * u[1], r[2] = x * u[2] * u[2];
-		r[3] = x * u[0] * u[1], r[4] = x * u[1] * u[2], r[5] = x * u[0] * u[2];
-		r[6] = x * u[0] / len, r[7] = x * u[1] / len, r[8] = x * u[2] / len;
-	}
-}
-
-/* S->vray made (fitting along the rays without area weights); -1 when
- * out of memory. */
-static int ray_terms(struct seg *S, struct fct_err *err)
-{
-	if (!S->p->use_viewpoint || S->p->area_weighted)
-		return 0;
-	if (!(S->vray = fct_alloc_array(9 * (S->m->nv ? S->m->nv : 1), sizeof *S->vray, err)))
-		return -1;
-	vertex_ray_terms(S->vray, S);
-	return 0;
-}
-
 /* The moments of each patch of label (np patches; -1 faces skipped) from
  * its faces: R[np], and ray[9 np] for the fit along the rays when ray is
  * not NULL. */
@@ -891,14 +852,6 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 			continue;
 		double *q = &ray[9 * (size_t)label[f]];
 		uint32_t s0 = m->fstart[f], n = m->fstart[f + 1] - s0;
-		if (S->vray) {
-			for (uint32_t k = 0; k < n; k++) {
-				const double *x = &S->vray[9 * (size_t)m->fvert[s0 + k]];
-				for (int i = 0; i < 9; i++)
-					q[i] += x[i];
-			}
-			continue;
-		}
 		double w = S->p->area_weighted && n ? t.n / n : 1;
 		for (uint32_t k = 0; k < n; k++) {
 			const double *p = &m->xyz[3 * (size_t)m->fvert[s0 + k]];
@@ -1268,10 +1221,6 @@ static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region
 		if (round == PEEL_ROUNDS || !peel(S, patch, pl))
 			break;
 	}
-	/* The ray terms give their memory to the pairs of each face while
-	 * patches grow and settle. */
-	free(S->vray);
-	S->vray = NULL;
 	struct face_pairs fp;
 	if (face_pairs(&fp, S, err))
 		return -1;
@@ -1281,7 +1230,7 @@ static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region
 		return -1;
 	}
 	face_pairs_free(&fp);
-	if (drop_small(S, patch, np, R, map, err) || ray_terms(S, err))
+	if (drop_small(S, patch, np, R, map, err))
 		return -1;
 	/* The guarantee: the planes fitted again to what the patches now hold
 	 * (growing and settling judged faces by the planes before), and every
@@ -1448,8 +1397,6 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	for (size_t f = 0; f < nf; f++)
 		face_moments(&S->region[f], S->m, f, S->p->area_weighted, S->wv, S->area_unit);
 	S->face = S->region;
-	if (ray_terms(S, err))
-		return -1;
 	size_t np = renumber(patch, nf, map);
 	struct region *R = fct_arena_array(&S->arena, np ? np : 1, sizeof *R, err);
 	double *ray = S->p->use_viewpoint
@@ -1703,7 +1650,6 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	rc = 0;
 out:
 	free(S.pair);
-	free(S.vray);
 	rh_free(&S.q);
 	fct_arena_free(&S.arena);
 	S.st.seconds = fct_now() - t0;
