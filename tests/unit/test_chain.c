@@ -752,6 +752,51 @@ static void test_room(void)
 	fct_mesh_free(&m);
 }
 
+/* Two chains are the same, point for point and side for side. */
+static int same_chains(const struct fct_chains *a, const struct fct_chains *b)
+{
+	if (a->n != b->n || a->mean_edge != b->mean_edge || a->boundary_edges != b->boundary_edges ||
+	    a->junctions != b->junctions || a->loops != b->loops)
+		return 0;
+	size_t np = a->start[a->n];
+	return !memcmp(a->start, b->start, (a->n + 1) * sizeof *a->start) &&
+	       !memcmp(a->vert, b->vert, np * sizeof *a->vert) && !memcmp(a->keep, b->keep, np) &&
+	       !memcmp(a->left, b->left, a->n * sizeof *a->left) &&
+	       !memcmp(a->right, b->right, a->n * sizeof *a->right) && !memcmp(a->closed, b->closed, a->n);
+}
+
+/* Extraction with the caller's adjacency, reused for two labellings, gives
+ * fct_chains_extract's chains; a copy is the same chains, frozen and all. */
+static void test_extract_adj_copy(void)
+{
+	struct fct_mesh m;
+	grid(&m, 0, 0, 40, 24, 0, lab_wiggle, 2);
+	int32_t *patch = NULL;
+	int present = 0;
+	CHECK_INT(fct_patches_get(&m, &patch, &present, 2, &err), 0);
+	struct fct_adj a;
+	CHECK_INT(fct_adj_build(&a, &m, &err), 0);
+	for (int pass = 0; pass < 2; pass++) {
+		if (pass)
+			for (size_t f = 0; f < m.nf; f += 7)
+				patch[f] = -1;
+		struct fct_chains c1, c2, c3;
+		CHECK_INT(fct_chains_extract(&c1, &m, patch, &err), 0);
+		CHECK_INT(fct_chains_extract_adj(&c2, &m, &a, patch, &err), 0);
+		CHECK(c1.n > 2 && same_chains(&c1, &c2));
+		c2.frozen = calloc(c2.n, 1);
+		c2.frozen[1] = 1;
+		c2.keep[c2.start[1] + 1] = 0;
+		CHECK_INT(fct_chains_copy(&c3, &c2, &err), 0);
+		CHECK(same_chains(&c2, &c3) && c3.frozen && c3.frozen[1] == 1 && c3.frozen[0] == 0);
+		CHECK(c3.vert != c2.vert && c3.keep[c3.start[1] + 1] == 0);
+		fct_chains_free(&c1), fct_chains_free(&c2), fct_chains_free(&c3);
+	}
+	fct_adj_free(&a);
+	free(patch);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_conflict_predicate();
@@ -763,5 +808,6 @@ int main(void)
 	test_uneven();
 	test_chain_tolerance();
 	test_room();
+	test_extract_adj_copy();
 	CHECK_DONE();
 }

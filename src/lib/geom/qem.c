@@ -1026,6 +1026,8 @@ void fct_qem_params_default(struct fct_qem_params *p)
 	p->sigma = NULL;
 	p->use_viewpoint = 0;
 	p->viewpoint[0] = p->viewpoint[1] = p->viewpoint[2] = 0;
+	p->use_centre = 0;
+	p->centre[0] = p->centre[1] = p->centre[2] = 0;
 }
 
 /* The squared noise across triangle tv's plane (unit normal n): see qem.h. */
@@ -1174,7 +1176,9 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 			hi[c] = x > hi[c] ? x : hi[c];
 		}
 	double ctr[3] = {0, 0, 0};
-	if (m->nv)
+	if (p->use_centre)
+		memcpy(ctr, p->centre, sizeof ctr);
+	else if (m->nv)
 		for (int c = 0; c < 3; c++)
 			ctr[c] = 0.5 * lo[c] + 0.5 * hi[c];
 
@@ -1277,10 +1281,14 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 
 	for (;;) {
 		size_t before = st->collapses;
+		size_t refused[3] = {st->refused_topology, st->refused_flip, st->refused_error};
 		heap_build(&s);
 		st->passes++;
 		if (run_pass(&s, err))
 			goto out;
+		st->last_refused[0] = st->refused_topology - refused[0];
+		st->last_refused[1] = st->refused_flip - refused[1];
+		st->last_refused[2] = st->refused_error - refused[2];
 		if (s.live <= s.target || st->collapses == before || st->passes >= MAX_PASSES)
 			break;
 	}

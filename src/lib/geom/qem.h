@@ -125,6 +125,9 @@ struct fct_qem_params {
 	const double *sigma;    /* NULL, or each vertex's noise (see above) */
 	int use_viewpoint;      /* with sigma: the samples were measured along rays ... */
 	double viewpoint[3];    /* ... from this point */
+	int use_centre;         /* compute relative to centre, not the bounding box's centre, */
+	double centre[3];       /* so that a piece of a mesh decimated alone (with its
+	                         * vertices in the same order) gets the mesh's results bit for bit */
 };
 
 struct fct_qem_stats {
@@ -136,6 +139,8 @@ struct fct_qem_stats {
 	size_t refused_topology;        /* link condition or border rules */
 	size_t refused_flip;            /* a triangle would turn over or vanish */
 	size_t refused_error;           /* beyond max_error */
+	size_t last_refused[3];         /* topology, flip and error refused in the last pass (what
+	                                 * one more pass, which would collapse nothing, refuses) */
 	size_t passes;                  /* heap builds */
 	size_t holes_closed;
 	size_t corners;                 /* held borders: vertices kept as corners */

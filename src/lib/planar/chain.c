@@ -361,6 +361,49 @@ int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int
 	struct fct_adj a;
 	if (fct_adj_build(&a, m, err))
 		return -1;
+	int rc = fct_chains_extract_adj(c, m, &a, patch, err);
+	fct_adj_free(&a);
+	return rc;
+}
+
+int fct_chains_copy(struct fct_chains *dst, const struct fct_chains *src, struct fct_err *err)
+{
+	*dst = *src;
+	dst->start = NULL, dst->vert = NULL, dst->keep = NULL, dst->left = NULL, dst->right = NULL;
+	dst->closed = NULL, dst->frozen = NULL;
+	size_t n = src->n, np = src->start ? src->start[n] : 0;
+	if (!(dst->start = fct_alloc_array(n + 1, sizeof *dst->start, err)) ||
+	    !(dst->vert = fct_alloc_array(np ? np : 1, sizeof *dst->vert, err)) ||
+	    !(dst->keep = fct_alloc_array(np ? np : 1, 1, err)) ||
+	    !(dst->left = fct_alloc_array(n ? n : 1, sizeof *dst->left, err)) ||
+	    !(dst->right = fct_alloc_array(n ? n : 1, sizeof *dst->right, err)) ||
+	    !(dst->closed = fct_alloc_array(n ? n : 1, 1, err)) ||
+	    (src->frozen && !(dst->frozen = fct_alloc_array(n ? n : 1, 1, err)))) {
+		fct_chains_free(dst);
+		return -1;
+	}
+	dst->start[0] = 0;
+	if (src->start)
+		memcpy(dst->start, src->start, (n + 1) * sizeof *dst->start);
+	if (np) {
+		memcpy(dst->vert, src->vert, np * sizeof *dst->vert);
+		memcpy(dst->keep, src->keep, np);
+	}
+	if (n) {
+		memcpy(dst->left, src->left, n * sizeof *dst->left);
+		memcpy(dst->right, src->right, n * sizeof *dst->right);
+		memcpy(dst->closed, src->closed, n);
+		if (src->frozen)
+			memcpy(dst->frozen, src->frozen, n);
+	}
+	return 0;
+}
+
+int fct_chains_extract_adj(struct fct_chains *c, const struct fct_mesh *m, const struct fct_adj *adj,
+                           const int32_t *patch, struct fct_err *err)
+{
+	memset(c, 0, sizeof *c);
+	struct fct_adj a = *adj;   /* read only */
 	int rc = -1;
 	struct fct_arena ar = { 0 };
 	struct boundary g;
@@ -381,7 +424,6 @@ int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int
 	memset(c->keep, 1, np);
 	rc = 0;
 done:
-	fct_adj_free(&a);
 	free(g.rs.r);
 	fct_arena_free(&ar);
 	if (rc)

@@ -78,6 +78,7 @@
 #include <stdint.h>
 
 #include "core/mesh.h"
+#include "geom/adj.h"
 #include "geom/planes.h"
 
 /* The side label of the outside of the mesh. */
@@ -114,6 +115,13 @@ struct fct_chains {
  * of memory. */
 int fct_chains_extract(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
                        struct fct_err *err);
+/* The same with m's adjacency (fct_adj_build of m) from the caller, who
+ * may extract the chains of several labellings of one mesh with it. */
+int fct_chains_extract_adj(struct fct_chains *c, const struct fct_mesh *m, const struct fct_adj *a,
+                           const int32_t *patch, struct fct_err *err);
+/* dst (initialised here) a copy of src, frozen included; -1 when out of
+ * memory (dst then empty). */
+int fct_chains_copy(struct fct_chains *dst, const struct fct_chains *src, struct fct_err *err);
 
 /* Free what c owns and make it empty; c may be NULL. */
 void fct_chains_free(struct fct_chains *c);

@@ -10,6 +10,7 @@
 #include "io/camera.h"
 #include "io/header.h"
 #include "io/noise.h"
+#include "planar/freedecim.h"
 #include "planar/project.h"
 #include "geom/geom.h"
 #include "geom/polytri.h"
@@ -943,30 +944,20 @@ static double *sample_spacing(const struct fct_mesh *m, const struct fct_camera 
 
 /* The free-form faces of m (patch -1) decimated alone by quadric edge
  * collapse (qem.h) in units of sigma, their borders held and corner[v]
- * kept: into F, whose faces are renumbered to m's vertices; its vertex
- * arrays keep the decimation's numbering, and vmap[i] is m's number of its
- * vertex i (nmap of them). */
+ * kept: into F, whose faces are numbered as m's vertices; its vertex
+ * arrays hold the survivors, and vmap[i] is m's number of its vertex i
+ * (nmap of them).  The pieces that have not changed since the last round
+ * are cache's (freedecim.h). */
 static int decimate_free(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, const struct fct_mesh *m,
                          const int32_t *patch, const double *sigma, const unsigned char *corner,
                          const double *vp, const struct fct_planar_params *p,
-                         struct fct_qem_stats *qs, struct fct_err *err)
+                         struct fct_free_cache *cache, struct fct_qem_stats *qs, struct fct_err *err)
 {
-	size_t nfree = 0;
+	unsigned char *free_face = fct_alloc_array(m->nf ? m->nf : 1, 1, err);
+	if (!free_face)
+		return -1;
 	for (size_t f = 0; f < m->nf; f++)
-		nfree += patch[f] < 0;
-	size_t *keep = fct_alloc_array(nfree ? nfree : 1, sizeof *keep, err);
-	int rc = -1;
-	if (!keep || fct_mesh_copy(F, m, err))
-		goto out;
-	size_t k = 0;
-	for (size_t f = 0; f < m->nf; f++)
-		if (patch[f] < 0)
-			keep[k++] = f;
-	struct fct_prop *idx = fct_elem_add_scalar(&F->vertex, "fct_vertex", FCT_UINT32, err);
-	if (!idx || fct_mesh_gather_faces(F, keep, nfree, err))
-		goto out;
-	for (size_t v = 0; v < F->nv; v++)
-		fct_prop_set(idx, v, (double)v);
+		free_face[f] = patch[f] < 0;
 	struct fct_qem_params qp;
 	fct_qem_params_default(&qp);
 	qp.max_error = p->max_error;
@@ -978,19 +969,8 @@ static int decimate_free(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, cons
 		qp.use_viewpoint = 1;
 		memcpy(qp.viewpoint, vp, sizeof qp.viewpoint);
 	}
-	if (fct_qem_decimate(F, &qp, qs, err))
-		goto out;
-	idx = fct_elem_find(&F->vertex, "fct_vertex");
-	if (!(*vmap = fct_alloc_array(F->nv ? F->nv : 1, sizeof **vmap, err)))
-		goto out;
-	*nmap = F->nv;
-	for (size_t v = 0; v < F->nv; v++)
-		(*vmap)[v] = (uint32_t)fct_prop_get(idx, v);
-	for (size_t c = 0; c < (F->nf ? F->fstart[F->nf] : 0); c++)
-		F->fvert[c] = (*vmap)[F->fvert[c]];
-	rc = 0;
-out:
-	free(keep);
+	int rc = fct_free_decimate(F, vmap, nmap, m, free_face, &qp, cache, qs, err);
+	free(free_face);
 	return rc;
 }
 
@@ -1173,6 +1153,55 @@ static void crease_tolerances(double *tol, const struct fct_chains *c, const str
 	}
 }
 
+/* What the rounds of fct_planar_model carry from one to the next: the
+ * mesh's adjacency (the mesh stays the same), the chains of the last
+ * labelling with that labelling (a round that only pins or tightens keeps
+ * it), the free-form decimation's pieces. */
+struct rounds {
+	struct fct_adj adj;
+	int have_adj;
+	struct fct_chains chains;
+	int32_t *patch;
+	struct fct_free_cache free;
+};
+
+static void rounds_free(struct rounds *r)
+{
+	if (r->have_adj)
+		fct_adj_free(&r->adj);
+	fct_chains_free(&r->chains);
+	free(r->patch);
+	fct_free_cache_free(&r->free);
+}
+
+/* The chains of m's labelling patch (fct_chains_extract), from r when
+ * the labelling is the last round's. */
+static int extract_chains(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
+                          struct rounds *r, struct fct_err *err)
+{
+	if (r->patch && (!m->nf || !memcmp(r->patch, patch, m->nf * sizeof *patch)))
+		return fct_chains_copy(c, &r->chains, err);
+	if (!r->have_adj) {
+		if (fct_adj_build(&r->adj, m, err))
+			return -1;
+		r->have_adj = 1;
+	}
+	if (fct_chains_extract_adj(c, m, &r->adj, patch, err))
+		return -1;
+	fct_chains_free(&r->chains);
+	free(r->patch);
+	if (!(r->patch = fct_alloc_array(m->nf ? m->nf : 1, sizeof *r->patch, err)))
+		return -1;
+	if (m->nf)
+		memcpy(r->patch, patch, m->nf * sizeof *patch);
+	if (fct_chains_copy(&r->chains, c, err)) {
+		free(r->patch);
+		r->patch = NULL;
+		return -1;
+	}
+	return 0;
+}
+
 /* One try at the model from the dense m and its labels: the free-form faces
  * decimated alone, their outline's surviving vertices frozen into the
  * chains, the other chains simplified, each patch triangulated from its
@@ -1183,8 +1212,8 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
                        const unsigned char *tight, int may_pin, unsigned char *pin,
-                       unsigned char *unclean, size_t *npinned, struct fct_planar_stats *st,
-                       struct fct_err *err)
+                       unsigned char *unclean, size_t *npinned, struct rounds *carry,
+                       struct fct_planar_stats *st, struct fct_err *err)
 {
 	struct fct_chains c;
 	memset(&c, 0, sizeof c);
@@ -1201,7 +1230,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		fct_fail(err, "out of memory");
 		goto out;
 	}
-	if (fct_chains_extract(&c, m, patch, err))
+	if (extract_chains(&c, m, patch, carry, err))
 		goto out;
 	/* The junctions stay, where the chains meet, and a loop's first point,
 	 * where its wire starts and ends.  So does every point of a chain
@@ -1237,7 +1266,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 			break;
 		}
 	}
-	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &st->qem, err))
+	if (decimate_free(&F, &vmap, &nmap, m, patch, sigma, corner, vp, p, &carry->free, &st->qem, err))
 		goto out;
 	for (size_t i = 0; i < nmap; i++)
 		alive[vmap[i]] = 1;
@@ -1280,14 +1309,14 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	w->has_faces = 0;
 	while (w->face.nprops)
 		fct_elem_remove(&w->face, w->face.props[0].name);
-	for (size_t i = 0; i < nmap; i++) {
+	for (size_t i = 0; i < nmap; i++)
 		memcpy(w->xyz + 3 * (size_t)vmap[i], F.xyz + 3 * i, sizeof(double[3]));
-		for (size_t j = 0; j < w->vertex.nprops; j++) {
-			struct fct_prop *dst = &w->vertex.props[j];
-			const struct fct_prop *src = fct_elem_find(&F.vertex, dst->name);
-			if (src && src->count_type == FCT_NONE && dst->count_type == FCT_NONE)
+	for (size_t j = 0; j < w->vertex.nprops; j++) {
+		struct fct_prop *dst = &w->vertex.props[j];
+		const struct fct_prop *src = fct_elem_find(&F.vertex, dst->name);
+		if (src && src->count_type == FCT_NONE && dst->count_type == FCT_NONE)
+			for (size_t i = 0; i < nmap; i++)
 				fct_prop_set(dst, vmap[i], fct_prop_get(src, i));
-		}
 	}
 	struct fct_tripatch_params tp;
 	fct_tripatch_params_default(&tp);
@@ -1353,6 +1382,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t *nfaces = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
+	struct rounds carry;
+	memset(&carry, 0, sizeof carry);
 	int present = 0, rc = -1;
 	double input_spacing = 0;
 	st->vertices_in = m->nv, st->faces_in = m->nf;
@@ -1409,7 +1440,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		fct_mesh_init(&w);
 		size_t more = 0;
 		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
-		                may_tighten, pin, unclean, &more, st, err))
+		                may_tighten, pin, unclean, &more, &carry, st, err))
 			goto out;
 		st->pinned += more;
 		/* Unclean: a large patch's outline is tightened (halved, then
@@ -1454,6 +1485,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	rc = 0;
 out:
 	fct_mesh_free(&w);
+	rounds_free(&carry);
 	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(pin), free(nfaces);
 	return rc;
 }

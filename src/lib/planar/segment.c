@@ -98,6 +98,7 @@ struct seg {
 	int two_sided;           /* no viewpoint: a plane may be seen from both sides */
 	size_t patches;
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
+	const struct region *face;   /* finish: each face's moments (face_moments) */
 	struct fct_segment_stats st;
 	struct fct_err *err;
 	struct fct_arena arena;  /* the run's scratch, freed at fct_segment's exit */
@@ -841,8 +842,7 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 	for (size_t f = 0; f < m->nf; f++) {
 		if (label[f] < 0)
 			continue;
-		struct region t;
-		face_moments(&t, m, f, S->p->area_weighted, S->wv, S->area_unit);
+		struct region t = S->face[f];
 		struct region *r = &R[label[f]];
 		if (r->n == 0 && r->w == 0)
 			*r = t;
@@ -892,19 +892,16 @@ static void patch_plane(struct fct_plane *pl, const struct region *r, const doub
  * over its corners of their signed distances over their sigma (the
  * distance of its centroid, where the corners' noise is alike).  A face
  * turned away from a two-sided mesh's plane (patch_plane) is on the
- * other side of a board, not on this plane: infinitely far. */
+ * other side of a board, not on this plane: infinitely far (its vector
+ * area from S->face, made once for finish). */
 static double face_deviation(const struct seg *S, size_t f, const struct fct_plane *pl)
 {
 	const struct fct_mesh *m = S->m;
 	uint32_t c0 = m->fstart[f], n = m->fstart[f + 1] - c0;
 	if (n == 0)
 		return 0;
-	if (S->two_sided) {
-		double va[3];
-		face_vector_area(m, f, va);
-		if (turned_away(va, pl->n))
-			return HUGE_VAL;
-	}
+	if (S->two_sided && turned_away(S->face[f].va, pl->n))
+		return HUGE_VAL;
 	double dev = 0;
 	for (uint32_t c = c0; c < c0 + n; c++) {
 		uint32_t v = m->fvert[c];
@@ -936,6 +933,95 @@ static int narrow(const struct region *r, double min_extent)
 	return width2 < min_extent * min_extent * noise2;
 }
 
+/* The face pairs of each face, for the rounds below to visit only the
+ * faces next to a change: the pairs of face f are
+ * pairs[start[f] .. start[f + 1]), in increasing order. */
+struct face_pairs {
+	uint32_t *start, *pairs;
+};
+
+static void face_pairs_free(struct face_pairs *fp)
+{
+	free(fp->start), free(fp->pairs);
+	fp->start = fp->pairs = NULL;
+}
+
+static int face_pairs(struct face_pairs *fp, struct seg *S, struct fct_err *err)
+{
+	size_t nf = S->m->nf;
+	fp->start = fct_alloc_array(nf + 1, sizeof *fp->start, err);
+	fp->pairs = fct_alloc_array(2 * S->nfpairs + 1, sizeof *fp->pairs, err);
+	if (!fp->start || !fp->pairs) {
+		face_pairs_free(fp);
+		return -1;
+	}
+	memset(fp->start, 0, (nf + 1) * sizeof *fp->start);
+	for (size_t i = 0; i < S->nfpairs; i++)
+		fp->start[S->fpair[i][0] + 1]++, fp->start[S->fpair[i][1] + 1]++;
+	for (size_t f = 0; f < nf; f++)
+		fp->start[f + 1] += fp->start[f];
+	for (size_t i = 0; i < S->nfpairs; i++)
+		for (int side = 0; side < 2; side++)
+			fp->pairs[fp->start[S->fpair[i][side]]++] = (uint32_t)i;
+	for (size_t f = nf; f > 0; f--)
+		fp->start[f] = fp->start[f - 1];
+	fp->start[0] = 0;
+	return 0;
+}
+
+/* The other face of pair i than f. */
+static uint32_t other_face(const struct seg *S, uint32_t i, uint32_t f)
+{
+	return S->fpair[i][0] == f ? S->fpair[i][1] : S->fpair[i][0];
+}
+
+/* The next round's faces: those of list[0 .. n) and their neighbours, each
+ * once, into next; returns how many.  seen: all 0, left so. */
+static size_t next_faces(const struct seg *S, const struct face_pairs *fp, const uint32_t *list,
+                         size_t n, unsigned char *seen, uint32_t *next)
+{
+	size_t m = 0;
+	for (size_t i = 0; i < n; i++) {
+		uint32_t f = list[i];
+		if (!seen[f])
+			seen[f] = 1, next[m++] = f;
+		for (uint32_t k = fp->start[f]; k < fp->start[f + 1]; k++) {
+			uint32_t g = other_face(S, fp->pairs[k], f);
+			if (!seen[g])
+				seen[g] = 1, next[m++] = g;
+		}
+	}
+	for (size_t i = 0; i < m; i++)
+		seen[next[i]] = 0;
+	return m;
+}
+
+/* Scratch of the rounds below: the faces of a round (list), of the next
+ * (next), each listed face's choice (best), and a flag per face (seen). */
+struct rounds_scratch {
+	struct fct_arena ar;
+	uint32_t *list, *next;
+	int32_t *best;
+	unsigned char *seen;
+};
+
+static int rounds_scratch(struct rounds_scratch *r, size_t nf, struct fct_err *err)
+{
+	memset(r, 0, sizeof *r);
+	size_t n = nf ? nf : 1;
+	r->list = fct_arena_array(&r->ar, n, sizeof *r->list, err);
+	r->next = fct_arena_array(&r->ar, n, sizeof *r->next, err);
+	r->best = fct_arena_array(&r->ar, n, sizeof *r->best, err);
+	r->seen = fct_arena_zeroed(&r->ar, n, 1, err);
+	if (r->list && r->next && r->best && r->seen) {
+		for (size_t f = 0; f < nf; f++)
+			r->list[f] = (uint32_t)f;
+		return 0;
+	}
+	fct_arena_free(&r->ar);
+	return -1;
+}
+
 /* Grow the patches into the free-form faces their planes fit: in rounds,
  * each free-form face next to a patch joins the neighbouring patch whose
  * plane it is nearest (face_deviation, ties to the lower label) when that
@@ -943,41 +1029,46 @@ static int narrow(const struct region *r, double min_extent)
  * boundary to whichever side got there first, and peeling frees some that
  * the plane beside them fits; without this, labels along boundaries
  * alternate and every alternation is a corner of the model.  Stops when a
- * round takes none. */
+ * round takes none.  A face stays free until a neighbour is taken, so after
+ * the first round only the faces next to those taken in the last are
+ * looked at (the choice is the least deviation, whatever the order). */
 static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane *pl,
-                          struct fct_err *err)
+                          const struct face_pairs *fp, struct fct_err *err)
 {
-	size_t nf = S->m->nf;
-	int32_t *best = fct_alloc_array(nf ? nf : 1, sizeof *best, err);
-	double *dev = fct_alloc_array(nf ? nf : 1, sizeof *dev, err);
-	if (!best || !dev) {
-		free(best), free(dev);
+	struct rounds_scratch r;
+	if (rounds_scratch(&r, S->m->nf, err))
 		return -1;
-	}
+	size_t n = S->m->nf;
 	for (;;) {
-		for (size_t f = 0; f < nf; f++)
-			best[f] = -1, dev[f] = S->p->max_dev;
-		for (size_t i = 0; i < S->nfpairs; i++)
-			for (int side = 0; side < 2; side++) {
-				uint32_t f = S->fpair[i][side], g = S->fpair[i][!side];
-				if (patch[f] >= 0 || patch[g] < 0)
+		for (size_t i = 0; i < n; i++) {
+			uint32_t f = r.list[i];
+			int32_t best = -1;
+			double dev = S->p->max_dev;
+			for (uint32_t k = fp->start[f]; patch[f] < 0 && k < fp->start[f + 1]; k++) {
+				uint32_t g = other_face(S, fp->pairs[k], f);
+				if (patch[g] < 0)
 					continue;
 				double d = face_deviation(S, f, &pl[patch[g]]);
-				if (d < dev[f] || (d == dev[f] && best[f] >= 0 && patch[g] < best[f]) ||
-				    (d <= dev[f] && best[f] < 0))
-					best[f] = patch[g], dev[f] = d;
+				if (d < dev || (d == dev && best >= 0 && patch[g] < best) || (d <= dev && best < 0))
+					best = patch[g], dev = d;
 			}
-		size_t taken = 0;
-		for (size_t f = 0; f < nf; f++)
-			if (best[f] >= 0) {
-				patch[f] = best[f];
-				taken++;
+			r.best[i] = best;
+		}
+		/* The faces taken, to the front of the list. */
+		size_t nt = 0;
+		for (size_t i = 0; i < n; i++)
+			if (r.best[i] >= 0) {
+				patch[r.list[i]] = r.best[i];
+				r.list[nt++] = r.list[i];
 			}
-		S->st.grown += taken;
-		if (!taken)
+		S->st.grown += nt;
+		if (!nt)
 			break;
+		n = next_faces(S, fp, r.list, nt, r.seen, r.next);
+		uint32_t *t = r.list;
+		r.list = r.next, r.next = t;
 	}
-	free(best), free(dev);
+	fct_arena_free(&r.ar);
 	return 0;
 }
 
@@ -988,50 +1079,62 @@ static int grow_into_free(struct seg *S, int32_t *patch, const struct fct_plane 
  * boundary runs in teeth on either side of the planes' line, which no
  * model of straight edges can follow; nearer-plane labels put it on the
  * line, to the noise.  A face only moves nearer a plane, so none ends
- * farther from its plane than max_dev. */
+ * farther from its plane than max_dev.  Only where a label changed last
+ * round can one change now: a round looks at the faces that moved and
+ * their neighbours, and weighs a face's neighbours across the pairs with
+ * a face that moved. */
 static int settle_boundaries(struct seg *S, int32_t *patch, const struct fct_plane *pl,
-                             struct fct_err *err)
+                             const struct face_pairs *fp, struct fct_err *err)
 {
-	size_t nf = S->m->nf;
-	int32_t *best = fct_alloc_array(nf ? nf : 1, sizeof *best, err);
-	double *dev = fct_alloc_array(nf ? nf : 1, sizeof *dev, err);
-	unsigned char *changed = malloc(nf ? nf : 1);
-	if (!best || !dev || !changed) {
-		free(best), free(dev), free(changed);
-		return fct_fail(err, "out of memory");
+	size_t nf = S->m->nf, n = nf;
+	struct rounds_scratch r;
+	if (rounds_scratch(&r, nf, err))
+		return -1;
+	unsigned char *changed = fct_arena_array(&r.ar, nf ? nf : 1, 1, err);
+	if (!changed) {
+		fct_arena_free(&r.ar);
+		return -1;
 	}
 	memset(changed, 1, nf);
 	for (int round = 0; round < 64; round++) {
-		for (size_t f = 0; f < nf; f++)
-			best[f] = -1;
-		for (size_t i = 0; i < S->nfpairs; i++)
-			for (int side = 0; side < 2; side++) {
-				uint32_t f = S->fpair[i][side], g = S->fpair[i][!side];
-				int32_t a = patch[f], b = patch[g];
-				/* Only where a label changed last round can one change now. */
-				if (a < 0 || b < 0 || a == b || (!changed[f] && !changed[g]))
+		for (size_t i = 0; i < n; i++) {
+			uint32_t f = r.list[i];
+			int32_t a = patch[f], best = -1;
+			double dev = 0;
+			for (uint32_t k = fp->start[f]; a >= 0 && k < fp->start[f + 1]; k++) {
+				uint32_t g = other_face(S, fp->pairs[k], f);
+				int32_t b = patch[g];
+				if (b < 0 || a == b || (!changed[f] && !changed[g]))
 					continue;
-				if (best[f] < 0) {
-					best[f] = a;
-					dev[f] = face_deviation(S, f, &pl[a]);
+				if (best < 0) {
+					best = a;
+					dev = face_deviation(S, f, &pl[a]);
 				}
 				double d = face_deviation(S, f, &pl[b]);
-				if (d < dev[f] || (d == dev[f] && b < best[f]))
-					best[f] = b, dev[f] = d;
+				if (d < dev || (d == dev && b < best))
+					best = b, dev = d;
 			}
-		size_t moved = 0;
-		for (size_t f = 0; f < nf; f++) {
-			changed[f] = best[f] >= 0 && best[f] != patch[f];
+			r.best[i] = best;
+		}
+		/* Every face that moved last round is in the list: all are
+		 * decided afresh; those that move now go to its front. */
+		size_t nc = 0;
+		for (size_t i = 0; i < n; i++) {
+			uint32_t f = r.list[i];
+			changed[f] = r.best[i] >= 0 && r.best[i] != patch[f];
 			if (changed[f]) {
-				patch[f] = best[f];
-				moved++;
+				patch[f] = r.best[i];
+				r.list[nc++] = f;
 			}
 		}
-		S->st.settled += moved;
-		if (!moved)
+		S->st.settled += nc;
+		if (!nc)
 			break;
+		n = next_faces(S, fp, r.list, nc, r.seen, r.next);
+		uint32_t *t = r.list;
+		r.list = r.next, r.next = t;
 	}
-	free(best), free(dev), free(changed);
+	fct_arena_free(&r.ar);
 	return 0;
 }
 
@@ -1118,9 +1221,16 @@ static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region
 		if (round == PEEL_ROUNDS || !peel(S, patch, pl))
 			break;
 	}
-	if (S->p->max_dev > 0 && grow_into_free(S, patch, pl, err))
+	struct face_pairs fp;
+	if (face_pairs(&fp, S, err))
 		return -1;
-	if (settle_boundaries(S, patch, pl, err) || drop_small(S, patch, np, R, map, err))
+	if ((S->p->max_dev > 0 && grow_into_free(S, patch, pl, &fp, err)) ||
+	    settle_boundaries(S, patch, pl, &fp, err)) {
+		face_pairs_free(&fp);
+		return -1;
+	}
+	face_pairs_free(&fp);
+	if (drop_small(S, patch, np, R, map, err))
 		return -1;
 	/* The guarantee: the planes fitted again to what the patches now hold
 	 * (growing and settling judged faces by the planes before), and every
@@ -1282,6 +1392,11 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 		return -1;
 	for (size_t f = 0; f < nf; f++)
 		patch[f] = (int32_t)find(S->parent, (uint32_t)f);
+	/* The patches' moments are done with: their memory holds each face's
+	 * from now on, for the fits to sum. */
+	for (size_t f = 0; f < nf; f++)
+		face_moments(&S->region[f], S->m, f, S->p->area_weighted, S->wv, S->area_unit);
+	S->face = S->region;
 	size_t np = renumber(patch, nf, map);
 	struct region *R = fct_arena_array(&S->arena, np ? np : 1, sizeof *R, err);
 	double *ray = S->p->use_viewpoint
