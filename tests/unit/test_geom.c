@@ -4,6 +4,8 @@
  * fct_fmax against fmax's rules for NaN. */
 #include <math.h>
 
+#include <stdlib.h>
+
 #include "check.h"
 #include "geom/geom.h"
 
@@ -155,8 +157,33 @@ static void test_area(void)
 	CHECK_NEAR(fct_v3_dot(x, y), 14, 0);
 }
 
+/* fct_select_kth against a sort, on arrays with many ties and on runs
+ * sorted either way (where a first-element pivot goes quadratic). */
+static void test_select(void)
+{
+	enum { N = 301 };
+	double a[N], b[N];
+	unsigned x = 12345;
+	for (int pass = 0; pass < 200; pass++) {
+		size_t n = 1 + (size_t)pass % N;
+		for (size_t i = 0; i < n; i++) {
+			x = x * 1103515245u + 12345u;
+			a[i] = pass % 3 == 0 ? (double)(x >> 28) : pass % 3 == 1 ? (double)i : -(double)i;
+		}
+		memcpy(b, a, n * sizeof *a);
+		qsort(b, n, sizeof *b, fct_cmp_double);
+		size_t k = (size_t)pass * 7 % n;
+		double c[N];
+		memcpy(c, a, n * sizeof *a);
+		CHECK(fct_select_kth(c, n, k) == b[k]);
+		memcpy(c, a, n * sizeof *a);
+		CHECK(fct_select_kth(c, n, n / 2) == b[n / 2]);
+	}
+}
+
 int main(void)
 {
+	test_select();
 	test_regions();
 	test_moved();
 	test_segment();

@@ -1,5 +1,6 @@
 /* depthmesh.c - depth images to meshes (see depthmesh.h). */
 #include "depth/depthmesh.h"
+#include "geom/geom.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -138,40 +139,6 @@ static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int 
 	return 0;
 }
 
-/* The value that d[k] would hold were d[0..n) sorted ascending (k < n),
- * d partly reordered: Hoare's selection, linear on average where a sort of
- * the 19200 samples of a 640x480 image took 0.7 ms.  The values are finite. */
-static float select_kth(float *d, size_t n, size_t k)
-{
-	size_t lo = 0, hi = n - 1;
-	while (lo < hi) {
-		float pivot = d[lo + (hi - lo) / 2];
-		size_t i = lo, j = hi;
-		while (i <= j) {
-			while (d[i] < pivot)
-				i++;
-			while (d[j] > pivot)
-				j--;
-			if (i <= j) {
-				float t = d[i];
-				d[i] = d[j], d[j] = t;
-				i++;
-				if (j == 0)
-					break;
-				j--;
-			}
-		}
-		/* d[lo..j] <= pivot <= d[i..hi], and between them equal to it */
-		if (k <= j)
-			hi = j;
-		else if (k >= i)
-			lo = i;
-		else
-			return d[k];
-	}
-	return d[k];
-}
-
 int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
                           const struct fct_camera *cam, const struct fct_depth_params *p)
 {
@@ -180,7 +147,8 @@ int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
 	if (!name || img->channels != 1)
 		return 0;
 	size_t n = 0, cap = ((size_t)img->width / 4 + 1) * ((size_t)img->height / 4 + 1);
-	float *d = malloc(cap * sizeof *d);
+	/* Samples rounded to float: no depth image holds more. */
+	double *d = malloc(cap * sizeof *d);
 	if (!d)
 		return 0;
 	for (int y = 0; y < img->height; y += 4)
@@ -191,7 +159,7 @@ int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
 		}
 	int bad = 0;
 	if (n > 0) {
-		double med = select_kth(d, n, n / 2);
+		double med = fct_select_kth(d, n, n / 2);
 		bad = !(med >= FCT_SENSOR_MIN_DEPTH && med <= FCT_SENSOR_MAX_DEPTH);
 		int integer = img->type != FCT_PIX_F32 || p->scale_float;
 		if (bad && integer && scale != p->depth_scale)

@@ -892,37 +892,6 @@ static int alloc_doubles(double **p, size_t n, size_t k, struct fct_err *err)
 	return *p ? 0 : -1;
 }
 
-/* The k-th smallest of a[0..n) (a is reordered): quickselect with the
- * median of three as pivot. */
-static double select_kth(double *a, size_t n, size_t k)
-{
-	size_t lo = 0, hi = n - 1;
-	while (lo < hi) {
-		size_t mid = lo + (hi - lo) / 2;
-		double x = a[lo], y = a[mid], z = a[hi];
-		double piv = x < y ? (y < z ? y : (x < z ? z : x)) : (x < z ? x : (y < z ? z : y));
-		size_t i = lo, j = hi;
-		while (i <= j) {
-			while (a[i] < piv) i++;
-			while (a[j] > piv) j--;
-			if (i <= j) {
-				double t = a[i]; a[i] = a[j]; a[j] = t;
-				i++;
-				if (j == 0)
-					break;
-				j--;
-			}
-		}
-		if (k <= j)
-			hi = j;
-		else if (k >= i)
-			lo = i;
-		else
-			return a[k];
-	}
-	return a[k];
-}
-
 static int build_neighbours(struct flow *F, struct fct_err *err)
 {
 	const struct fct_adj *A = F->adj;
@@ -1144,7 +1113,7 @@ static int median_edge(const struct fct_adj *adj, const double *x, double *out, 
 		if (isfinite(d))
 			el[nel++] = d;
 	}
-	*out = nel ? select_kth(el, nel, nel / 2) : 0;
+	*out = nel ? fct_select_kth(el, nel, nel / 2) : 0;
 	free(el);
 	return 0;
 }

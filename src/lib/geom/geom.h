@@ -13,6 +13,8 @@
 #ifndef FCT_GEOM_H
 #define FCT_GEOM_H
 
+#include <stddef.h>
+
 static inline void fct_v3_sub(double r[3], const double a[3], const double b[3])
 {
 	r[0] = a[0] - b[0];
@@ -181,5 +183,10 @@ double fct_triangle_area2(const double a[3], const double b[3], const double c[3
 
 /* qsort's comparison of doubles, ascending (NaN not expected). */
 int fct_cmp_double(const void *a, const void *b);
+
+/* The value a[k] would hold were a[0..n) sorted ascending (k < n), a
+ * partly reordered: Hoare's selection with the median of three as pivot,
+ * linear on average (NaN not expected). */
+double fct_select_kth(double *a, size_t n, size_t k);
 
 #endif

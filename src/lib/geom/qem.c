@@ -1148,6 +1148,22 @@ out:
 	return rc;
 }
 
+int fct_qem_centre(double centre[3], const struct fct_mesh *m, struct fct_err *err)
+{
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	for (size_t v = 0; v < m->nv; v++)
+		for (int c = 0; c < 3; c++) {
+			double x = m->xyz[3 * v + (size_t)c];
+			if (!isfinite(x))
+				return fct_fail(err, "vertex %zu: coordinate is not finite", v);
+			lo[c] = x < lo[c] ? x : lo[c];
+			hi[c] = x > hi[c] ? x : hi[c];
+		}
+	for (int c = 0; c < 3; c++)
+		centre[c] = m->nv ? 0.5 * lo[c] + 0.5 * hi[c] : 0;
+	return 0;
+}
+
 int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
                      struct fct_qem_stats *st, struct fct_err *err)
 {
@@ -1166,21 +1182,11 @@ int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
 	s.max_err2 = p->max_error > 0 ? p->max_error * p->max_error : INFINITY;
 	st->vertices_in = m->nv;
 
-	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-	for (size_t v = 0; v < m->nv; v++)
-		for (int c = 0; c < 3; c++) {
-			double x = m->xyz[3 * v + (size_t)c];
-			if (!isfinite(x))
-				return fct_fail(err, "vertex %zu: coordinate is not finite", v);
-			lo[c] = x < lo[c] ? x : lo[c];
-			hi[c] = x > hi[c] ? x : hi[c];
-		}
-	double ctr[3] = {0, 0, 0};
+	double ctr[3];
+	if (fct_qem_centre(ctr, m, err))
+		return -1;
 	if (p->use_centre)
 		memcpy(ctr, p->centre, sizeof ctr);
-	else if (m->nv)
-		for (int c = 0; c < 3; c++)
-			ctr[c] = 0.5 * lo[c] + 0.5 * hi[c];
 
 	if (make_triangles(&s, m, &src, err))
 		goto out;

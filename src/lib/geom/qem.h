@@ -159,4 +159,9 @@ void fct_qem_params_default(struct fct_qem_params *p);
 int fct_qem_decimate(struct fct_mesh *m, const struct fct_qem_params *p,
                      struct fct_qem_stats *st, struct fct_err *err);
 
+/* The point fct_qem_decimate computes relative to without use_centre: the
+ * centre of m's bounding box (the origin for no vertex).  Fails as it does
+ * on a coordinate that is not finite. */
+int fct_qem_centre(double centre[3], const struct fct_mesh *m, struct fct_err *err);
+
 #endif

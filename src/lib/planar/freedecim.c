@@ -2,7 +2,6 @@
  * pieces remembered from the round before (see freedecim.h). */
 #include "planar/freedecim.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,22 +33,12 @@ static int carried(const struct fct_prop *p)
 	return p->count_type == FCT_NONE;
 }
 
-/* The arithmetic centre of the whole mesh, as fct_qem_decimate takes it
- * (failing as it does on a coordinate that is not finite), and every
+/* The centre of the whole mesh, as fct_qem_decimate takes it, and every
  * vertex as m has it. */
 static int cache_init(struct fct_free_cache *c, const struct fct_mesh *m, struct fct_err *err)
 {
-	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-	for (size_t v = 0; v < m->nv; v++)
-		for (int k = 0; k < 3; k++) {
-			double x = m->xyz[3 * v + (size_t)k];
-			if (!isfinite(x))
-				return fct_fail(err, "vertex %zu: coordinate is not finite", v);
-			lo[k] = x < lo[k] ? x : lo[k];
-			hi[k] = x > hi[k] ? x : hi[k];
-		}
-	for (int k = 0; k < 3; k++)
-		c->centre[k] = m->nv ? 0.5 * lo[k] + 0.5 * hi[k] : 0;
+	if (fct_qem_centre(c->centre, m, err))
+		return -1;
 	c->nv = m->nv, c->nf = m->nf;
 	c->nattr = 0;
 	for (size_t j = 0; j < m->vertex.nprops; j++)
