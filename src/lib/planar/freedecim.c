@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/unionfind.h"
+
 /* A piece of the last round: its face count and its decimation's figures. */
 struct fct_free_piece {
 	size_t nfaces;
@@ -69,15 +71,6 @@ static int cache_init(struct fct_free_cache *c, const struct fct_mesh *m, struct
 	return 0;
 }
 
-/* The root of x's set (negative entries are roots), halving the path. */
-static uint32_t root(int32_t *up, uint32_t x)
-{
-	for (; up[x] >= 0; x = (uint32_t)up[x])
-		if (up[up[x]] >= 0)
-			up[x] = up[up[x]];
-	return x;
-}
-
 /* The pieces: vpiece[v] and fpiece[f] (-1 off the free faces), numbered
  * in the order of their first face; their vertices vlist[vstart[k] ..
  * vstart[k + 1]) and faces flist[fstart[k] .. fstart[k + 1]), each in
@@ -91,9 +84,9 @@ static size_t find_pieces(const struct fct_mesh *m, const unsigned char *is_free
 	for (size_t f = 0; f < m->nf; f++) {
 		if (!is_free[f] || m->fstart[f] == m->fstart[f + 1])
 			continue;
-		uint32_t r = root(up, m->fvert[m->fstart[f]]);
+		uint32_t r = fct_uf_root(up, m->fvert[m->fstart[f]]);
 		for (uint32_t i = m->fstart[f] + 1; i < m->fstart[f + 1]; i++) {
-			uint32_t s = root(up, m->fvert[i]);
+			uint32_t s = fct_uf_root(up, m->fvert[i]);
 			if (s == r)
 				continue;
 			if (up[s] < up[r]) {
@@ -110,7 +103,7 @@ static size_t find_pieces(const struct fct_mesh *m, const unsigned char *is_free
 		fpiece[f] = -1;
 		if (!is_free[f] || m->fstart[f] == m->fstart[f + 1])
 			continue;
-		uint32_t r = root(up, m->fvert[m->fstart[f]]);
+		uint32_t r = fct_uf_root(up, m->fvert[m->fstart[f]]);
 		if (vpiece[r] < 0)
 			vpiece[r] = (int32_t)np++;
 		fpiece[f] = vpiece[r];

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/unionfind.h"
 #include "geom/adj.h"
 #include "io/camera.h"
 #include "io/header.h"
@@ -15,18 +16,6 @@
 #include "geom/geom.h"
 #include "geom/polytri.h"
 #include "planar/segment.h"
-
-/* Union-find root of x (negative entries: roots, minus their size). */
-static uint32_t uf_find(int32_t *parent, uint32_t x)
-{
-	while (parent[x] >= 0) {
-		int32_t p = parent[x];
-		if (parent[p] >= 0)
-			parent[x] = parent[p];
-		x = (uint32_t)p;
-	}
-	return x;
-}
 
 /* A patch of at least 1 / LARGE_PATCH of the faces is worth keeping a plane
  * with its outline as sampled rather than made free-form. */
@@ -71,7 +60,7 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 		for (uint32_t i = 0; i < k; i++)
 			for (uint32_t j = i + 1; j < k; j++)
 				if (patch[fs[i]] == patch[fs[j]]) {
-					uint32_t a = uf_find(root, fs[i]), b = uf_find(root, fs[j]);
+					uint32_t a = fct_uf_root(root, fs[i]), b = fct_uf_root(root, fs[j]);
 					if (a != b) {
 						if (root[a] > root[b] || (root[a] == root[b] && a > b)) {
 							uint32_t t = a;
@@ -88,12 +77,12 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
 		uint32_t k = fct_adj_edge_nfaces(&adj, e);
 		if (k == 1)
-			count[uf_find(root, fs[0])]++;
+			count[fct_uf_root(root, fs[0])]++;
 		for (uint32_t i = 0; i < k; i++)
 			for (uint32_t j = 0; j < k; j++) {
 				if (patch[fs[i]] == patch[fs[j]])
 					continue;
-				uint32_t r = uf_find(root, fs[i]);
+				uint32_t r = fct_uf_root(root, fs[i]);
 				if (j == (i + 1) % k)
 					count[r]++;
 				if (host[r] == -2)
@@ -109,7 +98,7 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 	 * would close up when decimated, and the patch's outline would run
 	 * both ways along them. */
 	for (size_t f = 0; f < nf; f++) {
-		uint32_t r = uf_find(root, (uint32_t)f);
+		uint32_t r = fct_uf_root(root, (uint32_t)f);
 		size_t size = (size_t)(-root[r]);
 		if (host[r] >= -1 && (size < min_free || size < SLIVER_WIDTH * (size_t)count[r])) {
 			patch[f] = host[r];

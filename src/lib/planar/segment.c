@@ -21,6 +21,7 @@
 #include "geom/adj.h"
 #include "core/arena.h"
 #include "core/clock.h"
+#include "core/unionfind.h"
 #include "io/noise.h"
 
 /* Around a non-manifold edge of more faces, only consecutive ones are paired. */
@@ -284,17 +285,6 @@ static void face_moments(struct region *r, const struct fct_mesh *m, size_t f, i
 
 /* Union-find -------------------------------------------------------------- */
 
-static uint32_t find(int32_t *parent, uint32_t x)
-{
-	while (parent[x] >= 0) {
-		int32_t p = parent[x];
-		if (parent[p] >= 0)
-			parent[x] = parent[p];   /* path halving */
-		x = (uint32_t)p;
-	}
-	return x;
-}
-
 /* Merge the patches of roots a and b, whose union has the summed squared
  * residual sse; returns the new root (the larger patch's, the lower index
  * on a tie). */
@@ -489,8 +479,8 @@ static void fetch_regions(const struct seg *S, int k)
 	if (k >= q->nfront)
 		return;
 	const uint32_t *pr = S->pair[(uint32_t)q->front[k]];
-	const char *a = (const char *)&S->region[find(S->parent, pr[0])];
-	const char *b = (const char *)&S->region[find(S->parent, pr[1])];
+	const char *a = (const char *)&S->region[fct_uf_root(S->parent, pr[0])];
+	const char *b = (const char *)&S->region[fct_uf_root(S->parent, pr[1])];
 	__builtin_prefetch(a);
 	__builtin_prefetch(a + 64);
 	__builtin_prefetch(b);
@@ -572,7 +562,7 @@ static long grow(struct seg *S, int phase)
 		if (target > 0 && S->patches <= (size_t)target)
 			break;
 		size_t i = (uint32_t)x;
-		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
+		uint32_t a = fct_uf_root(S->parent, S->pair[i][0]), b = fct_uf_root(S->parent, S->pair[i][1]);
 		if (a == b)
 			continue;
 		double sse, cost;
@@ -616,7 +606,7 @@ static void compact(struct seg *S, int sort)
 {
 	size_t n = 0;
 	for (size_t i = 0; i < S->npairs; i++) {
-		uint32_t a = find(S->parent, S->pair[i][0]), b = find(S->parent, S->pair[i][1]);
+		uint32_t a = fct_uf_root(S->parent, S->pair[i][0]), b = fct_uf_root(S->parent, S->pair[i][1]);
 		if (a == b)
 			continue;
 		S->pair[n][0] = a < b ? a : b;
@@ -702,7 +692,7 @@ static void absorb(struct seg *S, uint32_t *best, double *gain)
 		for (size_t x = 0; x < nf; x++) {
 			if (best[x] == UINT32_MAX)
 				continue;
-			uint32_t a = find(S->parent, (uint32_t)x), b = find(S->parent, best[x]);
+			uint32_t a = fct_uf_root(S->parent, (uint32_t)x), b = fct_uf_root(S->parent, best[x]);
 			if (a == b || S->parent[a] <= small)
 				continue;   /* already absorbed, or grown past small */
 			double tr, u = union_sse(&S->region[a], &S->region[b], &tr);
@@ -1391,7 +1381,7 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	if (!map)
 		return -1;
 	for (size_t f = 0; f < nf; f++)
-		patch[f] = (int32_t)find(S->parent, (uint32_t)f);
+		patch[f] = (int32_t)fct_uf_root(S->parent, (uint32_t)f);
 	/* The patches' moments are done with: their memory holds each face's
 	 * from now on, for the fits to sum. */
 	for (size_t f = 0; f < nf; f++)
