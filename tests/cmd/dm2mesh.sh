@@ -227,4 +227,13 @@ if [ -d "$S" ]; then
 	check_num "7-Scenes median sigma (mm)" "$(meshinfo $TMP/k0n.ply | awk '$1 == "sigma_median:" { print 1000 * $2 }')" ">" 5
 fi
 
+
+# Every piece below --min-faces: an empty mesh, with its properties, and
+# status 0 (it failed with an unset message when the properties had no
+# vertices to hold).
+mkscene -q --size 3x2 --fx 3 --noise kinect -o "$TMP/tiny" >/dev/null
+run_case 0 "dm2mesh -v --camera $TMP/tiny/view00.camera --noise $TMP/tiny/view00.noise -o $TMP/tiny.ply $TMP/tiny/view00.depth.pfm"
+check_true "a 3x2 image: its 4 faces are a speck" grep -q "^dm2mesh: speck_faces=4$" "$TMP/err"
+check_true "a 3x2 image: an empty mesh with s t sigma" test "$(meshinfo "$TMP/tiny.ply" | grep -c -E '^(element: vertex 0|element: face 0|property: vertex float (s|t|sigma))$')" = 5
+
 finish

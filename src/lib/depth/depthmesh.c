@@ -83,12 +83,11 @@ double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params
 	return integer && !(p->baseline > 0) ? 1 / p->depth_scale : 0;
 }
 
-/* The float vertex property called name, for the caller to fill; NULL
- * when out of memory. */
-static float *float_property(struct fct_mesh *m, const char *name, struct fct_err *err)
+/* Add the float vertex property called name, for the caller to fill: 0,
+ * or -1 when out of memory. */
+static int add_float_property(struct fct_mesh *m, const char *name, struct fct_err *err)
 {
-	struct fct_prop *p = fct_elem_add_scalar(&m->vertex, name, FCT_FLOAT32, err);
-	return p ? p->data : NULL;
+	return fct_elem_add_scalar(&m->vertex, name, FCT_FLOAT32, err) ? 0 : -1;
 }
 
 /* The vertex properties that come from each vertex's cell (s t, sigma, and
@@ -103,12 +102,15 @@ static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int 
                            struct fct_err *err)
 {
 	float *s = NULL, *t = NULL, *sigma = NULL;
-	if (texcoords && (!float_property(m, "s", err) || !float_property(m, "t", err)))
-		return -1;
-	if (cell_sigma && !(sigma = float_property(m, "sigma", err)))
+	/* A mesh without vertices (every piece too small) has properties
+	 * without data. */
+	if ((texcoords && (add_float_property(m, "s", err) || add_float_property(m, "t", err))) ||
+	    (cell_sigma && add_float_property(m, "sigma", err)))
 		return -1;
 	if (texcoords)   /* adding a property may move the others */
 		s = fct_elem_find(&m->vertex, "s")->data, t = fct_elem_find(&m->vertex, "t")->data;
+	if (cell_sigma)
+		sigma = fct_elem_find(&m->vertex, "sigma")->data;
 	size_t w = (size_t)img->width, j = 0, start = 0, gwz = (size_t)gw, st = (size_t)step;
 	/* per column: s, x^2, z^2 of the ray; per row: t, y^2 */
 	double *tab = fct_alloc_array(3 * gwz + 2 * (size_t)gh, sizeof *tab, err);
