@@ -1,12 +1,14 @@
 /* fuzz_depth - libFuzzer target: any bytes, read as a depth image, meshed
  * through a pinhole or a cylindrical camera of the image's size (dm2mesh's
  * path; every other size with the kinect noise model, and of those every
- * other smoothed first as tsdfuse smooths it), then freed.  A crash, leak,
+ * other smoothed first as tsdfuse smooths it; the size's next bits a depth
+ * code to decode it by first), then freed.  A crash, leak,
  * sanitizer report or huge allocation is a bug. */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
+#include "depth/depthcode.h"
 #include "depth/depthmesh.h"
 #include "depth/depthsmooth.h"
 
@@ -21,7 +23,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		return 0;
 	struct fct_image img;
 	struct fct_err err;
-	if (fct_image_read_stream(&img, f, "fuzz", NULL, &err) == 0) {
+	int read = fct_image_read_stream(&img, f, "fuzz", NULL, &err) == 0;
+	if (read && fct_depth_decode(&img, (unsigned)(size >> 3) & 7, &err)) {
+		fct_image_free(&img);
+		read = 0;
+	}
+	if (read) {
 		struct fct_camera cam = { FCT_CAMERA_PINHOLE, img.width, img.height, 50, 50,
 		                          img.width / 2.0, img.height / 2.0, 0, 0 };
 		if (size & 1)

@@ -52,7 +52,7 @@ static const char usage[] =
 	"      --smooth    smooth shading from vertex normals (default flat)\n"
 	"      --target x,y,z   the point looked at (default the bounding box centre)\n"
 	"      --texture file   the texture image (default the TextureFile comment;\n"
-	"                  PNG, JPEG or PFM; textures at most 2^26 pixels in all)\n"
+	"                  PNG, JPEG, PFM or PPM; textures at most 2^26 pixels in all)\n"
 	"      --title text     a caption in the top-left corner\n"
 	"      --up x,y,z  the direction that points up in the picture (default the\n"
 	"                  camera's up, -y of its frame)\n"

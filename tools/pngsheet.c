@@ -19,7 +19,7 @@ static const char usage[] =
 	"usage: pngsheet [-qv] [-b pixels] [-c columns] [-o file] [--bg r,g,b]\n"
 	"                [--title text] image[=caption] ...\n"
 	"       pngsheet -d tolerance A B\n"
-	"Put PNG, JPEG or PFM pictures side by side on one PNG contact sheet, in\n"
+	"Put PNG, JPEG, PFM or PNM pictures side by side on one PNG contact sheet, in\n"
 	"rows of equal cells, each with its caption (default the file name) below it.\n"
 	"The sheet may have at most 32768 pixels a side and 2^28 in all.\n"
 	"  -b pixels       border between cells and around them (default 8)\n"

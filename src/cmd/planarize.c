@@ -25,8 +25,9 @@
 
 static const char usage[] =
 	"usage: planarize [-aqv] [-o model] [-K fx,fy,cx,cy | name] [--camera file]\n"
-	"                 [--cylindrical f,cy,theta0] [--depth-scale s] [--baseline b]\n"
-	"                 [--focal f] [--doffs d] [--range min,max] [--step n]\n"
+	"                 [--cylindrical f,cy,theta0] [--depth-scale s] [--depth-code c]\n"
+	"                 [--baseline b] [--focal f] [--doffs d] [--range min,max]\n"
+	"                 [--step n]\n"
 	"                 [-j jump] [--max-angle deg] [--noise model | file]\n"
 	"                 [--pose file] [--image file] [-c factor | -n patches]\n"
 	"                 [--area-weighted] [--fit k] [--max-dev k] [--max-rms r]\n"
@@ -34,11 +35,11 @@ static const char usage[] =
 	"                 [--border k] [--max-hole k] [--max-move k] [--min-free k]\n"
 	"                 [--min-piece k] [--min-plane k] [--outline k] [--count n]\n"
 	"                 [--fov deg] [--keep dir] [depth-image | mesh] [image]\n"
-	"Make a concise model of a scene's planes from a depth image (PNG, PFM) and its\n"
-	"co-registered image, or from a mesh (PLY, OBJ), told by content: the depth\n"
-	"meshed (dm2mesh), its faces grouped into planar patches (segplanes), planes\n"
-	"where the surface is planar and a decimated surface elsewhere, one mesh\n"
-	"(planedecim), textured from the image.\n"
+	"Make a concise model of a scene's planes from a depth image (PNG, PGM, PFM)\n"
+	"and its co-registered image, or from a mesh (PLY, OBJ), told by content: the\n"
+	"depth meshed (dm2mesh), its faces grouped into planar patches (segplanes),\n"
+	"planes where the surface is planar and a decimated surface elsewhere, one\n"
+	"mesh (planedecim), textured from the image.\n"
 	"  -a                 write ascii PLY\n"
 	"  -o model           name.obj (with name.mtl) or name.ply (s t, TextureFile);\n"
 	"                     default standard output (PLY)\n"
@@ -50,10 +51,11 @@ static const char usage[] =
 	"                     3-model.ply\n"
 	"The depth image, as dm2mesh(1):\n"
 	"  -K, --camera, --cylindrical\n"
-	"                     the camera (a dataset's name also sets its depth scale\n"
-	"                     and noise model; Middlebury's calib.txt, disparities)\n"
-	"      --depth-scale, --baseline, --focal, --doffs, --range, --step\n"
-	"                     depth units, disparities, depths kept, pixels used\n"
+	"                     the camera (a dataset's name also sets its depth scale,\n"
+	"                     code and noise model; Middlebury's calib.txt, disparities)\n"
+	"      --depth-scale, --depth-code, --baseline, --focal, --doffs, --range, --step\n"
+	"                     depth units and encoding, disparities, depths kept,\n"
+	"                     pixels used\n"
 	"  -j jump, --max-angle deg\n"
 	"                     no face across a depth jump (default 10, and the noise)\n"
 	"      --noise model | file\n"
@@ -207,7 +209,7 @@ static void mesh_read(struct fct_mesh *m, struct fct_camera *cam, const struct o
 		/* The reader takes anything that is not PLY for OBJ: say what else
 		 * the input could have been. */
 		if (strstr(err.msg, "not a PLY or OBJ file"))
-			fct_die(1, "%s: neither a depth image (PNG, JPEG or PFM) nor a mesh (PLY or OBJ)", name);
+			fct_die(1, "%s: neither a depth image (PNG, PGM, JPEG or PFM) nor a mesh (PLY or OBJ)", name);
 		fct_die_err(&err);
 	}
 	if (o->d.first)

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "depth/depthcode.h"
 #include "io/dataset.h"
 #include "fusion/fuse.h"
 #include "cli/fuseopts.h"
@@ -30,7 +31,8 @@
 
 static const char usage[] =
 	"usage: roommodel [-qv] [-o model.obj] [-K fx,fy,cx,cy | name] [--camera file]\n"
-	"                 [--depth-scale s] [--noise model | file] [--smooth px]\n"
+	"                 [--depth-scale s] [--depth-code c] [--noise model | file]\n"
+	"                 [--smooth px]\n"
 	"                 [--poses file ...] [--image file ...] [--max-difference s]\n"
 	"                 [--voxel size] [--trunc n] [--threads n]\n"
 	"                 [-c factor | -n patches] [--area-weighted] [--fit k]\n"
@@ -56,6 +58,7 @@ static const char usage[] =
 	"  -K fx,fy,cx,cy     the camera (or a dataset name, which sets the depth\n"
 	"                     scale and the noise model; a folder names its own)\n"
 	"      --camera file  the camera from a file (see dm2mesh)\n"
+	"      --depth-code c the depth images' encoding (as dm2mesh; default the name's)\n"
 	"      --depth-scale s\n"
 	"                     PNG depth units per metre (default 1000, or the name's)\n"
 	"      --image file   the colour image of each depth image, in their order\n"
@@ -236,6 +239,8 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 		struct fct_image img;
 		if (fct_image_read_file(&img, s->depth[i], NULL, &err))
 			fct_die_err(&err);
+		if (fct_depth_decode(&img, s->dp.code, &err))
+			fct_die_err_at(&err, "%s", s->depth[i]);
 		struct fct_camera cam = s->cam;
 		if (cam.width == 0)
 			cam.width = img.width, cam.height = img.height;

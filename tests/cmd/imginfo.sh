@@ -30,7 +30,7 @@ run_case 0 "cat $D/img_depth.pfm | imginfo" "$TMP/stdin.info"
 run_case 0 "imginfo - <$D/img_depth.pfm" "$TMP/stdin.info"
 
 # Every bad image: status 1 and one line naming the file.
-for f in tests/bad/img_*.png tests/bad/img_*.pfm tests/bad/img_*.jpg; do
+for f in tests/bad/img_*.png tests/bad/img_*.pfm tests/bad/img_*.jpg tests/bad/img_*.pgm; do
 	run_case 1 "imginfo $f" "" "imginfo: $f: "
 done
 # A bad file after a good one still fails, with the good one described.

@@ -1,9 +1,10 @@
-/* test_image.c - PNG and PFM reading and writing: bit-exact round trips,
+/* test_image.c - PNG, PFM and PNM reading, PNG and PFM writing: bit-exact round trips,
  * hand-made PFM bytes, fixtures written by an independent encoder
  * (tests/data/img_gen.py, zlib only), real depth maps checked against values
  * decoded by a separate Python decoder, and the error messages.  JPEG:
  * fixtures from tests/data/jpg_gen.py checked against Pillow's decode (its
- * own libjpeg-turbo) and against colours known by construction. */
+ * own libjpeg-turbo) and against colours known by construction.  PNM:
+ * hand-made bytes in every variant (P2, P3, P5, P6; 8 and 16 bits). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -507,6 +508,54 @@ static void test_real_depth(const struct real_case *rc)
 	fct_image_free(&img);
 }
 
+/* Netpbm by hand: 16-bit binary grey most significant byte first, 8-bit
+ * binary RGB, ASCII grey and RGB with comments, values kept as stored. */
+static void test_pnm_hand_made(void)
+{
+	struct fct_err err;
+	struct fct_image img;
+	enum fct_image_format fmt = FCT_IMAGE_PNG;
+	static const unsigned char p5[] = "P5\n# a comment\n3 1 # after\n65535\n\x07\xd0\xff\xff\x00\x01";
+	CHECK(read_mem(&img, p5, sizeof p5 - 1, &fmt, &err) == 0);
+	CHECK_INT(fmt, FCT_IMAGE_PNM);
+	CHECK_INT(img.width, 3);
+	CHECK_INT(img.height, 1);
+	CHECK_INT(img.channels, 1);
+	CHECK_INT(img.type, FCT_PIX_U16);
+	CHECK_NEAR(fct_image_get(&img, 0, 0, 0), 2000, 0);
+	CHECK_NEAR(fct_image_get(&img, 1, 0, 0), 65535, 0);
+	CHECK_NEAR(fct_image_get(&img, 2, 0, 0), 1, 0);
+	fct_image_free(&img);
+	/* maxval 1023: still two bytes a sample; values not rescaled */
+	static const unsigned char p5b[] = "P5 2 1 1023\n\x03\xff\x00\x07";
+	CHECK(read_mem(&img, p5b, sizeof p5b - 1, NULL, &err) == 0);
+	CHECK_INT(img.type, FCT_PIX_U16);
+	CHECK_NEAR(fct_image_get(&img, 0, 0, 0), 1023, 0);
+	CHECK_NEAR(fct_image_get(&img, 1, 0, 0), 7, 0);
+	fct_image_free(&img);
+	static const unsigned char p6[] = "P6 1 2 255\n\x01\x02\x03\xfa\xfb\xfc";
+	CHECK(read_mem(&img, p6, sizeof p6 - 1, &fmt, &err) == 0);
+	CHECK_INT(fmt, FCT_IMAGE_PNM);
+	CHECK_INT(img.channels, 3);
+	CHECK_INT(img.type, FCT_PIX_U8);
+	CHECK_NEAR(fct_image_get(&img, 0, 0, 2), 3, 0);
+	CHECK_NEAR(fct_image_get(&img, 0, 1, 0), 250, 0);
+	fct_image_free(&img);
+	static const char p2[] = "P2\n2 2\n# maxval next\n4000\n0 1\n3999\t4000\n\n";
+	CHECK(read_mem(&img, p2, sizeof p2 - 1, &fmt, &err) == 0);
+	CHECK_INT(img.type, FCT_PIX_U16);
+	CHECK_NEAR(fct_image_get(&img, 1, 0, 0), 1, 0);
+	CHECK_NEAR(fct_image_get(&img, 0, 1, 0), 3999, 0);
+	CHECK_NEAR(fct_image_get(&img, 1, 1, 0), 4000, 0);
+	fct_image_free(&img);
+	static const char p3[] = "P3 1 1 255 10 20 30";
+	CHECK(read_mem(&img, p3, sizeof p3 - 1, &fmt, &err) == 0);
+	CHECK_INT(img.channels, 3);
+	CHECK_INT(img.type, FCT_PIX_U8);
+	CHECK_NEAR(fct_image_get(&img, 0, 0, 1), 20, 0);
+	fct_image_free(&img);
+}
+
 /* Error messages say where, and nothing is left allocated. */
 static void check_error(const char *bytes, size_t n, const char *want)
 {
@@ -521,7 +570,24 @@ static void check_error(const char *bytes, size_t n, const char *want)
 
 static void test_errors(void)
 {
-	check_error("hello", 5, "mem: not a PNG, JPEG or PFM image");
+	check_error("hello", 5, "mem: not a PNG, JPEG, PFM or PNM image");
+	check_error("P4 1 1\n\x80", 8, "mem: not a PNG, JPEG, PFM or PNM image");
+	check_error("P5 2 1 255\n\x01", 12,
+	            "mem: byte 11: PNM header says 2x1 with 1 channel (2 bytes) but 1 bytes follow");
+	check_error("P5 100000 100000 255\n\x01", 22,
+	            "mem: byte 3: PNM header: image size 100000x100000: more than 2^31 pixels");
+	check_error("P5 2 1 0\n\x01\x01", 11, "mem: byte 7: PNM header: maxval is 0");
+	check_error("P5 2 1 65536\n\x01\x01", 15, "mem: byte 7: PNM header: maxval 65536 is over 65535");
+	check_error("P5 2 1 # no end", 15,
+	            "mem: byte 15: PNM header: unexpected end of file before the maxval");
+	check_error("P5 2 1 100\n\x01\xc8", 13, "mem: byte 12: PNM sample 1 is over the maxval 100");
+	check_error("P5 1 1 1000\n\x03\xe9", 14, "mem: byte 12: PNM sample 0 is over the maxval 1000");
+	check_error("P2 2 1 100 7 101", 16, "mem: byte 13: PNM sample 1 is over the maxval 100");
+	check_error("P2 2 1 100 7 1x", 15, "mem: byte 13: PNM sample 1 \"1x\" is not a number");
+	check_error("P2 2 1 100 7 8 9", 16, "mem: byte 15: PNM: more than the 2 samples of its header");
+	check_error("P2 2 1 100 7   ", 15, "mem: byte 15: PNM header: unexpected end of file before the sample");
+	check_error("P2 3000 3000 100 7 8", 20,
+	            "mem: byte 17: PNM header says 3000x3000 with 1 channel (9000000 samples) but 3 bytes follow");
 	check_error("\x89PNG", 4, "mem: byte 4: PNG signature: unexpected end of file");
 	check_error("Pf\n2 1\n-1\n\0\0\0\0", 14,
 	            "mem: byte 10: PFM header says 2x1 with 1 channel (8 bytes) but 4 bytes follow");
@@ -577,6 +643,8 @@ static void test_bad_files(void)
 		{ "tests/bad/img_bad_crc.png", "byte 33: libpng: IHDR: CRC error" },
 		{ "tests/bad/img_huge_rgba.png", "byte 16: image size 40000x40000 needs" },
 		{ "tests/bad/img_lying.pfm", "byte 14: PFM header says 300x200" },
+		{ "tests/bad/img_lying.pgm", "byte 17: PNM header says 300x200 with 1 channel (120000 bytes)" },
+		{ "tests/bad/img_over_maxval.pgm", "byte 17: PNM sample 3 is over the maxval 255" },
 		{ "tests/bad/img_empty.png", "empty input" },
 		{ "tests/bad/img_jpeg_huge.jpg", "byte 623: image size 60000x60000: more than 2^31" },
 		{ "tests/bad/img_jpeg_lying.jpg", "byte 623: image size 30000x30000: more pixels than "
@@ -605,6 +673,7 @@ int main(void)
 	test_pfm_hand_made();
 	test_pfm_whitespace();
 	test_pfm_round_trips();
+	test_pnm_hand_made();
 	test_fixtures();
 	test_jpeg_fixtures();
 	test_jpeg_real();

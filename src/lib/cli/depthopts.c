@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "depth/depthcode.h"
 #include "io/header.h"
 
 void fct_depth_opts_init(struct fct_depth_opts *o)
@@ -31,6 +32,7 @@ static const char *opt_name(int c)
 	case FCT_DOPT_ANGLE: return "--max-angle";
 	case FCT_DOPT_NOISE: return "--noise";
 	case FCT_DOPT_POSE: return "--pose";
+	case FCT_DOPT_CODE: return "--depth-code";
 	default: return NULL;
 	}
 }
@@ -66,6 +68,13 @@ int fct_depth_opt(struct fct_depth_opts *o, int c, const char *arg)
 	case FCT_DOPT_NOISE: o->noise = arg; break;
 	case FCT_DOPT_POSE: o->pose_file = arg; break;
 	case FCT_DOPT_IMAGE: o->image_file = arg; return 1;
+	case FCT_DOPT_CODE: {
+		struct fct_err err;
+		if (fct_depth_code_parse(arg, &o->depth.code, &err))
+			fct_usage_error("--depth-code: %s", err.msg);
+		o->code_given = 1;
+		break;
+	}
 	default: return 0;
 	}
 	if (!o->first)
@@ -137,8 +146,13 @@ static void resolve_noise(struct fct_depth_opts *o, const struct fct_image *img)
 }
 
 void fct_depth_opts_resolve(struct fct_depth_opts *o, struct fct_camera *cam,
-                            const struct fct_image *img, const char *name)
+                            struct fct_image *img, const char *name)
 {
+	struct fct_err err;
+	if (!o->code_given && o->K)
+		o->depth.code = fct_depth_code_named(o->K);
+	if (fct_depth_decode(img, o->depth.code, &err))
+		fct_die_err_at(&err, "%s", name);
 	fct_depth_opts_camera(o, cam, img->width, img->height, 1);
 	if (o->doffs_given && !(o->depth.baseline > 0))
 		fct_usage_error("--doffs is for disparities and needs --baseline");

@@ -23,7 +23,7 @@
 enum {
 	FCT_DOPT_CAMERA = 0x1000, FCT_DOPT_CYL, FCT_DOPT_SCALE, FCT_DOPT_BASELINE, FCT_DOPT_FOCAL,
 	FCT_DOPT_DOFFS, FCT_DOPT_RANGE, FCT_DOPT_STEP, FCT_DOPT_ANGLE, FCT_DOPT_NOISE, FCT_DOPT_POSE,
-	FCT_DOPT_IMAGE
+	FCT_DOPT_IMAGE, FCT_DOPT_CODE
 };
 
 /* The long options' entries, for a program's struct option table. */
@@ -39,12 +39,13 @@ enum {
 	{"max-angle", required_argument, NULL, FCT_DOPT_ANGLE}, \
 	{"noise", required_argument, NULL, FCT_DOPT_NOISE}, \
 	{"pose", required_argument, NULL, FCT_DOPT_POSE}, \
-	{"image", required_argument, NULL, FCT_DOPT_IMAGE}
+	{"image", required_argument, NULL, FCT_DOPT_IMAGE}, \
+	{"depth-code", required_argument, NULL, FCT_DOPT_CODE}
 
 struct fct_depth_opts {
 	const char *K, *camera_file, *cylindrical, *noise, *pose_file, *image_file;
 	const char *first;         /* the first depth option given, for messages */
-	int scale_given, doffs_given;
+	int scale_given, doffs_given, code_given;
 	double focal;              /* --focal (0: the camera's) */
 	int has_pose;
 	double pose[12];           /* --pose, read by fct_depth_opts_read_pose */
@@ -76,13 +77,15 @@ void fct_depth_opts_read_pose(struct fct_depth_opts *o);
 void fct_depth_opts_camera(struct fct_depth_opts *o, struct fct_camera *cam, int width, int height,
                            int required);
 
-/* For the depth image img (named name in messages): the camera (required),
+/* For the depth image img (named name in messages): decoded by --depth-code
+ * (else the code -K's dataset name implies; exit 1 when img cannot be so
+ * decoded), the camera (required),
  * the focal length of disparities (--doffs without them is a usage error),
  * the noise model (--noise's, else the dataset's for a camera name) with the
  * unit of img's depth encoding; a warning when img's depths are implausible
  * for a known RGB-D camera (fct_depth_implausible: a wrong depth scale). */
 void fct_depth_opts_resolve(struct fct_depth_opts *o, struct fct_camera *cam,
-                            const struct fct_image *img, const char *name);
+                            struct fct_image *img, const char *name);
 
 /* The mesh made from the options: its vertices moved by the pose (kept as
  * double, o->double_xyz set, when float cannot hold world coordinates to

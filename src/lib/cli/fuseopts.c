@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "depth/depthcode.h"
 #include "io/noise.h"
 
 void fct_fuse_opts_init(struct fct_fuse_opts *o, int argc, double voxel, double voxel_min,
@@ -47,6 +48,13 @@ int fct_fuse_opt(struct fct_fuse_opts *o, int c, const char *arg)
 	case FCT_FOPT_VOXEL: o->voxel = fct_opt_double("--voxel", arg, o->voxel_min, o->voxel_max); break;
 	case FCT_FOPT_TRUNC: o->trunc = fct_opt_double("--trunc", arg, 1, 100); break;
 	case FCT_FOPT_THREADS: o->fp.threads = (int)fct_opt_long("--threads", arg, 0, 64); break;
+	case FCT_FOPT_CODE: {
+		struct fct_err err;
+		if (fct_depth_code_parse(arg, &o->code, &err))
+			fct_usage_error("--depth-code: %s", err.msg);
+		o->code_given = 1;
+		break;
+	}
 	default: return 0;
 	}
 	return 1;
@@ -79,6 +87,7 @@ void fct_fuse_opts_depth(const struct fct_fuse_opts *o, struct fct_camera *cam,
 	dp->texcoords = 0;
 	dp->depth_scale = o->scale_given || !(named_scale > 0) ? o->depth_scale : named_scale;
 	dp->scale_float = o->scale_given;
+	dp->code = o->code_given ? o->code : fct_depth_code_named(o->K);
 	dp->focal = cam->fx;
 	/* The noise: --noise's (a model, or a file holding one), else the one
 	 * -K's dataset name implies; none without. */

@@ -23,7 +23,8 @@
  * depthopts.h's. */
 enum {
 	FCT_FOPT_CAMERA = 0x1100, FCT_FOPT_SCALE, FCT_FOPT_NOISE, FCT_FOPT_SMOOTH, FCT_FOPT_POSES,
-	FCT_FOPT_IMAGE, FCT_FOPT_MAXDIFF, FCT_FOPT_VOXEL, FCT_FOPT_TRUNC, FCT_FOPT_THREADS
+	FCT_FOPT_IMAGE, FCT_FOPT_MAXDIFF, FCT_FOPT_VOXEL, FCT_FOPT_TRUNC, FCT_FOPT_THREADS,
+	FCT_FOPT_CODE
 };
 
 /* The long options' entries, for a program's struct option table. */
@@ -37,14 +38,16 @@ enum {
 	{"max-difference", required_argument, NULL, FCT_FOPT_MAXDIFF}, \
 	{"voxel", required_argument, NULL, FCT_FOPT_VOXEL}, \
 	{"trunc", required_argument, NULL, FCT_FOPT_TRUNC}, \
-	{"threads", required_argument, NULL, FCT_FOPT_THREADS}
+	{"threads", required_argument, NULL, FCT_FOPT_THREADS}, \
+	{"depth-code", required_argument, NULL, FCT_FOPT_CODE}
 
 struct fct_fuse_opts {
 	const char *K, *camera, *noise;
 	const char **poses, **images;   /* --poses and --image files, in order */
 	size_t nposes, nimages;
-	int scale_given;
+	int scale_given, code_given;
 	double depth_scale;             /* --depth-scale (default 1000) */
+	unsigned code;                  /* --depth-code (depthcode.h) */
 	double voxel, voxel_min, voxel_max;   /* --voxel and its bounds */
 	double trunc;                   /* --trunc: the band in voxels (default 3) */
 	double max_diff;                /* --max-difference (default 0.02 s) */
@@ -70,7 +73,7 @@ void fct_fuse_opts_check(struct fct_fuse_opts *o);
 
 /* The depth images' camera (-K or --camera; kind NONE without either) and
  * depth parameters: units (--depth-scale, else -K's dataset's, else 1000 per
- * metre), focal length, no texture coordinates, the noise (--noise's model
+ * metre), depth code (--depth-code, else -K's dataset's), focal length, no texture coordinates, the noise (--noise's model
  * or file, else -K's dataset's, else none).  stereo (may be NULL): a stereo
  * calibration's baseline and doffs, for the program to apply. */
 void fct_fuse_opts_depth(const struct fct_fuse_opts *o, struct fct_camera *cam,

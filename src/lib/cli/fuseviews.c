@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "depth/depthcode.h"
 #include "geom/geom.h"
 #include "io/header.h"
 #include "io/meshio.h"
@@ -114,6 +115,8 @@ static void load_depth_image(struct fct_fuse_input *L, const struct fct_fuse_vie
 	struct fct_image img;
 	if (fct_image_read_file(&img, path, NULL, &err))
 		fct_die_err(&err);
+	if (fct_depth_decode(&img, vs->dp->code, &err))
+		fct_die_err_at(&err, "%s", path);
 	struct fct_camera cam = *vs->dcam;
 	if (cam.width == 0)
 		cam.width = img.width, cam.height = img.height;

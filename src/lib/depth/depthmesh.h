@@ -32,6 +32,7 @@
 #include "io/noise.h"
 
 struct fct_depth_params {
+	unsigned code;            /* depthcode.h's codes, for the reader to decode the image by */
 	double depth_scale;       /* units per metre; default 1000 */
 	int scale_float;          /* apply depth_scale to PFM samples as well */
 	double baseline, focal;   /* baseline > 0: disparity image */

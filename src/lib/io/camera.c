@@ -150,7 +150,8 @@ void fct_camera_format(const struct fct_camera *cam, char *buf, size_t size)
  * calibrations from the dataset page and the ROS default it recommends for
  * the rest; Redwood, PrimeSense/Kinect: Open3D's PrimeSenseDefault;
  * ICL-NUIM: its published K with the y axis pointing down; 7-Scenes: the
- * dataset's approximate depth camera. */
+ * dataset's approximate depth camera; NYU Depth v2: its toolbox's depth
+ * camera (camera_params.m; its raw frames need depth code nyu). */
 static const struct named_camera {
 	const char *name;
 	double fx, fy, cx, cy, scale;
@@ -164,6 +165,7 @@ static const struct named_camera {
 	{ "kinect",     525.0, 525.0, 319.5, 239.5, 1000 },
 	{ "icl-nuim",   481.2, 480.0, 319.5, 239.5, 5000 },
 	{ "7scenes",    585.0, 585.0, 320.0, 240.0, 1000 },
+	{ "nyu",        582.62448, 582.69103, 313.04476, 238.44390, 1000 },
 };
 
 int fct_camera_named(const char *name, struct fct_camera *cam, double *depth_scale)
@@ -204,7 +206,7 @@ const char *fct_camera_known(const struct fct_camera *cam, double not_scale, dou
 
 const char *fct_camera_names(void)
 {
-	return "tum tum1 tum2 tum3 redwood primesense kinect icl-nuim 7scenes";
+	return "tum tum1 tum2 tum3 redwood primesense kinect icl-nuim 7scenes nyu";
 }
 
 char *fct_read_small_text(const char *path, struct fct_err *err)

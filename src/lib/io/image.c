@@ -64,6 +64,7 @@ const char *fct_image_format_name(enum fct_image_format fmt)
 	case FCT_IMAGE_PNG: return "png";
 	case FCT_IMAGE_PFM: return "pfm";
 	case FCT_IMAGE_JPEG: return "jpeg";
+	case FCT_IMAGE_PNM: return "pnm";
 	}
 	abort();
 }
@@ -205,24 +206,33 @@ static int is_space(unsigned char c)
 	return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
 
-/* The next whitespace-separated header token at *pos, copied NUL-terminated
- * into tok (of size cap); *at gets its offset.  Fails at the end of input or
- * on a token too long to be a number. */
-static int pfm_token(const unsigned char *b, size_t len, size_t *pos, char *tok, size_t cap,
-                     size_t *at, const char *name, const char *what, struct fct_err *err)
+/* The next whitespace-separated token of a fmt ("PFM" or "PNM") header at
+ * *pos, copied NUL-terminated into tok (of size cap); *at gets its offset.
+ * With comments, a '#' at a token's start runs to the end of its line
+ * (netpbm's comments).  Fails at the end of input or on a token too long
+ * to be a number. */
+static int header_token(const unsigned char *b, size_t len, size_t *pos, char *tok, size_t cap,
+                        size_t *at, const char *name, const char *fmt, int comments,
+                        const char *what, struct fct_err *err)
 {
 	size_t p = *pos;
-	while (p < len && is_space(b[p]))
-		p++;
+	for (;;) {
+		while (p < len && is_space(b[p]))
+			p++;
+		if (!(comments && p < len && b[p] == '#'))
+			break;
+		while (p < len && b[p] != '\n' && b[p] != '\r')
+			p++;
+	}
 	*at = p;
 	if (p == len)
-		return fct_fail(err, "%s: byte %zu: PFM header: unexpected end of file before the %s",
-		                name, p, what);
+		return fct_fail(err, "%s: byte %zu: %s header: unexpected end of file before the %s",
+		                name, p, fmt, what);
 	size_t n = 0;
 	while (p < len && !is_space(b[p])) {
 		if (n + 1 == cap)
-			return fct_fail(err, "%s: byte %zu: PFM header: the %s is not a number",
-			                name, *at, what);
+			return fct_fail(err, "%s: byte %zu: %s header: the %s is not a number",
+			                name, *at, fmt, what);
 		tok[n++] = (char)b[p++];
 	}
 	tok[n] = 0;
@@ -230,23 +240,23 @@ static int pfm_token(const unsigned char *b, size_t len, size_t *pos, char *tok,
 	return 0;
 }
 
-/* A side of the image: a plain decimal integer in [1, FCT_IMAGE_MAX_SIDE]. */
-static int pfm_side(const char *tok, size_t at, const char *name, const char *what,
-                    long *out, struct fct_err *err)
+/* A plain decimal integer of a fmt header in [1, most]. */
+static int header_count(const char *tok, size_t at, const char *name, const char *fmt,
+                        const char *what, long most, long *out, struct fct_err *err)
 {
 	long v = 0;
 	const char *s = tok;
 	for (; *s >= '0' && *s <= '9'; s++) {
 		v = v * 10 + (*s - '0');
-		if (v > FCT_IMAGE_MAX_SIDE)
-			return fct_fail(err, "%s: byte %zu: PFM header: %s %s is over %d",
-			                name, at, what, tok, FCT_IMAGE_MAX_SIDE);
+		if (v > most)
+			return fct_fail(err, "%s: byte %zu: %s header: %s %s is over %ld",
+			                name, at, fmt, what, tok, most);
 	}
 	if (*s || s == tok)
-		return fct_fail(err, "%s: byte %zu: PFM header: %s \"%s\" is not a positive integer",
-		                name, at, what, tok);
+		return fct_fail(err, "%s: byte %zu: %s header: %s \"%s\" is not a positive integer",
+		                name, at, fmt, what, tok);
 	if (v == 0)
-		return fct_fail(err, "%s: byte %zu: PFM header: %s is 0", name, at, what);
+		return fct_fail(err, "%s: byte %zu: %s header: %s is 0", name, at, fmt, what);
 	*out = v;
 	return 0;
 }
@@ -275,11 +285,11 @@ static int pfm_decode(struct fct_image *img, unsigned char *buf, size_t len, con
 	char tok[64];
 	long w, h;
 	double scale;
-	if (pfm_token(buf, len, &pos, tok, sizeof tok, &wat, name, "width", err) ||
-	    pfm_side(tok, wat, name, "width", &w, err) ||
-	    pfm_token(buf, len, &pos, tok, sizeof tok, &at, name, "height", err) ||
-	    pfm_side(tok, at, name, "height", &h, err) ||
-	    pfm_token(buf, len, &pos, tok, sizeof tok, &at, name, "scale", err))
+	if (header_token(buf, len, &pos, tok, sizeof tok, &wat, name, "PFM", 0, "width", err) ||
+	    header_count(tok, wat, name, "PFM", "width", FCT_IMAGE_MAX_SIDE, &w, err) ||
+	    header_token(buf, len, &pos, tok, sizeof tok, &at, name, "PFM", 0, "height", err) ||
+	    header_count(tok, at, name, "PFM", "height", FCT_IMAGE_MAX_SIDE, &h, err) ||
+	    header_token(buf, len, &pos, tok, sizeof tok, &at, name, "PFM", 0, "scale", err))
 		goto fail;
 	{
 		const char *end = fct_parse_double(tok, &scale);
@@ -338,6 +348,111 @@ static int pfm_decode(struct fct_image *img, unsigned char *buf, size_t len, con
 	img->data = buf;
 	return 0;
 fail:
+	free(buf);
+	memset(img, 0, sizeof *img);
+	return -1;
+}
+
+/* ---- PNM (netpbm) ----------------------------------------------------- */
+
+/* Decode the PGM or PPM in buf (freed here): "P5"/"P6" (binary) or
+ * "P2"/"P3" (ASCII) for grey/RGB, width, height and maxval (1 to 65535)
+ * with '#' comments between them, then the samples: after one whitespace
+ * byte exactly width*height*channels of them in binary, one byte each when
+ * maxval is below 256, else two, most significant first (the format's
+ * order); in ASCII decimal numbers apart, nothing but whitespace after.
+ * Samples keep their values (not rescaled to the type's range) and may not
+ * exceed maxval.  With header_only, img gets the shape and no data. */
+static int pnm_decode(struct fct_image *img, unsigned char *buf, size_t len, const char *name,
+                      size_t max_pixels, int header_only, struct fct_err *err)
+{
+	int ascii = buf[1] == '2' || buf[1] == '3';
+	int channels = buf[1] == '3' || buf[1] == '6' ? 3 : 1;
+	size_t pos = 2, at, wat;
+	char tok[64];
+	long w, h, maxval;
+	unsigned char *data = NULL;
+	if (header_token(buf, len, &pos, tok, sizeof tok, &wat, name, "PNM", 1, "width", err) ||
+	    header_count(tok, wat, name, "PNM", "width", FCT_IMAGE_MAX_SIDE, &w, err) ||
+	    header_token(buf, len, &pos, tok, sizeof tok, &at, name, "PNM", 1, "height", err) ||
+	    header_count(tok, at, name, "PNM", "height", FCT_IMAGE_MAX_SIDE, &h, err) ||
+	    header_token(buf, len, &pos, tok, sizeof tok, &at, name, "PNM", 1, "maxval", err) ||
+	    header_count(tok, at, name, "PNM", "maxval", 65535, &maxval, err))
+		goto fail;
+	enum fct_pix type = maxval < 256 ? FCT_PIX_U8 : FCT_PIX_U16;
+	size_t need, n = (size_t)w * (size_t)h * (size_t)channels;
+	if (image_bytes(w, h, channels, type, &need, err) ||
+	    check_pixels((uint64_t)w, (uint64_t)h, max_pixels, err)) {
+		fct_err_prefix(err, "%s: byte %zu: PNM header", name, wat);
+		goto fail;
+	}
+	if (pos == len) {
+		fct_fail(err, "%s: byte %zu: PNM header: unexpected end of file after the maxval",
+		         name, pos);
+		goto fail;
+	}
+	size_t first = pos + 1;
+	/* A blank and a digit at least per ASCII sample: more samples than
+	 * that cannot be there. */
+	if (ascii ? n > (len - pos) / 2 : len - first != need) {
+		fct_fail(err, "%s: byte %zu: PNM header says %ldx%ld with %d channel%s (%zu %s) "
+		         "but %zu bytes follow", name, first, w, h, channels, channels > 1 ? "s" : "",
+		         ascii ? n : need, ascii ? "samples" : "bytes", len - first);
+		goto fail;
+	}
+	img->width = (int)w;
+	img->height = (int)h;
+	img->channels = channels;
+	img->type = type;
+	if (header_only) {
+		free(buf);
+		return 0;
+	}
+	if (!(data = malloc(need))) {
+		fct_fail(err, "%s: out of memory (%zu bytes for a %ldx%ld image)", name, need, w, h);
+		goto fail;
+	}
+	for (size_t i = 0; i < n; i++) {
+		long v;
+		if (ascii) {
+			if (header_token(buf, len, &pos, tok, sizeof tok, &at, name, "PNM", 0, "sample", err))
+				goto fail;
+			v = 0;
+			const char *c = tok;
+			for (; *c >= '0' && *c <= '9' && v <= maxval; c++)
+				v = v * 10 + (*c - '0');
+			if (*c && v <= maxval) {
+				fct_fail(err, "%s: byte %zu: PNM sample %zu \"%s\" is not a number",
+				         name, at, i, tok);
+				goto fail;
+			}
+		} else {
+			at = first + i * fct_pix_size(type);
+			v = type == FCT_PIX_U8 ? buf[at] : (long)buf[at] << 8 | buf[at + 1];
+		}
+		if (v > maxval) {
+			fct_fail(err, "%s: byte %zu: PNM sample %zu is over the maxval %ld", name, at, i, maxval);
+			goto fail;
+		}
+		if (type == FCT_PIX_U8)
+			data[i] = (unsigned char)v;
+		else
+			((uint16_t *)(void *)data)[i] = (uint16_t)v;
+	}
+	if (ascii) {
+		while (pos < len && is_space(buf[pos]))
+			pos++;
+		if (pos < len) {
+			fct_fail(err, "%s: byte %zu: PNM: more than the %zu samples of its header",
+			         name, pos, n);
+			goto fail;
+		}
+	}
+	free(buf);
+	img->data = data;
+	return 0;
+fail:
+	free(data);
 	free(buf);
 	memset(img, 0, sizeof *img);
 	return -1;
@@ -670,6 +785,9 @@ int fct_image_magic(const unsigned char *head, size_t n)
 	/* SOI, then the first marker's 0xFF. */
 	if (n >= 3 && head[0] == 0xff && head[1] == 0xd8 && head[2] == 0xff)
 		return FCT_IMAGE_JPEG;
+	/* PGM and PPM, binary and ASCII ("P5", "P6", "P2", "P3"). */
+	if (n >= 3 && head[0] == 'P' && strchr("2356", head[1]) && head[1] && is_space(head[2]))
+		return FCT_IMAGE_PNM;
 	return -1;
 }
 
@@ -686,14 +804,15 @@ static int read_image(struct fct_image *img, FILE *f, const char *name, size_t m
 	if (n < sizeof head && ferror(f))
 		return fct_fail(err, "%s: byte %zu: %s", name, n, strerror(errno));
 	if (n == 0)
-		return fct_fail(err, "%s: empty input, not a PNG, JPEG or PFM image", name);
+		return fct_fail(err, "%s: empty input, not a PNG, JPEG, PFM or PNM image", name);
 	int png = !memcmp(head, png_magic, n < 8 ? n : 8);
 	int pfm = fct_image_magic(head, n) == FCT_IMAGE_PFM;
 	int jpeg = fct_image_magic(head, n) == FCT_IMAGE_JPEG;
+	int pnm = fct_image_magic(head, n) == FCT_IMAGE_PNM;
 	if (png && n < 8)
 		return fct_fail(err, "%s: byte %zu: PNG signature: unexpected end of file", name, n);
-	if (!png && !pfm && !jpeg)
-		return fct_fail(err, "%s: not a PNG, JPEG or PFM image", name);
+	if (!png && !pfm && !jpeg && !pnm)
+		return fct_fail(err, "%s: not a PNG, JPEG, PFM or PNM image", name);
 	if (max_pixels > FCT_IMAGE_MAX_PIXELS)
 		max_pixels = FCT_IMAGE_MAX_PIXELS;
 
@@ -705,6 +824,8 @@ static int read_image(struct fct_image *img, FILE *f, const char *name, size_t m
 	int rc;
 	if (pfm) {
 		rc = pfm_decode(img, buf, len, name, max_pixels, header_only, err);
+	} else if (pnm) {
+		rc = pnm_decode(img, buf, len, name, max_pixels, header_only, err);
 	} else if (jpeg) {
 		rc = jpeg_decode(img, buf, len, name, max_pixels, header_only, err);
 		free(buf);
@@ -721,7 +842,7 @@ static int read_image(struct fct_image *img, FILE *f, const char *name, size_t m
 		return -1;
 	}
 	if (fmt)
-		*fmt = pfm ? FCT_IMAGE_PFM : jpeg ? FCT_IMAGE_JPEG : FCT_IMAGE_PNG;
+		*fmt = pfm ? FCT_IMAGE_PFM : pnm ? FCT_IMAGE_PNM : jpeg ? FCT_IMAGE_JPEG : FCT_IMAGE_PNG;
 	return 0;
 }
 

@@ -1,5 +1,5 @@
 /* image.h - raster images: PNG (through libpng) and PFM, read and written;
- * JPEG (through libjpeg-turbo) read.
+ * JPEG (through libjpeg-turbo) and netpbm's PGM and PPM read.
  *
  * An image is a flat array of samples: row-major, top row first, channels
  * interleaved, in the host's byte order, whatever order the file used.
@@ -14,13 +14,16 @@
  * Exif orientation is not applied (RGB-D frames are stored as seen).
  *
  * Reading detects the format from the first bytes, never from the name:
- * the PNG signature, FF D8 FF (JPEG), or "PF"/"Pf" followed by whitespace
- * (PFM, colour/grey).  Nothing is allocated beyond what the input's real
+ * the PNG signature, FF D8 FF (JPEG), "PF"/"Pf" followed by whitespace
+ * (PFM, colour/grey), or "P5", "P6", "P2", "P3" followed by whitespace
+ * (PGM and PPM, binary and ASCII; 16-bit samples most significant byte
+ * first, as the format says; kept as stored, not scaled by the maxval).  Nothing is allocated beyond what the input's real
  * size justifies: a PNG's pixel data may not exceed what its compressed
  * bytes can inflate to, a JPEG may not claim more than 512 pixels per byte
  * of file (one bit per 8x8 block, the least Huffman coding spends; checked
- * before libjpeg allocates), and a PFM's header must match the number of
- * bytes that follow it exactly.  A JPEG that libjpeg warns about (truncated,
+ * before libjpeg allocates), and a PFM's or binary PNM's header must match
+ * the number of bytes that follow it exactly (an ASCII PNM's may not claim
+ * more samples than half its bytes).  A JPEG that libjpeg warns about (truncated,
  * corrupt entropy data) is refused, not filled in with grey.
  *
  * Errors follow err.h: "FILE: byte N: what", with libpng's and libjpeg's
@@ -35,7 +38,7 @@
 
 enum fct_pix { FCT_PIX_U8, FCT_PIX_U16, FCT_PIX_F32 };
 
-enum fct_image_format { FCT_IMAGE_PNG, FCT_IMAGE_PFM, FCT_IMAGE_JPEG };
+enum fct_image_format { FCT_IMAGE_PNG, FCT_IMAGE_PFM, FCT_IMAGE_JPEG, FCT_IMAGE_PNM };
 
 struct fct_image {
 	int width, height;
@@ -52,11 +55,11 @@ struct fct_image {
 size_t fct_pix_size(enum fct_pix type);
 /* "u8", "u16", "f32". */
 const char *fct_pix_name(enum fct_pix type);
-/* "png", "pfm", "jpeg". */
+/* "png", "pfm", "jpeg", "pnm". */
 const char *fct_image_format_name(enum fct_image_format fmt);
 /* The format whose signature the first n bytes of a file start with (a
  * PNG's 8 bytes, or 3: PFM's "Pf"/"PF" and a blank, JPEG's SOI and a
- * marker), or -1. */
+ * marker, PNM's "P2", "P3", "P5" or "P6" and a blank), or -1. */
 int fct_image_magic(const unsigned char *head, size_t n);
 
 /* Number of samples (width*height*channels) of a valid image. */

@@ -56,6 +56,7 @@ int fct_noise_named(const char *camera_name, struct fct_noise *nz)
 		{"tum", 0.0731}, {"tum1", 0.0731}, {"tum2", 0.0731}, {"tum3", 0.0731},
 		{"redwood", FCT_KINECT_BASELINE}, {"primesense", FCT_KINECT_BASELINE},
 		{"kinect", FCT_KINECT_BASELINE}, {"icl-nuim", 0.07506}, {"7scenes", 0.0738},
+		{"nyu", 0.07506},   /* 351.3 / 8 = f b of NYU's raw codes */
 	};
 	for (size_t i = 0; i < sizeof named / sizeof *named; i++)
 		if (!strcmp(camera_name, named[i].name)) {
