@@ -3,8 +3,10 @@
 # segplanes | planedecim with their defaults, beside a quadric edge-collapse
 # decimation (qemdecim) of the same dense mesh to the same face count.
 # Frames: the 20 7-Scenes kitchen frames of ../shared/data/7scenes_redkitchen
-# (dm2mesh -K 7scenes; skipped with a message when absent) and the TUM
-# frame of samples/tum (-K tum).  Distances in mm by meshdist -p -H -s
+# (dm2mesh -K 7scenes; skipped with a message when absent), the TUM frame
+# of samples/tum (-K tum), and the NYU Depth v2 and SUN RGB-D frames of
+# ../shared/data/rgbd_single_frames_formats when there (-K nyu, and -K
+# primesense --depth-code sun: SUN's camera is not recorded with it).  Distances in mm by meshdist -p -H -s
 # 200000 (200000 points spread by area on each surface, seed 1) against the
 # frame's own dense mesh (raw): model->raw mean, p95 and max, raw->model
 # mean; the same for qemdecim.  CPU seconds: each stage's -v cpu_s, one run
@@ -18,7 +20,7 @@ PATH=$FCT_BIN:$PATH
 bench_dir real
 
 kitchen_frames
-# The frames, as "name camera depth-image" lines.
+# The frames, as "name camera depth-image [dm2mesh options]" lines.
 {
 	if [ -n "$kitchen" ]; then
 		for f in "$kitchen"/frame-*.depth.png; do
@@ -27,6 +29,12 @@ kitchen_frames
 		done
 	fi
 	echo "tum tum samples/tum/TUM_depth.png"
+	for o in ../shared/data/rgbd_single_frames_formats /work/shared/data/rgbd_single_frames_formats; do
+		[ -f "$o/NYU_depth.pgm" ] || continue
+		echo "nyu nyu $o/NYU_depth.pgm"
+		echo "sun primesense $o/SUN_depth.png --depth-code sun"
+		break
+	done
 } >"$dir/frames"
 # cpu STAGE FILE: the cpu_s figure of a stage's -v output.
 cpu() { sed -n "s/^$1: cpu_s=//p" "$2"; }
@@ -41,9 +49,10 @@ echo "the planar model on real frames (dm2mesh | segplanes | planedecim, default
 echo "distances in mm to the frame's dense mesh (meshdist -p -H -s 200000); CPU seconds of one run per stage"
 printf '%-7s %6s %5s | %6s %5s %5s %6s | %6s %5s %6s | %6s %6s %6s\n' frame faces red \
 	m2r p95 max r2m Qm2r Qp95 Qr2m dm2mesh seg plane
-while read -r name cam depth; do
+while read -r name cam depth extra; do
 	d=$dir/$name
-	dm2mesh -v -K "$cam" -o "$d.raw.ply" "$depth" 2>"$d.dm.err"
+	# shellcheck disable=SC2086
+	dm2mesh -v -K "$cam" $extra -o "$d.raw.ply" "$depth" 2>"$d.dm.err"
 	if ! segplanes -v -o "$d.seg.ply" "$d.raw.ply" 2>"$d.seg.err" ||
 	   ! planedecim -v -o "$d.model.ply" "$d.seg.ply" 2>"$d.pd.err"; then
 		echo "$name: FAILED: $(tail -n 1 "$d.seg.err") $(tail -n 1 "$d.pd.err" 2>/dev/null)"
@@ -127,7 +136,7 @@ echo "closer to the truth: the 20 kitchen frames fused (tsdfuse -K 7scenes, 1 cm
 echo "each frame in the world frame, model / qemdecim at the same count / dense mesh -> fused, mean and median in mm"
 printf '%-7s %6s | %6s %6s | %6s %6s | %6s %6s\n' frame faces model p50 qem p50 dense p50
 : >"$dir/truth"
-while read -r name cam depth; do
+while read -r name cam depth extra; do
 	[ "$cam" = 7scenes ] || continue
 	d=$dir/w$name
 	dm2mesh -K 7scenes --pose "${depth%.depth.png}.pose.txt" -o "$d.raw.ply" "$depth"
