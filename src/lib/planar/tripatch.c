@@ -10,6 +10,7 @@
 #include "geom/geom.h"
 #include "io/header.h"
 #include "geom/planes.h"
+#include "planar/chain.h"
 
 static void mark_unclean(const struct fct_tripatch_params *p, int32_t patch, size_t nplanes)
 {
@@ -189,6 +190,54 @@ static int add_triangles(struct work *w, const uint32_t *t, size_t n)
 		return -1;
 	memcpy(w->ptri + 3 * w->nptri, t, 3 * n * sizeof *t);
 	w->nptri += n;
+	return 0;
+}
+
+/* One loop edge for flag_crossings: its box and its ends (local ids). */
+struct loop_edge {
+	double x0, x1, y0, y1;
+	uint32_t a, b;
+};
+
+static int loop_edge_cmp(const void *pa, const void *pb)
+{
+	const struct loop_edge *x = pa, *y = pb;
+	if (x->x0 != y->x0)
+		return x->x0 < y->x0 ? -1 : 1;
+	if (x->a != y->a)
+		return x->a < y->a ? -1 : 1;
+	return x->b < y->b ? -1 : x->b > y->b;
+}
+
+/* Flag in p->trouble (global ids) both ends of every loop edge that
+ * crosses, overlaps or runs through a vertex of another edge of the
+ * patch's loops in frame xy (fct_segments_conflict): where polytri refused
+ * them.  A sweep along x over the edges' boxes.  0 or -1. */
+static int flag_crossings(struct work *w, const double *xy, const struct fct_tripatch_params *p)
+{
+	size_t n = w->nlv;
+	struct loop_edge *e = fct_alloc_array(n ? n : 1, sizeof *e, w->err);
+	if (!e)
+		return -1;
+	for (size_t l = 0; l < w->nloops; l++)
+		for (uint32_t k = w->lstart[l]; k < w->lstart[l + 1]; k++) {
+			uint32_t a = w->lvert[k], b = w->lvert[k + 1 < w->lstart[l + 1] ? k + 1 : w->lstart[l]];
+			const double *pa = &xy[2 * (size_t)a], *pb = &xy[2 * (size_t)b];
+			e[k] = (struct loop_edge){ fmin(pa[0], pb[0]), fmax(pa[0], pb[0]),
+			                           fmin(pa[1], pb[1]), fmax(pa[1], pb[1]), a, b };
+		}
+	qsort(e, n, sizeof *e, loop_edge_cmp);
+	for (size_t i = 0; i < n; i++)
+		for (size_t j = i + 1; j < n && e[j].x0 <= e[i].x1; j++) {
+			if (e[j].y0 > e[i].y1 || e[j].y1 < e[i].y0 ||
+			    !fct_segments_conflict(&xy[2 * (size_t)e[i].a], &xy[2 * (size_t)e[i].b],
+			                           &xy[2 * (size_t)e[j].a], &xy[2 * (size_t)e[j].b], e[i].a,
+			                           e[i].b, e[j].a, e[j].b))
+				continue;
+			p->trouble[w->gl[e[i].a]] = p->trouble[w->gl[e[i].b]] = 1;
+			p->trouble[w->gl[e[j].a]] = p->trouble[w->gl[e[j].b]] = 1;
+		}
+	free(e);
 	return 0;
 }
 
@@ -461,6 +510,8 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 			fct_err_prefix(w->err, "patch %ld", (long)patch);
 			return -1;
 		}
+		if (rc == 1 && p->trouble && flag_crossings(w, w->xy[f], p))
+			return -1;
 		if (rc == 0) {
 			done = 1;
 			rc = add_triangles(w, t, nt);
