@@ -140,8 +140,10 @@ struct fct_planar_stats {
 	size_t planar_triangles, free_faces;
 	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
 	size_t rounds, dense_patches;    /* patches whose outline was kept as sampled */
-	size_t pinned;                   /* diagonals found elsewhere whose ends were pinned */
-	size_t tightened;                /* outlines simplified more tightly */
+	size_t pinned;                   /* diagonals found elsewhere (edges of three faces) */
+	size_t mended;                   /* stretches of outline kept as sampled where
+	                                    they crossed */
+	size_t tightened;                /* whole outlines simplified more tightly */
 	size_t unclean_patches;          /* ... and made free-form, still not clean */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
@@ -170,8 +172,13 @@ void fct_planar_params_default(struct fct_planar_params *p);
  *  4. each patch the polygon of its outline, triangulated (tripatch.h), and
  *     the free-form faces beside them: one surface, edge for edge;
  *  5. a patch whose outline does not triangulate cleanly (its loops cross,
- *     or a diagonal would be an edge of three faces) becomes free-form, or
- *     when it holds a fiftieth of the faces or more, keeps its outline as
+ *     or a diagonal would be an edge of three faces) is mended there: the
+ *     simplified segments between the ends of the crossing loop edges, and
+ *     those beside the diagonal's ends, are kept as sampled (the rest of
+ *     its outline stays as simplified, so that where the trouble is, not
+ *     whether there is any, decides the outline); a patch that cannot be
+ *     mended so becomes free-form, or when it holds a fiftieth of the
+ *     faces or more, has its whole outline tightened step by step to as
  *     sampled (and free-form only if even that fails); the model is made
  *     again, until none is left;
  *  6. fct_planes_meet: vertices onto the planes' lines and corners.
