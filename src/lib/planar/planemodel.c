@@ -1075,11 +1075,12 @@ static int chain_tightness(const struct fct_chains *c, size_t i, const unsigned 
 }
 
 /* What tripatch and flag_diagonals flag at a vertex of the outlines
- * (trouble[]): an end of a loop edge that crosses or touches another in a
- * frame where its patch's loops were refused; an end of a diagonal that
- * exists elsewhere. */
+ * (trouble[]): an end of a loop edge that crosses or touches another where
+ * its patch's loops were refused, in the frame with fewer such crossings,
+ * or in the other; an end of a diagonal that exists elsewhere. */
 #define TROUBLE_CROSSING 1
-#define TROUBLE_DIAGONAL 2
+#define TROUBLE_CROSSING_OTHER 2
+#define TROUBLE_DIAGONAL 4
 
 /* The edges of w that three or more faces share: a diagonal of a rebuilt
  * patch that exists elsewhere already (its ends are joined across a fold, or
@@ -1111,27 +1112,28 @@ static int flag_diagonals(const struct fct_mesh *w, const int32_t *lab, int may_
 }
 
 /* Mend the outlines where they went wrong, there only: each simplified
- * segment of a chain that bounds a patch flagged unclean, whose two ends
- * are ends of crossing loop edges, or one of them an end of a diagonal
- * found elsewhere, has the points it replaced forced (kept as sampled from
- * the next try on, whatever the chain's tolerance).  The outline then
- * changes where the trouble is, not all round the patch: whether a tiny
- * crossing somewhere (which rounding may decide) exists no longer decides
- * the whole outline.  mended[l] counts the points newly forced on patch
- * l's outline, *spans the segments. */
-static void mend_outlines(const struct fct_chains *c, const unsigned char *trouble,
-                          const unsigned char *unclean, unsigned char *force, size_t *mended,
+ * segment of a chain that bounds a patch flagged in which[], whose two ends
+ * are ends of crossing loop edges (trouble bits in want), or one of them
+ * an end of a diagonal found elsewhere, has the points it replaced forced
+ * (kept as sampled from the next try on, whatever the chain's tolerance).
+ * The outline then changes where the trouble is, not all round the patch:
+ * whether a tiny crossing somewhere (which rounding may decide) exists no
+ * longer decides the whole outline.  mended[l] counts the points newly
+ * forced on patch l's outline, *spans the segments. */
+static void mend_outlines(const struct fct_chains *c, const unsigned char *trouble, unsigned char want,
+                          const unsigned char *which, unsigned char *force, size_t *mended,
                           size_t *spans)
 {
 	for (size_t i = 0; i < c->n; i++) {
 		int32_t l = c->left[i], r = c->right[i];
-		if (!unclean[l] && (r < 0 || !unclean[r]))
+		if (!which[l] && (r < 0 || !which[r]))
 			continue;
 		for (size_t a = c->start[i], b; a + 1 < c->start[i + 1]; a = b) {
 			for (b = a + 1; !c->keep[b]; b++)
 				;
 			unsigned char ta = trouble[c->vert[a]], tb = trouble[c->vert[b]];
-			if (!(ta & tb & TROUBLE_CROSSING) && !((ta | tb) & TROUBLE_DIAGONAL))
+			if (!(ta & tb & want & (TROUBLE_CROSSING | TROUBLE_CROSSING_OTHER)) &&
+			    !((ta | tb) & want & TROUBLE_DIAGONAL))
 				continue;
 			size_t n = 0;
 			for (size_t q = a + 1; q < b; q++)
@@ -1249,11 +1251,12 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	uint32_t *vmap = NULL;
 	size_t nmap = 0;
 	unsigned char *corner = calloc(m->nv ? m->nv : 1, 1), *alive = calloc(m->nv ? m->nv : 1, 1);
+	unsigned char *again = calloc(np ? np : 1, 1);
 	struct fct_wire *wires = NULL;
 	int32_t *lab = NULL;
 	double *tol = NULL;
 	int rc = -1;
-	if (!corner || !alive) {
+	if (!corner || !alive || !again) {
 		fct_fail(err, "out of memory");
 		goto out;
 	}
@@ -1374,8 +1377,15 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	if (drop_duplicate_triangles(w, lab, &dup, err) || fct_patches_set(w, lab, err) ||
 	    flag_diagonals(w, lab, may_mend, trouble, unclean, &st->pinned, err))
 		goto out;
-	if (may_mend)
-		mend_outlines(&c, trouble, unclean, force, mended, &st->mended);
+	/* Where the frame with fewer crossings leaves nothing to mend (its
+	 * stretches are as sampled already), the other frame's crossings. */
+	if (may_mend) {
+		mend_outlines(&c, trouble, TROUBLE_CROSSING | TROUBLE_DIAGONAL, unclean, force, mended,
+		              &st->mended);
+		for (size_t l = 0; l < np; l++)
+			again[l] = unclean[l] && !mended[l];
+		mend_outlines(&c, trouble, TROUBLE_CROSSING_OTHER, again, force, mended, &st->mended);
+	}
 	st->duplicates_dropped += dup;
 	st->planar_triangles = nplanar;
 	st->free_faces = F.nf;
@@ -1383,7 +1393,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 out:
 	fct_chains_free(&c);
 	fct_mesh_free(&F);
-	free(vmap), free(corner), free(alive), free(wires), free(lab), free(tol);
+	free(vmap), free(corner), free(alive), free(again), free(wires), free(lab), free(tol);
 	return rc;
 }
 
@@ -1484,13 +1494,21 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
 		                may_tighten, force, trouble, mended, unclean, &carry, st, err))
 			goto out;
-		/* Unclean: a patch mended tries again; else a large patch's
-		 * whole outline is tightened (halved, then halved again, then
-		 * kept as sampled), a small one (or a large one still unclean)
-		 * becomes free-form. */
+		/* Unclean: a patch mended tries again; else a small one
+		 * becomes free-form, and a large one's whole outline is
+		 * tightened (halved, then halved again, then kept as sampled;
+		 * free-form when still unclean). */
+		/* The small patches made free-form may be what spoils a large
+		 * one (a diagonal across both): its whole outline waits a round. */
+		int small_gone = 0;
+		for (size_t l = 0; l < np; l++)
+			small_gone |= unclean[l] && !mended[l] && nfaces[l] < m->nf / LARGE_PATCH;
 		for (size_t l = 0; l < np; l++)
 			if (unclean[l] && mended[l])
 				unclean[l] = 0, more++;
+			else if (unclean[l] && small_gone && round + 1 < LAST_TIGHTENING &&
+			         nfaces[l] >= m->nf / LARGE_PATCH)
+				unclean[l] = 0;
 			else if (may_tighten && unclean[l] && tight[l] < AS_SAMPLED && nfaces[l] >= m->nf / LARGE_PATCH) {
 				tight[l]++, unclean[l] = 0, more++;
 				st->tightened++;

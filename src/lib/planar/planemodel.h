@@ -173,14 +173,15 @@ void fct_planar_params_default(struct fct_planar_params *p);
  *     the free-form faces beside them: one surface, edge for edge;
  *  5. a patch whose outline does not triangulate cleanly (its loops cross,
  *     or a diagonal would be an edge of three faces) is mended there: the
- *     simplified segments between the ends of the crossing loop edges, and
- *     those beside the diagonal's ends, are kept as sampled (the rest of
- *     its outline stays as simplified, so that where the trouble is, not
- *     whether there is any, decides the outline); a patch that cannot be
- *     mended so becomes free-form, or when it holds a fiftieth of the
- *     faces or more, has its whole outline tightened step by step to as
- *     sampled (and free-form only if even that fails); the model is made
- *     again, until none is left;
+ *     simplified segments between the ends of the crossing loop edges (in
+ *     the frame with fewer crossings, then the other), and those beside
+ *     the diagonal's ends, are kept as sampled (the rest of its outline
+ *     stays as simplified, so that where the trouble is, not whether there
+ *     is any, decides the outline); a patch that cannot be mended so
+ *     becomes free-form, or when it holds a fiftieth of the faces or more
+ *     (and no small patch went free-form in that round), has its whole
+ *     outline tightened step by step to as sampled (and free-form only if
+ *     even that fails); the model is made again, until none is left;
  *  6. fct_planes_meet: vertices onto the planes' lines and corners.
  * 0, or -1 (message set; m may be half done). */
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
