@@ -39,7 +39,7 @@ check_num "model: 50x fewer faces than the dense mesh" \
 # front crossed its own outline at one spot in the turned frame and not in
 # the camera's (rounding decides it); the whole outline was then kept as
 # sampled: 5877 faces against 4347 (+35%).  Mended where it crosses: 4236
-# against 4446.
+# against 4408.
 for p in camera turned; do
 	pose=
 	[ $p = turned ] && pose="--pose tests/data/7scenes_pose_turned.txt"

@@ -198,9 +198,9 @@ check_true "TUM folder: read as such, the frame without colour left out" grep -q
 # The poses went through quaternions printed to 12 digits: the model is
 # not the same bytes (the planar model follows the fused surface's
 # rounding), but the same within a few percent with every piece kept
-# (measured 2.3% fewer faces, 3657 against 3743).  With the debris dropped
-# (74 pieces of 383 faces in both) the outlines' rounds part more: 3487
-# faces against 3272, 6.6% more (13% more, 3499 against 3100, when an
+# (measured 2.3% fewer faces, 3595 against 3679).  With the debris dropped
+# (74 pieces of 383 faces in both) the outlines' rounds part more: 3435
+# faces against 3244, 5.9% more (13% more, 3499 against 3100, when an
 # outline that crossed anywhere was tightened all round).
 check_num "TUM folder: debris dropped" "$(field 'planedecim: debris_faces')" ">" 0
 run_case 0 "roommodel --min-piece 0 --voxel 0.03 -K $K --depth-scale 1000 --noise kinect -o $TMP/m/t0.obj $T"

@@ -1115,7 +1115,8 @@ static int flag_diagonals(const struct fct_mesh *w, const int32_t *lab, int may_
  * segment of a chain that bounds a patch flagged in which[], whose two ends
  * are ends of crossing loop edges (trouble bits in want), or one of them
  * an end of a diagonal found elsewhere, has the points it replaced forced
- * (kept as sampled from the next try on, whatever the chain's tolerance).
+ * (kept from the next try on, whatever the chain's tolerance): all of
+ * them, or beside a diagonal first the middle one.
  * The outline then changes where the trouble is, not all round the patch:
  * whether a tiny crossing somewhere (which rounding may decide) exists no
  * longer decides the whole outline.  mended[l] counts the points newly
@@ -1132,11 +1133,17 @@ static void mend_outlines(const struct fct_chains *c, const unsigned char *troub
 			for (b = a + 1; !c->keep[b]; b++)
 				;
 			unsigned char ta = trouble[c->vert[a]], tb = trouble[c->vert[b]];
-			if (!(ta & tb & want & (TROUBLE_CROSSING | TROUBLE_CROSSING_OTHER)) &&
-			    !((ta | tb) & want & TROUBLE_DIAGONAL))
+			int crossing = (ta & tb & want & (TROUBLE_CROSSING | TROUBLE_CROSSING_OTHER)) != 0;
+			if (!crossing && !((ta | tb) & want & TROUBLE_DIAGONAL))
 				continue;
-			size_t n = 0;
-			for (size_t q = a + 1; q < b; q++)
+			/* A crossing: the whole stretch as sampled, which follows the
+			 * boundary as the mesh has it.  Beside a diagonal: first its
+			 * middle point, which changes the polygon there; the whole
+			 * stretch when the diagonal comes back (an end of the stretch
+			 * was forced already). */
+			int whole = crossing || force[c->vert[a]] || force[c->vert[b]];
+			size_t n = 0, lo = whole ? a + 1 : (a + b) / 2, hi = whole ? b : lo + (b > a + 1);
+			for (size_t q = lo; q < hi; q++)
 				if (!force[c->vert[q]])
 					force[c->vert[q]] = 1, n++;
 			*spans += n > 0;

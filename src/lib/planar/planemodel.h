@@ -174,8 +174,9 @@ void fct_planar_params_default(struct fct_planar_params *p);
  *  5. a patch whose outline does not triangulate cleanly (its loops cross,
  *     or a diagonal would be an edge of three faces) is mended there: the
  *     simplified segments between the ends of the crossing loop edges (in
- *     the frame with fewer crossings, then the other), and those beside
- *     the diagonal's ends, are kept as sampled (the rest of its outline
+ *     the frame with fewer crossings, then the other) are kept as
+ *     sampled, those beside the diagonal's ends keep their middle point
+ *     (then, if it comes back, all their points) (the rest of its outline
  *     stays as simplified, so that where the trouble is, not whether there
  *     is any, decides the outline); a patch that cannot be mended so
  *     becomes free-form, or when it holds a fiftieth of the faces or more
