@@ -130,6 +130,7 @@ int main(int argc, char **argv)
 	fct_report("rounds", "%zu", st.rounds);
 	fct_report("dense_patches", "%zu", st.dense_patches);
 	fct_report("pinned", "%zu", st.pinned);
+	fct_report("mended", "%zu", st.mended);
 	fct_report("tightened", "%zu", st.tightened);
 	fct_report("unclean_patches", "%zu", st.unclean_patches);
 	fct_report("moved_line", "%zu", st.meet.lines);

@@ -117,7 +117,8 @@ model rk 250 3.3
 for k in vertices_in faces_in vertices faces reduction planes sigma_estimated facets \
 	small_faces speck_faces holes_filled projected collapses corners refused_topology \
 	refused_flip refused_error max_error free_faces_in free_faces outline_vertices \
-	outline_tolerance planar_triangles rounds unclean_patches moved_line moved_corner \
+	outline_tolerance planar_triangles rounds dense_patches pinned mended tightened \
+	unclean_patches moved_line moved_corner \
 	stayed moves_undone torn no_pixel read_s model_s total_s cpu_s; do
 	check_true "-v $k" grep -q "^planedecim: $k=[0-9]" "$TMP/rq.model.err"
 done

@@ -655,6 +655,63 @@ static void test_chain_tolerance(void)
 	fct_mesh_free(&m);
 }
 
+/* The same wiggling boundary with a tolerance that keeps its two ends
+ * only, and a stretch of it forced (keep_vertex: the points with y in
+ * 10..13, as planedecim mends an outline where it crossed): those points
+ * are kept, and nothing else changes, on that chain or the others. */
+static void test_keep_vertex(void)
+{
+	struct fct_mesh m;
+	struct fct_chains c;
+	struct fct_chain_stats st;
+	grid(&m, 0, 0, 40, 24, 0, lab_wiggle, 2);
+	int32_t *patch = NULL;
+	int present = 0;
+	CHECK_INT(fct_patches_get(&m, &patch, &present, 2, &err), 0);
+	unsigned char *force = calloc(m.nv, 1);
+	size_t kept_other[2] = { 0, 0 }, nforced = 0;
+	for (int forced = 0; forced < 2; forced++) {
+		CHECK_INT(fct_chains_extract(&c, &m, patch, &err), 0);
+		double *tol = calloc(c.n, sizeof *tol);
+		size_t between = c.n;
+		for (size_t i = 0; i < c.n; i++)
+			if (c.left[i] >= 0 && c.right[i] >= 0)
+				between = i, tol[i] = 10;
+		CHECK(between < c.n);
+		if (forced)
+			for (size_t q = c.start[between] + 1; q + 1 < c.start[between + 1]; q++) {
+				double y = m.xyz[3 * (size_t)c.vert[q] + 1];
+				if (y >= 10 && y <= 13)
+					force[c.vert[q]] = 1, nforced++;
+			}
+		struct fct_chain_params p;
+		fct_chain_params_default(&p);
+		p.threshold = 1;
+		p.tolerance = tol;
+		p.keep_vertex = force;
+		CHECK_INT(fct_chains_simplify(&c, &m, patch, NULL, 0, &p, &st, &err), 0);
+		size_t kept = 0, kept_forced = 0;
+		for (size_t i = 0; i < c.n; i++)
+			for (size_t q = c.start[i]; q < c.start[i + 1]; q++) {
+				if (i != between) {
+					kept_other[forced] += c.keep[q];
+					continue;
+				}
+				kept += c.keep[q];
+				kept_forced += c.keep[q] && force[c.vert[q]];
+			}
+		CHECK_INT(kept, 2 + nforced);
+		CHECK_INT(kept_forced, nforced);
+		free(tol);
+		fct_chains_free(&c);
+	}
+	CHECK(nforced >= 5);   /* 10..13 and the step at y = 12 */
+	CHECK_INT(kept_other[1], kept_other[0]);
+	free(force);
+	free(patch);
+	fct_mesh_free(&m);
+}
+
 /* A rendered view of mkscene's room with Kinect-class noise, meshed like
  * dm2mesh, each face labelled with the true patch of the majority of its
  * corners' pixels: the invariants on a real-sized boundary.  FCT_TEST_DUMP=
@@ -807,6 +864,7 @@ int main(void)
 	test_edge_cases();
 	test_uneven();
 	test_chain_tolerance();
+	test_keep_vertex();
 	test_room();
 	test_extract_adj_copy();
 	CHECK_DONE();

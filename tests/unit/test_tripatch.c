@@ -478,6 +478,68 @@ static void test_wire_cylinder(void)
 	fct_mesh_free(&m);
 }
 
+/* A square outline whose top edge makes a small twist: edges 3-4 and 5-6
+ * cross at (4.5, 11.5), in the plane (no s t).  The patch is unclean, and
+ * trouble flags the ends of the two crossing edges, and only those: where
+ * planedecim mends the outline.  With s t that cross in two places, the
+ * plane's (fewer) crossings are flagged first. */
+static void test_wire_trouble(void)
+{
+	static const double v[] = {
+		0, 0, 0,  10, 0, 0,  10, 10, 0,  6, 10, 0,  4, 12, 0,  5, 12, 0,  3, 10, 0,  0, 10, 0,
+	};
+	static const int e[] = { 0, 1, 0, -1, 1, 2, 0, -1, 2, 3, 0, -1, 3, 4, 0, -1,
+	                         4, 5, 0, -1, 5, 6, 0, -1, 6, 7, 0, -1, 7, 0, 0, -1 };
+	static const double pl[] = { 0, 0, 1, 0 };
+	struct fct_mesh m;
+	struct fct_err err;
+	struct fct_tripatch_params p;
+	struct fct_tripatch_stats s;
+	unsigned char unclean[1] = { 0 }, trouble[8] = { 0 };
+	wire(&m, v, 8, 0, e, 8, pl, 1);
+	fct_tripatch_params_default(&p);
+	p.unclean = unclean;
+	p.trouble = trouble;
+	CHECK_INT(fct_tripatch(&m, &p, &s, &err), 0);
+	CHECK_INT(s.repairs, 1);
+	CHECK_INT(unclean[0], 1);
+	static const unsigned char want[8] = { 0, 0, 0, 1, 1, 1, 1, 0 };
+	for (int i = 0; i < 8; i++)
+		CHECK_INT(trouble[i], want[i]);
+	fct_mesh_free(&m);
+
+	/* With s t where it crosses twice (vertex 1 at (10, 11): edges 0-1 and
+	 * 2-3 cross too): the plane's one crossing is where to mend first (bit
+	 * 0), the image's two next (bit 1). */
+	static const double vst[] = {
+		0, 0, 0, 0, 0,  10, 0, 0, 10, 11,  10, 10, 0, 10, 10,  6, 10, 0, 6, 10,
+		4, 12, 0, 4, 12,  5, 12, 0, 5, 12,  3, 10, 0, 3, 10,  0, 10, 0, 0, 10,
+	};
+	memset(trouble, 0, sizeof trouble);
+	unclean[0] = 0;
+	wire(&m, vst, 8, 1, e, 8, pl, 1);
+	CHECK_INT(fct_tripatch(&m, &p, &s, &err), 0);
+	CHECK_INT(s.repairs, 1);
+	CHECK_INT(unclean[0], 1);
+	static const unsigned char want_st[8] = { 2, 2, 2, 3, 3, 3, 3, 0 };
+	for (int i = 0; i < 8; i++)
+		CHECK_INT(trouble[i], want_st[i]);
+	fct_mesh_free(&m);
+
+	/* Untwisted (5 and 4 swapped: 3-5-4-6), it is clean and flags nothing. */
+	static const int e2[] = { 0, 1, 0, -1, 1, 2, 0, -1, 2, 3, 0, -1, 3, 5, 0, -1,
+	                          5, 4, 0, -1, 4, 6, 0, -1, 6, 7, 0, -1, 7, 0, 0, -1 };
+	memset(trouble, 0, sizeof trouble);
+	unclean[0] = 0;
+	wire(&m, v, 8, 0, e2, 8, pl, 1);
+	CHECK_INT(fct_tripatch(&m, &p, &s, &err), 0);
+	CHECK_INT(s.repairs, 0);
+	CHECK_INT(unclean[0], 0);
+	for (int i = 0; i < 8; i++)
+		CHECK_INT(trouble[i], 0);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_wire_hole();
@@ -488,5 +550,6 @@ int main(void)
 	test_wire_snap();
 	test_wire_sliver();
 	test_wire_cylinder();
+	test_wire_trouble();
 	CHECK_DONE();
 }

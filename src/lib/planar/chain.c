@@ -23,6 +23,7 @@ void fct_chain_params_default(struct fct_chain_params *p)
 	p->scale = NULL;
 	p->scale_factor = 3;
 	p->tolerance = NULL;
+	p->keep_vertex = NULL;
 }
 
 void fct_chains_free(struct fct_chains *c)
@@ -477,6 +478,21 @@ static void endpoint_fit(const struct fct_mesh *m, struct fct_chains *c, size_t 
 	}
 }
 
+/* The end-point fit between each two consecutive kept positions of s..e,
+ * after the points on forced vertices (NULL: none) are kept too. */
+static void fit_between_kept(const struct fct_mesh *m, struct fct_chains *c, size_t s, size_t e,
+                             double tol2, const unsigned char *forced, size_t *stack)
+{
+	if (forced)
+		for (size_t x = s + 1; x < e; x++)
+			c->keep[x] |= forced[c->vert[x]];
+	for (size_t a = s, b; a < e; a = b) {
+		for (b = a + 1; !c->keep[b]; b++)
+			;
+		endpoint_fit(m, c, a, b, tol2, stack);
+	}
+}
+
 /* Largest squared distance of the points strictly between positions i and
  * j from segment i-j (0 when there are none). */
 static double span_dev2(const struct fct_mesh *m, const struct fct_chains *c, size_t i, size_t j)
@@ -493,7 +509,7 @@ static double span_dev2(const struct fct_mesh *m, const struct fct_chains *c, si
  * chain lands anywhere on the far side, which then needs both corners too;
  * this takes such points out again.  A closed chain keeps min_kept points. */
 static void drop_redundant(const struct fct_mesh *m, struct fct_chains *c, size_t s, size_t e,
-                           double tol2, size_t min_kept)
+                           double tol2, size_t min_kept, const unsigned char *forced)
 {
 	size_t kept = 0;
 	for (size_t x = s; x < e; x++)
@@ -505,7 +521,7 @@ static void drop_redundant(const struct fct_mesh *m, struct fct_chains *c, size_
 		size_t b = k + 1;
 		while (!c->keep[b])
 			b++;
-		if (kept > min_kept && span_dev2(m, c, a, b) <= tol2) {
+		if (kept > min_kept && !(forced && forced[c->vert[k]]) && span_dev2(m, c, a, b) <= tol2) {
 			c->keep[k] = 0;
 			kept--;
 		} else {
@@ -533,14 +549,15 @@ static int rotate_loop(struct fct_chains *c, size_t s, size_t e, size_t k, struc
 
 /* Simplify chain ci alone by the end-point fit. */
 static int simplify_chain(const struct fct_mesh *m, struct fct_chains *c, size_t ci, double tol2,
-                          size_t *stack, struct fct_chain_stats *st, struct fct_err *err)
+                          const unsigned char *forced, size_t *stack, struct fct_chain_stats *st,
+                          struct fct_err *err)
 {
 	size_t s = c->start[ci], e = c->start[ci + 1] - 1;
 	memset(c->keep + s, 0, e - s + 1);
 	c->keep[s] = c->keep[e] = 1;
 	if (!c->closed[ci]) {
-		endpoint_fit(m, c, s, e, tol2, stack);
-		drop_redundant(m, c, s, e, tol2, 0);
+		fit_between_kept(m, c, s, e, tol2, forced, stack);
+		drop_redundant(m, c, s, e, tol2, 0, forced);
 		return 0;
 	}
 	size_t len = e - s;
@@ -574,8 +591,7 @@ static int simplify_chain(const struct fct_mesh *m, struct fct_chains *c, size_t
 			md = d, mid = x;
 	}
 	c->keep[mid] = 1;
-	endpoint_fit(m, c, s, mid, tol2, stack);
-	endpoint_fit(m, c, mid, e, tol2, stack);
+	fit_between_kept(m, c, s, e, tol2, forced, stack);
 	size_t kept = 0;
 	for (size_t x = s; x < e; x++)
 		kept += c->keep[x];
@@ -599,7 +615,7 @@ static int simplify_chain(const struct fct_mesh *m, struct fct_chains *c, size_t
 		endpoint_fit(m, c, lo, k, tol2, stack);
 		endpoint_fit(m, c, k, hi, tol2, stack);
 	}
-	drop_redundant(m, c, s, e, tol2, 3);
+	drop_redundant(m, c, s, e, tol2, 3, forced);
 	return 0;
 }
 
@@ -1504,7 +1520,7 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 		}
 		if (p->tolerance && p->tolerance[i] > 0)
 			t2 = p->tolerance[i] * p->tolerance[i];
-		if (simplify_chain(m, c, i, t2, stack, st, err)) {
+		if (simplify_chain(m, c, i, t2, p->keep_vertex, stack, st, err)) {
 			free(stack);
 			return -1;
 		}

@@ -141,6 +141,11 @@ struct fct_chain_params {
 	                             c (a length; 0 keeps the one above): a crease
 	                             chain that will be moved onto its planes' line
 	                             anyway, say */
+	const unsigned char *keep_vertex;  /* NULL (default), or a flag for each vertex
+	                                      of m: the points of a chain on a flagged
+	                                      vertex are always kept, anchors of the
+	                                      end-point fit (a stretch of outline that
+	                                      must stay as sampled) */
 };
 
 void fct_chain_params_default(struct fct_chain_params *p);

@@ -1056,36 +1056,41 @@ out:
 	return rc;
 }
 
-/* A chain is simplified to its tolerance halved k times, and kept as
- * sampled from k = AS_SAMPLED on, where k is the largest of its patches'
- * tight[] and its points' pin[]. */
+/* A patch's chains are simplified to their tolerance halved k times, and
+ * kept as sampled from k = AS_SAMPLED on, where k is the larger of its
+ * patches' tight[]: a whole outline tightened, the last resort for a large
+ * patch that mending where it crossed did not make clean. */
 #define AS_SAMPLED 3
 
-/* The rounds of build_model that may pin points and tighten outlines
+/* The rounds of build_model that may mend outlines and tighten them
  * (enough for AS_SAMPLED steps and a few rounds of their consequences). */
 #define LAST_TIGHTENING 6
 
-static int chain_tightness(const struct fct_chains *c, size_t i, const unsigned char *tight,
-                           const unsigned char *pin)
+static int chain_tightness(const struct fct_chains *c, size_t i, const unsigned char *tight)
 {
 	int k = tight[c->left[i]];
 	if (c->right[i] >= 0 && tight[c->right[i]] > k)
 		k = tight[c->right[i]];
-	for (size_t q = c->start[i]; q < c->start[i + 1]; q++)
-		if (pin[c->vert[q]] > k)
-			k = pin[c->vert[q]];
 	return k;
 }
 
+/* What tripatch and flag_diagonals flag at a vertex of the outlines
+ * (trouble[]): an end of a loop edge that crosses or touches another where
+ * its patch's loops were refused, in the frame with fewer such crossings,
+ * or in the other; an end of a diagonal that exists elsewhere. */
+#define TROUBLE_CROSSING 1
+#define TROUBLE_CROSSING_OTHER 2
+#define TROUBLE_DIAGONAL 4
+
 /* The edges of w that three or more faces share: a diagonal of a rebuilt
  * patch that exists elsewhere already (its ends are joined across a fold, or
- * by the free-form faces).  Their ends are pinned once more (the chains
- * through them are simplified more tightly in the next try, which changes
- * the patches' outlines there); when both ends were kept as sampled
- * already, or may_pin is 0, the patches of the faces on the edge are
- * flagged unclean.  *npinned counts the edges pinned. */
-static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, int may_pin, unsigned char *pin,
-                           unsigned char *unclean, size_t *npinned, struct fct_err *err)
+ * by the free-form faces).  The patches of the faces on the edge are
+ * flagged unclean and, when may_mend, its ends flagged TROUBLE_DIAGONAL in
+ * trouble (the outline next to them is mended: mend_outlines).  *ndiag
+ * counts the edges. */
+static int flag_diagonals(const struct fct_mesh *w, const int32_t *lab, int may_mend,
+                           unsigned char *trouble, unsigned char *unclean, size_t *ndiag,
+                           struct fct_err *err)
 {
 	struct fct_adj adj;
 	if (fct_adj_build(&adj, w, err))
@@ -1093,12 +1098,10 @@ static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, int may
 	for (size_t e = 0; e < adj.ne; e++) {
 		if (fct_adj_edge_nfaces(&adj, e) <= 2)
 			continue;
-		uint32_t a = adj.edge_v[2 * e], b = adj.edge_v[2 * e + 1];
-		if (may_pin && (pin[a] < AS_SAMPLED || pin[b] < AS_SAMPLED)) {
-			(*npinned)++;
-			pin[a] += pin[a] < AS_SAMPLED;
-			pin[b] += pin[b] < AS_SAMPLED;
-			continue;
+		(*ndiag)++;
+		if (may_mend) {
+			trouble[adj.edge_v[2 * e]] |= TROUBLE_DIAGONAL;
+			trouble[adj.edge_v[2 * e + 1]] |= TROUBLE_DIAGONAL;
 		}
 		for (uint32_t k = adj.edge_fstart[e]; k < adj.edge_fstart[e + 1]; k++)
 			if (lab[adj.edge_f[k]] >= 0)
@@ -1106,6 +1109,49 @@ static int pin_nonmanifold(const struct fct_mesh *w, const int32_t *lab, int may
 	}
 	fct_adj_free(&adj);
 	return 0;
+}
+
+/* Mend the outlines where they went wrong, there only: each simplified
+ * segment of a chain that bounds a patch flagged in which[], whose two ends
+ * are ends of crossing loop edges (trouble bits in want), or one of them
+ * an end of a diagonal found elsewhere, has the points it replaced forced
+ * (kept from the next try on, whatever the chain's tolerance): all of
+ * them, or beside a diagonal first the middle one.
+ * The outline then changes where the trouble is, not all round the patch:
+ * whether a tiny crossing somewhere (which rounding may decide) exists no
+ * longer decides the whole outline.  mended[l] counts the points newly
+ * forced on patch l's outline, *spans the segments. */
+static void mend_outlines(const struct fct_chains *c, const unsigned char *trouble, unsigned char want,
+                          const unsigned char *which, unsigned char *force, size_t *mended,
+                          size_t *spans)
+{
+	for (size_t i = 0; i < c->n; i++) {
+		int32_t l = c->left[i], r = c->right[i];
+		if (!which[l] && (r < 0 || !which[r]))
+			continue;
+		for (size_t a = c->start[i], b; a + 1 < c->start[i + 1]; a = b) {
+			for (b = a + 1; !c->keep[b]; b++)
+				;
+			unsigned char ta = trouble[c->vert[a]], tb = trouble[c->vert[b]];
+			int crossing = (ta & tb & want & (TROUBLE_CROSSING | TROUBLE_CROSSING_OTHER)) != 0;
+			if (!crossing && !((ta | tb) & want & TROUBLE_DIAGONAL))
+				continue;
+			/* A crossing: the whole stretch as sampled, which follows the
+			 * boundary as the mesh has it.  Beside a diagonal: first its
+			 * middle point, which changes the polygon there; the whole
+			 * stretch when the diagonal comes back (an end of the stretch
+			 * was forced already). */
+			int whole = crossing || force[c->vert[a]] || force[c->vert[b]];
+			size_t n = 0, lo = whole ? a + 1 : (a + b) / 2, hi = whole ? b : lo + (b > a + 1);
+			for (size_t q = lo; q < hi; q++)
+				if (!force[c->vert[q]])
+					force[c->vert[q]] = 1, n++;
+			*spans += n > 0;
+			mended[l] += n;
+			if (r >= 0)
+				mended[r] += n;
+		}
+	}
 }
 
 /* Each chain's own tolerance in tol[]: for a chain between two patches
@@ -1144,7 +1190,7 @@ static void crease_tolerances(double *tol, const struct fct_chains *c, const str
 
 /* What the rounds of fct_planar_model carry from one to the next: the
  * mesh's adjacency (the mesh stays the same), the chains of the last
- * labelling with that labelling (a round that only pins or tightens keeps
+ * labelling with that labelling (a round that only mends or tightens keeps
  * it), the free-form decimation's pieces. */
 struct rounds {
 	struct fct_adj adj;
@@ -1200,8 +1246,9 @@ static int extract_chains(struct fct_chains *c, const struct fct_mesh *m, const 
 static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32_t *patch,
                        const struct fct_plane *pl, size_t np, const double *sigma,
                        const double *spacing, const double *vp, const struct fct_planar_params *p,
-                       const unsigned char *tight, int may_pin, unsigned char *pin,
-                       unsigned char *unclean, size_t *npinned, struct rounds *carry,
+                       const unsigned char *tight, int may_mend, unsigned char *force,
+                       unsigned char *trouble, size_t *mended, unsigned char *unclean,
+                       struct rounds *carry,
                        struct fct_planar_stats *st, struct fct_err *err)
 {
 	struct fct_chains c;
@@ -1211,11 +1258,12 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	uint32_t *vmap = NULL;
 	size_t nmap = 0;
 	unsigned char *corner = calloc(m->nv ? m->nv : 1, 1), *alive = calloc(m->nv ? m->nv : 1, 1);
+	unsigned char *again = calloc(np ? np : 1, 1);
 	struct fct_wire *wires = NULL;
 	int32_t *lab = NULL;
 	double *tol = NULL;
 	int rc = -1;
-	if (!corner || !alive) {
+	if (!corner || !alive || !again) {
 		fct_fail(err, "out of memory");
 		goto out;
 	}
@@ -1235,12 +1283,17 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		corner[c.vert[c.start[i]]] = 1;
 		corner[c.vert[c.start[i + 1] - 1]] = 1;
 		/* The chains tightened to the last stay as sampled. */
-		if (chain_tightness(&c, i, tight, pin) < AS_SAMPLED)
+		if (chain_tightness(&c, i, tight) < AS_SAMPLED)
 			continue;
 		c.frozen[i] = 1;
 		for (size_t q = c.start[i]; q < c.start[i + 1]; q++)
 			corner[c.vert[q]] = 1;
 	}
+	/* The stretches of outline mended stay as sampled, against the
+	 * free-form surface too (but not where their patch became free-form:
+	 * there they are no outline any more). */
+	for (size_t q = 0; q < c.start[c.n]; q++)
+		corner[c.vert[q]] |= force[c.vert[q]];
 	for (size_t i = 0; i < c.n; i++) {
 		if (c.right[i] != -1 || c.closed[i])
 			continue;
@@ -1276,7 +1329,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		goto out;
 	crease_tolerances(tol, &c, m, pl, sigma, spacing, p->max_move, vp);
 	for (size_t i = 0; i < c.n; i++) {
-		int k = chain_tightness(&c, i, tight, pin);
+		int k = chain_tightness(&c, i, tight);
 		if (!k)
 			continue;
 		if (!(tol[i] > 0)) {
@@ -1288,6 +1341,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 		tol[i] = ldexp(tol[i], -k);
 	}
 	cp.tolerance = tol;
+	cp.keep_vertex = force;
 	size_t ne;
 	if (fct_chains_simplify(&c, m, patch, pl, np, &cp, &st->chains, err) ||
 	    !(wires = outline_wires(&c, &ne, err)))
@@ -1310,6 +1364,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	struct fct_tripatch_params tp;
 	fct_tripatch_params_default(&tp);
 	tp.unclean = unclean;
+	tp.trouble = may_mend ? trouble : NULL;
 	if (fct_wires_set(w, wires, ne, err) || fct_tripatch(w, &tp, &st->tri, err))
 		goto out;
 	/* Then the free-form faces. */
@@ -1327,8 +1382,17 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	}
 	size_t dup = 0;
 	if (drop_duplicate_triangles(w, lab, &dup, err) || fct_patches_set(w, lab, err) ||
-	    pin_nonmanifold(w, lab, may_pin, pin, unclean, npinned, err))
+	    flag_diagonals(w, lab, may_mend, trouble, unclean, &st->pinned, err))
 		goto out;
+	/* Where the frame with fewer crossings leaves nothing to mend (its
+	 * stretches are as sampled already), the other frame's crossings. */
+	if (may_mend) {
+		mend_outlines(&c, trouble, TROUBLE_CROSSING | TROUBLE_DIAGONAL, unclean, force, mended,
+		              &st->mended);
+		for (size_t l = 0; l < np; l++)
+			again[l] = unclean[l] && !mended[l];
+		mend_outlines(&c, trouble, TROUBLE_CROSSING_OTHER, again, force, mended, &st->mended);
+	}
 	st->duplicates_dropped += dup;
 	st->planar_triangles = nplanar;
 	st->free_faces = F.nf;
@@ -1336,7 +1400,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 out:
 	fct_chains_free(&c);
 	fct_mesh_free(&F);
-	free(vmap), free(corner), free(alive), free(wires), free(lab), free(tol);
+	free(vmap), free(corner), free(alive), free(again), free(wires), free(lab), free(tol);
 	return rc;
 }
 
@@ -1367,8 +1431,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t np = 0;
 	int32_t *patch = NULL;
 	double *sigma = NULL, *spacing = NULL;
-	unsigned char *unclean = NULL, *tight = NULL, *pin = NULL;
-	size_t *nfaces = NULL;
+	unsigned char *unclean = NULL, *tight = NULL, *force = NULL, *trouble = NULL;
+	size_t *nfaces = NULL, *mended = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
 	struct rounds carry;
@@ -1408,35 +1472,51 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
 	    !(unclean = calloc(np ? np : 1, 1)) || !(tight = calloc(np ? np : 1, 1)) ||
-	    !(pin = calloc(m->nv ? m->nv : 1, 1)) ||
-	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)))
+	    !(force = calloc(m->nv ? m->nv : 1, 1)) ||
+	    !(trouble = calloc(m->nv ? m->nv : 1, 1)) ||
+	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)) ||
+	    !(mended = calloc(np ? np : 1, sizeof *mended)))
 		goto out;
 	for (size_t f = 0; f < m->nf; f++)
 		if (patch[f] >= 0)
 			nfaces[patch[f]]++;
-	/* Rounds, until every patch triangulates cleanly from its outline: a
-	 * diagonal that exists elsewhere pins its ends (their chains stay as
-	 * sampled); a patch whose loops cross in its plane, or that such a
-	 * diagonal spoils again, has its outline tightened if large, and
-	 * becomes free-form if small or still unclean.  From round
-	 * LAST_TIGHTENING on nothing is pinned or tightened any more: each
-	 * round makes a patch free-form or ends, so the rounds end (a fused
-	 * scan's 50 patches were still pinning after 8). */
+	/* Rounds, until every patch triangulates cleanly from its outline.  A
+	 * patch whose loops cross (in both frames tripatch tries), or whose
+	 * triangles put a diagonal on an edge that exists elsewhere, is mended
+	 * where that happens (mend_outlines: the segments there kept as
+	 * sampled) and tried again; one that cannot be mended there has its
+	 * whole outline tightened if large, and becomes free-form if small or
+	 * still unclean.  From round LAST_TIGHTENING on nothing is mended or
+	 * tightened any more: each round makes a patch free-form or ends, so
+	 * the rounds end (a fused scan's 50 patches were still pinning after
+	 * 8). */
 	for (int round = 0;; round++) {
 		int may_tighten = round < LAST_TIGHTENING;
 		memset(unclean, 0, np ? np : 1);
+		memset(trouble, 0, m->nv ? m->nv : 1);
+		memset(mended, 0, (np ? np : 1) * sizeof *mended);
 		fct_mesh_free(&w);
 		fct_mesh_init(&w);
 		size_t more = 0;
 		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
-		                may_tighten, pin, unclean, &more, &carry, st, err))
+		                may_tighten, force, trouble, mended, unclean, &carry, st, err))
 			goto out;
-		st->pinned += more;
-		/* Unclean: a large patch's outline is tightened (halved, then
-		 * halved again, then kept as sampled), a small one (or a large
-		 * one still unclean) becomes free-form. */
+		/* Unclean: a patch mended tries again; else a small one
+		 * becomes free-form, and a large one's whole outline is
+		 * tightened (halved, then halved again, then kept as sampled;
+		 * free-form when still unclean). */
+		/* The small patches made free-form may be what spoils a large
+		 * one (a diagonal across both): its whole outline waits a round. */
+		int small_gone = 0;
 		for (size_t l = 0; l < np; l++)
-			if (may_tighten && unclean[l] && tight[l] < AS_SAMPLED && nfaces[l] >= m->nf / LARGE_PATCH) {
+			small_gone |= unclean[l] && !mended[l] && nfaces[l] < m->nf / LARGE_PATCH;
+		for (size_t l = 0; l < np; l++)
+			if (unclean[l] && mended[l])
+				unclean[l] = 0, more++;
+			else if (unclean[l] && small_gone && round + 1 < LAST_TIGHTENING &&
+			         nfaces[l] >= m->nf / LARGE_PATCH)
+				unclean[l] = 0;
+			else if (may_tighten && unclean[l] && tight[l] < AS_SAMPLED && nfaces[l] >= m->nf / LARGE_PATCH) {
 				tight[l]++, unclean[l] = 0, more++;
 				st->tightened++;
 				st->dense_patches += tight[l] == AS_SAMPLED;
@@ -1475,6 +1555,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 out:
 	fct_mesh_free(&w);
 	rounds_free(&carry);
-	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(pin), free(nfaces);
+	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(nfaces);
+	free(force), free(trouble), free(mended);
 	return rc;
 }

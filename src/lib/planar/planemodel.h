@@ -140,8 +140,10 @@ struct fct_planar_stats {
 	size_t planar_triangles, free_faces;
 	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
 	size_t rounds, dense_patches;    /* patches whose outline was kept as sampled */
-	size_t pinned;                   /* diagonals found elsewhere whose ends were pinned */
-	size_t tightened;                /* outlines simplified more tightly */
+	size_t pinned;                   /* diagonals found elsewhere (edges of three faces) */
+	size_t mended;                   /* stretches of outline kept as sampled where
+	                                    they crossed */
+	size_t tightened;                /* whole outlines simplified more tightly */
 	size_t unclean_patches;          /* ... and made free-form, still not clean */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
@@ -170,10 +172,17 @@ void fct_planar_params_default(struct fct_planar_params *p);
  *  4. each patch the polygon of its outline, triangulated (tripatch.h), and
  *     the free-form faces beside them: one surface, edge for edge;
  *  5. a patch whose outline does not triangulate cleanly (its loops cross,
- *     or a diagonal would be an edge of three faces) becomes free-form, or
- *     when it holds a fiftieth of the faces or more, keeps its outline as
- *     sampled (and free-form only if even that fails); the model is made
- *     again, until none is left;
+ *     or a diagonal would be an edge of three faces) is mended there: the
+ *     simplified segments between the ends of the crossing loop edges (in
+ *     the frame with fewer crossings, then the other) are kept as
+ *     sampled, those beside the diagonal's ends keep their middle point
+ *     (then, if it comes back, all their points) (the rest of its outline
+ *     stays as simplified, so that where the trouble is, not whether there
+ *     is any, decides the outline); a patch that cannot be mended so
+ *     becomes free-form, or when it holds a fiftieth of the faces or more
+ *     (and no small patch went free-form in that round), has its whole
+ *     outline tightened step by step to as sampled (and free-form only if
+ *     even that fails); the model is made again, until none is left;
  *  6. fct_planes_meet: vertices onto the planes' lines and corners.
  * 0, or -1 (message set; m may be half done). */
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,

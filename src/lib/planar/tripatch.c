@@ -10,6 +10,7 @@
 #include "geom/geom.h"
 #include "io/header.h"
 #include "geom/planes.h"
+#include "planar/chain.h"
 
 static void mark_unclean(const struct fct_tripatch_params *p, int32_t patch, size_t nplanes)
 {
@@ -51,6 +52,8 @@ struct work {
 	size_t nl, nh, gl_cap, hf_cap, ht_cap;
 	double *xy[2];           /* the two frames: s t and plane */
 	size_t xy_cap[2];
+	unsigned char *cross[2]; /* ends of crossing loop edges in each frame (local) */
+	size_t cross_cap[2];
 	int have[2];             /* frame usable */
 	int wraps;               /* s is an azimuth that wraps round (cylindrical camera) */
 	/* chaining */
@@ -78,7 +81,7 @@ static void work_free(struct work *w)
 	free(w->loc), free(w->gl), free(w->hf), free(w->ht), free(w->xy[0]), free(w->xy[1]);
 	free(w->ostart), free(w->oedge), free(w->path), free(w->pos), free(w->used);
 	free(w->lstart), free(w->lvert), free(w->pstart), free(w->pvert), free(w->owner);
-	free(w->ptri), free(w->tri), free(w->tpatch);
+	free(w->ptri), free(w->tri), free(w->tpatch), free(w->cross[0]), free(w->cross[1]);
 }
 
 #define GROW(w, arr, cap, need) \
@@ -189,6 +192,57 @@ static int add_triangles(struct work *w, const uint32_t *t, size_t n)
 		return -1;
 	memcpy(w->ptri + 3 * w->nptri, t, 3 * n * sizeof *t);
 	w->nptri += n;
+	return 0;
+}
+
+/* One loop edge for flag_crossings: its box and its ends (local ids). */
+struct loop_edge {
+	double x0, x1, y0, y1;
+	uint32_t a, b;
+};
+
+static int loop_edge_cmp(const void *pa, const void *pb)
+{
+	const struct loop_edge *x = pa, *y = pb;
+	if (x->x0 != y->x0)
+		return x->x0 < y->x0 ? -1 : 1;
+	if (x->a != y->a)
+		return x->a < y->a ? -1 : 1;
+	return x->b < y->b ? -1 : x->b > y->b;
+}
+
+/* Flag in flag[] (local ids, w->nl) both ends of every loop edge that
+ * crosses, overlaps or runs through a vertex of another edge of the
+ * patch's loops in frame xy (fct_segments_conflict): where polytri refused
+ * them.  A sweep along x over the edges' boxes.  *pairs gets the count of
+ * such pairs of edges.  0 or -1. */
+static int flag_crossings(struct work *w, const double *xy, unsigned char *flag, size_t *pairs)
+{
+	size_t n = w->nlv;
+	struct loop_edge *e = fct_alloc_array(n ? n : 1, sizeof *e, w->err);
+	if (!e)
+		return -1;
+	for (size_t l = 0; l < w->nloops; l++)
+		for (uint32_t k = w->lstart[l]; k < w->lstart[l + 1]; k++) {
+			uint32_t a = w->lvert[k], b = w->lvert[k + 1 < w->lstart[l + 1] ? k + 1 : w->lstart[l]];
+			const double *pa = &xy[2 * (size_t)a], *pb = &xy[2 * (size_t)b];
+			e[k] = (struct loop_edge){ fmin(pa[0], pb[0]), fmax(pa[0], pb[0]),
+			                           fmin(pa[1], pb[1]), fmax(pa[1], pb[1]), a, b };
+		}
+	qsort(e, n, sizeof *e, loop_edge_cmp);
+	memset(flag, 0, w->nl);
+	*pairs = 0;
+	for (size_t i = 0; i < n; i++)
+		for (size_t j = i + 1; j < n && e[j].x0 <= e[i].x1; j++) {
+			if (e[j].y0 > e[i].y1 || e[j].y1 < e[i].y0 ||
+			    !fct_segments_conflict(&xy[2 * (size_t)e[i].a], &xy[2 * (size_t)e[i].b],
+			                           &xy[2 * (size_t)e[j].a], &xy[2 * (size_t)e[j].b], e[i].a,
+			                           e[i].b, e[j].a, e[j].b))
+				continue;
+			flag[e[i].a] = flag[e[i].b] = flag[e[j].a] = flag[e[j].b] = 1;
+			(*pairs)++;
+		}
+	free(e);
 	return 0;
 }
 
@@ -442,7 +496,7 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 		return -1;
 	w->nptri = 0, w->nloops = 0, w->nlv = 0;
 	int done = 0, st_avail = !p->plane_only && ps && pt;
-	size_t open = 0;
+	size_t open = 0, ncross[2] = { 0, 0 };
 	struct fct_err perr;
 	for (int f = 0; f < 2 && !done; f++) {
 		if (!w->have[f])
@@ -461,6 +515,10 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 			fct_err_prefix(w->err, "patch %ld", (long)patch);
 			return -1;
 		}
+		if (rc == 1 && p->trouble &&
+		    (GROW(w, w->cross[f], w->cross_cap[f], w->nl) ||
+		     flag_crossings(w, w->xy[f], w->cross[f], &ncross[f])))
+			return -1;
 		if (rc == 0) {
 			done = 1;
 			rc = add_triangles(w, t, nt);
@@ -489,6 +547,13 @@ static int do_patch(struct work *w, const struct fct_mesh *m, int32_t patch,
 	}
 	if (p->unclean && patch >= 0 && (size_t)patch < w->nplanes && (open || (!done && w->nloops > 0)))
 		p->unclean[patch] = 1;
+	/* Where to mend: first the crossings of the frame that has fewer (one
+	 * clean frame is enough), then the other's. */
+	if (!done && p->trouble && (ncross[0] || ncross[1])) {
+		int f = !ncross[0] || (ncross[1] && ncross[1] < ncross[0]);
+		for (size_t i = 0; i < w->nl; i++)
+			p->trouble[w->gl[i]] |= (unsigned char)(w->cross[f][i] | (ncross[!f] ? w->cross[!f][i] << 1 : 0));
+	}
 	if (!done && w->nloops > 0 && w->have[1]) {
 		st->repairs++;
 		if (repair(w, p, st))

@@ -53,6 +53,15 @@ struct fct_tripatch_params {
 	                                     whose edges had slits or repeats, did not
 	                                     all close, or whose loops needed repair
 	                                     (step 3) or gave no triangle */
+	unsigned char *trouble;           /* NULL, or one byte per vertex of m: where
+	                                     polytri refused a patch's loops in both
+	                                     frames, bit 0 set at both ends of each
+	                                     loop edge that crosses, overlaps or runs
+	                                     through a vertex of another edge of its
+	                                     patch's loops in the frame with fewer
+	                                     such pairs (the s t frame on a tie),
+	                                     bit 1 likewise in the other frame:
+	                                     where the outline needs mending */
 };
 
 struct fct_tripatch_stats {
