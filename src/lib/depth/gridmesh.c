@@ -342,8 +342,8 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 
 	/* With pieces, parent becomes the piece labels and then vindex. */
 	unsigned char *code = fct_alloc_array(nsq, 1, err);
-	uint32_t *parent = pieces ? fct_alloc_array(ncells, sizeof *parent, err) : NULL;
-	uint32_t *vindex = pieces ? NULL : fct_alloc_array(ncells, sizeof *vindex, err);
+	uint32_t *parent = pieces ? fct_alloc_big(ncells, sizeof *parent, err) : NULL;
+	uint32_t *vindex = pieces ? NULL : fct_alloc_big(ncells, sizeof *vindex, err);
 	uint32_t *count = NULL;
 	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
 	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
@@ -439,7 +439,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	size_t nv = 0;
 	for (size_t c = 0; c < ncells; c++)
 		vindex[c] = used[c] ? (uint32_t)nv++ : UINT32_MAX;
-	if (fct_mesh_set_vertex_count(m, nv, err) || fct_mesh_set_triangle_count(m, nf, err))
+	if (fct_mesh_set_counts_big(m, nv, nf, err))
 		goto out;
 	uint32_t *fv = m->fvert;
 	for (long j = 0; j < sh; j++)
