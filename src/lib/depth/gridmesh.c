@@ -322,17 +322,26 @@ static inline unsigned square_edges(const struct edge_rows *E, long j, long i)
 /* The triangle `which` (FIRST or SECOND) of square q made with code. */
 static inline void square_triangle(struct square q, unsigned code, unsigned which, uint32_t t[3])
 {
-	if (code & DIAG_AD) {
-		if (which == FIRST)
-			t[0] = q.a, t[1] = q.c, t[2] = q.d;
-		else
-			t[0] = q.a, t[1] = q.d, t[2] = q.b;
+	/* Selects, not branches: the diagonal is as good as random from one
+	 * square to the next, and this runs in four passes over the squares. */
+	uint32_t ad = (code & DIAG_AD) != 0;
+	if (which == FIRST) {
+		t[0] = q.a, t[1] = q.c, t[2] = ad ? q.d : q.b;
 	} else {
-		if (which == FIRST)
-			t[0] = q.a, t[1] = q.c, t[2] = q.b;
-		else
-			t[0] = q.b, t[1] = q.c, t[2] = q.d;
+		t[0] = ad ? q.a : q.b, t[1] = ad ? q.d : q.c, t[2] = ad ? q.b : q.d;
 	}
+}
+
+/* Mark the corners of the triangles that code k makes of square q as used:
+ * four flags stored, not three per triangle behind a branch on the
+ * diagonal. */
+static inline void mark_corners(unsigned char *used, struct square q, unsigned k)
+{
+	unsigned first = k & FIRST, second = (k & SECOND) >> 1, ad = (k & DIAG_AD) >> 2;
+	used[q.a] |= (unsigned char)(first | (second & ad));
+	used[q.b] |= (unsigned char)((first & !ad) | second);
+	used[q.c] |= (unsigned char)(first | (second & !ad));
+	used[q.d] |= (unsigned char)((first & ad) | second);
 }
 
 /* Union-find over cells; the smaller index is the root, so the result does
@@ -437,16 +446,10 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 			if (!(k & (FIRST | SECOND)))
 				continue;
 			made += (k & FIRST ? 1 : 0) + (k & SECOND ? 1 : 0);
-			if (pieces) {
+			if (pieces)
 				join_square(parent, q, k);
-				continue;
-			}
-			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
-				if (k & which) {
-					uint32_t t[3];
-					square_triangle(q, k, which, t);
-					used[t[0]] = used[t[1]] = used[t[2]] = 1;
-				}
+			else
+				mark_corners(used, q, k);
 		}
 	}
 
@@ -469,10 +472,8 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 			for (long i = 0; i < sw; i++) {
 				unsigned k = code[j * sw + i];
 				struct square q = square_at(&G, i, j);
-				if (k & FIRST)
-					count[parent[q.a]]++;
-				if (k & SECOND)
-					count[parent[q.b]]++;
+				count[parent[q.a]] += k & FIRST;
+				count[parent[q.b]] += (k & SECOND) >> 1;
 			}
 		for (long j = 0; j < sh; j++)
 			for (long i = 0; i < sw; i++) {
@@ -484,12 +485,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 					*k &= (unsigned char)~FIRST, nf--;
 				if ((*k & SECOND) && count[parent[q.b]] < p->min_faces)
 					*k &= (unsigned char)~SECOND, nf--;
-				for (unsigned which = FIRST; which <= SECOND; which <<= 1)
-					if (*k & which) {
-						uint32_t t[3];
-						square_triangle(q, *k, which, t);
-						used[t[0]] = used[t[1]] = used[t[2]] = 1;
-					}
+				mark_corners(used, q, *k);
 			}
 		vindex = parent, parent = NULL;
 	}
