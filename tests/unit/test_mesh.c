@@ -118,6 +118,23 @@ static void test_build(void)
 	CHECK_INT(fct_mesh_set_triangle_count(&m, (size_t)UINT32_MAX, &err), -1);
 	CHECK_STR(err.msg, "too many faces");
 	fct_mesh_free(&m);
+
+	/* the same in huge pages: 200k vertices (4.8 MB of xyz) and 400k
+	 * triangles, and a float column added after them, zeroed */
+	fct_mesh_init(&m);
+	CHECK_INT(fct_mesh_set_counts_big(&m, 200000, 400000, &err), 0);
+	CHECK(m.nv == 200000 && m.vertex.count == 200000 && m.nf == 400000 && m.face.count == 400000);
+	CHECK(m.xyz_cap == 600000 && m.fstart_cap == 400001 && m.fvert_cap == 1200000);
+	CHECK(m.fstart[0] == 0 && m.fstart[400000] == 1200000);
+	m.xyz[599999] = 1, m.fvert[1199999] = 2;
+	struct fct_prop *s = fct_elem_add_scalar_big(&m.vertex, "s", FCT_FLOAT32, &err);
+	CHECK(s != NULL && s->cap == 200000);
+	CHECK(fct_prop_get(s, 0) == 0 && fct_prop_get(s, 199999) == 0);
+	fct_prop_set(s, 199999, 0.5);
+	CHECK(fct_prop_get(fct_elem_find(&m.vertex, "s"), 199999) == 0.5);
+	CHECK_INT(fct_mesh_set_counts_big(&m, 10, (size_t)UINT32_MAX, &err), -1);
+	CHECK_STR(err.msg, "too many faces");
+	fct_mesh_free(&m);
 }
 
 static void test_props(void)

@@ -118,18 +118,27 @@ void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err)
 	return p;
 }
 
-void *fct_alloc_big(size_t bytes)
+void *fct_alloc_big(size_t n, size_t elem, struct fct_err *err)
 {
 #ifdef MADV_HUGEPAGE
 	const size_t huge = (size_t)2 << 20;
-	void *p;
-	if (posix_memalign(&p, huge, bytes ? bytes : 1))
+	size_t bytes;
+	if (fct_mul_size(n, elem, &bytes) || bytes > SIZE_MAX - huge) {
+		fct_fail(err, "size overflow");
 		return NULL;
-	if (bytes >= huge)
-		madvise(p, bytes - bytes % huge, MADV_HUGEPAGE);
+	}
+	if (bytes < huge / 2)
+		return fct_alloc_array(n, elem, err);
+	bytes = (bytes + huge - 1) / huge * huge;
+	void *p;
+	if (posix_memalign(&p, huge, bytes)) {
+		fct_fail(err, "out of memory (%zu bytes)", bytes);
+		return NULL;
+	}
+	madvise(p, bytes, MADV_HUGEPAGE);
 	return p;
 #else
-	return malloc(bytes ? bytes : 1);
+	return fct_alloc_array(n, elem, err);
 #endif
 }
 

@@ -45,15 +45,19 @@ int fct_reserve(void **ptr, size_t *cap, size_t need, size_t elem, struct fct_er
  * element so that NULL always means failure (message set). */
 void *fct_alloc_array(size_t n, size_t elem, struct fct_err *err);
 
-/* bytes of memory (uninitialised), aligned to 2 MB and advised for huge
- * pages where the system has them, freed with free(); NULL when out of
- * memory.  For memory that is written whole and kept (voxgrid's slabs):
- * the kernel faults fresh memory in a 4 KB page at a time otherwise.  Not
- * for every large array: on a VM a huge page may come cold from the host,
- * and with every fct_alloc_array of 4 MB or more from here, marching
- * cubes in a one-shot tsdfuse ran 10% slower (the room at 1 cm: 0.118 ->
- * 0.130 s) and fusion at 1 cm no faster. */
-void *fct_alloc_big(size_t bytes);
+/* fct_alloc_array for an array that is written whole once (voxgrid's
+ * slabs, a depth map's per-pixel arrays and grid mesh): from 1 MB up, in
+ * whole 2 MB pages aligned to them and advised for huge pages where the
+ * system has them, freed with free().  The kernel faults fresh memory in
+ * 4 KB at a time otherwise, about 1.3 us a page on a 2-vCPU VM: 18 MB in
+ * a fresh process took 6.1 ms so and 0.8 ms in huge pages (medians of 40;
+ * after 3 s idle, 2 runs of 10 each way came cold from the host, huge
+ * 5.6-10 ms, 4 KB 10.8-16.9 ms).  Below 1 MB plain malloc: clearing a
+ * huge page would cost more than the faults it saves.  Not for every
+ * large array: with every fct_alloc_array of 4 MB or more from here,
+ * marching cubes in a one-shot tsdfuse ran 10% slower (the room at 1 cm:
+ * 0.118 -> 0.130 s) and fusion at 1 cm no faster. */
+void *fct_alloc_big(size_t n, size_t elem, struct fct_err *err);
 
 /* strdup that reports failure through err. */
 char *fct_strdup(const char *s, struct fct_err *err);

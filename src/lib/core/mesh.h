@@ -102,6 +102,10 @@ long fct_mesh_add_face(struct fct_mesh *m, const uint32_t *v, size_t n, struct f
  * uninitialised for the caller to fill).  0 or -1. */
 int fct_mesh_set_vertex_count(struct fct_mesh *m, size_t nv, struct fct_err *err);
 int fct_mesh_set_triangle_count(struct fct_mesh *m, size_t nf, struct fct_err *err);
+/* Both, for a mesh that is then written whole once (a depth map's grid
+ * mesh): xyz, fstart and fvert not allocated yet are taken from
+ * fct_alloc_big. */
+int fct_mesh_set_counts_big(struct fct_mesh *m, size_t nv, size_t nf, struct fct_err *err);
 
 /* Number of vertices of face f. */
 static inline uint32_t fct_face_size(const struct fct_mesh *m, size_t f)
@@ -124,6 +128,10 @@ struct fct_elem *fct_mesh_find_elem(const struct fct_mesh *m, const char *name);
  * replaced otherwise.  Returns the column or NULL. */
 struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
                                      enum fct_type t, struct fct_err *err);
+/* The same for a new column that is then written whole once: from
+ * fct_alloc_big. */
+struct fct_prop *fct_elem_add_scalar_big(struct fct_elem *e, const char *name,
+                                         enum fct_type t, struct fct_err *err);
 /* Add a list column to the faces of m with per_corner zeroed values of type
  * t for each corner of each face, in the face's vertex order (list uchar,
  * as MeshLab's per-wedge "texcoord", 2 per corner; the PLY writer widens

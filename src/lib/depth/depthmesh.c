@@ -87,7 +87,7 @@ double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params
  * or -1 when out of memory. */
 static int add_float_property(struct fct_mesh *m, const char *name, struct fct_err *err)
 {
-	return fct_elem_add_scalar(&m->vertex, name, FCT_FLOAT32, err) ? 0 : -1;
+	return fct_elem_add_scalar_big(&m->vertex, name, FCT_FLOAT32, err) ? 0 : -1;
 }
 
 /* The vertex properties that come from each vertex's cell (s t, sigma, and
@@ -203,7 +203,7 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 		return fct_fail(err, "step must be at least 1");
 	int step = p->step, gw = (img->width + step - 1) / step, gh = (img->height + step - 1) / step;
 	size_t ncells = (size_t)gw * (size_t)gh;
-	double *depth = fct_alloc_array(ncells, sizeof *depth, err);
+	double *depth = fct_alloc_big(ncells, sizeof *depth, err);
 	double *col = fct_alloc_array((size_t)gw, 3 * sizeof *col, err);
 	double *row = fct_alloc_array((size_t)gh, sizeof *row, err);
 	uint32_t *cell_of = NULL;
@@ -224,7 +224,7 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 	}
 	int noisy = p->noise.model != FCT_NOISE_UNKNOWN;
 	if (noisy) {
-		if (!(sigma = fct_alloc_array(ncells, sizeof *sigma, err)))
+		if (!(sigma = fct_alloc_big(ncells, sizeof *sigma, err)))
 			goto out;
 		fct_noise_sigmas(&p->noise, depth, sigma, ncells);
 	}

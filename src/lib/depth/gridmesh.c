@@ -39,15 +39,6 @@ static inline long cell_at(const struct grid *G, long i, long j)
 	return j * (long)G->w + i;
 }
 
-/* Both cells on one surface: the depth jump between them, steps grid steps
- * apart, is within the limit. */
-static inline int joined(const struct grid *G, size_t a, size_t b, double steps)
-{
-	const float *s = G->g->sigma;
-	double allow = s ? G->noise * (s[a] > s[b] ? s[a] : s[b]) : 0;
-	return fct_depth_joined(G->g->depth[a], G->g->depth[b], G->limit, steps, allow);
-}
-
 /* The position of cell c, which is (i, j). */
 static inline void P(const struct grid *G, size_t c, size_t i, size_t j, double p[3])
 {
@@ -200,16 +191,13 @@ static inline struct square square_at(const struct grid *G, long i, long j)
 }
 
 /* Which corners of a square have data and which of its six edges join
- * their ends (fct_depth_joined; 0 where an end has no data).  The test is
- * symmetric in its ends, so a square's top edge is the bottom edge of the
- * square above and its left edge the right edge of the square before: four
- * tests a square instead of six. */
+ * their ends (fct_depth_joined; 0 where an end has no data). */
 enum { HA = 1, HB = 2, HC = 4, HD = 8, JAB = 16, JCD = 32, JAC = 64, JBD = 128, JAD = 256, JBC = 512 };
 
-/* The triangles of square (i, j) whose corners and edges are e;
- * *possible gets how many its corners with data would allow. */
-static unsigned square_code(const struct grid *G, const struct bend_rows *R, long i, long j,
-                            unsigned e, unsigned *possible)
+/* The triangles of a square whose corners and edges are e, ad saying which
+ * diagonal to take when both join; *possible gets how many its corners
+ * with data would allow. */
+static unsigned square_code(unsigned e, int ad, unsigned *possible)
 {
 	int ha = !!(e & HA), hb = !!(e & HB), hc = !!(e & HC), hd = !!(e & HD);
 	*possible = 0;
@@ -234,53 +222,126 @@ static unsigned square_code(const struct grid *G, const struct bend_rows *R, lon
 		return jad && bd && ab ? DIAG_AD | SECOND : 0;
 	}
 	*possible = 2;
-	int ad = jad && jbc ? prefer_ad(G, R, i, j) : jad;
-	if (ad)
+	if (jad && (ad || !jbc))
 		return DIAG_AD | (ac && cd ? FIRST : 0) | (bd && ab ? SECOND : 0);
 	if (!jbc)
 		return 0;
 	return (ac && ab ? FIRST : 0) | (cd && bd ? SECOND : 0);
 }
 
-/* Do cells x and y, both with data or not, join across an edge `steps`
- * grid steps long?  0 when either has no data. */
-static inline int joined_data(const struct grid *G, int hx, int hy, size_t x, size_t y, double steps)
+/* square_code of every e, looked up instead of branched through square by
+ * square: the code along bc and along ad (the same unless ask), whether
+ * the square's shape must choose between them (prefer_ad), and possible. */
+struct square_rule {
+	unsigned char bc, ad, ask, possible;
+};
+
+static void square_rules(struct square_rule rules[1024])
 {
-	return hx && hy && joined(G, x, y, steps);
+	for (unsigned e = 0; e < 1024; e++) {
+		unsigned possible;
+		rules[e].bc = (unsigned char)square_code(e, 0, &possible);
+		rules[e].ad = (unsigned char)square_code(e, 1, &possible);
+		rules[e].possible = (unsigned char)possible;
+		rules[e].ask = (e & (HA | HB | HC | HD | JAD | JBC)) == (HA | HB | HC | HD | JAD | JBC);
+	}
 }
 
-/* The corners and edges of square q, the square before it in its row
- * having given *bd_before its right edge (or -1 for none) and the square
- * above having left its bottom edge in *cd_above (or -1 for none); both are
- * updated for the next ones. */
-static inline unsigned square_edges(const struct grid *G, struct square q, int *bd_before,
-                                    signed char *cd_above)
+/* The flags that make the e of a row of squares, a byte per cell or square,
+ * made a run of cells at a time without branches.  Rows of cells j and
+ * j+1 (the squares' top and bottom): has data, joined to the next cell in
+ * the row; cells (i, j) and (i, j+1) joined; the diagonals ad and bc of
+ * square i.  Per-cell arrays have w + 1 entries: on a full cylinder entry
+ * w repeats column 0, so that square i's right corners are always i + 1.
+ * The join test is symmetric in its ends, so row j+1's flags serve as row
+ * j's for the next row of squares. */
+struct edge_rows {
+	unsigned char *has[2], *along[2];   /* rows j, j + 1: [j % 2] */
+	unsigned char *down, *ad, *bc;
+};
+
+/* has_data of the w cells of row j into out (and the wrap's copy). */
+static void has_row(const struct grid *G, long j, unsigned char *out)
 {
-	const double S = 1.0, D = M_SQRT2;
-	int ha = has_data(G, q.a), hb = has_data(G, q.b), hc = has_data(G, q.c), hd = has_data(G, q.d);
-	int ab = *cd_above >= 0 ? *cd_above : joined_data(G, ha, hb, q.a, q.b, S);
-	int ac = *bd_before >= 0 ? *bd_before : joined_data(G, ha, hc, q.a, q.c, S);
-	int cd = joined_data(G, hc, hd, q.c, q.d, S), bd = joined_data(G, hb, hd, q.b, q.d, S);
-	int ad = joined_data(G, ha, hd, q.a, q.d, D), bc = joined_data(G, hb, hc, q.b, q.c, D);
-	*cd_above = (signed char)cd, *bd_before = bd;
-	return (unsigned)(ha * HA | hb * HB | hc * HC | hd * HD | ab * JAB | cd * JCD | ac * JAC |
-	                  bd * JBD | ad * JAD | bc * JBC);
+	const double *d = G->g->depth + (size_t)j * (size_t)G->w;
+	for (long i = 0; i < G->w; i++)
+		out[i] = d[i] > 0 && d[i] < HUGE_VAL;
+	out[G->w] = out[0];
+}
+
+/* out[k] for k < n: cells a + k and b + k, steps grid steps apart, both
+ * have data (ha[k], hb[k]) and are on one surface: the depth jump between
+ * them is within the limit, widened by the noise where there is sigma. */
+static void join_run(const struct grid *G, size_t a, size_t b, size_t n, double steps,
+                     const unsigned char *ha, const unsigned char *hb, unsigned char *out)
+{
+	const double *d = G->g->depth;
+	const float *s = G->g->sigma;
+	for (size_t k = 0; k < n; k++) {
+		double allow = s ? G->noise * (s[a + k] > s[b + k] ? s[a + k] : s[b + k]) : 0;
+		out[k] = ha[k] & hb[k] & fct_depth_joined(d[a + k], d[b + k], G->limit, steps, allow);
+	}
+}
+
+/* Row r's has and along flags. */
+static void cell_row(const struct grid *G, struct edge_rows *E, long r)
+{
+	size_t w = (size_t)G->w, c = (size_t)r * w;
+	unsigned char *has = E->has[r % 2], *along = E->along[r % 2];
+	has_row(G, r, has);
+	join_run(G, c, c + 1, w - 1, 1, has, has + 1, along);
+	if (G->wrap)
+		join_run(G, c + w - 1, c, 1, 1, has + w - 1, has, along + w - 1);
+}
+
+/* The flags between rows j and j + 1, whose has flags are made. */
+static void between_rows(const struct grid *G, struct edge_rows *E, long j)
+{
+	size_t w = (size_t)G->w, c = (size_t)j * w, n = c + w;
+	const unsigned char *h0 = E->has[j % 2], *h1 = E->has[(j + 1) % 2];
+	const double diag = M_SQRT2;
+	join_run(G, c, n, w, 1, h0, h1, E->down);
+	E->down[w] = E->down[0];
+	join_run(G, c, n + 1, w - 1, diag, h0, h1 + 1, E->ad);
+	join_run(G, c + 1, n, w - 1, diag, h0 + 1, h1, E->bc);
+	if (G->wrap) {
+		join_run(G, c + w - 1, n, 1, diag, h0 + w - 1, h1, E->ad + w - 1);
+		join_run(G, c, n + w - 1, 1, diag, h0, h1 + w - 1, E->bc + w - 1);
+	}
+}
+
+/* The corners and edges of square i of the row the rings hold. */
+static inline unsigned square_edges(const struct edge_rows *E, long j, long i)
+{
+	const unsigned char *h0 = E->has[j % 2], *h1 = E->has[(j + 1) % 2];
+	return (unsigned)(h0[i] * HA | h0[i + 1] * HB | h1[i] * HC | h1[i + 1] * HD |
+	                  E->along[j % 2][i] * JAB | E->along[(j + 1) % 2][i] * JCD |
+	                  E->down[i] * JAC | E->down[i + 1] * JBD | E->ad[i] * JAD | E->bc[i] * JBC);
 }
 
 /* The triangle `which` (FIRST or SECOND) of square q made with code. */
 static inline void square_triangle(struct square q, unsigned code, unsigned which, uint32_t t[3])
 {
-	if (code & DIAG_AD) {
-		if (which == FIRST)
-			t[0] = q.a, t[1] = q.c, t[2] = q.d;
-		else
-			t[0] = q.a, t[1] = q.d, t[2] = q.b;
+	/* Selects, not branches: the diagonal is as good as random from one
+	 * square to the next, and this runs in four passes over the squares. */
+	uint32_t ad = (code & DIAG_AD) != 0;
+	if (which == FIRST) {
+		t[0] = q.a, t[1] = q.c, t[2] = ad ? q.d : q.b;
 	} else {
-		if (which == FIRST)
-			t[0] = q.a, t[1] = q.c, t[2] = q.b;
-		else
-			t[0] = q.b, t[1] = q.c, t[2] = q.d;
+		t[0] = ad ? q.a : q.b, t[1] = ad ? q.d : q.c, t[2] = ad ? q.b : q.d;
 	}
+}
+
+/* Mark the corners of the triangles that code k makes of square q as used:
+ * four flags stored, not three per triangle behind a branch on the
+ * diagonal. */
+static inline void mark_corners(unsigned char *used, struct square q, unsigned k)
+{
+	unsigned first = k & FIRST, second = (k & SECOND) >> 1, ad = (k & DIAG_AD) >> 2;
+	used[q.a] |= (unsigned char)(first | (second & ad));
+	used[q.b] |= (unsigned char)((first & !ad) | second);
+	used[q.c] |= (unsigned char)(first | (second & !ad));
+	used[q.d] |= (unsigned char)((first & ad) | second);
 }
 
 /* Union-find over cells; the smaller index is the root, so the result does
@@ -342,15 +403,16 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 
 	/* With pieces, parent becomes the piece labels and then vindex. */
 	unsigned char *code = fct_alloc_array(nsq, 1, err);
-	uint32_t *parent = pieces ? fct_alloc_array(ncells, sizeof *parent, err) : NULL;
-	uint32_t *vindex = pieces ? NULL : fct_alloc_array(ncells, sizeof *vindex, err);
+	uint32_t *parent = pieces ? fct_alloc_big(ncells, sizeof *parent, err) : NULL;
+	uint32_t *vindex = pieces ? NULL : fct_alloc_big(ncells, sizeof *vindex, err);
 	uint32_t *count = NULL;
 	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
 	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
-	signed char *cd_above = fct_alloc_array((size_t)G.w, 1, err);
+	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 7, err);
 	struct bend_rows R = { {NULL}, {NULL}, {NULL}, 0, 0 };
+	struct square_rule rules[1024];
 	int rc = -1;
-	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !cd_above) {
+	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -365,29 +427,29 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 		R.pos[r] = rings + (size_t)r * 3 * (size_t)G.w;
 	for (int r = 0; r < 2; r++)
 		R.ad[r] = rings + (12 + (size_t)r) * (size_t)G.w, R.bc[r] = rings + (14 + (size_t)r) * (size_t)G.w;
-	memset(cd_above, -1, (size_t)sw);
+	size_t fw = (size_t)G.w + 1;
+	struct edge_rows E = { { flags, flags + fw }, { flags + 2 * fw, flags + 3 * fw },
+	                       flags + 4 * fw, flags + 5 * fw, flags + 6 * fw };
+	square_rules(rules);
+	if (sh > 0)
+		cell_row(&G, &E, 0);
 	for (long j = 0; j < sh; j++) {
 		bend_rows_advance(&G, &R, j);
-		int bd_before = -1;
+		cell_row(&G, &E, j + 1);
+		between_rows(&G, &E, j);
 		for (long i = 0; i < sw; i++) {
 			struct square q = square_at(&G, i, j);
-			unsigned e = square_edges(&G, q, &bd_before, &cd_above[i]);
-			unsigned pos, k = square_code(&G, &R, i, j, e, &pos);
+			const struct square_rule *rule = &rules[square_edges(&E, j, i)];
+			unsigned k = rule->ask && prefer_ad(&G, &R, i, j) ? rule->ad : rule->bc;
 			code[j * sw + i] = (unsigned char)k;
-			possible += pos;
+			possible += rule->possible;
 			if (!(k & (FIRST | SECOND)))
 				continue;
 			made += (k & FIRST ? 1 : 0) + (k & SECOND ? 1 : 0);
-			if (pieces) {
+			if (pieces)
 				join_square(parent, q, k);
-				continue;
-			}
-			for (unsigned which = FIRST; which <= SECOND; which <<= 1)
-				if (k & which) {
-					uint32_t t[3];
-					square_triangle(q, k, which, t);
-					used[t[0]] = used[t[1]] = used[t[2]] = 1;
-				}
+			else
+				mark_corners(used, q, k);
 		}
 	}
 
@@ -410,10 +472,8 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 			for (long i = 0; i < sw; i++) {
 				unsigned k = code[j * sw + i];
 				struct square q = square_at(&G, i, j);
-				if (k & FIRST)
-					count[parent[q.a]]++;
-				if (k & SECOND)
-					count[parent[q.b]]++;
+				count[parent[q.a]] += k & FIRST;
+				count[parent[q.b]] += (k & SECOND) >> 1;
 			}
 		for (long j = 0; j < sh; j++)
 			for (long i = 0; i < sw; i++) {
@@ -425,12 +485,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 					*k &= (unsigned char)~FIRST, nf--;
 				if ((*k & SECOND) && count[parent[q.b]] < p->min_faces)
 					*k &= (unsigned char)~SECOND, nf--;
-				for (unsigned which = FIRST; which <= SECOND; which <<= 1)
-					if (*k & which) {
-						uint32_t t[3];
-						square_triangle(q, *k, which, t);
-						used[t[0]] = used[t[1]] = used[t[2]] = 1;
-					}
+				mark_corners(used, q, *k);
 			}
 		vindex = parent, parent = NULL;
 	}
@@ -439,7 +494,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	size_t nv = 0;
 	for (size_t c = 0; c < ncells; c++)
 		vindex[c] = used[c] ? (uint32_t)nv++ : UINT32_MAX;
-	if (fct_mesh_set_vertex_count(m, nv, err) || fct_mesh_set_triangle_count(m, nf, err))
+	if (fct_mesh_set_counts_big(m, nv, nf, err))
 		goto out;
 	uint32_t *fv = m->fvert;
 	for (long j = 0; j < sh; j++)
@@ -480,6 +535,6 @@ out:
 	free(count);
 	free(used);
 	free(rings);
-	free(cd_above);
+	free(flags);
 	return rc;
 }

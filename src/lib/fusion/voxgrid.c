@@ -53,7 +53,7 @@ struct fct_voxgrid {
  * NULL when out of memory.  Freed with free(). */
 static struct fct_voxblock *slab_alloc(void)
 {
-	void *p = fct_alloc_big(SLAB_BYTES);
+	void *p = fct_alloc_big(1, SLAB_BYTES, NULL);
 	if (p)
 		memset(p, 0, SLAB_BLOCKS * sizeof(struct fct_voxblock));
 	return p;
