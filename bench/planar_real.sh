@@ -77,9 +77,11 @@ col() { awk -v c="$1" '{ print $c }' "$dir/rows" | median; }
 printf '%-7s %6s %5.0f | %6.1f %5.1f %5.0f %6.1f | %6.1f %5.1f %6.1f | %6s %6s %6s\n' median \
 	"$(col 2)" "$(col 3)" "$(col 4)" "$(col 5)" "$(col 6)" "$(col 7)" "$(col 8)" "$(col 9)" "$(col 11)" \
 	"$(col 12)" "$(col 13)" "$(col 14)"
-awk '{ n++; m += $4 <= $8; r += $7 <= $11; x += $6 < 100; f += $3 >= 50
+# The goals count issue 23's frames (the kitchen's and TUM's), not the
+# NYU and SUN frames beside them.
+awk '$1 != "nyu" && $1 != "sun" { n++; m += $4 <= $8; r += $7 <= $11; x += $6 < 100; f += $3 >= 50
 	cpu = $12 + $13 + $14; if (cpu > worst) worst = cpu }
-	END { printf "goals met, of %d frames: model->raw mean <= qemdecim %d, raw->model mean <= qemdecim %d, max < 100 mm %d, >= 50x fewer faces %d; slowest frame %.2f s CPU (goal 1.5)\n", n, m, r, x, f, worst }' "$dir/rows"
+	END { printf "goals met, of the issue'"'"'s %d frames: model->raw mean <= qemdecim %d, raw->model mean <= qemdecim %d, max < 100 mm %d, >= 50x fewer faces %d; slowest frame %.2f s CPU (goal 1.5)\n", n, m, r, x, f, worst }' "$dir/rows"
 
 # What the distance to the raw mesh rewards.  On noisy depth a decimation
 # spends its faces following the noise: on 7-Scenes frame 000500's far wall
