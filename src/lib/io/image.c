@@ -240,18 +240,25 @@ static int header_token(const unsigned char *b, size_t len, size_t *pos, char *t
 	return 0;
 }
 
+/* The decimal digits at the start of tok as *v, read until they run out or
+ * *v passes most (which stops it from overflowing); what follows them. */
+static const char *leading_decimal(const char *tok, long most, long *v)
+{
+	*v = 0;
+	for (; *tok >= '0' && *tok <= '9' && *v <= most; tok++)
+		*v = *v * 10 + (*tok - '0');
+	return tok;
+}
+
 /* A plain decimal integer of a fmt header in [1, most]. */
 static int header_count(const char *tok, size_t at, const char *name, const char *fmt,
                         const char *what, long most, long *out, struct fct_err *err)
 {
-	long v = 0;
-	const char *s = tok;
-	for (; *s >= '0' && *s <= '9'; s++) {
-		v = v * 10 + (*s - '0');
-		if (v > most)
-			return fct_fail(err, "%s: byte %zu: %s header: %s %s is over %ld",
-			                name, at, fmt, what, tok, most);
-	}
+	long v;
+	const char *s = leading_decimal(tok, most, &v);
+	if (v > most)
+		return fct_fail(err, "%s: byte %zu: %s header: %s %s is over %ld",
+		                name, at, fmt, what, tok, most);
 	if (*s || s == tok)
 		return fct_fail(err, "%s: byte %zu: %s header: %s \"%s\" is not a positive integer",
 		                name, at, fmt, what, tok);
@@ -417,11 +424,7 @@ static int pnm_decode(struct fct_image *img, unsigned char *buf, size_t len, con
 		if (ascii) {
 			if (header_token(buf, len, &pos, tok, sizeof tok, &at, name, "PNM", 0, "sample", err))
 				goto fail;
-			v = 0;
-			const char *c = tok;
-			for (; *c >= '0' && *c <= '9' && v <= maxval; c++)
-				v = v * 10 + (*c - '0');
-			if (*c && v <= maxval) {
+			if (*leading_decimal(tok, maxval, &v) && v <= maxval) {
 				fct_fail(err, "%s: byte %zu: PNM sample %zu \"%s\" is not a number",
 				         name, at, i, tok);
 				goto fail;
