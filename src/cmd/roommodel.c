@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
-#include "depth/depthcode.h"
+#include "cli/fuseviews.h"
 #include "io/dataset.h"
 #include "fusion/fuse.h"
 #include "cli/fuseopts.h"
@@ -237,19 +237,8 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 	fct_progress_start(&pr, "fusing");
 	for (size_t i = 0; i < s->n; i++) {
 		struct fct_image img;
-		if (fct_image_read_file(&img, s->depth[i], NULL, &err))
-			fct_die_err(&err);
-		if (fct_depth_decode(&img, s->dp.code, &err))
-			fct_die_err_at(&err, "%s", s->depth[i]);
-		struct fct_camera cam = s->cam;
-		if (cam.width == 0)
-			cam.width = img.width, cam.height = img.height;
-		if (cam.width != img.width || cam.height != img.height)
-			fct_die(1, "%s: image is %dx%d, the camera %dx%d", s->depth[i], img.width, img.height,
-			        cam.width, cam.height);
-		char why[300];
-		if (i == 0 && fct_depth_implausible(why, sizeof why, &img, &cam, &s->dp))
-			fct_warn("%s: %s", s->depth[i], why);
+		struct fct_camera cam;
+		fct_fuse_read_depth(&img, &cam, s->depth[i], &s->cam, &s->dp, i == 0);
 		struct fct_mesh mesh;
 		struct fct_fuse_view view;
 		int rc = fct_fuse_depth_view(&view, &mesh, NULL, &img, &cam, &s->dp, &o->f.smooth,

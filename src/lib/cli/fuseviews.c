@@ -106,6 +106,27 @@ static void load_scan(struct fct_fuse_input *L, const struct fct_conf_scan *s)
 	L->view.ortho_step = step;
 }
 
+int fct_fuse_read_depth(struct fct_image *img, struct fct_camera *cam, const char *path,
+                        const struct fct_camera *dcam, const struct fct_depth_params *dp, int may_warn)
+{
+	struct fct_err err;
+	if (fct_image_read_file(img, path, NULL, &err))
+		fct_die_err(&err);
+	if (fct_depth_decode(img, dp->code, &err))
+		fct_die_err_at(&err, "%s", path);
+	*cam = *dcam;
+	if (cam->width == 0)
+		cam->width = img->width, cam->height = img->height;
+	if (cam->width != img->width || cam->height != img->height)
+		fct_die(1, "%s: image is %dx%d, the camera %dx%d", path, img->width, img->height,
+		        cam->width, cam->height);
+	char why[300];
+	if (!may_warn || !fct_depth_implausible(why, sizeof why, img, cam, dp))
+		return 0;
+	fct_warn("%s: %s", path, why);
+	return 1;
+}
+
 /* A depth image with pose dpose: smoothed, meshed and moved to the world. */
 static void load_depth_image(struct fct_fuse_input *L, const struct fct_fuse_views *vs,
                              const char *path, const double *dpose)
@@ -113,22 +134,9 @@ static void load_depth_image(struct fct_fuse_input *L, const struct fct_fuse_vie
 	struct fct_err err;
 	snprintf(L->name, sizeof L->name, "%s", path);
 	struct fct_image img;
-	if (fct_image_read_file(&img, path, NULL, &err))
-		fct_die_err(&err);
-	if (fct_depth_decode(&img, vs->dp->code, &err))
-		fct_die_err_at(&err, "%s", path);
-	struct fct_camera cam = *vs->dcam;
-	if (cam.width == 0)
-		cam.width = img.width, cam.height = img.height;
-	if (cam.width != img.width || cam.height != img.height)
-		fct_die(1, "%s: image is %dx%d, the camera %dx%d", path, img.width, img.height,
-		        cam.width, cam.height);
+	struct fct_camera cam;
 	static int warned;      /* a wrong depth scale, once for all views */
-	char why[300];
-	if (!warned && fct_depth_implausible(why, sizeof why, &img, &cam, vs->dp)) {
-		fct_warn("%s: %s", path, why);
-		warned = 1;
-	}
+	warned |= fct_fuse_read_depth(&img, &cam, path, vs->dcam, vs->dp, !warned);
 	int rc = fct_fuse_depth_view(&L->view, &L->mesh, vs->o->fp.projective ? &L->depth : NULL,
 	                             &img, &cam, vs->dp, &vs->o->smooth, dpose, &err);
 	fct_image_free(&img);

@@ -16,6 +16,13 @@
 #include "core/mesh.h"
 #include "depth/rangegrid.h"
 
+/* The depth image at path into img, decoded by dp->code, and cam the depth
+ * camera dcam sized to it (exit 1 when it cannot be read or decoded, or is
+ * not the camera's size); with may_warn, a warning when its depths are
+ * implausible for the camera (a wrong depth scale): 1 when it warned. */
+int fct_fuse_read_depth(struct fct_image *img, struct fct_camera *cam, const char *path,
+                        const struct fct_camera *dcam, const struct fct_depth_params *dp, int may_warn);
+
 /* One view in memory: its mesh, camera and pose; its colour image when
  * asked for (malloc'd path, NULL for none); for a depth image fused with
  * --projective the depths of its mesh's pixels (view.depth). */
