@@ -42,7 +42,8 @@ static const char usage[] =
 	"mesh (planedecim), textured from the image.\n"
 	"  -a                 write ascii PLY\n"
 	"  -o model           name.obj (with name.mtl) or name.ply (s t, TextureFile);\n"
-	"                     default standard output (PLY)\n"
+	"                     default standard output (PLY); a PGM/PPM image is\n"
+	"                     written beside it as name_texture.png\n"
 	"  -q                 quiet\n"
 	"  -v                 each stage's figures, vertices, faces and CPU seconds, the\n"
 	"                     reduction and E_mean E_stdev E_rms E_max (the dense mesh's\n"
@@ -300,6 +301,28 @@ static void texture_panorama(struct fct_mesh *m, const struct fct_camera *cam,
 	fct_report_stage("cyl2planar", "max_depth_ratio", "%.9g", st.assign.max_ratio);
 }
 
+/* A PGM or PPM image (NYU Depth v2's colour frames) written as a PNG beside
+ * the model, whose texture it becomes: MeshLab opens netpbm, Blender and
+ * Open3D do not.  Its path, name_texture.png for a model name.obj/.ply. */
+static char *texture_as_png(const char *image, const char *out)
+{
+	if (!out || fct_path_is_std(out))
+		fct_usage_error("-o model is needed: a PGM or PPM image is written beside it as the PNG texture");
+	size_t stem = fct_path_stem_length(out);
+	char *png = malloc(stem + sizeof "_texture.png");
+	if (!png)
+		fct_die(1, "out of memory");
+	memcpy(png, out, stem);
+	memcpy(png + stem, "_texture.png", sizeof "_texture.png");
+	struct fct_image img;
+	struct fct_err err;
+	if (fct_image_read_file(&img, image, NULL, &err))
+		fct_die_err(&err);
+	fct_write_image_or_die(&img, png);
+	fct_image_free(&img);
+	return png;
+}
+
 int main(int argc, char **argv)
 {
 	fct_cli_init("planarize");
@@ -314,8 +337,11 @@ int main(int argc, char **argv)
 		/* The texture's file must be an image now, not when a viewer opens
 		 * the model. */
 		struct fct_image probe;
-		if (fct_image_probe_file(&probe, o.image, NULL, &err))
+		enum fct_image_format fmt;
+		if (fct_image_probe_file(&probe, o.image, &fmt, &err))
 			fct_die_err(&err);
+		if (fmt == FCT_IMAGE_PNM)
+			o.image = texture_as_png(o.image, o.out);
 	}
 	fct_depth_opts_read_pose(&o.d);
 	if (o.keep)

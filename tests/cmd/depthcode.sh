@@ -59,6 +59,14 @@ check_num "SUN piece as 1/8 mm: nothing beyond 8.192 m" "$2" "<" 8.192
 # The programs that read depth images take the code too.
 run_case 0 "planarize -v -K $KS --depth-code sun -o $TMP/p.ply $S"
 check_num "planarize on the SUN piece: a model" "$(sed -n 's/^planarize: reduction=//p' "$TMP/err")" ">" 1
+# A PPM colour frame (NYU's are) textures the model as a PNG written beside
+# it, which Blender and Open3D open too: grey 128 in, grey 128 out.
+{ printf 'P6\n160 120\n255\n'; head -c 57600 /dev/zero | tr '\0' '\200'; } >"$TMP/c.ppm"
+run_case 0 "planarize -K $KN --depth-code nyu -o $TMP/t.obj $N $TMP/c.ppm"
+check_true "PPM texture: the material names the PNG" grep -qx "map_Kd t_texture.png" "$TMP/t.mtl"
+run_case 0 "imginfo $TMP/t_texture.png"
+check_true "PPM texture: a PNG of its size and colour" sh -c "grep -qx 'format png' $TMP/out && grep -qx 'width 160' $TMP/out && grep -q '^channel 2 min 128 max 128 ' $TMP/out"
+run_case 2 "planarize -K $KN --depth-code nyu $N $TMP/c.ppm" "" "planarize: -o model is needed: a PGM or PPM image"
 printf '1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n' >"$TMP/id.pose"
 run_case 0 "tsdfuse --voxel 0.05 -K $KN --depth-code nyu --poses $TMP/id.pose -o $TMP/f.ply $N"
 set -- $(zrange "$TMP/f.ply")

@@ -85,6 +85,11 @@ int main(void)
 	relative_is("out/tex.png", "out", "tex.png");
 	relative_is("img/tex.png", "out/deep", "../../img/tex.png");
 	relative_is("out", "out", ".");
+	/* the stem that files written beside a model share */
+	CHECK_INT(fct_path_stem_length("out/m.obj"), 5);
+	CHECK_INT(fct_path_stem_length("m"), 1);
+	CHECK_INT(fct_path_stem_length("a.d/m"), 5);
+	CHECK_INT(fct_path_stem_length("a.d/m.tar.ply"), 9);
 	test_real_folders();
 	CHECK_DONE();
 }

@@ -175,6 +175,12 @@ int fct_path_has_suffix(const char *path, const char *suffix)
 	return n >= k && !strcasecmp(path + n - k, suffix);
 }
 
+size_t fct_path_stem_length(const char *path)
+{
+	const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+	return dot && (!slash || dot > slash) ? (size_t)(dot - path) : strlen(path);
+}
+
 int fct_path_is_std(const char *path)
 {
 	return !path || !strcmp(path, "-");

@@ -21,5 +21,8 @@ int fct_path_is_std(const char *path);
 const char *fct_path_display(const char *path);
 /* Does path end in suffix, ignoring case (".obj")? */
 int fct_path_has_suffix(const char *path, const char *suffix);
+/* The length of path without the extension of its last component
+ * ("out/m.obj" -> 5, for the files written beside it: out/m_atlas0.png). */
+size_t fct_path_stem_length(const char *path);
 
 #endif

@@ -697,8 +697,7 @@ int fct_cylview_texture_model(struct fct_mesh *m, const struct fct_image *img,
 		goto out;
 	}
 	/* name.obj -> name.viewNN.png, for the views some face uses */
-	const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
-	size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - out) : strlen(out);
+	size_t stem = fct_path_stem_length(out);
 	for (size_t f = 0; f < m->nf; f++) {
 		size_t k = (size_t)view_of[f];
 		if (names[k])

@@ -11,6 +11,7 @@
 #include "geom/geom.h"
 #include "render/graphcut.h"
 #include "io/header.h"
+#include "core/path.h"
 #include "geom/planes.h"
 #include "render/raster.h"
 #include "render/texmap.h"
@@ -1896,8 +1897,7 @@ int fct_viewtex_sample_photos(struct fct_viewtex *T, const struct fct_photo *ph,
 
 char **fct_viewtex_page_names(const char *model, size_t n, struct fct_err *err)
 {
-	const char *dot = strrchr(model, '.'), *slash = strrchr(model, '/');
-	size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - model) : strlen(model);
+	size_t stem = fct_path_stem_length(model);
 	char **names = calloc(n ? n : 1, sizeof *names);
 	if (!names) {
 		fct_fail(err, "out of memory");
