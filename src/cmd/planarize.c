@@ -330,6 +330,7 @@ int main(int argc, char **argv)
 	parse_options(argc, argv, &o);
 	struct fct_err err;
 	int is_image;
+	char *png_texture = NULL;   /* a PGM/PPM image's PNG beside the model */
 	FILE *in = open_input(o.input, &is_image);
 	if (o.d.cylindrical && o.image && (!o.out || fct_path_is_std(o.out)))
 		fct_usage_error("-o model is needed: a panorama's model has its views beside it");
@@ -341,7 +342,7 @@ int main(int argc, char **argv)
 		if (fct_image_probe_file(&probe, o.image, &fmt, &err))
 			fct_die_err(&err);
 		if (fmt == FCT_IMAGE_PNM)
-			o.image = texture_as_png(o.image, o.out);
+			o.image = png_texture = texture_as_png(o.image, o.out);
 	}
 	fct_depth_opts_read_pose(&o.d);
 	if (o.keep)
@@ -415,5 +416,6 @@ int main(int argc, char **argv)
 	fct_report("total_s", "%.3f", fct_now() - t0);
 	free(dense);
 	fct_mesh_free(&m);
+	free(png_texture);
 	return 0;
 }
