@@ -34,21 +34,29 @@ check_num "model: 50x fewer faces than the dense mesh" \
 # The model does not depend on the coordinate frame the mesh is written in.
 # The same frame in camera coordinates and moved rigidly (dm2mesh --pose:
 # tests/data/7scenes_pose_turned.txt, made by hand: a turn of 1.6 rad about
-# (1, 1, 0) and a shift of (-0.5, 3, 2) m), with the defaults: faces within
-# 10%, and no patch had its whole outline tightened.  The patch of a cabinet
-# front crossed its own outline at one spot in the turned frame and not in
-# the camera's (rounding decides it); the whole outline was then kept as
-# sampled: 5877 faces against 4347 (+35%).  Mended where it crosses: 4236
-# against 4408.
+# (1, 1, 0) and a shift of (-0.5, 3, 2) m), with the defaults: 99% of the
+# faces in the same patches, the model's faces within 3%, and no patch had
+# its whole outline tightened.  The patch of a cabinet front crossed its
+# own outline at one spot in the turned frame and not in the camera's
+# (rounding decides it); the whole outline was then kept as sampled: 5877
+# faces against 4347 (+35%).  Mended where it crosses: 4236
+# against 4408.  segplanes labelled 7.8% of the faces differently in the
+# two frames: the quantised depth's plateaus are exactly flat in the
+# camera's frame and flat to float rounding in the turned one, so their
+# merges, tied at 0 in one frame, were ordered by rounding in the other.
+# Residuals at rounding level now count as 0 in both: 0.11% differ, and
+# the models are 4408 and 4429 faces.
 for p in camera turned; do
 	pose=
 	[ $p = turned ] && pose="--pose tests/data/7scenes_pose_turned.txt"
 	run_case 0 "dm2mesh -K 7scenes $pose -o $TMP/$p.d.ply $D/frame-000000.depth.png"
-	run_case 0 "segplanes -o $TMP/$p.s.ply $TMP/$p.d.ply"
+	run_case 0 "segplanes -a -o $TMP/$p.s.ply $TMP/$p.d.ply"
 	run_case 0 "planedecim -v -o $TMP/$p.m.ply $TMP/$p.s.ply 2>$TMP/$p.err"
 	check_num "$p frame: no whole outline tightened" "$(sed -n 's/^planedecim: tightened=//p' "$TMP/$p.err")" == 0
 done
 faces() { sed -n 's/^planedecim: faces=//p' "$TMP/$1.err"; }
-check_num "turned frame: the camera frame's faces within 10%" \
-	"$(awk -v a="$(faces turned)" -v b="$(faces camera)" 'BEGIN { d = a / b - 1; print d < 0 ? -d : d }')" "<" 0.1
+check_num "turned frame: the camera frame's patches for 99% of the faces" \
+	"$(awk -f tests/data/partition_agreement.awk "$TMP/camera.s.ply" "$TMP/turned.s.ply")" ">=" 0.99
+check_num "turned frame: the camera frame's faces within 3%" \
+	"$(awk -v a="$(faces turned)" -v b="$(faces camera)" 'BEGIN { d = a / b - 1; print d < 0 ? -d : d }')" "<" 0.03
 finish

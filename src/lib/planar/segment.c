@@ -94,6 +94,7 @@ struct seg {
 	double *isigma;          /* and 1 / sigma */
 	double area_unit;        /* area weighting: a third of the mean face area */
 	double floor2;           /* no noise below (1e-7 bounding-box diagonal)^2 */
+	double round2;           /* squared distance rounding to float can move a point off its plane */
 	double max_ms, stop;     /* max_rms^2, factor^2 */
 	double fit2;             /* fit^2: the largest mean chi^2 of a patch */
 	int two_sided;           /* no viewpoint: a plane may be seen from both sides */
@@ -147,14 +148,19 @@ static void region_add(struct region *r, const struct region *a, const struct re
 }
 
 /* The summed squared residual of the plane fitted to the union of a and b
- * (the smallest eigenvalue of its scatter); *trace gets the scatter's trace. */
-static double union_sse(const struct region *a, const struct region *b, double *trace)
+ * (the smallest eigenvalue of its scatter); *trace gets the scatter's trace.
+ * A residual that rounding the coordinates to float could make is 0: a
+ * depth plateau of a quantising sensor is exactly flat in the camera's
+ * frame and flat to the last bit in any other, and its unions must tie
+ * (then the lower pair goes first) in every frame alike. */
+static double union_sse(const struct seg *S, const struct region *a, const struct region *b,
+                        double *trace)
 {
 	struct region u;
 	region_add(&u, a, b);
 	*trace = u.s[0] + u.s[1] + u.s[2];
 	double l = fct_sym3_min_eigenvalue(u.s);
-	return l > 0 ? l : 0;
+	return l > S->round2 * u.w ? l : 0;
 }
 
 /* The vector area of face f (its fan of triangles from corner 0): its
@@ -318,7 +324,7 @@ static double cost1(struct seg *S, uint32_t a, uint32_t b, double *sse)
 	const struct region *ra = &S->region[a], *rb = &S->region[b];
 	if (-((int64_t)S->parent[a] + S->parent[b]) > CLUSTER_FACES)
 		return -1;
-	double tr, u = union_sse(ra, rb, &tr), w = ra->w + rb->w, n = ra->n + rb->n;
+	double tr, u = union_sse(S, ra, rb, &tr), w = ra->w + rb->w, n = ra->n + rb->n;
 	S->st.evaluations++;
 	*sse = u;
 	if (u > S->max_ms * w || u > CLUSTER_FIT * CLUSTER_FIT * n || opposed(S, ra, rb))
@@ -344,10 +350,10 @@ static int union_fits(const struct seg *S, const struct region *ra, const struct
 static double cost2(struct seg *S, uint32_t a, uint32_t b, double *sse)
 {
 	const struct region *ra = &S->region[a], *rb = &S->region[b];
-	double tr, u = union_sse(ra, rb, &tr);
+	double tr, u = union_sse(S, ra, rb, &tr);
 	S->st.evaluations++;
 	*sse = u;
-	double inc = u - ra->sse - rb->sse - ROUNDING * tr;
+	double inc = u - ra->sse - rb->sse - ROUNDING * tr - S->round2 * (ra->w + rb->w);
 	double small = ra->n < rb->n ? ra->n : rb->n;
 	if (!(inc > 0) || !(small > 0))
 		return 0;
@@ -672,7 +678,7 @@ static void absorb(struct seg *S, uint32_t *best, double *gain)
 				if (S->parent[x] <= small || S->parent[y] > small)
 					continue;   /* x not small, or y not a host */
 				const struct region *rx = &S->region[x], *ry = &S->region[y];
-				double tr, u = union_sse(rx, ry, &tr);
+				double tr, u = union_sse(S, rx, ry, &tr);
 				S->st.evaluations++;
 				if (!union_fits(S, rx, ry, u) || !(rx->n > 0))
 					continue;
@@ -695,7 +701,7 @@ static void absorb(struct seg *S, uint32_t *best, double *gain)
 			uint32_t a = fct_uf_root(S->parent, (uint32_t)x), b = fct_uf_root(S->parent, best[x]);
 			if (a == b || S->parent[a] <= small)
 				continue;   /* already absorbed, or grown past small */
-			double tr, u = union_sse(&S->region[a], &S->region[b], &tr);
+			double tr, u = union_sse(S, &S->region[a], &S->region[b], &tr);
 			if (!union_fits(S, &S->region[a], &S->region[b], u))
 				continue;   /* the host took others this round */
 			merge(S, a, b, u);
@@ -1413,9 +1419,11 @@ fail:
 	return -1;
 }
 
-/* The squared diagonal of m's bounding box; fails on a coordinate that is
- * not finite. */
-static int box_diagonal2(const struct fct_mesh *m, double *diag2, struct fct_err *err)
+/* The squared diagonal of m's bounding box, and the squared distance by
+ * which rounding m's coordinates can move a point; fails on a coordinate
+ * that is not finite. */
+static int box_diagonal2(const struct fct_mesh *m, double *diag2, double *round2,
+                         struct fct_err *err)
 {
 	double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
 	for (size_t v = 0; v < m->nv; v++)
@@ -1427,9 +1435,18 @@ static int box_diagonal2(const struct fct_mesh *m, double *diag2, struct fct_err
 			hi[i] = x > hi[i] ? x : hi[i];
 		}
 	*diag2 = 0;
+	double far = 0;
 	if (m->nv)
-		for (int i = 0; i < 3; i++)
+		for (int i = 0; i < 3; i++) {
 			*diag2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+			far = fmax(far, fmax(fabs(lo[i]), fabs(hi[i])));
+		}
+	/* Half an ulp on each of three coordinates: of a float when every
+	 * coordinate is one (a mesh read from floats), else of a double. */
+	int floats = 1;
+	for (size_t k = 0; k < 3 * m->nv && floats; k++)
+		floats = (double)(float)m->xyz[k] == m->xyz[k];
+	*round2 = 3 * ldexp(far * far, floats ? -48 : -106);
 	return 0;
 }
 
@@ -1503,7 +1520,7 @@ static int cluster(struct seg *S, struct fct_err *err)
 	/* Every pair's union: the first phase-1 key, and each face's least. */
 	for (size_t i = 0; i < S->npairs; i++) {
 		uint32_t f = S->pair[i][0], g = S->pair[i][1];
-		double tr, u = union_sse(&S->region[f], &S->region[g], &tr);
+		double tr, u = union_sse(S, &S->region[f], &S->region[g], &tr);
 		S->st.evaluations++;
 		if (rh_push(S, (float)u, i)) {
 			free(least);
@@ -1597,7 +1614,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	if (nf > INT32_MAX)
 		return fct_fail(err, "segment: %zu faces, more than %d", nf, INT32_MAX);
 	double diag2 = 0;
-	if (box_diagonal2(m, &diag2, err))
+	if (box_diagonal2(m, &diag2, &S.round2, err))
 		return -1;
 	if (nf == 0) {
 		if (stats)
