@@ -1,5 +1,7 @@
-/* test_planemodel - fct_fill_plane_holes on a flat grid with missing
- * vertices, as missing depth pixels leave them: one hole, two holes that
+/* test_planemodel - fct_patches_unfacet on a patch ringed by four patches
+ * at shallow creases, of about its size (a facet) and much smaller (a floor
+ * with tilted pieces beside it); fct_fill_plane_holes on a flat grid with
+ * missing vertices, as missing depth pixels leave them: one hole, two holes that
  * touch at a corner (which a walk that gives up at a shared vertex leaves
  * open), holes too long for max_edges, a hole along two patches, and a
  * piece's outer boundary, which is no hole.  Each fill is checked by what
@@ -94,8 +96,56 @@ static size_t fill(const uint32_t *gone, size_t ngone, size_t max_edges, int two
 	return filled;
 }
 
+/* fct_patches_unfacet on an n x n square whose cells [a,b)^2 are patch 0
+ * (plane z = 1) and the rest four bands, left, right, above and below it
+ * (patches 1-4), each tilted tilt degrees against it about its own axis.
+ * Whether patch 0 became free-form; *facets gets the count. */
+static int centre_unfaceted(int n, int a, int b, double tilt, size_t *facets)
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	square(&m, n, 1);
+	int32_t *patch = malloc(m.nf * sizeof *patch);
+	for (int j = 0; j < n; j++)
+		for (int i = 0; i < n; i++) {
+			int32_t l = i < a ? 1 : i >= b ? 2 : j < a ? 3 : j >= b ? 4 : 0;
+			patch[2 * (j * n + i)] = patch[2 * (j * n + i) + 1] = l;
+		}
+	double t = tilt * M_PI / 180, c = cos(t), s = sin(t);
+	struct fct_plane pl[5] = {
+		{ { 0, 0, -1 }, 1, 0, 0 }, { { -s, 0, -c }, 1, 0, 0 }, { { s, 0, -c }, 1, 0, 0 },
+		{ { 0, -s, -c }, 1, 0, 0 }, { { 0, s, -c }, 1, 0, 0 },
+	};
+	CHECK_INT(fct_patches_unfacet(patch, &m, pl, 5, 20, 0.5, facets, &err), 0);
+	int gone = patch[2 * (a * n + a)] == -1;
+	for (int j = a; j < b; j++)
+		for (int i = a; i < b; i++)
+			CHECK_INT(patch[2 * (j * n + i)] == -1, gone);
+	free(patch);
+	fct_mesh_free(&m);
+	return gone;
+}
+
 int main(void)
 {
+	size_t facets;
+	/* A facet: its whole outline at 10-degree creases with four patches
+	 * larger than itself (18 faces against 54 and 18). */
+	CHECK(centre_unfaceted(9, 3, 6, 10, &facets));
+	/* Creases of 30 degrees are edges between planes, not facets. */
+	CHECK(!centre_unfaceted(9, 3, 6, 30, &facets));
+	CHECK_INT(facets, 0);
+	/* Within 3 degrees of parallel is no crease. */
+	CHECK(!centre_unfaceted(9, 3, 6, 2, &facets));
+	/* A plane of 200 faces ringed by bands of at most 24 (more than four
+	 * times its largest shallow neighbour) stays a plane: the 7-Scenes
+	 * kitchen's floor (140159 faces) has pieces of 14931 faces and less
+	 * tilted 4-8 degrees against it, and whether it became free-form
+	 * turned on a share of its outline of 0.4958 or 0.5025. */
+	CHECK(!centre_unfaceted(12, 1, 11, 10, &facets));
+	/* 32 faces against 12, within four times: a facet. */
+	CHECK(centre_unfaceted(6, 1, 5, 10, &facets));
+
 	double a;
 	size_t border, up;
 

@@ -158,6 +158,11 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 /* Planes within 3 degrees of parallel make no crease: a sheet of paper on a
  * table, a door in its frame. */
 #define COS_PARALLEL 0.99862953475457383
+/* A facet is about as large as the facets around it (the curvature and
+ * the noise bound them all alike); a patch more than this many times the
+ * faces of its largest shallow neighbour is a plane with small pieces
+ * tilted against it: a floor beside a rug, a wall beside a picture. */
+#define FACET_SIZE_RATIO 4
 
 int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
@@ -173,11 +178,16 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 	unsigned char *facet = calloc(nplanes, 1);
 	/* Each patch's first shallow neighbours (up to SHALLOW_NEIGHBOURS). */
 	int32_t *nb = malloc(nplanes * SHALLOW_NEIGHBOURS * sizeof *nb);
-	if (!shared || !facet || !nb) {
-		free(shared), free(facet), free(nb);
+	/* Each patch's faces, and the faces of its largest shallow neighbour. */
+	size_t *faces = calloc(2 * nplanes, sizeof *faces);
+	if (!shared || !facet || !nb || !faces) {
+		free(shared), free(facet), free(nb), free(faces);
 		fct_adj_free(&adj);
 		return fct_fail(err, "out of memory");
 	}
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0)
+			faces[2 * (size_t)patch[f]]++;
 	double cos_max = cos(max_angle * M_PI / 180);
 	for (size_t i = 0; i < nplanes * SHALLOW_NEIGHBOURS; i++)
 		nb[i] = -1;
@@ -203,6 +213,8 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 			int32_t l = k ? b : a, o = k ? a : b;
 			shared[2 * l] += shallow ? len : 0;
 			shared[2 * l + 1] += len;
+			if (shallow && faces[2 * o] > faces[2 * l + 1])
+				faces[2 * l + 1] = faces[2 * o];
 			int32_t *list = nb + (size_t)l * SHALLOW_NEIGHBOURS;
 			for (int i = 0; shallow && i < SHALLOW_NEIGHBOURS; i++) {
 				if (list[i] == o)
@@ -216,12 +228,13 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 	}
 	for (size_t l = 0; l < nplanes; l++)
 		if (shared[2 * l + 1] > 0 && shared[2 * l] >= min_share * shared[2 * l + 1] &&
-		    nb[l * SHALLOW_NEIGHBOURS + SHALLOW_NEIGHBOURS - 1] >= 0)
+		    nb[l * SHALLOW_NEIGHBOURS + SHALLOW_NEIGHBOURS - 1] >= 0 &&
+		    faces[2 * l] <= FACET_SIZE_RATIO * faces[2 * l + 1])
 			facet[l] = 1, ++*facets;
 	for (size_t f = 0; f < m->nf; f++)
 		if (patch[f] >= 0 && facet[patch[f]])
 			patch[f] = -1;
-	free(shared), free(facet), free(nb);
+	free(shared), free(facet), free(nb), free(faces);
 	fct_adj_free(&adj);
 	return 0;
 }

@@ -53,7 +53,10 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
  * sheet of paper on a table) with three or more patches.  Noise large enough lets planes fit
  * a sphere piecewise; such facets meet several others at shallow creases
  * all round, which walls, floors and boxes, meeting at right angles or at
- * the image's edge, do not, nor a plane that noise split in two.  patch changes in place; *facets gets the count. */
+ * the image's edge, do not, nor a plane that noise split in two.  A
+ * patch of more than four times the faces of its largest shallow neighbour
+ * stays a plane: facets are of about one size.  patch changes in place;
+ * *facets gets the count. */
 int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
                         struct fct_err *err);
