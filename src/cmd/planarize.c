@@ -256,6 +256,7 @@ static void report_model(const struct fct_planar_stats *st)
 	fct_report_stage("planedecim", "debris_pieces", "%zu", st->debris_pieces);
 	fct_report_stage("planedecim", "debris_faces", "%zu", st->debris_faces);
 	fct_report_stage("planedecim", "speck_faces", "%zu", st->tidy.speck_faces);
+	fct_report_stage("planedecim", "off_plane_faces", "%zu", st->tidy.off_plane_faces);
 	fct_report_stage("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
 	fct_report_stage("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);
 	fct_report_stage("planedecim", "holes_filled", "%zu", st->holes_filled);

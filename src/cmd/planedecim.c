@@ -34,8 +34,9 @@ static const char usage[] =
 	"                 fill the holes of at most k edges inside one patch\n"
 	"                 (default 64; 0: none)\n"
 	"      --max-move k\n"
-	"                 move a vertex onto a line or corner by at most k sigma\n"
-	"                 (default 4)\n"
+	"                 move a vertex onto a line or corner by at most k sigma,\n"
+	"                 and a speck onto the plane around it only when most of\n"
+	"                 it is within k sigma of it (default 4)\n"
 	"      --min-free k\n"
 	"                 a speck of fewer than k faces joins the label around it\n"
 	"                 (default 64)\n"
@@ -112,6 +113,7 @@ int main(int argc, char **argv)
 	fct_report("debris_pieces", "%zu", st.debris_pieces);
 	fct_report("debris_faces", "%zu", st.debris_faces);
 	fct_report("speck_faces", "%zu", st.tidy.speck_faces);
+	fct_report("off_plane_faces", "%zu", st.tidy.off_plane_faces);
 	fct_report("closed_faces", "%zu", st.tidy.closed_faces);
 	fct_report("seam_faces", "%zu", st.tidy.seam_faces);
 	fct_report("holes_filled", "%zu", st.holes_filled);

@@ -1,4 +1,4 @@
-/* test_planemodel - fct_patches_unfacet on a patch ringed by four patches
+/* test_planemodel - fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
  * at shallow creases, of about its size (a facet) and much smaller (a floor
  * with tilted pieces beside it); fct_fill_plane_holes on a flat grid with
  * missing vertices, as missing depth pixels leave them: one hole, two holes that
@@ -126,9 +126,54 @@ static int centre_unfaceted(int n, int a, int b, double tilt, size_t *facets)
 	return gone;
 }
 
+/* fct_patches_tidy on a 16 x 16 square (plane z = 1, patch 0) with a free-form
+ * speck of 4 x 6 cells (48 faces) whose 15 inner vertices (62% of its
+ * faces' corners) are off the plane by off, every sigma 0.01 (or no sigma given): the speck's faces left free-form; *joined gets the
+ * faces given to the patch. */
+static size_t speck_left(double off, int with_sigma, size_t *joined)
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	const int n = 16;
+	square(&m, n, 1);
+	int32_t *patch = malloc(m.nf * sizeof *patch);
+	double *sigma = malloc(m.nv * sizeof *sigma);
+	for (int j = 0; j < n; j++)
+		for (int i = 0; i < n; i++)
+			patch[2 * (j * n + i)] = patch[2 * (j * n + i) + 1] = i >= 3 && i < 7 && j >= 2 && j < 8 ? -1 : 0;
+	for (size_t v = 0; v < m.nv; v++)
+		sigma[v] = 0.01;
+	for (int j = 3; j < 8; j++)
+		for (int i = 4; i < 7; i++)
+			m.xyz[3 * (size_t)(j * (n + 1) + i) + 2] += off;
+	struct fct_plane pl = { { 0, 0, -1 }, 1, 0, 0 };
+	struct fct_tidy_stats st;
+	CHECK_INT(fct_patches_tidy(patch, &m, &pl, 1, 0, with_sigma ? sigma : NULL, 4, 1, 64, &st, &err), 0);
+	size_t left = 0;
+	for (size_t f = 0; f < m.nf; f++)
+		left += patch[f] < 0;
+	CHECK_INT(st.off_plane_faces, left);
+	*joined = st.speck_faces;
+	free(patch), free(sigma);
+	fct_mesh_free(&m);
+	return left;
+}
+
 int main(void)
 {
-	size_t facets;
+	size_t facets, joined;
+	/* With a bound of 4 sigma: a speck mostly 2 sigma off the plane around
+	 * it joins it; one mostly 5 sigma off (a strip of floor seen between a
+	 * pillar and the wall) stays free-form, and without sigma it would
+	 * join. */
+	CHECK_INT(speck_left(0.02, 1, &joined), 0);
+	CHECK_INT(joined, 48);
+	CHECK_INT(speck_left(0.05, 1, &joined), 48);
+	CHECK_INT(joined, 0);
+	CHECK_INT(speck_left(-0.05, 1, &joined), 48);
+	CHECK_INT(speck_left(0.05, 0, &joined), 0);
+	CHECK_INT(joined, 48);
+
 	/* A facet: its whole outline at 10-degree creases with four patches
 	 * larger than itself (18 faces against 54 and 18). */
 	CHECK(centre_unfaceted(9, 3, 6, 10, &facets));

@@ -23,8 +23,32 @@
 /* Narrower than this many samples, a piece of faces is a sliver. */
 #define SLIVER_WIDTH 3
 
+/* far[2 r], far[2 r + 1]: of the corners of the faces of each piece (root
+ * r) that would join a patch, those farther than max_dev times their sigma
+ * from that patch's plane, and all. */
+static void speck_far_corners(uint32_t *far, const int32_t *patch, const struct fct_mesh *m,
+                              int32_t *root, const int32_t *host,
+                              const struct fct_plane *planes, size_t np, const double *sigma,
+                              double max_dev)
+{
+	memset(far, 0, 2 * m->nf * sizeof *far);
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t r = fct_uf_root(root, (uint32_t)f);
+		int32_t h = host[r];
+		if (h < 0 || (size_t)h >= np || h == patch[f])
+			continue;
+		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+			uint32_t v = m->fvert[c];
+			double d = fabs(fct_v3_dot(planes[h].n, m->xyz + 3 * (size_t)v) + planes[h].d);
+			far[2 * r] += !(d <= max_dev * sigma[v]);
+			far[2 * r + 1]++;
+		}
+	}
+}
+
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
-                     size_t np, size_t min_plane, size_t min_free, struct fct_tidy_stats *st,
+                     size_t np, int two_sided, const double *sigma, double max_dev,
+                     size_t min_plane, size_t min_free, struct fct_tidy_stats *st,
                      struct fct_err *err)
 {
 	memset(st, 0, sizeof *st);
@@ -96,22 +120,40 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 	 * boundary edges, so faces < SLIVER_WIDTH boundary edges is a strip
 	 * narrower than that.  Such slivers between two parts of one patch
 	 * would close up when decimated, and the patch's outline would run
-	 * both ways along them. */
+	 * both ways along them.  But a piece joins a patch only when most of
+	 * it (half its faces' corners or more) lies within max_dev sigma of
+	 * the patch's plane: a patch's vertices are moved onto its plane, and
+	 * a strip of floor seen between a pillar and the wall behind, joined
+	 * to the wall, was thrown along its rays to hang 0.2 m below the
+	 * floor.  Most, not all: a speck of outliers is one. */
+	uint32_t *far = sigma && planes ? fct_alloc_array(nf ? nf : 1, 2 * sizeof *far, err) : NULL;
+	if (sigma && planes && !far) {
+		free(root), free(host), free(count);
+		fct_adj_free(&adj);
+		return -1;
+	}
+	if (far)
+		speck_far_corners(far, patch, m, root, host, planes, np, sigma, max_dev);
 	for (size_t f = 0; f < nf; f++) {
 		uint32_t r = fct_uf_root(root, (uint32_t)f);
 		size_t size = (size_t)(-root[r]);
 		if (host[r] >= -1 && (size < min_free || size < SLIVER_WIDTH * (size_t)count[r])) {
+			if (far && 2 * far[2 * r] > far[2 * r + 1]) {
+				st->off_plane_faces++;
+				continue;
+			}
 			patch[f] = host[r];
 			st->speck_faces++;
 		}
 	}
+	free(far);
 	/* Two patches turned away from each other (normals more than 120
 	 * degrees apart: the two sides of a board thinner than the noise)
 	 * that meet along an edge have no rim between them: their polygons
 	 * would span the same outline, in the same triangles, and one copy of
 	 * each be dropped as a duplicate, leaving the board open.  The faces
 	 * along such a seam become free-form: a rim of their own. */
-	if (planes)
+	if (two_sided && planes)
 		for (size_t e = 0; e < adj.ne; e++) {
 			const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
 			if (fct_adj_edge_nfaces(&adj, e) != 2)
@@ -1479,7 +1521,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	}
 	if (vertex_sigma(m, pl, np, &sigma, &st->sigma_estimated, err) ||
 	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
-	    fct_patches_tidy(patch, m, have_cam ? NULL : pl, np, p->min_plane, p->min_free, &st->tidy, err) ||
+	    fct_patches_tidy(patch, m, pl, np, !have_cam, sigma, p->max_move, p->min_plane,
+	                     p->min_free, &st->tidy, err) ||
 	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||

@@ -20,6 +20,7 @@
 struct fct_tidy_stats {
 	size_t small_faces;   /* faces of patches too small, made free-form */
 	size_t speck_faces;   /* faces of specks, given to the one label around them */
+	size_t off_plane_faces; /* ... kept apart: mostly farther than max_dev sigma from its plane */
 	size_t closed_faces;  /* faces of patches with no outline (whole closed pieces), made free-form */
 	size_t seam_faces;    /* faces along seams of patches facing apart (no viewpoint), free-form */
 };
@@ -32,7 +33,11 @@ struct fct_tidy_stats {
  * other label all around it joins that label: specks of outliers inside a plane, which
  * the model puts on the plane, and the islands that a crease's noise leaves
  * on either side of it, each of which would cost the model a boundary.
- * Without a viewpoint (planes: the np planes; NULL for a view's mesh),
+ * With sigma (each vertex's, and planes: the np planes), a piece joins a
+ * patch only when half its faces' corners or more lie within max_dev
+ * times their sigma of that patch's plane; the rest stay as they are
+ * (off_plane_faces).
+ * With two_sided (no viewpoint: a fused scan; planes needed),
  * the faces along an edge between two patches whose normals are more than
  * 120 degrees apart (the two sides of a board thinner than the noise,
  * which would span one outline in the same triangles) become free-form: a
@@ -42,8 +47,9 @@ struct fct_tidy_stats {
  * it as a speck) becomes free-form: no outline bounds its polygon.
  * patch: m->nf labels, changed in place. */
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
-                     size_t np, size_t min_plane, size_t min_free,
-                     struct fct_tidy_stats *st, struct fct_err *err);
+                     size_t np, int two_sided, const double *sigma, double max_dev,
+                     size_t min_plane, size_t min_free, struct fct_tidy_stats *st,
+                     struct fct_err *err);
 
 /* Facets of curved surfaces become free-form: each patch whose outline
  * (to other patches, the free-form surface and the outside) runs, for at
