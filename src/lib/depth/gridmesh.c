@@ -13,6 +13,37 @@
  * (a, c, d) and (a, d, b) -- all clockwise in (u, v), which faces the sensor. */
 enum { FIRST = 1, SECOND = 2, DIAG_AD = 4 };
 
+/* Two doubles at once: GCC's and Clang's vector extension, which every
+ * target compiles (to SSE2 on x86-64, NEON on arm64, scalar code
+ * elsewhere); lane by lane the same IEEE operations as scalar code, so
+ * the same bits. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef int64_t v2i __attribute__((vector_size(16)));
+
+static inline v2d load2(const double *p)
+{
+	v2d v;
+	memcpy(&v, p, sizeof v);
+	return v;
+}
+
+static inline void store2(double *p, v2d v)
+{
+	memcpy(p, &v, sizeof v);
+}
+
+/* Two floats made doubles (exactly). */
+static inline v2d load2_float(const float *p)
+{
+	return (v2d){ p[0], p[1] };
+}
+
+/* Lane by lane: where m is all ones, a, else b. */
+static inline v2d select2(v2i m, v2d a, v2d b)
+{
+	return (v2d)(((v2i)a & m) | ((v2i)b & ~m));
+}
+
 struct grid {
 	const struct fct_range_grid *g;
 	double limit;            /* max_jump * footprint */
@@ -119,27 +150,58 @@ static int prefer_ad_border(const struct grid *G, long i, long j)
  * instead of once for each of the two squares that use them, from the
  * positions of the rows around it, which are computed once too.  Rows are
  * kept in rings: positions of rows j-1 .. j+2 and bends of rows j, j+1 while
- * the squares of row j are decided. */
+ * the squares of row j are decided.  Positions are kept a coordinate per
+ * array, so that the bends of two cells are computed at once (bend_pair). */
 struct bend_rows {
-	double *pos[4];          /* 3 per cell, row r in pos[r % 4] */
-	double *ad[2], *bc[2];   /* per cell, row r in [r % 2] */
-	long npos, nbend;        /* rows computed so far */
+	double *x[4], *y[4], *z[4];   /* per cell, row r in [r % 4]; 2 cells of padding */
+	double *ad[2], *bc[2];        /* per cell, row r in [r % 2] */
+	long npos, nbend;             /* rows computed so far */
+	unsigned char *prefer;        /* prefer_ad of the row's squares 1 .. fast_end-1 */
+	long fast_end;
 };
 
-static void position_row(const struct grid *G, long j, double *out)
+static void position_row(const struct grid *G, const struct bend_rows *R, long j)
 {
-	for (long i = 0; i < G->w; i++)
-		P(G, (size_t)(j * G->w + i), (size_t)i, (size_t)j, out + 3 * i);
+	double *x = R->x[j % 4], *y = R->y[j % 4], *z = R->z[j % 4], p[3];
+	for (long i = 0; i < G->w; i++) {
+		P(G, (size_t)(j * G->w + i), (size_t)i, (size_t)j, p);
+		x[i] = p[0], y[i] = p[1], z[i] = p[2];
+	}
+}
+
+/* line_distance2 of two cells at once: p, a and b are each given by their
+ * coordinates' pairs, in the same operations and order. */
+static inline v2d line_distance2_pair(v2d px, v2d py, v2d pz, v2d ax, v2d ay, v2d az,
+                                      v2d bx, v2d by, v2d bz)
+{
+	v2d abx = bx - ax, aby = by - ay, abz = bz - az;
+	v2d apx = px - ax, apy = py - ay, apz = pz - az;
+	v2d xx = aby * apz - abz * apy, xy = abz * apx - abx * apz, xz = abx * apy - aby * apx;
+	v2d l2 = abx * abx + aby * aby + abz * abz;
+	v2d on_line = (xx * xx + xy * xy + xz * xz) / l2, to_a = apx * apx + apy * apy + apz * apz;
+	/* l2 > 0 selects the first; where l2 is 0 its quotient (NaN or
+	 * infinity) is discarded, and no trap is enabled. */
+	return select2(l2 > 0, on_line, to_a);
 }
 
 /* The bends of the cells 1 .. w-2 of row j (0 < j < h-1); cells without data
- * or beside one get values that are never used. */
+ * or beside one get values that are never used.  Cells go two at a time;
+ * an odd count's last pair reads the padding and writes bends of cell w-1,
+ * which no square reads. */
 static void bend_row(const struct bend_rows *R, long j, long w, double *ad, double *bc)
 {
-	const double *up = R->pos[(j - 1) % 4], *mid = R->pos[j % 4], *down = R->pos[(j + 1) % 4];
-	for (long i = 1; i + 1 < w; i++) {
-		ad[i] = line_distance2(mid + 3 * i, up + 3 * (i - 1), down + 3 * (i + 1));
-		bc[i] = line_distance2(mid + 3 * i, up + 3 * (i + 1), down + 3 * (i - 1));
+	int u = (int)((j - 1) % 4), m = (int)(j % 4), d = (int)((j + 1) % 4);
+	const double *ux = R->x[u], *uy = R->y[u], *uz = R->z[u];
+	const double *mx = R->x[m], *my = R->y[m], *mz = R->z[m];
+	const double *dx = R->x[d], *dy = R->y[d], *dz = R->z[d];
+	for (long i = 1; i + 1 < w; i += 2) {
+		v2d px = load2(mx + i), py = load2(my + i), pz = load2(mz + i);
+		store2(ad + i, line_distance2_pair(px, py, pz, load2(ux + i - 1), load2(uy + i - 1),
+		                                   load2(uz + i - 1), load2(dx + i + 1), load2(dy + i + 1),
+		                                   load2(dz + i + 1)));
+		store2(bc + i, line_distance2_pair(px, py, pz, load2(ux + i + 1), load2(uy + i + 1),
+		                                   load2(uz + i + 1), load2(dx + i - 1), load2(dy + i - 1),
+		                                   load2(dz + i - 1)));
 	}
 }
 
@@ -147,7 +209,7 @@ static void bend_row(const struct bend_rows *R, long j, long w, double *ad, doub
 static void bend_rows_advance(const struct grid *G, struct bend_rows *R, long j)
 {
 	for (; R->npos <= j + 2 && R->npos < G->h; R->npos++)
-		position_row(G, R->npos, R->pos[R->npos % 4]);
+		position_row(G, R, R->npos);
 	for (; R->nbend <= j + 1 && R->nbend + 1 < G->h; R->nbend++)
 		if (R->nbend > 0)
 			bend_row(R, R->nbend, G->w, R->ad[R->nbend % 2], R->bc[R->nbend % 2]);
@@ -158,7 +220,7 @@ static void bend_rows_advance(const struct grid *G, struct bend_rows *R, long j)
 static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, long i, long j)
 {
 	size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i;
-	const double *r0 = R->pos[j % 4], *r1 = R->pos[(j + 1) % 4];
+	int r0 = (int)(j % 4), r1 = (int)((j + 1) % 4);
 	int around = has_data(G, ca - W - 1) && has_data(G, ca + 2 * W + 2) &&
 	             has_data(G, ca - W + 2) && has_data(G, ca + 2 * W - 1);
 	double bad = 0, bbc = 0;
@@ -168,11 +230,60 @@ static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, lon
 		bad = ad0[i] + ad1[i + 1];
 		bbc = bc0[i + 1] + bc1[i];
 	}
-	return choose_ad(bad, bbc, around, r0 + 3 * i, r0 + 3 * (i + 1), r1 + 3 * i, r1 + 3 * (i + 1));
+	double a[3] = { R->x[r0][i], R->y[r0][i], R->z[r0][i] };
+	double b[3] = { R->x[r0][i + 1], R->y[r0][i + 1], R->z[r0][i + 1] };
+	double c[3] = { R->x[r1][i], R->y[r1][i], R->z[r1][i] };
+	double d[3] = { R->x[r1][i + 1], R->y[r1][i + 1], R->z[r1][i + 1] };
+	return choose_ad(bad, bbc, around, a, b, c, d);
+}
+
+/* Whether cells c and c + 1 have data (has_data), as a mask. */
+static inline v2i has_data2(const struct grid *G, size_t c)
+{
+	v2d d = load2(G->g->depth + c);
+	const v2d zero = { 0, 0 }, huge = { HUGE_VAL, HUGE_VAL };
+	return (d > zero) & (d < huge);
+}
+
+/* prefer_ad_inside of the squares of row j (1 <= j, j + 2 < h) two at a
+ * time, choose_ad's operations lane by lane and its branches made selects,
+ * into R->prefer[1 .. R->fast_end); the last square of an odd count is left
+ * to prefer_ad_inside.  Most squares of a depth frame ask, and their
+ * choices alternate as good as randomly: branches mispredict. */
+static void prefer_row(const struct grid *G, struct bend_rows *R, long j)
+{
+	size_t W = (size_t)G->w, row = (size_t)j * W;
+	int r0 = (int)(j % 4), r1 = (int)((j + 1) % 4);
+	const double *x0 = R->x[r0], *y0 = R->y[r0], *z0 = R->z[r0];
+	const double *x1 = R->x[r1], *y1 = R->y[r1], *z1 = R->z[r1];
+	const double *ad0 = R->ad[j % 2], *ad1 = R->ad[(j + 1) % 2];
+	const double *bc0 = R->bc[j % 2], *bc1 = R->bc[(j + 1) % 2];
+	const v2d tiny = { 1e-18, 1e-18 };
+	const v2i magnitude = { INT64_MAX, INT64_MAX }, one = { 1, 1 };
+	long i = 1;
+	for (; i + 3 < G->w; i += 2) {
+		size_t ca = row + (size_t)i;
+		v2i around = has_data2(G, ca - W - 1) & has_data2(G, ca + 2 * W + 2) &
+		             has_data2(G, ca - W + 2) & has_data2(G, ca + 2 * W - 1);
+		v2d bad = load2(ad0 + i) + load2(ad1 + i + 1), bbc = load2(bc0 + i + 1) + load2(bc1 + i);
+		v2d ex = load2(x0 + i) - load2(x1 + i + 1), ey = load2(y0 + i) - load2(y1 + i + 1),
+		    ez = load2(z0 + i) - load2(z1 + i + 1);
+		v2d lad = ex * ex + ey * ey + ez * ez;
+		ex = load2(x0 + i + 1) - load2(x1 + i), ey = load2(y0 + i + 1) - load2(y1 + i),
+		ez = load2(z0 + i + 1) - load2(z1 + i);
+		v2d lbc = ex * ex + ey * ey + ez * ez;
+		v2d noise = tiny * select2(lad > lbc, lad, lbc);
+		v2i by_bend = around & ((v2d)((v2i)(bad - bbc) & magnitude) > noise);
+		v2i ad = ((by_bend & (bad < bbc)) | (~by_bend & (lad < lbc))) & one;
+		R->prefer[i] = (unsigned char)ad[0], R->prefer[i + 1] = (unsigned char)ad[1];
+	}
+	R->fast_end = i;
 }
 
 static int prefer_ad(const struct grid *G, const struct bend_rows *R, long i, long j)
 {
+	if (i >= 1 && i < R->fast_end)
+		return R->prefer[i];
 	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h)
 		return prefer_ad_inside(G, R, i, j);
 	return prefer_ad_border(G, i, j);
@@ -277,7 +388,25 @@ static void join_run(const struct grid *G, size_t a, size_t b, size_t n, double 
 {
 	const double *d = G->g->depth;
 	const float *s = G->g->sigma;
-	for (size_t k = 0; k < n; k++) {
+	/* Two at a time: fct_depth_joined's operations lane by lane (limit *
+	 * steps * min is (limit * steps) * min; the larger float sigma made a
+	 * double after choosing or before, the same value), the last odd one
+	 * by fct_depth_joined itself. */
+	const v2d limit = { G->limit * steps, G->limit * steps }, noise = { G->noise, G->noise };
+	const v2i magnitude = { INT64_MAX, INT64_MAX };
+	size_t k = 0;
+	for (; k + 1 < n; k += 2) {
+		v2d da = load2(d + a + k), db = load2(d + b + k), allow = { 0, 0 };
+		if (s) {
+			v2d sa = load2_float(s + a + k), sb = load2_float(s + b + k);
+			allow = noise * select2(sa > sb, sa, sb);
+		}
+		v2d jump = (v2d)((v2i)(da - db) & magnitude);
+		v2i joined = jump <= limit * select2(da < db, da, db) + allow;
+		out[k] = ha[k] & hb[k] & (unsigned char)(joined[0] & 1);
+		out[k + 1] = ha[k + 1] & hb[k + 1] & (unsigned char)(joined[1] & 1);
+	}
+	for (; k < n; k++) {
 		double allow = s ? G->noise * (s[a + k] > s[b + k] ? s[a + k] : s[b + k]) : 0;
 		out[k] = ha[k] & hb[k] & fct_depth_joined(d[a + k], d[b + k], G->limit, steps, allow);
 	}
@@ -407,9 +536,10 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	uint32_t *vindex = pieces ? NULL : fct_alloc_big(ncells, sizeof *vindex, err);
 	uint32_t *count = NULL;
 	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
-	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
-	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 7, err);
-	struct bend_rows R = { {NULL}, {NULL}, {NULL}, 0, 0 };
+	size_t pw = (size_t)G.w + 2;   /* a position row and its padding */
+	double *rings = fct_alloc_array(pw, 16 * sizeof *rings, err);
+	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 8, err);
+	struct bend_rows R = { {NULL}, {NULL}, {NULL}, {NULL}, {NULL}, 0, 0, NULL, 0 };
 	struct square_rule rules[1024];
 	int rc = -1;
 	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags) {
@@ -423,18 +553,23 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	if (pieces)
 		for (size_t c = 0; c < ncells; c++)
 			parent[c] = (uint32_t)c;
-	for (int r = 0; r < 4; r++)
-		R.pos[r] = rings + (size_t)r * 3 * (size_t)G.w;
-	for (int r = 0; r < 2; r++)
-		R.ad[r] = rings + (12 + (size_t)r) * (size_t)G.w, R.bc[r] = rings + (14 + (size_t)r) * (size_t)G.w;
+	memset(rings, 0, 16 * pw * sizeof *rings);   /* the padding is read */
+	for (size_t r = 0; r < 4; r++)
+		R.x[r] = rings + r * pw, R.y[r] = rings + (4 + r) * pw, R.z[r] = rings + (8 + r) * pw;
+	for (size_t r = 0; r < 2; r++)
+		R.ad[r] = rings + (12 + r) * pw, R.bc[r] = rings + (14 + r) * pw;
 	size_t fw = (size_t)G.w + 1;
 	struct edge_rows E = { { flags, flags + fw }, { flags + 2 * fw, flags + 3 * fw },
 	                       flags + 4 * fw, flags + 5 * fw, flags + 6 * fw };
+	R.prefer = flags + 7 * fw;
 	square_rules(rules);
 	if (sh > 0)
 		cell_row(&G, &E, 0);
 	for (long j = 0; j < sh; j++) {
 		bend_rows_advance(&G, &R, j);
+		R.fast_end = 0;
+		if (j >= 1 && j + 2 < G.h)
+			prefer_row(&G, &R, j);
 		cell_row(&G, &E, j + 1);
 		between_rows(&G, &E, j);
 		for (long i = 0; i < sw; i++) {
