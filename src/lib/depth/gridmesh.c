@@ -49,12 +49,21 @@ struct grid {
 	double limit;            /* max_jump * footprint */
 	double noise;            /* noise_jump * sqrt(2) */
 	int w, h, wrap;
+	double *ray_x, *ray_z;   /* g->col's x and z, each in an array of its own */
 };
 
 static inline int has_data(const struct grid *G, size_t c)
 {
 	double d = G->g->depth[c];
 	return d > 0 && d < HUGE_VAL;
+}
+
+/* Whether cells c and c + 1 have data (has_data), as a mask. */
+static inline v2i has_data2(const struct grid *G, size_t c)
+{
+	v2d d = load2(G->g->depth + c);
+	const v2d zero = { 0, 0 }, huge = { HUGE_VAL, HUGE_VAL };
+	return (d > zero) & (d < huge);
 }
 
 /* Cell (i, j) or -1 outside the grid; columns wrap on a full cylinder. */
@@ -163,7 +172,18 @@ struct bend_rows {
 static void position_row(const struct grid *G, const struct bend_rows *R, long j)
 {
 	double *x = R->x[j % 4], *y = R->y[j % 4], *z = R->z[j % 4], p[3];
-	for (long i = 0; i < G->w; i++) {
+	long i = 0;
+	if (!G->g->xyz) {   /* P two cells at a time */
+		const double *d = G->g->depth + (size_t)j * (size_t)G->w;
+		const v2d ray_y = { G->g->row[j], G->g->row[j] };
+		for (; i + 1 < G->w; i += 2) {
+			v2d di = load2(d + i);
+			store2(x + i, di * load2(G->ray_x + i));
+			store2(y + i, di * ray_y);
+			store2(z + i, di * load2(G->ray_z + i));
+		}
+	}
+	for (; i < G->w; i++) {
 		P(G, (size_t)(j * G->w + i), (size_t)i, (size_t)j, p);
 		x[i] = p[0], y[i] = p[1], z[i] = p[2];
 	}
@@ -235,14 +255,6 @@ static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, lon
 	double c[3] = { R->x[r1][i], R->y[r1][i], R->z[r1][i] };
 	double d[3] = { R->x[r1][i + 1], R->y[r1][i + 1], R->z[r1][i + 1] };
 	return choose_ad(bad, bbc, around, a, b, c, d);
-}
-
-/* Whether cells c and c + 1 have data (has_data), as a mask. */
-static inline v2i has_data2(const struct grid *G, size_t c)
-{
-	v2d d = load2(G->g->depth + c);
-	const v2d zero = { 0, 0 }, huge = { HUGE_VAL, HUGE_VAL };
-	return (d > zero) & (d < huge);
 }
 
 /* prefer_ad_inside of the squares of row j (1 <= j, j + 2 < h) two at a
@@ -375,7 +387,12 @@ struct edge_rows {
 static void has_row(const struct grid *G, long j, unsigned char *out)
 {
 	const double *d = G->g->depth + (size_t)j * (size_t)G->w;
-	for (long i = 0; i < G->w; i++)
+	long i = 0;
+	for (; i + 1 < G->w; i += 2) {
+		v2i has = has_data2(G, (size_t)j * (size_t)G->w + (size_t)i);
+		out[i] = (unsigned char)(has[0] & 1), out[i + 1] = (unsigned char)(has[1] & 1);
+	}
+	for (; i < G->w; i++)
 		out[i] = d[i] > 0 && d[i] < HUGE_VAL;
 	out[G->w] = out[0];
 }
@@ -518,7 +535,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
                   struct fct_grid_stats *stats, struct fct_err *err)
 {
 	struct grid G = { g, p->max_jump * g->footprint, M_SQRT2 * g->noise_jump, g->width, g->height,
-	                  g->wrap && g->width > 2 };
+	                  g->wrap && g->width > 2, NULL, NULL };
 	size_t ncells, nsq;
 	if (cell_of)
 		*cell_of = NULL;
@@ -539,10 +556,11 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	size_t pw = (size_t)G.w + 2;   /* a position row and its padding */
 	double *rings = fct_alloc_array(pw, 16 * sizeof *rings, err);
 	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 8, err);
+	double *rays = g->xyz ? NULL : fct_alloc_array((size_t)G.w, 2 * sizeof *rays, err);
 	struct bend_rows R = { {NULL}, {NULL}, {NULL}, {NULL}, {NULL}, 0, 0, NULL, 0 };
 	struct square_rule rules[1024];
 	int rc = -1;
-	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags) {
+	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags || (!g->xyz && !rays)) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -562,6 +580,11 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	struct edge_rows E = { { flags, flags + fw }, { flags + 2 * fw, flags + 3 * fw },
 	                       flags + 4 * fw, flags + 5 * fw, flags + 6 * fw };
 	R.prefer = flags + 7 * fw;
+	if (rays) {
+		G.ray_x = rays, G.ray_z = rays + G.w;
+		for (long i = 0; i < G.w; i++)
+			G.ray_x[i] = g->col[3 * i], G.ray_z[i] = g->col[3 * i + 2];
+	}
 	square_rules(rules);
 	if (sh > 0)
 		cell_row(&G, &E, 0);
@@ -671,5 +694,6 @@ out:
 	free(used);
 	free(rings);
 	free(flags);
+	free(rays);
 	return rc;
 }
