@@ -273,12 +273,18 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 		return fct_fail(err, "step must be at least 1");
 	int step = p->step, gw = (img->width + step - 1) / step, gh = (img->height + step - 1) / step;
 	size_t ncells = (size_t)gw * (size_t)gh;
-	double *depth = fct_alloc_big(ncells, sizeof *depth, err);
+	int noisy = p->noise.model != FCT_NOISE_UNKNOWN;
+	/* With a noise model the cells' sigmas follow their depths in one
+	 * block: fresh memory is cleared by the kernel a 2 MB page at a time
+	 * (fct_alloc_big), and 640x480 depths (2.5 MB) and sigmas (1.2 MB) fill
+	 * two pages together but three apart. */
+	size_t cell_bytes = sizeof(double) + (noisy ? sizeof(float) : 0);
+	double *depth = fct_alloc_big(ncells, cell_bytes, err);
 	double *col = fct_alloc_array((size_t)gw, 3 * sizeof *col, err);
 	double *row = fct_alloc_array((size_t)gh, sizeof *row, err);
 	uint32_t *cell_of = NULL;
 	float *sigma = NULL;
-	int rc = -1, noisy = p->noise.model != FCT_NOISE_UNKNOWN;
+	int rc = -1;
 	struct sample_tables tab = { NULL, NULL };
 	if (!depth || !col || !row || sample_tables_make(&tab, img, ncells, p, noisy, err))
 		goto out;
@@ -294,8 +300,7 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 		depth_row(img, j * step, step, p, tab.depth, depth + (size_t)j * (size_t)gw, gw);
 	}
 	if (noisy) {
-		if (!(sigma = fct_alloc_big(ncells, sizeof *sigma, err)))
-			goto out;
+		sigma = (float *)(depth + ncells);
 		if (tab.sigma)
 			for (int j = 0; j < gh; j++)
 				sigma_row(img, j * step, step, tab.sigma, sigma + (size_t)j * (size_t)gw, gw);
@@ -317,8 +322,7 @@ int fct_depth_mesh_kept(struct fct_mesh *m, const struct fct_image *img, const s
 	rc = 0;
 out:
 	sample_tables_free(&tab);
-	free(depth);
-	free(sigma);
+	free(depth);   /* and sigma */
 	free(col);
 	free(row);
 	free(cell_of);
