@@ -514,17 +514,17 @@ static int follows_rules(const struct fct_mesh *m, const uint32_t *cell_of, cons
 	return ok;
 }
 
-/* Grids of every width 1-9 and height 1-6 (odd and even counts of the row
- * passes' pairs, 1 x N), a rough surface of random bends and jumps with
- * holes of 0, NaN and infinite depth and planar stretches (ties between
- * the diagonals' bends), with and without sigma: the mesh follows the
- * rules square by square. */
+/* Grids of every width 1-19 and height 1-6 (odd and even counts of the
+ * row passes' pairs, runs of eight squares and the rest, 1 x N), a rough
+ * surface of random bends and jumps with holes of 0, NaN and infinite
+ * depth and planar stretches (ties between the diagonals' bends), with and
+ * without sigma: the mesh follows the rules square by square. */
 static void test_rules_by_square(void)
 {
 	uint32_t seed = 11;
 	for (int with_sigma = 0; with_sigma < 2; with_sigma++)
 		for (int h = 1; h <= 6; h++)
-			for (int w = 1; w <= 9; w++) {
+			for (int w = 1; w <= 19; w++) {
 				size_t n = (size_t)w * (size_t)h;
 				double *depth = malloc(n * sizeof *depth), *col = malloc(3 * (size_t)w * sizeof *col);
 				double *row = malloc((size_t)h * sizeof *row);

@@ -465,6 +465,35 @@ static inline unsigned square_edges(const struct edge_rows *E, long j, long i)
 	                  E->down[i] * JAC | E->down[i + 1] * JBD | E->ad[i] * JAD | E->bc[i] * JBC);
 }
 
+/* Eight flags (0 or 1) at p, widened to 16 bits. */
+typedef uint8_t v8b __attribute__((vector_size(8)));
+typedef uint16_t v8h __attribute__((vector_size(16)));
+
+static inline v8h load8_flags(const unsigned char *p)
+{
+	v8b v;
+	memcpy(&v, p, sizeof v);
+	return __builtin_convertvector(v, v8h);
+}
+
+/* square_edges of the squares 0 .. n-1 of row j into out, eight at a time
+ * (the row's flags have w + 1 entries, n <= w), the rest one by one. */
+static void square_edges_row(const struct edge_rows *E, long j, long n, uint16_t *out)
+{
+	const unsigned char *h0 = E->has[j % 2], *h1 = E->has[(j + 1) % 2];
+	const unsigned char *a0 = E->along[j % 2], *a1 = E->along[(j + 1) % 2];
+	long i = 0;
+	for (; i + 8 <= n; i += 8) {
+		v8h e = load8_flags(h0 + i) | load8_flags(h0 + i + 1) << 1 | load8_flags(h1 + i) << 2 |
+		        load8_flags(h1 + i + 1) << 3 | load8_flags(a0 + i) << 4 | load8_flags(a1 + i) << 5 |
+		        load8_flags(E->down + i) << 6 | load8_flags(E->down + i + 1) << 7 |
+		        load8_flags(E->ad + i) << 8 | load8_flags(E->bc + i) << 9;
+		memcpy(out + i, &e, sizeof e);
+	}
+	for (; i < n; i++)
+		out[i] = (uint16_t)square_edges(E, j, i);
+}
+
 /* The triangle `which` (FIRST or SECOND) of square q made with code. */
 static inline void square_triangle(struct square q, unsigned code, unsigned which, uint32_t t[3])
 {
@@ -556,11 +585,13 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	size_t pw = (size_t)G.w + 2;   /* a position row and its padding */
 	double *rings = fct_alloc_array(pw, 16 * sizeof *rings, err);
 	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 8, err);
+	uint16_t *edges = fct_alloc_array((size_t)G.w, sizeof *edges, err);   /* a row's square_edges */
 	double *rays = g->xyz ? NULL : fct_alloc_array((size_t)G.w, 2 * sizeof *rays, err);
 	struct bend_rows R = { {NULL}, {NULL}, {NULL}, {NULL}, {NULL}, 0, 0, NULL, 0 };
 	struct square_rule rules[1024];
 	int rc = -1;
-	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags || (!g->xyz && !rays)) {
+	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags || !edges ||
+	    (!g->xyz && !rays)) {
 		if (!used)
 			fct_fail(err, "out of memory");
 		goto out;
@@ -595,9 +626,10 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 			prefer_row(&G, &R, j);
 		cell_row(&G, &E, j + 1);
 		between_rows(&G, &E, j);
+		square_edges_row(&E, j, sw, edges);
 		for (long i = 0; i < sw; i++) {
 			struct square q = square_at(&G, i, j);
-			const struct square_rule *rule = &rules[square_edges(&E, j, i)];
+			const struct square_rule *rule = &rules[edges[i]];
 			unsigned k = rule->ask && prefer_ad(&G, &R, i, j) ? rule->ad : rule->bc;
 			code[j * sw + i] = (unsigned char)k;
 			possible += rule->possible;
@@ -694,6 +726,7 @@ out:
 	free(used);
 	free(rings);
 	free(flags);
+	free(edges);
 	free(rays);
 	return rc;
 }
