@@ -565,7 +565,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 {
 	struct grid G = { g, p->max_jump * g->footprint, M_SQRT2 * g->noise_jump, g->width, g->height,
 	                  g->wrap && g->width > 2, NULL, NULL };
-	size_t ncells, nsq;
+	size_t ncells;
 	if (cell_of)
 		*cell_of = NULL;
 	if (g->width < 1 || g->height < 1 || fct_mul_size((size_t)g->width, (size_t)g->height, &ncells))
@@ -573,15 +573,17 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	if (ncells > UINT32_MAX / 2)
 		return fct_fail(err, "grid: %zu cells are too many", ncells);
 	long sw = G.wrap ? G.w : G.w - 1, sh = G.h - 1;   /* squares per row, rows of squares */
-	nsq = sw > 0 && sh > 0 ? (size_t)sw * (size_t)sh : 0;
 	int pieces = p->min_faces > 1;
 
-	/* With pieces, parent becomes the piece labels and then vindex. */
-	unsigned char *code = fct_alloc_array(nsq, 1, err);
-	uint32_t *parent = pieces ? fct_alloc_big(ncells, sizeof *parent, err) : NULL;
-	uint32_t *vindex = pieces ? NULL : fct_alloc_big(ncells, sizeof *vindex, err);
-	uint32_t *count = NULL;
-	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
+	/* Per cell a uint32 (with pieces parent, which becomes the piece
+	 * labels and then vindex; else vindex), then per cell whether a kept
+	 * triangle uses it, then per square its code: one block, the 2 MB page
+	 * of a 640x480 grid's uint32s holding the rest too instead of 150 pages
+	 * of 4 KB faulted in (squares are no more than cells). */
+	uint32_t *cells = fct_alloc_big(ncells, sizeof *cells + 2, err);
+	uint32_t *parent = pieces ? cells : NULL, *vindex = pieces ? NULL : cells, *count = NULL;
+	unsigned char *used = cells ? (unsigned char *)(cells + ncells) : NULL;
+	unsigned char *code = used ? used + ncells : NULL;
 	size_t pw = (size_t)G.w + 2;   /* a position row and its padding */
 	double *rings = fct_alloc_array(pw, 16 * sizeof *rings, err);
 	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 8, err);
@@ -590,12 +592,9 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	struct bend_rows R = { {NULL}, {NULL}, {NULL}, {NULL}, {NULL}, 0, 0, NULL, 0 };
 	struct square_rule rules[1024];
 	int rc = -1;
-	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags || !edges ||
-	    (!g->xyz && !rays)) {
-		if (!used)
-			fct_fail(err, "out of memory");
+	if (!cells || !rings || !flags || !edges || (!g->xyz && !rays))
 		goto out;
-	}
+	memset(used, 0, ncells);
 
 	/* The triangles of every square, and the pieces they join. */
 	size_t possible = 0, made = 0;
@@ -709,9 +708,9 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 			vindex[v] = (uint32_t)c;
 		}
 	if (cell_of) {
-		uint32_t *shrunk = realloc(vindex, (nv ? nv : 1) * sizeof *vindex);
-		*cell_of = shrunk ? shrunk : vindex;
-		vindex = NULL;
+		uint32_t *shrunk = realloc(cells, (nv ? nv : 1) * sizeof *cells);   /* vindex's part */
+		*cell_of = shrunk ? shrunk : cells;
+		cells = NULL;
 	}
 	if (stats) {
 		stats->jump_faces = possible - made;
@@ -719,11 +718,8 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	}
 	rc = 0;
 out:
-	free(code);
-	free(parent);
-	free(vindex);
+	free(cells);
 	free(count);
-	free(used);
 	free(rings);
 	free(flags);
 	free(edges);
