@@ -160,7 +160,8 @@ static int prefer_ad_border(const struct grid *G, long i, long j)
  * positions of the rows around it, which are computed once too.  Rows are
  * kept in rings: positions of rows j-1 .. j+2 and bends of rows j, j+1 while
  * the squares of row j are decided.  Positions are kept a coordinate per
- * array, so that the bends of two cells are computed at once (bend_pair). */
+ * array, so that the bends of two cells are computed at once
+ * (line_distance2_pair). */
 struct bend_rows {
 	double *x[4], *y[4], *z[4];   /* per cell, row r in [r % 4]; 2 cells of padding */
 	double *ad[2], *bc[2];        /* per cell, row r in [r % 2] */
