@@ -445,17 +445,6 @@ static int rule_joined(const struct rule_grid *r, int i0, int j0, int i1, int j1
 	return fct_depth_joined(r->depth[a], r->depth[b], r->limit, steps, allow);
 }
 
-/* Squared distance of p from the line through a and b. */
-static double rule_line_distance2(const double p[3], const double a[3], const double b[3])
-{
-	double ab[3], ap[3], x[3];
-	fct_v3_sub(ab, b, a);
-	fct_v3_sub(ap, p, a);
-	fct_v3_cross(x, ab, ap);
-	double l2 = fct_v3_dot(ab, ab);
-	return l2 > 0 ? fct_v3_dot(x, x) / l2 : fct_v3_dot(ap, ap);
-}
-
 /* The diagonal of full square (i, j): along which the surface bends less
  * when the four cells beyond its corners along the diagonals have data
  * (and the bends differ by more than rounding), else the shorter. */
@@ -470,8 +459,8 @@ static int rule_prefer_ad(const struct rule_grid *r, int i, int j)
 		double aa[3], dd[3], bb[3], cc[3];
 		rule_position(r, i - 1, j - 1, aa), rule_position(r, i + 2, j + 2, dd);
 		rule_position(r, i + 2, j - 1, bb), rule_position(r, i - 1, j + 2, cc);
-		double bad = rule_line_distance2(a, aa, d) + rule_line_distance2(d, a, dd);
-		double bbc = rule_line_distance2(b, bb, c) + rule_line_distance2(c, b, cc);
+		double bad = fct_v3_line_distance2(a, aa, d) + fct_v3_line_distance2(d, a, dd);
+		double bbc = fct_v3_line_distance2(b, bb, c) + fct_v3_line_distance2(c, b, cc);
 		if (fabs(bad - bbc) > 1e-18 * (lad > lbc ? lad : lbc))
 			return bad < bbc;
 	}

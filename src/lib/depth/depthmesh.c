@@ -56,9 +56,8 @@ double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_
  * frames hold a few thousand distinct millimetre values in 300,000 pixels,
  * and a division and a square root per pixel cost more than a table of
  * each value's (about 0.4 ms of dm2mesh's 19 on a 640x480 Kinect frame).
- * The tables hold the values of every sample up to the
- * largest in the image (65535 aside), made by the same functions as pixel
- * by pixel. */
+ * The tables hold the values of every sample up to the largest in the
+ * image (65535 aside), made by the same functions as pixel by pixel. */
 struct sample_tables {
 	double *depth;   /* per sample value, or NULL: no tables */
 	float *sigma;    /* the same, or NULL without a noise model */

@@ -92,16 +92,6 @@ static inline void P(const struct grid *G, size_t c, size_t i, size_t j, double 
 }
 
 
-/* Squared distance of point p from the line through a and b. */
-static inline double line_distance2(const double p[3], const double a[3], const double b[3])
-{
-	double ab[3], ap[3], x[3];
-	fct_v3_sub(ab, b, a);
-	fct_v3_sub(ap, p, a);
-	fct_v3_cross(x, ab, ap);
-	double l2 = fct_v3_dot(ab, ab);
-	return l2 > 0 ? fct_v3_dot(x, x) / l2 : fct_v3_dot(ap, ap);
-}
 
 /* The position of cell (i, j), columns wrapped on a full cylinder; 0 when
  * it is outside the grid or has no data. */
@@ -144,8 +134,8 @@ static int prefer_ad_border(const struct grid *G, long i, long j)
 	int around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
 	             position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
 	if (around) {
-		bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
-		bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
+		bad = fct_v3_line_distance2(a, aa, d) + fct_v3_line_distance2(d, a, dd);
+		bbc = fct_v3_line_distance2(b, bb, c) + fct_v3_line_distance2(c, b, cc);
 	}
 	return choose_ad(bad, bbc, around, a, b, c, d);
 }
@@ -153,8 +143,8 @@ static int prefer_ad_border(const struct grid *G, long i, long j)
 /* Inside the grid a square's bends are sums of per-cell terms: the bend
  * along ad is bend_ad(a) + bend_ad(d), bend_ad(x) being x's squared
  * distance from the line through its neighbours up-left and down-right
- * (line_distance2 with the same arguments in the same order, so the same
- * bits), and the bend along bc is bend_bc(b) + bend_bc(c) with the
+ * (fct_v3_line_distance2 with the same arguments in the same order, so
+ * the same bits), and the bend along bc is bend_bc(b) + bend_bc(c) with the
  * neighbours up-right and down-left.  Each cell's terms are computed once
  * instead of once for each of the two squares that use them, from the
  * positions of the rows around it, which are computed once too.  Rows are
@@ -190,8 +180,8 @@ static void position_row(const struct grid *G, const struct bend_rows *R, long j
 	}
 }
 
-/* line_distance2 of two cells at once: p, a and b are each given by their
- * coordinates' pairs, in the same operations and order. */
+/* fct_v3_line_distance2 of two cells at once: p, a and b are each given
+ * by their coordinates' pairs, in the same operations and order. */
 static inline v2d line_distance2_pair(v2d px, v2d py, v2d pz, v2d ax, v2d ay, v2d az,
                                       v2d bx, v2d by, v2d bz)
 {
