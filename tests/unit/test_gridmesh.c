@@ -470,7 +470,8 @@ static int rule_prefer_ad(const struct rule_grid *r, int i, int j)
 /* Every face of m joins its corners by the rules, and every square whose
  * four corners and six edges are joined has its two triangles, along the
  * diagonal the rules prefer. */
-static int follows_rules(const struct fct_mesh *m, const uint32_t *cell_of, const struct rule_grid *r)
+static int follows_rules(const struct fct_mesh *m, const uint32_t *cell_of,
+                         const struct rule_grid *r)
 {
 	size_t nsq = (size_t)r->w * (size_t)r->h;
 	unsigned char *faces = calloc(nsq, 1), *along_ad = calloc(nsq, 1);
