@@ -172,14 +172,16 @@ static void test_jump_allowance(void)
 }
 
 /* The same mesh, byte for byte: positions, faces and every float vertex
- * property. */
+ * property (an empty mesh's arrays may be NULL, which memcmp must not get). */
 static int same_mesh(const struct fct_mesh *a, const struct fct_mesh *b)
 {
-	if (a->nv != b->nv || a->nf != b->nf || a->vertex.nprops != b->vertex.nprops ||
-	    memcmp(a->xyz, b->xyz, 3 * a->nv * sizeof *a->xyz) ||
-	    memcmp(a->fvert, b->fvert, 3 * a->nf * sizeof *a->fvert))
+	if (a->nv != b->nv || a->nf != b->nf || a->vertex.nprops != b->vertex.nprops)
 		return 0;
-	for (size_t k = 0; k < a->vertex.nprops; k++)
+	if (a->nv && memcmp(a->xyz, b->xyz, 3 * a->nv * sizeof *a->xyz))
+		return 0;
+	if (a->nf && memcmp(a->fvert, b->fvert, 3 * a->nf * sizeof *a->fvert))
+		return 0;
+	for (size_t k = 0; a->nv && k < a->vertex.nprops; k++)
 		if (memcmp(a->vertex.props[k].data, b->vertex.props[k].data, a->nv * sizeof(float)))
 			return 0;
 	return 1;
