@@ -171,8 +171,80 @@ static void test_jump_allowance(void)
 	fct_scene_free(&s);
 }
 
+/* The same mesh, byte for byte: positions, faces and every float vertex
+ * property (an empty mesh's arrays may be NULL, which memcmp must not get). */
+static int same_mesh(const struct fct_mesh *a, const struct fct_mesh *b)
+{
+	if (a->nv != b->nv || a->nf != b->nf || a->vertex.nprops != b->vertex.nprops)
+		return 0;
+	if (a->nv && memcmp(a->xyz, b->xyz, 3 * a->nv * sizeof *a->xyz))
+		return 0;
+	if (a->nf && memcmp(a->fvert, b->fvert, 3 * a->nf * sizeof *a->fvert))
+		return 0;
+	for (size_t k = 0; a->nv && k < a->vertex.nprops; k++)
+		if (memcmp(a->vertex.props[k].data, b->vertex.props[k].data, a->nv * sizeof(float)))
+			return 0;
+	return 1;
+}
+
+/* A 16-bit image's depths and sigmas are looked up by sample value where
+ * the image has more pixels than values (depthmesh.c's sample tables), else
+ * computed pixel by pixel: either way the mesh is the one of the float
+ * image of the same values (computed pixel by pixel), with 65535 no data
+ * as 0 is.  Images with tables (w x h above the largest value) and
+ * without, 1 x N and odd widths, every step. */
+static void test_sample_tables(void)
+{
+	/* width, height, the smallest and largest sample of data */
+	static const int size[][4] = { { 70, 50, 1000, 3000 }, { 71, 49, 1000, 3400 }, { 1, 40, 1, 30 },
+	                               { 40, 1, 1, 30 }, { 3, 2, 1000, 2000 }, { 9, 7, 1000, 5000 } };
+	struct fct_err err;
+	uint32_t seed = 7;
+	for (size_t n = 0; n < sizeof size / sizeof *size; n++) {
+		int w = size[n][0], h = size[n][1];
+		size_t np = (size_t)w * (size_t)h;
+		uint16_t *u = malloc(np * sizeof *u);
+		float *f = malloc(np * sizeof *f);
+		if (!u || !f)
+			abort();
+		for (size_t i = 0; i < np; i++) {
+			seed = seed * 1664525u + 1013904223u;
+			unsigned v = (unsigned)size[n][2] + (seed >> 8) % (unsigned)(size[n][3] - size[n][2] + 1);
+			if (seed % 13 == 0)
+				v = 0;
+			else if (seed % 17 == 0)
+				v = 65535;
+			else if (seed % 5 != 0 && i > 0)
+				v = u[i - 1];   /* plateaus, as quantised sensors make */
+			u[i] = (uint16_t)v, f[i] = v == 65535 ? 0 : (float)v;
+		}
+		struct fct_image iu = { w, h, 1, FCT_PIX_U16, u }, ifl = { w, h, 1, FCT_PIX_F32, f };
+		struct fct_camera cam = { FCT_CAMERA_PINHOLE, w, h, 50, 50, (w - 1) / 2.0, (h - 1) / 2.0, 0, 0 };
+		for (int noisy = 0; noisy < 2; noisy++)
+			for (int step = 1; step <= 3; step++) {
+				struct fct_depth_params p;
+				fct_depth_params_default(&p);
+				p.step = step, p.scale_float = 1, p.grid.min_faces = noisy ? 3 : 0;
+				if (noisy)
+					fct_noise_kinect(&p.noise);
+				struct fct_mesh a, b;
+				CHECK_INT(fct_depth_mesh(&a, &iu, &cam, &p, NULL, &err), 0);
+				CHECK_INT(fct_depth_mesh(&b, &ifl, &cam, &p, NULL, &err), 0);
+				CHECK_MSG(same_mesh(&a, &b), "%dx%d step %d noise %d: 16-bit and float meshes differ",
+				          w, h, step, noisy);
+				CHECK_MSG(a.nf > 0 || np < 1000 || step > 1, "%dx%d: no faces", w, h);
+				CHECK_INT(!!fct_elem_find(&a.vertex, "sigma"), noisy);
+				fct_mesh_free(&a);
+				fct_mesh_free(&b);
+			}
+		free(u);
+		free(f);
+	}
+}
+
 int main(void)
 {
+	test_sample_tables();
 	test_jump_allowance();
 	CHECK_DONE();
 }

@@ -181,8 +181,22 @@ static void test_select(void)
 	}
 }
 
+/* Squared distances from lines by hand: off a line along x, on its
+ * extension beyond b, from a tilted line, and from a line whose two points
+ * coincide (the distance from that point). */
+static void test_line_distance(void)
+{
+	double a[3] = { 0, 0, 0 }, b[3] = { 2, 0, 0 }, p[3] = { 1, 3, 4 }, q[3] = { 5, 0, 0 };
+	CHECK_NEAR(fct_v3_line_distance2(p, a, b), 25, 0);
+	CHECK_NEAR(fct_v3_line_distance2(q, a, b), 0, 0);
+	double c[3] = { 1, 1, 0 }, r[3] = { 1, 0, 0 };
+	CHECK_NEAR(fct_v3_line_distance2(r, a, c), 0.5, 1e-15);
+	CHECK_NEAR(fct_v3_line_distance2(p, b, b), 1 + 9 + 16, 0);
+}
+
 int main(void)
 {
+	test_line_distance();
 	test_select();
 	test_regions();
 	test_moved();

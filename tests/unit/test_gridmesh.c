@@ -408,8 +408,162 @@ static void test_cylinder(void)
 	fct_mesh_free(&m);
 }
 
+/* The rules of gridmesh.h worked square by square, against which the
+ * mesher's row passes (positions, bends, join tests and diagonal choices
+ * made two cells at a time, the odd last one alone) are checked: a grid of
+ * w x h cells with ray (col x, row y, col z) and depth, sigma or not. */
+struct rule_grid {
+	int w, h;
+	const double *col, *row, *depth;
+	const float *sigma;
+	double limit, noise;   /* max_jump * footprint, noise_jump * sqrt(2) */
+};
+
+static int rule_has(const struct rule_grid *r, int i, int j)
+{
+	if (i < 0 || j < 0 || i >= r->w || j >= r->h)
+		return 0;
+	double d = r->depth[j * r->w + i];
+	return d > 0 && d < HUGE_VAL;
+}
+
+static void rule_position(const struct rule_grid *r, int i, int j, double p[3])
+{
+	double d = r->depth[j * r->w + i];
+	p[0] = d * r->col[3 * i], p[1] = d * r->row[j], p[2] = d * r->col[3 * i + 2];
+}
+
+static int rule_joined(const struct rule_grid *r, int i0, int j0, int i1, int j1)
+{
+	if (!rule_has(r, i0, j0) || !rule_has(r, i1, j1))
+		return 0;
+	size_t a = (size_t)(j0 * r->w + i0), b = (size_t)(j1 * r->w + i1);
+	double allow = 0;
+	if (r->sigma)
+		allow = r->noise * (r->sigma[a] > r->sigma[b] ? r->sigma[a] : r->sigma[b]);
+	double steps = i0 != i1 && j0 != j1 ? M_SQRT2 : 1;
+	return fct_depth_joined(r->depth[a], r->depth[b], r->limit, steps, allow);
+}
+
+/* The diagonal of full square (i, j): along which the surface bends less
+ * when the four cells beyond its corners along the diagonals have data
+ * (and the bends differ by more than rounding), else the shorter. */
+static int rule_prefer_ad(const struct rule_grid *r, int i, int j)
+{
+	double a[3], b[3], c[3], d[3];
+	rule_position(r, i, j, a), rule_position(r, i + 1, j, b);
+	rule_position(r, i, j + 1, c), rule_position(r, i + 1, j + 1, d);
+	double lad = fct_v3_dist2(a, d), lbc = fct_v3_dist2(b, c);
+	if (rule_has(r, i - 1, j - 1) && rule_has(r, i + 2, j + 2) && rule_has(r, i + 2, j - 1) &&
+	    rule_has(r, i - 1, j + 2)) {
+		double aa[3], dd[3], bb[3], cc[3];
+		rule_position(r, i - 1, j - 1, aa), rule_position(r, i + 2, j + 2, dd);
+		rule_position(r, i + 2, j - 1, bb), rule_position(r, i - 1, j + 2, cc);
+		double bad = fct_v3_line_distance2(a, aa, d) + fct_v3_line_distance2(d, a, dd);
+		double bbc = fct_v3_line_distance2(b, bb, c) + fct_v3_line_distance2(c, b, cc);
+		if (fabs(bad - bbc) > 1e-18 * (lad > lbc ? lad : lbc))
+			return bad < bbc;
+	}
+	return lad < lbc;
+}
+
+/* Every face of m joins its corners by the rules, and every square whose
+ * four corners and six edges are joined has its two triangles, along the
+ * diagonal the rules prefer. */
+static int follows_rules(const struct fct_mesh *m, const uint32_t *cell_of,
+                         const struct rule_grid *r)
+{
+	size_t nsq = (size_t)r->w * (size_t)r->h;
+	unsigned char *faces = calloc(nsq, 1), *along_ad = calloc(nsq, 1);
+	int ok = faces && along_ad;
+	for (size_t f = 0; ok && f < m->nf; f++) {
+		int ci[3], cj[3], i = r->w, j = r->h;
+		for (int k = 0; k < 3; k++) {
+			uint32_t c = cell_of[m->fvert[3 * f + (size_t)k]];
+			ci[k] = (int)(c % (uint32_t)r->w), cj[k] = (int)(c / (uint32_t)r->w);
+			i = ci[k] < i ? ci[k] : i, j = cj[k] < j ? cj[k] : j;
+		}
+		for (int k = 0; k < 3; k++)
+			ok &= rule_joined(r, ci[k], cj[k], ci[(k + 1) % 3], cj[(k + 1) % 3]);
+		int has_a = 0, has_d = 0;
+		for (int k = 0; k < 3; k++)
+			has_a |= ci[k] == i && cj[k] == j, has_d |= ci[k] == i + 1 && cj[k] == j + 1;
+		faces[j * r->w + i]++;
+		along_ad[j * r->w + i] = (unsigned char)(has_a && has_d);
+	}
+	for (int j = 0; ok && j + 1 < r->h; j++)
+		for (int i = 0; ok && i + 1 < r->w; i++) {
+			int full = rule_joined(r, i, j, i + 1, j) && rule_joined(r, i, j + 1, i + 1, j + 1) &&
+			           rule_joined(r, i, j, i, j + 1) && rule_joined(r, i + 1, j, i + 1, j + 1) &&
+			           rule_joined(r, i, j, i + 1, j + 1) && rule_joined(r, i + 1, j, i, j + 1);
+			if (full)
+				ok &= faces[j * r->w + i] == 2 && along_ad[j * r->w + i] == rule_prefer_ad(r, i, j);
+		}
+	free(faces);
+	free(along_ad);
+	return ok;
+}
+
+/* Grids of every width 1-19 and height 1-6 (odd and even counts of the
+ * row passes' pairs, runs of eight squares and the rest, 1 x N), a rough
+ * surface of random bends and jumps with holes of 0, NaN and infinite
+ * depth and planar stretches (ties between the diagonals' bends), with and
+ * without sigma: the mesh follows the rules square by square. */
+static void test_rules_by_square(void)
+{
+	uint32_t seed = 11;
+	for (int with_sigma = 0; with_sigma < 2; with_sigma++)
+		for (int h = 1; h <= 6; h++)
+			for (int w = 1; w <= 19; w++) {
+				size_t n = (size_t)w * (size_t)h;
+				double *depth = malloc(n * sizeof *depth), *col = malloc(3 * (size_t)w * sizeof *col);
+				double *row = malloc((size_t)h * sizeof *row);
+				float *sigma = malloc(n * sizeof *sigma);
+				if (!depth || !col || !row || !sigma)
+					abort();
+				for (int i = 0; i < w; i++)
+					col[3 * i] = (i - w / 2) * 0.01, col[3 * i + 1] = 0, col[3 * i + 2] = 1;
+				for (int j = 0; j < h; j++)
+					row[j] = (j - h / 2) * 0.01;
+				int planar = (w + h) % 3 == 0;
+				for (size_t c = 0; c < n; c++) {
+					seed = seed * 1664525u + 1013904223u;
+					double u = (seed >> 8) / 16777216.0;
+					/* rough: neighbours differ by up to 0.1, around the
+					 * limit of 0.06, and the noise term (up to 0.03)
+					 * decides many of the join tests */
+					depth[c] = planar ? 2 + 0.01 * (double)(c % (size_t)w) : 2 + 0.1 * u;
+					if (seed % 11 == 0)
+						depth[c] = 0;
+					else if (seed % 23 == 0)
+						depth[c] = NAN;
+					else if (seed % 29 == 0)
+						depth[c] = HUGE_VAL;
+					else if (seed % 7 == 0)
+						depth[c] += 0.2;   /* a jump beyond the limit */
+					sigma[c] = (float)(0.0002 + 0.01 * ((seed >> 4) % 1024) / 1024.0);
+				}
+				struct fct_range_grid g = { w, h, NULL, col, row, depth, 0.01, 0,
+				                            with_sigma ? sigma : NULL, with_sigma ? 2 : 0 };
+				struct fct_grid_params p = { 3, 0 };
+				struct rule_grid r = { w, h, col, row, depth, with_sigma ? sigma : NULL,
+				                       p.max_jump * g.footprint, M_SQRT2 * g.noise_jump };
+				struct fct_mesh m;
+				uint32_t *cell_of = NULL;
+				fct_mesh_init(&m);
+				CHECK_INT(fct_grid_mesh(&m, &g, &p, &cell_of, NULL, &err), 0);
+				CHECK_MSG(follows_rules(&m, cell_of, &r), "%dx%d sigma %d: a square breaks the rules",
+				          w, h, with_sigma);
+				CHECK_MSG(m.nf > 0 || w < 4 || h < 4, "%dx%d: no faces", w, h);
+				fct_mesh_free(&m);
+				free(cell_of);
+				free(depth), free(col), free(row), free(sigma);
+			}
+}
+
 int main(void)
 {
+	test_rules_by_square();
 	test_full_grid();
 	test_hole();
 	test_discontinuity();

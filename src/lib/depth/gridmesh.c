@@ -13,17 +13,57 @@
  * (a, c, d) and (a, d, b) -- all clockwise in (u, v), which faces the sensor. */
 enum { FIRST = 1, SECOND = 2, DIAG_AD = 4 };
 
+/* Two doubles at once: GCC's and Clang's vector extension, which every
+ * target compiles (to SSE2 on x86-64, NEON on arm64, scalar code
+ * elsewhere); lane by lane the same IEEE operations as scalar code, so
+ * the same bits. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef int64_t v2i __attribute__((vector_size(16)));
+
+static inline v2d load2(const double *p)
+{
+	v2d v;
+	memcpy(&v, p, sizeof v);
+	return v;
+}
+
+static inline void store2(double *p, v2d v)
+{
+	memcpy(p, &v, sizeof v);
+}
+
+/* Two floats made doubles (exactly). */
+static inline v2d load2_float(const float *p)
+{
+	return (v2d){ p[0], p[1] };
+}
+
+/* Lane by lane: where m is all ones, a, else b. */
+static inline v2d select2(v2i m, v2d a, v2d b)
+{
+	return (v2d)(((v2i)a & m) | ((v2i)b & ~m));
+}
+
 struct grid {
 	const struct fct_range_grid *g;
 	double limit;            /* max_jump * footprint */
 	double noise;            /* noise_jump * sqrt(2) */
 	int w, h, wrap;
+	double *ray_x, *ray_z;   /* g->col's x and z, each in an array of its own */
 };
 
 static inline int has_data(const struct grid *G, size_t c)
 {
 	double d = G->g->depth[c];
 	return d > 0 && d < HUGE_VAL;
+}
+
+/* Whether cells c and c + 1 have data (has_data), as a mask. */
+static inline v2i has_data2(const struct grid *G, size_t c)
+{
+	v2d d = load2(G->g->depth + c);
+	const v2d zero = { 0, 0 }, huge = { HUGE_VAL, HUGE_VAL };
+	return (d > zero) & (d < huge);
 }
 
 /* Cell (i, j) or -1 outside the grid; columns wrap on a full cylinder. */
@@ -52,16 +92,6 @@ static inline void P(const struct grid *G, size_t c, size_t i, size_t j, double 
 }
 
 
-/* Squared distance of point p from the line through a and b. */
-static inline double line_distance2(const double p[3], const double a[3], const double b[3])
-{
-	double ab[3], ap[3], x[3];
-	fct_v3_sub(ab, b, a);
-	fct_v3_sub(ap, p, a);
-	fct_v3_cross(x, ab, ap);
-	double l2 = fct_v3_dot(ab, ab);
-	return l2 > 0 ? fct_v3_dot(x, x) / l2 : fct_v3_dot(ap, ap);
-}
 
 /* The position of cell (i, j), columns wrapped on a full cylinder; 0 when
  * it is outside the grid or has no data. */
@@ -104,8 +134,8 @@ static int prefer_ad_border(const struct grid *G, long i, long j)
 	int around = position_at(G, i - 1, j - 1, aa) && position_at(G, i + 2, j + 2, dd) &&
 	             position_at(G, i + 2, j - 1, bb) && position_at(G, i - 1, j + 2, cc);
 	if (around) {
-		bad = line_distance2(a, aa, d) + line_distance2(d, a, dd);
-		bbc = line_distance2(b, bb, c) + line_distance2(c, b, cc);
+		bad = fct_v3_line_distance2(a, aa, d) + fct_v3_line_distance2(d, a, dd);
+		bbc = fct_v3_line_distance2(b, bb, c) + fct_v3_line_distance2(c, b, cc);
 	}
 	return choose_ad(bad, bbc, around, a, b, c, d);
 }
@@ -113,33 +143,76 @@ static int prefer_ad_border(const struct grid *G, long i, long j)
 /* Inside the grid a square's bends are sums of per-cell terms: the bend
  * along ad is bend_ad(a) + bend_ad(d), bend_ad(x) being x's squared
  * distance from the line through its neighbours up-left and down-right
- * (line_distance2 with the same arguments in the same order, so the same
- * bits), and the bend along bc is bend_bc(b) + bend_bc(c) with the
+ * (fct_v3_line_distance2 with the same arguments in the same order, so
+ * the same bits), and the bend along bc is bend_bc(b) + bend_bc(c) with the
  * neighbours up-right and down-left.  Each cell's terms are computed once
  * instead of once for each of the two squares that use them, from the
  * positions of the rows around it, which are computed once too.  Rows are
  * kept in rings: positions of rows j-1 .. j+2 and bends of rows j, j+1 while
- * the squares of row j are decided. */
+ * the squares of row j are decided.  Positions are kept a coordinate per
+ * array, so that the bends of two cells are computed at once
+ * (line_distance2_pair). */
 struct bend_rows {
-	double *pos[4];          /* 3 per cell, row r in pos[r % 4] */
-	double *ad[2], *bc[2];   /* per cell, row r in [r % 2] */
-	long npos, nbend;        /* rows computed so far */
+	double *x[4], *y[4], *z[4];   /* per cell, row r in [r % 4]; 2 cells of padding */
+	double *ad[2], *bc[2];        /* per cell, row r in [r % 2] */
+	long npos, nbend;             /* rows computed so far */
+	unsigned char *prefer;        /* prefer_ad of the row's squares 1 .. fast_end-1 */
+	long fast_end;
 };
 
-static void position_row(const struct grid *G, long j, double *out)
+static void position_row(const struct grid *G, const struct bend_rows *R, long j)
 {
-	for (long i = 0; i < G->w; i++)
-		P(G, (size_t)(j * G->w + i), (size_t)i, (size_t)j, out + 3 * i);
+	double *x = R->x[j % 4], *y = R->y[j % 4], *z = R->z[j % 4], p[3];
+	long i = 0;
+	if (!G->g->xyz) {   /* P two cells at a time */
+		const double *d = G->g->depth + (size_t)j * (size_t)G->w;
+		const v2d ray_y = { G->g->row[j], G->g->row[j] };
+		for (; i + 1 < G->w; i += 2) {
+			v2d di = load2(d + i);
+			store2(x + i, di * load2(G->ray_x + i));
+			store2(y + i, di * ray_y);
+			store2(z + i, di * load2(G->ray_z + i));
+		}
+	}
+	for (; i < G->w; i++) {
+		P(G, (size_t)(j * G->w + i), (size_t)i, (size_t)j, p);
+		x[i] = p[0], y[i] = p[1], z[i] = p[2];
+	}
+}
+
+/* fct_v3_line_distance2 of two cells at once: p, a and b are each given
+ * by their coordinates' pairs, in the same operations and order. */
+static inline v2d line_distance2_pair(v2d px, v2d py, v2d pz, v2d ax, v2d ay, v2d az,
+                                      v2d bx, v2d by, v2d bz)
+{
+	v2d abx = bx - ax, aby = by - ay, abz = bz - az;
+	v2d apx = px - ax, apy = py - ay, apz = pz - az;
+	v2d xx = aby * apz - abz * apy, xy = abz * apx - abx * apz, xz = abx * apy - aby * apx;
+	v2d l2 = abx * abx + aby * aby + abz * abz;
+	v2d on_line = (xx * xx + xy * xy + xz * xz) / l2, to_a = apx * apx + apy * apy + apz * apz;
+	/* l2 > 0 selects the first; where l2 is 0 its quotient (NaN or
+	 * infinity) is discarded, and no trap is enabled. */
+	return select2(l2 > 0, on_line, to_a);
 }
 
 /* The bends of the cells 1 .. w-2 of row j (0 < j < h-1); cells without data
- * or beside one get values that are never used. */
+ * or beside one get values that are never used.  Cells go two at a time;
+ * an odd count's last pair reads the padding and writes bends of cell w-1,
+ * which no square reads. */
 static void bend_row(const struct bend_rows *R, long j, long w, double *ad, double *bc)
 {
-	const double *up = R->pos[(j - 1) % 4], *mid = R->pos[j % 4], *down = R->pos[(j + 1) % 4];
-	for (long i = 1; i + 1 < w; i++) {
-		ad[i] = line_distance2(mid + 3 * i, up + 3 * (i - 1), down + 3 * (i + 1));
-		bc[i] = line_distance2(mid + 3 * i, up + 3 * (i + 1), down + 3 * (i - 1));
+	int u = (int)((j - 1) % 4), m = (int)(j % 4), d = (int)((j + 1) % 4);
+	const double *ux = R->x[u], *uy = R->y[u], *uz = R->z[u];
+	const double *mx = R->x[m], *my = R->y[m], *mz = R->z[m];
+	const double *dx = R->x[d], *dy = R->y[d], *dz = R->z[d];
+	for (long i = 1; i + 1 < w; i += 2) {
+		v2d px = load2(mx + i), py = load2(my + i), pz = load2(mz + i);
+		store2(ad + i, line_distance2_pair(px, py, pz, load2(ux + i - 1), load2(uy + i - 1),
+		                                   load2(uz + i - 1), load2(dx + i + 1), load2(dy + i + 1),
+		                                   load2(dz + i + 1)));
+		store2(bc + i, line_distance2_pair(px, py, pz, load2(ux + i + 1), load2(uy + i + 1),
+		                                   load2(uz + i + 1), load2(dx + i - 1), load2(dy + i - 1),
+		                                   load2(dz + i - 1)));
 	}
 }
 
@@ -147,7 +220,7 @@ static void bend_row(const struct bend_rows *R, long j, long w, double *ad, doub
 static void bend_rows_advance(const struct grid *G, struct bend_rows *R, long j)
 {
 	for (; R->npos <= j + 2 && R->npos < G->h; R->npos++)
-		position_row(G, R->npos, R->pos[R->npos % 4]);
+		position_row(G, R, R->npos);
 	for (; R->nbend <= j + 1 && R->nbend + 1 < G->h; R->nbend++)
 		if (R->nbend > 0)
 			bend_row(R, R->nbend, G->w, R->ad[R->nbend % 2], R->bc[R->nbend % 2]);
@@ -158,7 +231,7 @@ static void bend_rows_advance(const struct grid *G, struct bend_rows *R, long j)
 static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, long i, long j)
 {
 	size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i;
-	const double *r0 = R->pos[j % 4], *r1 = R->pos[(j + 1) % 4];
+	int r0 = (int)(j % 4), r1 = (int)((j + 1) % 4);
 	int around = has_data(G, ca - W - 1) && has_data(G, ca + 2 * W + 2) &&
 	             has_data(G, ca - W + 2) && has_data(G, ca + 2 * W - 1);
 	double bad = 0, bbc = 0;
@@ -168,11 +241,52 @@ static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, lon
 		bad = ad0[i] + ad1[i + 1];
 		bbc = bc0[i + 1] + bc1[i];
 	}
-	return choose_ad(bad, bbc, around, r0 + 3 * i, r0 + 3 * (i + 1), r1 + 3 * i, r1 + 3 * (i + 1));
+	double a[3] = { R->x[r0][i], R->y[r0][i], R->z[r0][i] };
+	double b[3] = { R->x[r0][i + 1], R->y[r0][i + 1], R->z[r0][i + 1] };
+	double c[3] = { R->x[r1][i], R->y[r1][i], R->z[r1][i] };
+	double d[3] = { R->x[r1][i + 1], R->y[r1][i + 1], R->z[r1][i + 1] };
+	return choose_ad(bad, bbc, around, a, b, c, d);
+}
+
+/* prefer_ad_inside of the squares of row j (1 <= j, j + 2 < h) two at a
+ * time, choose_ad's operations lane by lane and its branches made selects,
+ * into R->prefer[1 .. R->fast_end); the last square of an odd count is left
+ * to prefer_ad_inside.  Most squares of a depth frame ask, and their
+ * choices alternate as good as randomly: branches mispredict. */
+static void prefer_row(const struct grid *G, struct bend_rows *R, long j)
+{
+	size_t W = (size_t)G->w, row = (size_t)j * W;
+	int r0 = (int)(j % 4), r1 = (int)((j + 1) % 4);
+	const double *x0 = R->x[r0], *y0 = R->y[r0], *z0 = R->z[r0];
+	const double *x1 = R->x[r1], *y1 = R->y[r1], *z1 = R->z[r1];
+	const double *ad0 = R->ad[j % 2], *ad1 = R->ad[(j + 1) % 2];
+	const double *bc0 = R->bc[j % 2], *bc1 = R->bc[(j + 1) % 2];
+	const v2d tiny = { 1e-18, 1e-18 };
+	const v2i magnitude = { INT64_MAX, INT64_MAX }, one = { 1, 1 };
+	long i = 1;
+	for (; i + 3 < G->w; i += 2) {
+		size_t ca = row + (size_t)i;
+		v2i around = has_data2(G, ca - W - 1) & has_data2(G, ca + 2 * W + 2) &
+		             has_data2(G, ca - W + 2) & has_data2(G, ca + 2 * W - 1);
+		v2d bad = load2(ad0 + i) + load2(ad1 + i + 1), bbc = load2(bc0 + i + 1) + load2(bc1 + i);
+		v2d ex = load2(x0 + i) - load2(x1 + i + 1), ey = load2(y0 + i) - load2(y1 + i + 1),
+		    ez = load2(z0 + i) - load2(z1 + i + 1);
+		v2d lad = ex * ex + ey * ey + ez * ez;
+		ex = load2(x0 + i + 1) - load2(x1 + i), ey = load2(y0 + i + 1) - load2(y1 + i),
+		ez = load2(z0 + i + 1) - load2(z1 + i);
+		v2d lbc = ex * ex + ey * ey + ez * ez;
+		v2d noise = tiny * select2(lad > lbc, lad, lbc);
+		v2i by_bend = around & ((v2d)((v2i)(bad - bbc) & magnitude) > noise);
+		v2i ad = ((by_bend & (bad < bbc)) | (~by_bend & (lad < lbc))) & one;
+		R->prefer[i] = (unsigned char)ad[0], R->prefer[i + 1] = (unsigned char)ad[1];
+	}
+	R->fast_end = i;
 }
 
 static int prefer_ad(const struct grid *G, const struct bend_rows *R, long i, long j)
 {
+	if (i >= 1 && i < R->fast_end)
+		return R->prefer[i];
 	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h)
 		return prefer_ad_inside(G, R, i, j);
 	return prefer_ad_border(G, i, j);
@@ -264,7 +378,12 @@ struct edge_rows {
 static void has_row(const struct grid *G, long j, unsigned char *out)
 {
 	const double *d = G->g->depth + (size_t)j * (size_t)G->w;
-	for (long i = 0; i < G->w; i++)
+	long i = 0;
+	for (; i + 1 < G->w; i += 2) {
+		v2i has = has_data2(G, (size_t)j * (size_t)G->w + (size_t)i);
+		out[i] = (unsigned char)(has[0] & 1), out[i + 1] = (unsigned char)(has[1] & 1);
+	}
+	for (; i < G->w; i++)
 		out[i] = d[i] > 0 && d[i] < HUGE_VAL;
 	out[G->w] = out[0];
 }
@@ -277,7 +396,25 @@ static void join_run(const struct grid *G, size_t a, size_t b, size_t n, double 
 {
 	const double *d = G->g->depth;
 	const float *s = G->g->sigma;
-	for (size_t k = 0; k < n; k++) {
+	/* Two at a time: fct_depth_joined's operations lane by lane (limit *
+	 * steps * min is (limit * steps) * min; the larger float sigma made a
+	 * double after choosing or before, the same value), the last odd one
+	 * by fct_depth_joined itself. */
+	const v2d limit = { G->limit * steps, G->limit * steps }, noise = { G->noise, G->noise };
+	const v2i magnitude = { INT64_MAX, INT64_MAX };
+	size_t k = 0;
+	for (; k + 1 < n; k += 2) {
+		v2d da = load2(d + a + k), db = load2(d + b + k), allow = { 0, 0 };
+		if (s) {
+			v2d sa = load2_float(s + a + k), sb = load2_float(s + b + k);
+			allow = noise * select2(sa > sb, sa, sb);
+		}
+		v2d jump = (v2d)((v2i)(da - db) & magnitude);
+		v2i joined = jump <= limit * select2(da < db, da, db) + allow;
+		out[k] = ha[k] & hb[k] & (unsigned char)(joined[0] & 1);
+		out[k + 1] = ha[k + 1] & hb[k + 1] & (unsigned char)(joined[1] & 1);
+	}
+	for (; k < n; k++) {
 		double allow = s ? G->noise * (s[a + k] > s[b + k] ? s[a + k] : s[b + k]) : 0;
 		out[k] = ha[k] & hb[k] & fct_depth_joined(d[a + k], d[b + k], G->limit, steps, allow);
 	}
@@ -317,6 +454,35 @@ static inline unsigned square_edges(const struct edge_rows *E, long j, long i)
 	return (unsigned)(h0[i] * HA | h0[i + 1] * HB | h1[i] * HC | h1[i + 1] * HD |
 	                  E->along[j % 2][i] * JAB | E->along[(j + 1) % 2][i] * JCD |
 	                  E->down[i] * JAC | E->down[i + 1] * JBD | E->ad[i] * JAD | E->bc[i] * JBC);
+}
+
+/* Eight flags (0 or 1) at p, widened to 16 bits. */
+typedef uint8_t v8b __attribute__((vector_size(8)));
+typedef uint16_t v8h __attribute__((vector_size(16)));
+
+static inline v8h load8_flags(const unsigned char *p)
+{
+	v8b v;
+	memcpy(&v, p, sizeof v);
+	return __builtin_convertvector(v, v8h);
+}
+
+/* square_edges of the squares 0 .. n-1 of row j into out, eight at a time
+ * (the row's flags have w + 1 entries, n <= w), the rest one by one. */
+static void square_edges_row(const struct edge_rows *E, long j, long n, uint16_t *out)
+{
+	const unsigned char *h0 = E->has[j % 2], *h1 = E->has[(j + 1) % 2];
+	const unsigned char *a0 = E->along[j % 2], *a1 = E->along[(j + 1) % 2];
+	long i = 0;
+	for (; i + 8 <= n; i += 8) {
+		v8h e = load8_flags(h0 + i) | load8_flags(h0 + i + 1) << 1 | load8_flags(h1 + i) << 2 |
+		        load8_flags(h1 + i + 1) << 3 | load8_flags(a0 + i) << 4 | load8_flags(a1 + i) << 5 |
+		        load8_flags(E->down + i) << 6 | load8_flags(E->down + i + 1) << 7 |
+		        load8_flags(E->ad + i) << 8 | load8_flags(E->bc + i) << 9;
+		memcpy(out + i, &e, sizeof e);
+	}
+	for (; i < n; i++)
+		out[i] = (uint16_t)square_edges(E, j, i);
 }
 
 /* The triangle `which` (FIRST or SECOND) of square q made with code. */
@@ -389,8 +555,8 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
                   struct fct_grid_stats *stats, struct fct_err *err)
 {
 	struct grid G = { g, p->max_jump * g->footprint, M_SQRT2 * g->noise_jump, g->width, g->height,
-	                  g->wrap && g->width > 2 };
-	size_t ncells, nsq;
+	                  g->wrap && g->width > 2, NULL, NULL };
+	size_t ncells;
 	if (cell_of)
 		*cell_of = NULL;
 	if (g->width < 1 || g->height < 1 || fct_mul_size((size_t)g->width, (size_t)g->height, &ncells))
@@ -398,48 +564,62 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	if (ncells > UINT32_MAX / 2)
 		return fct_fail(err, "grid: %zu cells are too many", ncells);
 	long sw = G.wrap ? G.w : G.w - 1, sh = G.h - 1;   /* squares per row, rows of squares */
-	nsq = sw > 0 && sh > 0 ? (size_t)sw * (size_t)sh : 0;
 	int pieces = p->min_faces > 1;
 
-	/* With pieces, parent becomes the piece labels and then vindex. */
-	unsigned char *code = fct_alloc_array(nsq, 1, err);
-	uint32_t *parent = pieces ? fct_alloc_big(ncells, sizeof *parent, err) : NULL;
-	uint32_t *vindex = pieces ? NULL : fct_alloc_big(ncells, sizeof *vindex, err);
-	uint32_t *count = NULL;
-	unsigned char *used = calloc(ncells ? ncells : 1, 1);   /* a kept triangle uses the cell */
-	double *rings = fct_alloc_array((size_t)G.w, 16 * sizeof *rings, err);
-	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 7, err);
-	struct bend_rows R = { {NULL}, {NULL}, {NULL}, 0, 0 };
+	/* Per cell a uint32 (with pieces parent, which becomes the piece
+	 * labels and then vindex; else vindex), then per cell whether a kept
+	 * triangle uses it, then per square its code: one block, the 2 MB page
+	 * of a 640x480 grid's uint32s holding the rest too instead of 150 pages
+	 * of 4 KB faulted in (squares are no more than cells). */
+	uint32_t *cells = fct_alloc_big(ncells, sizeof *cells + 2, err);
+	uint32_t *parent = pieces ? cells : NULL, *vindex = pieces ? NULL : cells, *count = NULL;
+	unsigned char *used = cells ? (unsigned char *)(cells + ncells) : NULL;
+	unsigned char *code = used ? used + ncells : NULL;
+	size_t pw = (size_t)G.w + 2;   /* a position row and its padding */
+	double *rings = fct_alloc_array(pw, 16 * sizeof *rings, err);
+	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 8, err);
+	uint16_t *edges = fct_alloc_array((size_t)G.w, sizeof *edges, err);   /* a row's square_edges */
+	double *rays = g->xyz ? NULL : fct_alloc_array((size_t)G.w, 2 * sizeof *rays, err);
+	struct bend_rows R = { {NULL}, {NULL}, {NULL}, {NULL}, {NULL}, 0, 0, NULL, 0 };
 	struct square_rule rules[1024];
 	int rc = -1;
-	if (!code || (pieces ? !parent : !vindex) || !used || !rings || !flags) {
-		if (!used)
-			fct_fail(err, "out of memory");
+	if (!cells || !rings || !flags || !edges || (!g->xyz && !rays))
 		goto out;
-	}
+	memset(used, 0, ncells);
 
 	/* The triangles of every square, and the pieces they join. */
 	size_t possible = 0, made = 0;
 	if (pieces)
 		for (size_t c = 0; c < ncells; c++)
 			parent[c] = (uint32_t)c;
-	for (int r = 0; r < 4; r++)
-		R.pos[r] = rings + (size_t)r * 3 * (size_t)G.w;
-	for (int r = 0; r < 2; r++)
-		R.ad[r] = rings + (12 + (size_t)r) * (size_t)G.w, R.bc[r] = rings + (14 + (size_t)r) * (size_t)G.w;
+	memset(rings, 0, 16 * pw * sizeof *rings);   /* the padding is read */
+	for (size_t r = 0; r < 4; r++)
+		R.x[r] = rings + r * pw, R.y[r] = rings + (4 + r) * pw, R.z[r] = rings + (8 + r) * pw;
+	for (size_t r = 0; r < 2; r++)
+		R.ad[r] = rings + (12 + r) * pw, R.bc[r] = rings + (14 + r) * pw;
 	size_t fw = (size_t)G.w + 1;
 	struct edge_rows E = { { flags, flags + fw }, { flags + 2 * fw, flags + 3 * fw },
 	                       flags + 4 * fw, flags + 5 * fw, flags + 6 * fw };
+	R.prefer = flags + 7 * fw;
+	if (rays) {
+		G.ray_x = rays, G.ray_z = rays + G.w;
+		for (long i = 0; i < G.w; i++)
+			G.ray_x[i] = g->col[3 * i], G.ray_z[i] = g->col[3 * i + 2];
+	}
 	square_rules(rules);
 	if (sh > 0)
 		cell_row(&G, &E, 0);
 	for (long j = 0; j < sh; j++) {
 		bend_rows_advance(&G, &R, j);
+		R.fast_end = 0;
+		if (j >= 1 && j + 2 < G.h)
+			prefer_row(&G, &R, j);
 		cell_row(&G, &E, j + 1);
 		between_rows(&G, &E, j);
+		square_edges_row(&E, j, sw, edges);
 		for (long i = 0; i < sw; i++) {
 			struct square q = square_at(&G, i, j);
-			const struct square_rule *rule = &rules[square_edges(&E, j, i)];
+			const struct square_rule *rule = &rules[edges[i]];
 			unsigned k = rule->ask && prefer_ad(&G, &R, i, j) ? rule->ad : rule->bc;
 			code[j * sw + i] = (unsigned char)k;
 			possible += rule->possible;
@@ -519,9 +699,9 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 			vindex[v] = (uint32_t)c;
 		}
 	if (cell_of) {
-		uint32_t *shrunk = realloc(vindex, (nv ? nv : 1) * sizeof *vindex);
-		*cell_of = shrunk ? shrunk : vindex;
-		vindex = NULL;
+		uint32_t *shrunk = realloc(cells, (nv ? nv : 1) * sizeof *cells);   /* vindex's part */
+		*cell_of = shrunk ? shrunk : cells;
+		cells = NULL;
 	}
 	if (stats) {
 		stats->jump_faces = possible - made;
@@ -529,12 +709,11 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	}
 	rc = 0;
 out:
-	free(code);
-	free(parent);
-	free(vindex);
+	free(cells);
 	free(count);
-	free(used);
 	free(rings);
 	free(flags);
+	free(edges);
+	free(rays);
 	return rc;
 }

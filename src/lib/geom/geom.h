@@ -67,6 +67,18 @@ static inline double fct_v3_dist2(const double a[3], const double b[3])
 	return fct_v3_dot(d, d);
 }
 
+/* Squared distance of p from the line through a and b (from a itself when
+ * a and b coincide). */
+static inline double fct_v3_line_distance2(const double p[3], const double a[3], const double b[3])
+{
+	double ab[3], ap[3], x[3];
+	fct_v3_sub(ab, b, a);
+	fct_v3_sub(ap, p, a);
+	fct_v3_cross(x, ab, ap);
+	double l2 = fct_v3_dot(ab, ab);
+	return l2 > 0 ? fct_v3_dot(x, x) / l2 : fct_v3_dot(ap, ap);
+}
+
 /* Where on a triangle the closest point lies (the Voronoi region of p). */
 enum fct_tri_region {
 	FCT_TRI_A, FCT_TRI_B, FCT_TRI_C,        /* at a vertex */
