@@ -26,8 +26,8 @@
 /* far[2 r], far[2 r + 1]: of the corners of the faces of each piece (root
  * r) that would join a patch, those farther than max_dev times their sigma
  * from that patch's plane, and all. */
-static void speck_far_corners(uint32_t *far, const int32_t *patch, const struct fct_mesh *m,
-                              int32_t *root, const int32_t *host,
+static void speck_far_corners(uint32_t *far, const struct fct_mesh *m, int32_t *root,
+                              const int32_t *host,
                               const struct fct_plane *planes, size_t np, const double *sigma,
                               double max_dev)
 {
@@ -35,7 +35,7 @@ static void speck_far_corners(uint32_t *far, const int32_t *patch, const struct 
 	for (size_t f = 0; f < m->nf; f++) {
 		uint32_t r = fct_uf_root(root, (uint32_t)f);
 		int32_t h = host[r];
-		if (h < 0 || (size_t)h >= np || h == patch[f])
+		if (h < 0 || (size_t)h >= np)
 			continue;
 		for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
 			uint32_t v = m->fvert[c];
@@ -133,7 +133,7 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 		return -1;
 	}
 	if (far)
-		speck_far_corners(far, patch, m, root, host, planes, np, sigma, max_dev);
+		speck_far_corners(far, m, root, host, planes, np, sigma, max_dev);
 	for (size_t f = 0; f < nf; f++) {
 		uint32_t r = fct_uf_root(root, (uint32_t)f);
 		size_t size = (size_t)(-root[r]);

@@ -94,7 +94,7 @@ struct seg {
 	double *isigma;          /* and 1 / sigma */
 	double area_unit;        /* area weighting: a third of the mean face area */
 	double floor2;           /* no noise below (1e-7 bounding-box diagonal)^2 */
-	double round2;           /* squared distance rounding to float can move a point off its plane */
+	double round2;           /* squared distance rounding the coordinates can move a point */
 	double max_ms, stop;     /* max_rms^2, factor^2 */
 	double fit2;             /* fit^2: the largest mean chi^2 of a patch */
 	int two_sided;           /* no viewpoint: a plane may be seen from both sides */
@@ -149,7 +149,7 @@ static void region_add(struct region *r, const struct region *a, const struct re
 
 /* The summed squared residual of the plane fitted to the union of a and b
  * (the smallest eigenvalue of its scatter); *trace gets the scatter's trace.
- * A residual that rounding the coordinates to float could make is 0: a
+ * A residual that rounding the coordinates could make is 0: a
  * depth plateau of a quantising sensor is exactly flat in the camera's
  * frame and flat to the last bit in any other, and its unions must tie
  * (then the lower pair goes first) in every frame alike. */
@@ -1419,11 +1419,9 @@ fail:
 	return -1;
 }
 
-/* The squared diagonal of m's bounding box, and the squared distance by
- * which rounding m's coordinates can move a point; fails on a coordinate
- * that is not finite. */
-static int box_diagonal2(const struct fct_mesh *m, double *diag2, double *round2,
-                         struct fct_err *err)
+/* The squared diagonal of m's bounding box; fails on a coordinate that is
+ * not finite. */
+static int box_diagonal2(const struct fct_mesh *m, double *diag2, struct fct_err *err)
 {
 	double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
 	for (size_t v = 0; v < m->nv; v++)
@@ -1435,19 +1433,24 @@ static int box_diagonal2(const struct fct_mesh *m, double *diag2, double *round2
 			hi[i] = x > hi[i] ? x : hi[i];
 		}
 	*diag2 = 0;
-	double far = 0;
 	if (m->nv)
-		for (int i = 0; i < 3; i++) {
+		for (int i = 0; i < 3; i++)
 			*diag2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
-			far = fmax(far, fmax(fabs(lo[i]), fabs(hi[i])));
-		}
-	/* Half an ulp on each of three coordinates: of a float when every
-	 * coordinate is one (a mesh read from floats), else of a double. */
-	int floats = 1;
-	for (size_t k = 0; k < 3 * m->nv && floats; k++)
-		floats = (double)(float)m->xyz[k] == m->xyz[k];
-	*round2 = 3 * ldexp(far * far, floats ? -48 : -106);
 	return 0;
+}
+
+/* The squared distance by which rounding m's coordinates can move a point:
+ * half an ulp of the largest coordinate on each of three axes, a float's
+ * when every coordinate is one (a mesh read from floats), else a double's. */
+static double coordinate_rounding2(const struct fct_mesh *m)
+{
+	double far = 0;
+	int floats = 1;
+	for (size_t k = 0; k < 3 * m->nv; k++) {
+		far = fmax(far, fabs(m->xyz[k]));
+		floats = floats && (double)(float)m->xyz[k] == m->xyz[k];
+	}
+	return 3 * ldexp(far * far, floats ? -48 : -106);
 }
 
 /* A third of the mean face area, so that a regular mesh's face counts as
@@ -1614,7 +1617,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 	if (nf > INT32_MAX)
 		return fct_fail(err, "segment: %zu faces, more than %d", nf, INT32_MAX);
 	double diag2 = 0;
-	if (box_diagonal2(m, &diag2, &S.round2, err))
+	if (box_diagonal2(m, &diag2, err))
 		return -1;
 	if (nf == 0) {
 		if (stats)
@@ -1622,6 +1625,7 @@ int fct_segment(int32_t *patch, struct fct_plane **planes, size_t *nplanes,
 		return 0;
 	}
 	S.floor2 = 1e-14 * diag2;
+	S.round2 = coordinate_rounding2(m);
 	S.max_ms = p->max_rms < HUGE_VAL ? p->max_rms * p->max_rms : HUGE_VAL;
 	S.stop = p->factor * p->factor;
 	S.fit2 = p->fit * p->fit;
