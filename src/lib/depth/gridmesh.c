@@ -91,8 +91,6 @@ static inline void P(const struct grid *G, size_t c, size_t i, size_t j, double 
 	p[0] = d * g->col[3 * i], p[1] = d * g->row[j], p[2] = d * g->col[3 * i + 2];
 }
 
-
-
 /* The position of cell (i, j), columns wrapped on a full cylinder; 0 when
  * it is outside the grid or has no data. */
 static int position_at(const struct grid *G, long i, long j, double p[3])
@@ -124,8 +122,9 @@ static int choose_ad(double bad, double bbc, int around, const double a[3], cons
 	return lad < lbc;
 }
 
-/* prefer_ad on the border of the grid, where neighbours may be missing or
- * wrap around a full cylinder. */
+/* prefer_ad from the positions alone: on the border of the grid, where
+ * neighbours may be missing or wrap around a full cylinder, and for the
+ * inner square that prefer_row leaves. */
 static int prefer_ad_border(const struct grid *G, long i, long j)
 {
 	double a[3], b[3], c[3], d[3], aa[3], dd[3], bb[3], cc[3], bad = 0, bbc = 0;
@@ -226,32 +225,12 @@ static void bend_rows_advance(const struct grid *G, struct bend_rows *R, long j)
 			bend_row(R, R->nbend, G->w, R->ad[R->nbend % 2], R->bc[R->nbend % 2]);
 }
 
-/* prefer_ad of square (i, j) with 1 <= i, i + 2 < w, 1 <= j, j + 2 < h from
- * the rings (bend_rows_advance(j) done). */
-static int prefer_ad_inside(const struct grid *G, const struct bend_rows *R, long i, long j)
-{
-	size_t W = (size_t)G->w, ca = (size_t)j * W + (size_t)i;
-	int r0 = (int)(j % 4), r1 = (int)((j + 1) % 4);
-	int around = has_data(G, ca - W - 1) && has_data(G, ca + 2 * W + 2) &&
-	             has_data(G, ca - W + 2) && has_data(G, ca + 2 * W - 1);
-	double bad = 0, bbc = 0;
-	if (around) {
-		const double *ad0 = R->ad[j % 2], *ad1 = R->ad[(j + 1) % 2];
-		const double *bc0 = R->bc[j % 2], *bc1 = R->bc[(j + 1) % 2];
-		bad = ad0[i] + ad1[i + 1];
-		bbc = bc0[i + 1] + bc1[i];
-	}
-	double a[3] = { R->x[r0][i], R->y[r0][i], R->z[r0][i] };
-	double b[3] = { R->x[r0][i + 1], R->y[r0][i + 1], R->z[r0][i + 1] };
-	double c[3] = { R->x[r1][i], R->y[r1][i], R->z[r1][i] };
-	double d[3] = { R->x[r1][i + 1], R->y[r1][i + 1], R->z[r1][i + 1] };
-	return choose_ad(bad, bbc, around, a, b, c, d);
-}
-
-/* prefer_ad_inside of the squares of row j (1 <= j, j + 2 < h) two at a
- * time, choose_ad's operations lane by lane and its branches made selects,
- * into R->prefer[1 .. R->fast_end); the last square of an odd count is left
- * to prefer_ad_inside.  Most squares of a depth frame ask, and their
+/* prefer_ad of the inner squares of row j (1 <= i, i + 2 < w; 1 <= j,
+ * j + 2 < h; bend_rows_advance(j) done) two at a time from the rings,
+ * choose_ad's operations lane by lane and its branches made selects, into
+ * R->prefer[1 .. R->fast_end); the last square of an odd count is left to
+ * prefer_ad_border, whose bends are the rings' bits (fct_v3_line_distance2
+ * with the same arguments).  Most squares of a depth frame ask, and their
  * choices alternate as good as randomly: branches mispredict. */
 static void prefer_row(const struct grid *G, struct bend_rows *R, long j)
 {
@@ -287,8 +266,6 @@ static int prefer_ad(const struct grid *G, const struct bend_rows *R, long i, lo
 {
 	if (i >= 1 && i < R->fast_end)
 		return R->prefer[i];
-	if (i >= 1 && j >= 1 && i + 2 < G->w && j + 2 < G->h)
-		return prefer_ad_inside(G, R, i, j);
 	return prefer_ad_border(G, i, j);
 }
 
@@ -377,14 +354,14 @@ struct edge_rows {
 /* has_data of the w cells of row j into out (and the wrap's copy). */
 static void has_row(const struct grid *G, long j, unsigned char *out)
 {
-	const double *d = G->g->depth + (size_t)j * (size_t)G->w;
+	size_t c = (size_t)j * (size_t)G->w;
 	long i = 0;
 	for (; i + 1 < G->w; i += 2) {
-		v2i has = has_data2(G, (size_t)j * (size_t)G->w + (size_t)i);
+		v2i has = has_data2(G, c + (size_t)i);
 		out[i] = (unsigned char)(has[0] & 1), out[i + 1] = (unsigned char)(has[1] & 1);
 	}
 	for (; i < G->w; i++)
-		out[i] = d[i] > 0 && d[i] < HUGE_VAL;
+		out[i] = (unsigned char)has_data(G, c + (size_t)i);
 	out[G->w] = out[0];
 }
 
