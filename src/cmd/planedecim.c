@@ -118,6 +118,8 @@ int main(int argc, char **argv)
 	fct_report("seam_faces", "%zu", st.tidy.seam_faces);
 	fct_report("holes_filled", "%zu", st.holes_filled);
 	fct_report("projected", "%zu", st.projected);
+	fct_report("creased", "%zu", st.creased);
+	fct_report("uncreased", "%zu", st.uncreased);
 	fct_report("collapses", "%zu", st.qem.collapses);
 	fct_report("corners", "%zu", st.qem.corners);
 	fct_report("refused_topology", "%zu", st.qem.refused_topology);

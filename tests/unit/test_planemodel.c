@@ -1,4 +1,5 @@
-/* test_planemodel - fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
+/* test_planemodel - fct_planes_project at a crease seen at a grazing angle;
+ * fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
  * at shallow creases, of about its size (a facet) and much smaller (a floor
  * with tilted pieces beside it); fct_fill_plane_holes on a flat grid with
  * missing vertices, as missing depth pixels leave them: one hole, two holes that
@@ -159,9 +160,56 @@ static size_t speck_left(double off, int with_sigma, size_t *joined)
 	return left;
 }
 
+/* fct_planes_project on a vertex p = (0, y, z) of two faces, one of the
+ * floor y = 0 (patch 0) and one of a wall z = 5 (patch 1), seen from
+ * (0, 1.5, 0): *out gets where p goes, *off where the nearer plane alone
+ * would have put it (NaN when p did not go onto the crease line); returns
+ * the count of vertices put on the line. */
+static size_t crease_move(double y, double z, double out[3], double off[3])
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	fct_mesh_init(&m);
+	const double pos[5][3] = { { 0, y, z }, { -0.1, 0, 4.9 }, { 0.1, 0, 4.9 }, { -0.1, 0.1, 5 }, { 0.1, 0.1, 5 } };
+	for (int v = 0; v < 5; v++)
+		CHECK(fct_mesh_add_vertex(&m, pos[v][0], pos[v][1], pos[v][2], &err) >= 0);
+	const uint32_t floor_face[3] = { 1, 2, 0 }, wall_face[3] = { 0, 4, 3 };
+	CHECK(fct_mesh_add_face(&m, floor_face, 3, &err) >= 0);
+	CHECK(fct_mesh_add_face(&m, wall_face, 3, &err) >= 0);
+	const int32_t patch[2] = { 0, 1 };
+	const struct fct_plane planes[2] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 } };
+	const double vp[3] = { 0, 1.5, 0 };
+	double off_crease[15];
+	size_t moved, creased;
+	CHECK_INT(fct_planes_project(&m, patch, planes, vp, off_crease, &moved, &creased, &err), 0);
+	memcpy(out, m.xyz, 3 * sizeof *out);
+	memcpy(off, off_crease, 3 * sizeof *off);
+	for (int v = 1; v < 5; v++)
+		CHECK(isnan(off_crease[3 * v]));
+	fct_mesh_free(&m);
+	return creased;
+}
+
 int main(void)
 {
 	size_t facets, joined;
+	double at[3], off[3];
+	/* 9 mm above the floor, 10 mm before the wall: along its ray onto the
+	 * floor (the nearer plane) it would land 20 mm beyond the wall, farther
+	 * from the crease than it was; it goes onto the crease line instead,
+	 * beside its ray (which passes 1.5 m above the floor 5 m away). */
+	CHECK_INT(crease_move(0.009, 4.99, at, off), 1);
+	CHECK_NEAR(at[1], 0, 1e-12);
+	CHECK_NEAR(at[2], 5, 1e-12);
+	CHECK_NEAR(at[0], 0, 1e-12);
+	CHECK_NEAR(off[1], 0, 1e-12);
+	CHECK_NEAR(off[2], 4.99 * 1.5 / (1.5 - 0.009), 1e-12);
+	/* 100 mm before the wall, the floor along its ray takes it nearer the
+	 * crease: it stays on the floor, on its ray. */
+	CHECK_INT(crease_move(0.009, 4.9, at, off), 0);
+	CHECK_NEAR(at[1], 0, 1e-12);
+	CHECK_NEAR(at[2], 4.9 * 1.5 / (1.5 - 0.009), 1e-12);
+	CHECK(isnan(off[0]));
 	/* With a bound of 4 sigma: a speck mostly 2 sigma off the plane around
 	 * it joins it; one mostly 5 sigma off (a strip of floor seen between a
 	 * pillar and the wall) stays free-form, and without sigma it would

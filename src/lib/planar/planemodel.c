@@ -688,16 +688,17 @@ static int along_ray(const struct fct_plane *P, const int32_t *ls, int n, const 
 }
 
 int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                       const double *viewpoint, size_t *moved, struct fct_err *err)
+                       const double *viewpoint, double *off_crease, size_t *moved,
+                       size_t *creased, struct fct_err *err)
 {
-	*moved = 0;
+	*moved = 0, *creased = 0;
 	uint32_t *vstart, *vf;
 	if (fct_vertex_faces(m, &vstart, &vf, err))
 		return -1;
 	for (size_t v = 0; v < m->nv; v++) {
 		int32_t ls[8];
 		int n = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
-		double *p = m->xyz + 3 * v, best[3], x[3], bd = INFINITY;
+		double *p = m->xyz + 3 * v, best[3] = { p[0], p[1], p[2] }, x[3], bd = INFINITY;
 		for (int i = 0; i < n; i++) {
 			double r = fabs(fct_v3_dot(planes[ls[i]].n, p) + planes[ls[i]].d);
 			if (!(r < bd))
@@ -709,6 +710,23 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 			    fct_v3_dist2(x, p) <= 16 * fct_v3_dist2(best, p))
 				memcpy(best, x, sizeof x);
 		}
+		/* A vertex of two patches that the nearer plane alone would put
+		 * farther from their crease than it is goes onto the crease line
+		 * instead (see planemodel.h): a floor vertex at a far wall, its
+		 * ray grazing the floor, slid on past the wall by more than
+		 * planes_meet moves a vertex back (0.13 m in mkscene's Kinect
+		 * room). */
+		if (off_crease)
+			off_crease[3 * v] = NAN;
+		double y[3];
+		if (n == 2 && viewpoint && onto_planes(planes, ls, 2, p, x) &&
+		    onto_planes(planes, ls, 2, best, y) && fct_v3_dist2(best, y) > fct_v3_dist2(p, x) &&
+		    along_ray(planes, ls, 2, viewpoint, p, x) && fct_v3_dist2(x, p) <= 16 * bd * bd) {
+			if (off_crease)
+				memcpy(off_crease + 3 * v, best, sizeof best);
+			memcpy(best, x, sizeof x);
+			++*creased;
+		}
 		if (n && (best[0] != p[0] || best[1] != p[1] || best[2] != p[2])) {
 			memcpy(p, best, sizeof best);
 			++*moved;
@@ -716,6 +734,21 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 	}
 	free(vstart), free(vf);
 	return 0;
+}
+
+/* Triangle (a, b, c)'s thickness, twice its area over its longest edge
+ * squared (0 when it has no extent), and its area vector in n. */
+static double thickness(const double a[3], const double b[3], const double c[3], double n[3])
+{
+	double e1[3], e2[3], e3[3];
+	fct_v3_sub(e1, b, a);
+	fct_v3_sub(e2, c, a);
+	fct_v3_sub(e3, c, b);
+	fct_v3_cross(n, e1, e2);
+	double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
+	l2 = m2 > l2 ? m2 : l2;
+	l2 = k2 > l2 ? k2 : l2;
+	return l2 > 0 ? sqrt(fct_v3_dot(n, n)) / l2 : 0;
 }
 
 /* Is face f turned over or thinned (positions m->xyz against before)?
@@ -731,17 +764,8 @@ static int spoilt(const struct fct_mesh *m, size_t f, int32_t lab, const struct 
 		double n0[3], n1[3], q[2];
 		for (int pass = 0; pass < 2; pass++) {
 			const double *P = pass ? m->xyz : before;
-			const double *a = P + 3 * (size_t)tv[0], *b = P + 3 * (size_t)tv[1];
-			const double *c = P + 3 * (size_t)tv[2];
-			double e1[3], e2[3], e3[3], *n = pass ? n1 : n0;
-			fct_v3_sub(e1, b, a);
-			fct_v3_sub(e2, c, a);
-			fct_v3_sub(e3, c, b);
-			fct_v3_cross(n, e1, e2);
-			double l2 = fct_v3_dot(e1, e1), m2 = fct_v3_dot(e2, e2), k2 = fct_v3_dot(e3, e3);
-			l2 = m2 > l2 ? m2 : l2;
-			l2 = k2 > l2 ? k2 : l2;
-			q[pass] = l2 > 0 ? sqrt(fct_v3_dot(n, n)) / l2 : 0;
+			q[pass] = thickness(P + 3 * (size_t)tv[0], P + 3 * (size_t)tv[1], P + 3 * (size_t)tv[2],
+			                    pass ? n1 : n0);
 		}
 		const double *ref = lab >= 0 ? planes[lab].n : n0;
 		if (fct_v3_dot(ref, n1) <= 0 || (q[1] < MIN_QUALITY && q[1] < q[0]))
@@ -1478,6 +1502,119 @@ static int drop_debris(struct fct_mesh *m, size_t min_faces, struct fct_planar_s
 	return 0;
 }
 
+/* A triangle thinner than this (twice its area over its longest edge
+ * squared) has no area worth the name: 1.6 um across a 16 mm edge, which
+ * writing the coordinates as float can make nothing. */
+#define NO_AREA 1e-4
+/* The rounds of fct_planar_model from which a triangle of no area takes
+ * every creased vertex of its patch off its line, and every one of the
+ * mesh: each round takes back at least one move or none is left, and the
+ * rounds stay few. */
+#define UNCREASE_PATCH 2
+#define UNCREASE_ALL LAST_TIGHTENING
+/* Creases taken off their lines in one round, at most (more: the patches'). */
+#define MAX_BAD_CREASES 64
+
+/* Vertex v of m back where its nearer plane alone put it, if
+ * fct_planes_project put it on a crease line: 1, else 0. */
+static int off_crease_line(struct fct_mesh *m, double *off_crease, uint32_t v)
+{
+	if (isnan(off_crease[3 * (size_t)v]))
+		return 0;
+	memcpy(m->xyz + 3 * (size_t)v, off_crease + 3 * (size_t)v, sizeof(double[3]));
+	off_crease[3 * (size_t)v] = NAN;
+	return 1;
+}
+
+/* The crease (its two patches, lower first) of vertex v, or 0 when v is not
+ * between exactly two patches. */
+static int crease_of(const int32_t *patch, const uint32_t *vstart, const uint32_t *vf, uint32_t v,
+                     int32_t pair[2])
+{
+	int32_t ls[8];
+	if (face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls) != 2)
+		return 0;
+	pair[0] = ls[0] < ls[1] ? ls[0] : ls[1];
+	pair[1] = ls[0] < ls[1] ? ls[1] : ls[0];
+	return 1;
+}
+
+/* Vertices that fct_planes_project put on two planes' line (off_crease not
+ * NaN) can be three corners of one triangle of the model w (built on m's
+ * vertices): the outline's points on a crease lie in their rays' order,
+ * which noise shuffles, so an outline running along the line folds back on
+ * itself, and triangulating in the image joins three of its points.  Such
+ * a triangle has no area and no normal, and flipping cannot always remove
+ * it (tripatch's flip_slivers: not where its longest edge is the outline).
+ * Every creased vertex of the creases through the corners of each triangle
+ * of w thinner than NO_AREA goes back where its nearer plane alone put it
+ * (from round UNCREASE_PATCH on, every creased vertex of the triangle's
+ * patch's faces in m; from UNCREASE_ALL on, every creased vertex), for
+ * build_model to try again: the fold is the whole crease's, and taking
+ * back only the corners leaves the next three points of it to meet.
+ * vstart, vf: m's faces of each vertex; hit_patch is np bytes of scratch.
+ * Returns the vertices taken back. */
+static size_t uncrease_slivers(struct fct_mesh *m, double *off_crease, const int32_t *patch,
+                               const uint32_t *vstart, const uint32_t *vf,
+                               const struct fct_mesh *w, int round, unsigned char *hit_patch,
+                               size_t np)
+{
+	size_t back = 0, nbad = 0;
+	int32_t bad[MAX_BAD_CREASES][2];
+	int any = 0, whole_patches = round >= UNCREASE_PATCH;
+	const struct fct_prop *wp = fct_elem_find(&w->face, "patch");
+	if (np)
+		memset(hit_patch, 0, np);
+	for (size_t f = 0; f < w->nf; f++) {
+		uint32_t s = w->fstart[f];
+		double n[3];
+		if (w->fstart[f + 1] - s != 3 ||
+		    !(thickness(w->xyz + 3 * (size_t)w->fvert[s], w->xyz + 3 * (size_t)w->fvert[s + 1],
+		                w->xyz + 3 * (size_t)w->fvert[s + 2], n) < NO_AREA))
+			continue;
+		any = 1;
+		long lab = wp ? (long)fct_prop_get(wp, f) : -1;
+		if (lab >= 0 && (size_t)lab < np)
+			hit_patch[lab] = 1;
+		for (uint32_t q = s; q < s + 3; q++) {
+			uint32_t v = w->fvert[q];
+			int32_t pair[2];
+			if (v >= m->nv || isnan(off_crease[3 * (size_t)v]) || !crease_of(patch, vstart, vf, v, pair))
+				continue;
+			size_t k = 0;
+			while (k < nbad && !(bad[k][0] == pair[0] && bad[k][1] == pair[1]))
+				k++;
+			if (k == nbad && nbad < MAX_BAD_CREASES)
+				memcpy(bad[nbad++], pair, sizeof pair);
+			else if (k == nbad)
+				whole_patches = 1;
+			back += off_crease_line(m, off_crease, v);
+		}
+	}
+	if (!any)
+		return back;
+	if (!whole_patches) {
+		for (uint32_t v = 0; v < m->nv; v++) {
+			int32_t pair[2];
+			if (isnan(off_crease[3 * (size_t)v]) || !crease_of(patch, vstart, vf, v, pair))
+				continue;
+			for (size_t k = 0; k < nbad; k++)
+				if (bad[k][0] == pair[0] && bad[k][1] == pair[1]) {
+					back += off_crease_line(m, off_crease, v);
+					break;
+				}
+		}
+		return back;
+	}
+	for (size_t f = 0; f < m->nf; f++) {
+		if (round < UNCREASE_ALL && !(patch[f] >= 0 && hit_patch[patch[f]]))
+			continue;
+		for (uint32_t q = m->fstart[f]; q < m->fstart[f + 1]; q++)
+			back += off_crease_line(m, off_crease, m->fvert[q]);
+	}
+	return back;
+}
+
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
                      struct fct_planar_stats *st, struct fct_err *err)
 {
@@ -1485,9 +1622,10 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	struct fct_plane *pl = NULL;
 	size_t np = 0;
 	int32_t *patch = NULL;
-	double *sigma = NULL, *spacing = NULL;
-	unsigned char *unclean = NULL, *tight = NULL, *force = NULL, *trouble = NULL;
+	double *sigma = NULL, *spacing = NULL, *off_crease = NULL;
+	unsigned char *unclean = NULL, *tight = NULL, *force = NULL, *trouble = NULL, *hit_patch = NULL;
 	size_t *nfaces = NULL, *mended = NULL;
+	uint32_t *crease_vstart = NULL, *crease_vf = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
 	struct rounds carry;
@@ -1523,13 +1661,15 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
 	    fct_patches_tidy(patch, m, pl, np, !have_cam, sigma, p->max_move, p->min_plane,
 	                     p->min_free, &st->tidy, err) ||
-	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, &st->projected, err) ||
+	    !(off_crease = fct_alloc_array(3 * (m->nv ? m->nv : 1), sizeof *off_crease, err)) ||
+	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, off_crease, &st->projected,
+	                       &st->creased, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
 	    !(unclean = calloc(np ? np : 1, 1)) || !(tight = calloc(np ? np : 1, 1)) ||
 	    !(force = calloc(m->nv ? m->nv : 1, 1)) ||
-	    !(trouble = calloc(m->nv ? m->nv : 1, 1)) ||
+	    !(trouble = calloc(m->nv ? m->nv : 1, 1)) || !(hit_patch = calloc(np ? np : 1, 1)) ||
 	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)) ||
 	    !(mended = calloc(np ? np : 1, sizeof *mended)))
 		goto out;
@@ -1557,6 +1697,13 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
 		                may_tighten, force, trouble, mended, unclean, &carry, st, err))
 			goto out;
+		if (!crease_vf && st->creased &&
+		    fct_vertex_faces(m, &crease_vstart, &crease_vf, err))
+			goto out;
+		size_t back = st->creased ? uncrease_slivers(m, off_crease, patch, crease_vstart, crease_vf,
+		                                             &w, round, hit_patch, np) : 0;
+		st->uncreased += back;
+		more += back;
 		/* Unclean: a patch mended tries again; else a small one
 		 * becomes free-form, and a large one's whole outline is
 		 * tightened (halved, then halved again, then kept as sampled;
@@ -1612,6 +1759,6 @@ out:
 	fct_mesh_free(&w);
 	rounds_free(&carry);
 	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(nfaces);
-	free(force), free(trouble), free(mended);
+	free(force), free(trouble), free(mended), free(off_crease), free(hit_patch), free(crease_vstart), free(crease_vf);
 	return rc;
 }

@@ -85,10 +85,19 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
 /* Every vertex of a face of a patch onto the nearest of its patches' planes:
  * along its ray from viewpoint (when not NULL, and no more than four times
  * as far as straight across), which keeps its pixel and so every face's
- * orientation in the image; else straight across.  *moved gets the count.
- * 0, or -1 out of memory. */
+ * orientation in the image; else straight across.  With a viewpoint, a
+ * vertex of exactly two patches that the nearer plane would take farther
+ * from their planes' line than it is goes onto that line instead, where it
+ * passes nearest the vertex's ray (unless that is more than four times as
+ * far as onto the nearer plane): along its ray onto the nearer plane alone,
+ * a vertex of the floor at a far wall, its ray grazing the floor, slides on
+ * past the wall.  off_crease (NULL, or 3 * m->nv) gets for each
+ * vertex so put on a line where the nearer plane alone would have put it,
+ * NaN for the others.  *moved gets the vertices moved, *creased those put
+ * on a line.  0, or -1 out of memory. */
 int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                       const double *viewpoint, size_t *moved, struct fct_err *err);
+                       const double *viewpoint, double *off_crease, size_t *moved,
+                       size_t *creased, struct fct_err *err);
 
 struct fct_meet_stats {
 	size_t lines;     /* vertices put on the line of two planes */
@@ -143,6 +152,9 @@ struct fct_planar_stats {
 	size_t facets;                   /* patches found facets of curved surfaces */
 	struct fct_tidy_stats tidy;
 	size_t holes_filled, projected;
+	size_t creased;                  /* of those, put on two planes' line */
+	size_t uncreased;                /* ... and taken off it again: corners of
+	                                    triangles of no area */
 	struct fct_qem_stats qem;        /* the free-form faces' decimation */
 	struct fct_chain_stats chains;   /* the outlines' simplification */
 	struct fct_tripatch_stats tri;   /* their triangulation */
