@@ -1410,7 +1410,7 @@ static void recheck_chain(struct checker *k, size_t ci)
 
 /* Splits the marked segments of every marked chain; 1 when any was split
  * (another round is due). */
-static int split_marked(struct checker *k, double tol2, size_t *stack, struct fct_chain_stats *st)
+static int split_marked(struct checker *k, const double *tol2, size_t *stack, struct fct_chain_stats *st)
 {
 	const struct fct_chains *c = k->c;
 	int any = 0;
@@ -1419,7 +1419,7 @@ static int split_marked(struct checker *k, double tol2, size_t *stack, struct fc
 		if (!k->chain_dirty[ci])
 			continue;
 		k->chain_dirty[ci] = 0;
-		if (split_chain(k, ci, tol2, stack, st)) {
+		if (split_chain(k, ci, tol2[ci], stack, st)) {
 			k->chain_new[ci] = 1;
 			recheck_chain(k, ci);
 			any = 1;
@@ -1449,7 +1449,7 @@ static int count_left(struct checker *k, struct fct_chain_stats *st, struct fct_
 
 /* Per-patch crossing checks and splits until nothing more can be split. */
 static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
-                         const struct fct_plane *planes, size_t nplanes, double tol2,
+                         const struct fct_plane *planes, size_t nplanes, const double *tol2,
                          size_t *stack, struct fct_chain_stats *st, struct fct_err *err)
 {
 	int rc = -1;
@@ -1505,31 +1505,35 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 		if (c->start[i + 1] - c->start[i] > maxlen)
 			maxlen = c->start[i + 1] - c->start[i];
 	size_t *stack = fct_alloc_array(2 * maxlen + 2, sizeof *stack, err);
-	if (!stack)
+	double *chain_tol2 = fct_alloc_array(c->n ? c->n : 1, sizeof *chain_tol2, err);
+	if (!stack || !chain_tol2) {
+		free(stack);
 		return -1;
+	}
+	/* Each chain's own tolerance, which the splits against crossings keep
+	 * too: refitting a border seen obliquely to the median point's
+	 * tolerance brought back the teeth its own had dropped. */
 	for (size_t i = 0; i < c->n; i++) {
-		if (c->frozen && c->frozen[i])
-			continue;   /* the caller's keep */
-		double t2 = tol2;
+		chain_tol2[i] = tol2;
 		if (p->scale) {
 			double sum = 0;
 			for (size_t q = c->start[i]; q < c->start[i + 1]; q++)
 				sum += p->scale[c->vert[q]];
 			double t = p->scale_factor * sum / (double)(c->start[i + 1] - c->start[i]);
-			t2 = t * t;
+			chain_tol2[i] = t * t;
 		}
 		if (p->tolerance && p->tolerance[i] > 0)
-			t2 = p->tolerance[i] * p->tolerance[i];
-		if (simplify_chain(m, c, i, t2, p->keep_vertex, stack, st, err)) {
-			free(stack);
-			return -1;
-		}
+			chain_tol2[i] = p->tolerance[i] * p->tolerance[i];
 	}
-	if (p->keep_topology && keep_topology(c, m, patch, planes, nplanes, tol2, stack, st, err)) {
-		free(stack);
+	int rc = 0;
+	for (size_t i = 0; i < c->n && !rc; i++)
+		if (!(c->frozen && c->frozen[i]))   /* else the caller's keep */
+			rc = simplify_chain(m, c, i, chain_tol2[i], p->keep_vertex, stack, st, err);
+	if (!rc && p->keep_topology)
+		rc = keep_topology(c, m, patch, planes, nplanes, chain_tol2, stack, st, err);
+	free(stack), free(chain_tol2);
+	if (rc)
 		return -1;
-	}
-	free(stack);
 
 	/* The figures of the result. */
 	unsigned char *seen = calloc(m->nv ? m->nv : 1, 1);

@@ -61,7 +61,7 @@
  * strictly inside the sliver between a simplified segment and the original
  * points it replaces (it would change sides of that boundary: a hole leaving
  * its patch, say).  A segment in conflict is split at its farthest point (its
- * halves refitted to the tolerance), and the check repeats until nothing is
+ * halves refitted to its chain's tolerance), and the check repeats until nothing is
  * in conflict.  Conflicts the input already has are not chased: when the
  * original edges of the two spans already conflict in that map (noise folds
  * a boundary over itself in a plane seen obliquely, or an occlusion boundary
