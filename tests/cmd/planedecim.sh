@@ -148,7 +148,7 @@ model rk 250 3.3
 
 # -v: every figure the man page lists, and the counts consistent.
 for k in vertices_in faces_in vertices faces reduction planes sigma_estimated facets \
-	small_faces speck_faces off_plane_faces holes_filled projected collapses corners refused_topology \
+	small_faces speck_faces off_plane_faces holes_filled projected creased uncreased collapses corners refused_topology \
 	refused_flip refused_error max_error free_faces_in free_faces outline_vertices \
 	outline_tolerance planar_triangles rounds dense_patches pinned mended tightened \
 	unclean_patches moved_line moved_corner \
@@ -161,6 +161,9 @@ check_num "-v faces_in = the dense mesh's" "$(report faces_in "$TMP/rq.model.err
 check_num "-v sigma from the mesh" "$(report sigma_estimated "$TMP/rq.model.err")" == 0
 check_num "-v free-form decimation within -e (1.5 sigma, the default)" "$(report max_error "$TMP/rq.model.err")" "<=" 1.5
 check_num "-v torn (the occlusions of the boxes)" "$(report torn "$TMP/rq.model.err")" ">" 0
+check_num "-v creased: vertices put on crease lines (the Kinect room's floor and walls)" "$(report creased "$TMP/rq.model.err")" ">" 0
+check_num "-v uncreased <= creased" "$(report uncreased "$TMP/rq.model.err")" "<=" "$(report creased "$TMP/rq.model.err")"
+check_num "-v projected >= creased" "$(report projected "$TMP/rq.model.err")" ">=" "$(report creased "$TMP/rq.model.err")"
 # The output: patch labels and the planes as they came, the provenance.
 check_true "model keeps the plane element" sh -c "meshinfo $TMP/rq.model.ply | grep -q '^element: plane $(report planes "$TMP/rq.model.err")\$'"
 check_true "model's faces carry patch" sh -c "meshinfo $TMP/rq.model.ply | grep -q '^property: face int patch\$'"
