@@ -7,6 +7,7 @@
  * it came with (PFM), what they can inflate to (PNG) or what their entropy
  * code can stand for (JPEG). */
 #include "io/image.h"
+#include "io/pnggray.h"
 
 #include <errno.h>
 #include <math.h>
@@ -22,11 +23,11 @@
 #include "core/numparse.h"
 #include "core/path.h"
 
-/* Deflate cannot compress better than 1032:1 (a 258-byte match costs at
- * least 2 bits), so a PNG whose filtered rows need more bytes than its whole
- * file times this is lying about its size.  Palette and sub-8-bit expansion
- * can still multiply the pixel array by up to 32, as a real file would. */
-enum { DEFLATE_MAX_RATIO = 1032, CHUNK_MALLOC_MIN = 8 << 20 };
+/* A PNG whose filtered rows need more bytes than its whole file times
+ * FCT_DEFLATE_MAX_RATIO (pnggray.h) is lying about its size.  Palette and
+ * sub-8-bit expansion can still multiply the pixel array by up to 32, as a
+ * real file would. */
+enum { CHUNK_MALLOC_MIN = 8 << 20 };
 
 static const unsigned char png_magic[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
 
@@ -551,6 +552,10 @@ static int png_decode(struct fct_image *img, struct png_state *s, const char *na
 {
 	if (png_check_chunks(s->buf, s->len, name, err))
 		return -1;
+	/* A depth camera's plain grey PNG without libpng's slower unfiltering;
+	 * anything else, errors included, through libpng. */
+	if (!header_only && fct_png_gray_decode(img, s->buf, s->len, max_pixels))
+		return 0;
 	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, s, png_on_error,
 	                                         png_on_warning);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -583,7 +588,7 @@ static int png_decode(struct fct_image *img, struct png_state *s, const char *na
 		png_fail(png, s, 16, "%s", big.msg);
 	/* The filtered rows, one filter byte each, that IDAT must inflate to. */
 	uint64_t raw = ((uint64_t)w * png_get_channels(png, info) * (uint64_t)depth + 7) / 8 + 1;
-	if (raw * h > (uint64_t)s->len * DEFLATE_MAX_RATIO)
+	if (raw * h > (uint64_t)s->len * FCT_DEFLATE_MAX_RATIO)
 		png_fail(png, s, 16, "image size %lux%lu needs %llu bytes of pixel data, "
 		         "more than %zu bytes of PNG can hold", (unsigned long)w,
 		         (unsigned long)h, (unsigned long long)(raw * h), s->len);

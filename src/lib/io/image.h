@@ -1,4 +1,5 @@
-/* image.h - raster images: PNG (through libpng) and PFM, read and written;
+/* image.h - raster images: PNG (through libpng; a plain 8- or 16-bit grey
+ * one is read over zlib alone, pnggray.h) and PFM, read and written;
  * JPEG (through libjpeg-turbo) and netpbm's PGM and PPM read.
  *
  * An image is a flat array of samples: row-major, top row first, channels
