@@ -210,6 +210,50 @@ static void test_long_polygon(void)
 	free(buf);
 }
 
+/* A mesh of nf <= 20 faces of the given sizes, face f from vertex f on. */
+static void faces_of_sizes(struct fct_mesh *m, const uint32_t *sizes, size_t nf)
+{
+	struct fct_err err;
+	fct_mesh_init(m);
+	uint32_t idx[320];
+	for (int i = 0; i < 320; i++) {
+		fct_mesh_add_vertex(m, i, 0, 0, &err);
+		idx[i] = (uint32_t)i;
+	}
+	for (size_t f = 0; f < nf; f++)
+		fct_mesh_add_face(m, idx + f, sizes[f], &err);
+}
+
+static void test_face_sizes(void)
+{
+	/* The writer's triangle test goes four faces a step, then one: a
+	 * quad among triangles in either part keeps its size, and a 300-gon
+	 * its wider count type. */
+	static const uint32_t mixed[] = {3, 3, 3, 3, 4, 3, 3, 3, 3},
+		big_tail[] = {3, 3, 3, 3, 3, 3, 3, 3, 3, 300},
+		big_lane[] = {3, 3, 300, 3, 3, 3, 3, 3, 3},
+		big_lane0[] = {3, 3, 3, 3, 300, 3, 3, 3, 3},
+		tail_pair[] = {3, 3, 3, 3, 3, 3, 3, 3, 3, 4};
+	static const struct { const uint32_t *sizes; size_t nf; int uchar; } cases[] = {
+		{mixed, 9, 1}, {big_tail, 10, 0}, {big_lane, 9, 0}, {big_lane0, 9, 0}, {tail_pair, 10, 1},
+	};
+	for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+		struct fct_mesh m, r;
+		struct fct_err err;
+		faces_of_sizes(&m, cases[c].sizes, cases[c].nf);
+		size_t n;
+		char *buf = write_mem(&m, FCT_FORMAT_PLY_LE, &n);
+		CHECK_INT(strstr(buf, "property list uchar int vertex_indices") != NULL, cases[c].uchar);
+		int same = read_mem(&r, buf, n, &err) == 0 && r.nf == cases[c].nf;
+		for (size_t f = 0; same && f < r.nf; f++)
+			same = fct_face_size(&r, f) == cases[c].sizes[f] && r.fvert[r.fstart[f]] == f;
+		CHECK_MSG(same, "case %zu: face sizes read back", c);
+		fct_mesh_free(&r);
+		fct_mesh_free(&m);
+		free(buf);
+	}
+}
+
 static void test_hostile_stream(void)
 {
 	/* Unknown size (a stream): a lying count must fail at the end of the
@@ -356,6 +400,7 @@ int main(void)
 	test_big_endian_bytes();
 	test_ascii_layouts();
 	test_long_polygon();
+	test_face_sizes();
 	test_hostile_stream();
 	test_header_comments();
 	test_gather();

@@ -1216,13 +1216,39 @@ static enum fct_type *elem_count_types(const struct fct_elem *e)
 	return ct;
 }
 
+typedef uint32_t v4u __attribute__((vector_size(16)));
+
+/* Is every face of m a triangle?  The header's count type needs the
+ * largest face before a byte is written, and one face at a time the scan
+ * of fstart was 0.2 ms of dm2mesh's 1.7 ms write of a 640x480 frame (534k
+ * faces); four a step with GCC's and Clang's vector extension. */
+static int all_triangles(const struct fct_mesh *m)
+{
+	const v4u three = {3, 3, 3, 3};
+	v4u off = {0, 0, 0, 0};
+	size_t i = 0;
+	for (; i + 4 <= m->nf; i += 4) {
+		v4u lo, hi;
+		memcpy(&lo, m->fstart + i, sizeof lo);
+		memcpy(&hi, m->fstart + i + 1, sizeof hi);
+		off |= (hi - lo) ^ three;
+	}
+	uint32_t any = off[0] | off[1] | off[2] | off[3];
+	for (; i < m->nf; i++)
+		any |= fct_face_size(m, i) ^ 3;
+	return !any;
+}
+
 int fct_ply_write(const struct fct_mesh *m, FILE *f, enum fct_ply_format fmt, struct fct_err *err)
 {
 	static const char *fmt_name[] = {"ascii", "binary_little_endian", "binary_big_endian"};
 	size_t maxface = 0;
-	for (size_t i = 0; i < m->nf; i++)
-		if (fct_face_size(m, i) > maxface)
-			maxface = fct_face_size(m, i);
+	if (m->nf && all_triangles(m))
+		maxface = 3;
+	else
+		for (size_t i = 0; i < m->nf; i++)
+			if (fct_face_size(m, i) > maxface)
+				maxface = fct_face_size(m, i);
 	enum fct_type ctype = count_type_for(m->fcount_type, maxface);
 	enum fct_type itype = count_type_for(m->findex_type, m->nv ? m->nv - 1 : 0);
 	int faces = m->has_faces || m->nf;
