@@ -192,7 +192,8 @@ static int same_mesh(const struct fct_mesh *a, const struct fct_mesh *b)
  * computed pixel by pixel: either way the mesh is the one of the float
  * image of the same values (computed pixel by pixel), with 65535 no data
  * as 0 is.  Images with tables (w x h above the largest value) and
- * without, 1 x N and odd widths, every step. */
+ * without, 1 x N and odd widths, every step; the largest sample on the
+ * last square. */
 static void test_sample_tables(void)
 {
 	/* width, height, the smallest and largest sample of data */
@@ -216,6 +217,10 @@ static void test_sample_tables(void)
 				v = 65535;
 			else if (seed % 5 != 0 && i > 0)
 				v = u[i - 1];   /* plateaus, as quantised sensors make */
+			/* the largest sample on the last square: the eight-a-step
+			 * search leaves the last pixel to its scalar tail */
+			if (i + 2 >= np || (i + (size_t)w + 2 >= np && i + (size_t)w < np))
+				v = (unsigned)size[n][3] + 7;
 			u[i] = (uint16_t)v, f[i] = v == 65535 ? 0 : (float)v;
 		}
 		struct fct_image iu = { w, h, 1, FCT_PIX_U16, u }, ifl = { w, h, 1, FCT_PIX_F32, f };

