@@ -1,6 +1,7 @@
 /* fuzz_mesh.h - shared body of the mesh-reader fuzz targets: read the bytes,
  * and when they are accepted, check that what was read survives a write and
- * a second read with the same counts (so the writer is fuzzed too), and read
+ * a second read with the same counts (so the writer is fuzzed too; it may
+ * only refuse a header line too long for MeshLab), and read
  * its noise comment and estimate its noise (so those are fuzzed too). */
 #include <stdint.h>
 #include <stdio.h>
@@ -38,8 +39,16 @@ static void fuzz_mesh_bytes(const uint8_t *data, size_t size)
 		char *buf = NULL;
 		size_t n = 0;
 		FILE *w = open_memstream(&buf, &n);
-		if (fct_mesh_write_stream(&m, w, (enum fct_format)fmt, &err))
-			abort();
+		if (fct_mesh_write_stream(&m, w, (enum fct_format)fmt, &err)) {
+			/* The one refusal allowed: a header line that cannot be
+			 * shortened (a texture path padded past 255 bytes) and that
+			 * MeshLab and Open3D would not read, said in one line. */
+			if (!strstr(err.msg, "header line") || strchr(err.msg, '\n'))
+				abort();
+			fclose(w);
+			free(buf);
+			continue;
+		}
 		fclose(w);
 		FILE *in = fmemopen(buf, n, "rb");
 		if (fct_mesh_read_stream(&r, in, "again", NULL, NULL, &err))

@@ -104,4 +104,12 @@ run_case 0 "meshconv -a $TMP/j1.ply $TMP/j2.ply >$TMP/j12.ply"
 check_num "joined without --weld: 6 vertices" "$(awk '$1 == "element" && $2 == "vertex" { print $3 }' "$TMP/j12.ply")" == 6
 run_case 1 "meshconv $TMP/j1.ply $bunny" "" "meshconv: $bunny: vertex property "
 
+# A texture path padded to a 261-byte header line (found by fuzz_ply): read
+# as it is, written as OBJ, refused as PLY in one line before a byte is
+# written, since MeshLab and Open3D read at most 255.
+long=tests/data/texture_path_261.ply
+run_case 0 "meshconv -o $TMP/long.obj $long"
+run_case 1 "meshconv -o $TMP/long.ply $long" "" "meshconv: $TMP/long.ply: header line \"comment TextureFile"
+check_true "long header line: no PLY written" test ! -s "$TMP/long.ply"
+
 finish
