@@ -1277,9 +1277,8 @@ static void crease_tolerances(double *tol, const struct fct_chains *c, const str
  * rays meet the patch's plane.  A point's pixel is known to a fraction of
  * a spacing across its ray, and projection along the ray stretches that
  * over the plane by one over that sine: the top of a box at 3 m seen from
- * 1.1 m above had teeth of 0.1-0.2 m along its far edge, and long slivers
- * spanned the gap behind a box's side (a 200 mm model->truth max in
- * mkscene's Kinect room). */
+ * 1.1 m above had teeth of 0.1-0.2 m along its far edge (mkscene's Kinect
+ * room). */
 static void border_tolerances(double *tol, const struct fct_chains *c, const struct fct_mesh *m,
                               const struct fct_plane *pl, const double *spacing, double outline_tol,
                               const double *vp)
@@ -1662,7 +1661,6 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	double *sigma = NULL, *spacing = NULL, *off_crease = NULL;
 	unsigned char *unclean = NULL, *tight = NULL, *force = NULL, *trouble = NULL, *hit_patch = NULL;
 	size_t *nfaces = NULL, *mended = NULL;
-	uint32_t *crease_vstart = NULL, *crease_vf = NULL;
 	struct fct_mesh w;
 	fct_mesh_init(&w);
 	struct rounds carry;
@@ -1734,11 +1732,11 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		if (build_model(&w, m, patch, pl, np, sigma, spacing, have_cam ? vp : NULL, p, tight,
 		                may_tighten, force, trouble, mended, unclean, &carry, st, err))
 			goto out;
-		if (!crease_vf && st->creased &&
-		    fct_vertex_faces(m, &crease_vstart, &crease_vf, err))
-			goto out;
-		size_t back = st->creased ? uncrease_slivers(m, off_crease, patch, crease_vstart, crease_vf,
-		                                             &w, round, hit_patch, np) : 0;
+		/* (build_model left m's adjacency in carry: the mesh's faces
+		 * stay the same from round to round) */
+		size_t back = st->creased && carry.have_adj ?
+		              uncrease_slivers(m, off_crease, patch, carry.adj.vert_fstart, carry.adj.vert_f,
+		                               &w, round, hit_patch, np) : 0;
 		st->uncreased += back;
 		more += back;
 		/* Unclean: a patch mended tries again; else a small one
@@ -1796,6 +1794,6 @@ out:
 	fct_mesh_free(&w);
 	rounds_free(&carry);
 	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(nfaces);
-	free(force), free(trouble), free(mended), free(off_crease), free(hit_patch), free(crease_vstart), free(crease_vf);
+	free(force), free(trouble), free(mended), free(off_crease), free(hit_patch);
 	return rc;
 }
