@@ -1,4 +1,5 @@
-/* test_planemodel - fct_planes_project at a crease seen at a grazing angle;
+/* test_planemodel - fct_planes_project at a crease seen at a grazing angle,
+ * and a crease move beyond its bound in sigma;
  * fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
  * at shallow creases, of about its size (a facet) and much smaller (a floor
  * with tilted pieces beside it); fct_fill_plane_holes on a flat grid with
@@ -128,10 +129,11 @@ static int centre_unfaceted(int n, int a, int b, double tilt, size_t *facets)
 }
 
 /* fct_patches_tidy on a 16 x 16 square (plane z = 1, patch 0) with a free-form
- * speck of 4 x 6 cells (48 faces) whose 15 inner vertices (62% of its
- * faces' corners) are off the plane by off, every sigma 0.01 (or no sigma given): the speck's faces left free-form; *joined gets the
- * faces given to the patch. */
-static size_t speck_left(double off, int with_sigma, size_t *joined)
+ * speck of 4 x 6 cells (48 faces) whose inner vertices of its first rows
+ * rows (of 5; 3 vertices a row, each 6 faces' corner) are off the plane by
+ * off, every sigma 0.01 (or no sigma given): the speck's faces left
+ * free-form; *joined gets the faces given to the patch. */
+static size_t speck_left(double off, int rows, int with_sigma, size_t *joined)
 {
 	struct fct_mesh m;
 	struct fct_err err;
@@ -144,7 +146,7 @@ static size_t speck_left(double off, int with_sigma, size_t *joined)
 			patch[2 * (j * n + i)] = patch[2 * (j * n + i) + 1] = i >= 3 && i < 7 && j >= 2 && j < 8 ? -1 : 0;
 	for (size_t v = 0; v < m.nv; v++)
 		sigma[v] = 0.01;
-	for (int j = 3; j < 8; j++)
+	for (int j = 3; j < 3 + rows; j++)
 		for (int i = 4; i < 7; i++)
 			m.xyz[3 * (size_t)(j * (n + 1) + i) + 2] += off;
 	struct fct_plane pl = { { 0, 0, -1 }, 1, 0, 0 };
@@ -181,11 +183,37 @@ static size_t crease_move(double y, double z, double out[3], double off[3])
 	const double vp[3] = { 0, 1.5, 0 };
 	double off_crease[15];
 	size_t moved, creased;
-	CHECK_INT(fct_planes_project(&m, patch, planes, vp, off_crease, &moved, &creased, &err), 0);
+	CHECK_INT(fct_planes_project(&m, patch, planes, vp, NULL, 0, 4, off_crease, &moved, &creased, &err), 0);
 	memcpy(out, m.xyz, 3 * sizeof *out);
 	memcpy(off, off_crease, 3 * sizeof *off);
 	for (int v = 1; v < 5; v++)
 		CHECK(isnan(off_crease[3 * v]));
+	fct_mesh_free(&m);
+	return creased;
+}
+
+/* fct_planes_project on a vertex p = (x, y, 0) of two faces, one of the
+ * side y = 0 of a box (patch 0) whose data end at its edge x = 0, one of a
+ * wall x = -0.5 behind it (patch 1), seen from (3, -2, 0) with every sigma
+ * sigma and a bound of 4 sigma: *out gets where p goes; returns the count
+ * of vertices put on the line x = -0.5, y = 0. */
+static size_t bounded_crease(double x, double y, double sigma, double out[3])
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	fct_mesh_init(&m);
+	const double pos[5][3] = { { x, y, 0 }, { 0, 0, -0.1 }, { 0, 0, 0.1 }, { -0.5, 0.5, -0.1 }, { -0.5, 0.5, 0.1 } };
+	for (int v = 0; v < 5; v++)
+		CHECK(fct_mesh_add_vertex(&m, pos[v][0], pos[v][1], pos[v][2], &err) >= 0);
+	const uint32_t side_face[3] = { 0, 1, 2 }, wall_face[3] = { 0, 4, 3 };
+	CHECK(fct_mesh_add_face(&m, side_face, 3, &err) >= 0);
+	CHECK(fct_mesh_add_face(&m, wall_face, 3, &err) >= 0);
+	const int32_t patch[2] = { 0, 1 };
+	const struct fct_plane planes[2] = { { { 0, -1, 0 }, 0, 0, 0 }, { { 1, 0, 0 }, 0.5, 0, 0 } };
+	const double vp[3] = { 3, -2, 0 }, sg[5] = { sigma, sigma, sigma, sigma, sigma };
+	size_t moved, creased;
+	CHECK_INT(fct_planes_project(&m, patch, planes, vp, sg, 0, 4, NULL, &moved, &creased, &err), 0);
+	memcpy(out, m.xyz, 3 * sizeof *out);
 	fct_mesh_free(&m);
 	return creased;
 }
@@ -210,16 +238,33 @@ int main(void)
 	CHECK_NEAR(at[1], 0, 1e-12);
 	CHECK_NEAR(at[2], 4.9 * 1.5 / (1.5 - 0.009), 1e-12);
 	CHECK(isnan(off[0]));
+	/* On the ray past the box's edge (0, 0, 0), 0.1 m before the wall and
+	 * 0.285 m from the crease line: onto the line with sigma 0.1 (within 4
+	 * sigma), onto the wall along its ray with sigma 0.05. */
+	CHECK_INT(bounded_crease(-0.4, 0.8 / 3, 0.1, at), 1);
+	CHECK_NEAR(at[0], -0.5, 1e-12);
+	CHECK_NEAR(at[1], 0, 1e-12);
+	CHECK_INT(bounded_crease(-0.4, 0.8 / 3, 0.05, at), 0);
+	CHECK_NEAR(at[0], -0.5, 1e-12);
+	CHECK_NEAR(at[1], 1.0 / 3, 1e-12);
 	/* With a bound of 4 sigma: a speck mostly 2 sigma off the plane around
 	 * it joins it; one mostly 5 sigma off (a strip of floor seen between a
 	 * pillar and the wall) stays free-form, and without sigma it would
 	 * join. */
-	CHECK_INT(speck_left(0.02, 1, &joined), 0);
+	CHECK_INT(speck_left(0.02, 5, 1, &joined), 0);
 	CHECK_INT(joined, 48);
-	CHECK_INT(speck_left(0.05, 1, &joined), 48);
+	CHECK_INT(speck_left(0.05, 5, 1, &joined), 48);
 	CHECK_INT(joined, 0);
-	CHECK_INT(speck_left(-0.05, 1, &joined), 48);
-	CHECK_INT(speck_left(0.05, 0, &joined), 0);
+	CHECK_INT(speck_left(-0.05, 5, 1, &joined), 48);
+	CHECK_INT(speck_left(0.05, 5, 0, &joined), 0);
+	CHECK_INT(joined, 48);
+	/* Three rows 5 sigma off (54 of its 144 corners, more than a third):
+	 * the speck stays free-form (a piece at the foot of a wall, 39% of its
+	 * corners on the floor, joined the wall and hung its floor 0.21 m
+	 * below the floor); two rows off (36 corners, a quarter) join. */
+	CHECK_INT(speck_left(0.05, 3, 1, &joined), 48);
+	CHECK_INT(joined, 0);
+	CHECK_INT(speck_left(0.05, 2, 1, &joined), 0);
 	CHECK_INT(joined, 48);
 
 	/* A facet: its whole outline at 10-degree creases with four patches

@@ -89,15 +89,18 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
  * vertex of exactly two patches that the nearer plane would take farther
  * from their planes' line than it is goes onto that line instead, where it
  * passes nearest the vertex's ray (unless that is more than four times as
- * far as onto the nearer plane): along its ray onto the nearer plane alone,
- * a vertex of the floor at a far wall, its ray grazing the floor, slides on
- * past the wall.  off_crease (NULL, or 3 * m->nv) gets for each
+ * far as onto the nearer plane, or more than max_move times its
+ * uncertainty, the root of sigma^2 (sigma NULL: 0) plus the span of
+ * pixel_angle at its distance squared): along its ray onto the nearer plane
+ * alone, a vertex of the floor at a far wall, its ray grazing the floor,
+ * slides on past the wall.  off_crease (NULL, or 3 * m->nv) gets for each
  * vertex so put on a line where the nearer plane alone would have put it,
  * NaN for the others.  *moved gets the vertices moved, *creased those put
  * on a line.  0, or -1 out of memory. */
 int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                       const double *viewpoint, double *off_crease, size_t *moved,
-                       size_t *creased, struct fct_err *err);
+                       const double *viewpoint, const double *sigma, double pixel_angle,
+                       double max_move, double *off_crease, size_t *moved, size_t *creased,
+                       struct fct_err *err);
 
 struct fct_meet_stats {
 	size_t lines;     /* vertices put on the line of two planes */
@@ -118,9 +121,12 @@ struct fct_meet_stats {
  * taken back, in rounds: Kang et al.'s section 5.  A vertex then still off
  * one of its planes by more than its uncertainty (where patches meet, or
  * where a patch meets the free-form surface) is torn: that patch's
- * faces get a copy of it on their plane (along its ray), so that no plane
- * is tilted by another's vertex; the surface has a crack there, as the
- * sensor saw it (an occlusion).  0, or -1 out of memory. */
+ * faces get a copy of it on their plane, so that no plane is tilted by
+ * another's vertex; the surface has a crack there, as the sensor saw it
+ * (an occlusion).  The copy goes along the vertex's ray when that is
+ * within the bound, or when the plane lies before the sample (the ray
+ * passes the edge of a surface in front) and the ray meets it at a sine of
+ * 0.3 or more; else straight across.  0, or -1 out of memory. */
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
                     const double *sigma, const double *spacing, double max_move,
                     const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err);
