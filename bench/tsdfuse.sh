@@ -78,6 +78,21 @@ done
 # the same depth images at 2 cm (one thread).
 row "true / projective per view, depth images, 0.02 m" \
 	"$(awk -v a="$ms_truedepth_02" -v b="$ms_depth_02" 'BEGIN { printf "%.2f", a / b }')"
+# Where a view's time goes: tsdfuse -v's phases (fuse.h), true distance
+# beside --projective on the same depth images at 2 cm, one thread; the
+# median of RUNS runs for each phase.
+phases() {
+	i=0
+	while [ $i -lt "$RUNS" ]; do
+		tsdfuse -v --threads 1 "$@" 2>&1 >/dev/null |
+			awk -F= '/^tsdfuse: (triangles|raster|candidates|distances)_ms=/ { printf "%s ", $2 } END { print "" }'
+		i=$((i + 1))
+	done >"$dir/phases.fig"
+	for k in 1 2 3 4; do awk -v k=$k '{ print $k }' "$dir/phases.fig" | median; done
+}
+printf '%-36s %10s %10s %11s %10s\n' "ms per view, depth images, 0.02 m" triangles raster candidates distances
+printf '%-36s %10s %10s %11s %10s\n' "true" $(phases --voxel 0.02 $D)
+printf '%-36s %10s %10s %11s %10s\n' "projective" $(phases --projective --voxel 0.02 $D)
 echo "projective: the goal is Open3D's VoxelBlockGrid, 14 / 33 ms per view at 0.02 / 0.01 m on"
 echo "one core of this machine; it is given each depth image and preallocates its blocks.  The"
 echo "mesh rows include rasterising each view's mesh into its depth image; the depth-image rows"

@@ -387,6 +387,12 @@ int main(int argc, char **argv)
 	fct_report("reread_s", "%.4f", reread_s);
 	fct_report("fuse_s", "%.4f", fuse_s);
 	fct_report("ms_per_view", "%.2f", nv ? 1e3 * fuse_s / (double)nv : 0);
+	/* Its phases (fuse.h), per view too. */
+	double per_view = nv ? 1e3 / (double)nv : 0;
+	fct_report("triangles_ms", "%.2f", st.triangles_s * per_view);
+	fct_report("raster_ms", "%.2f", st.raster_s * per_view);
+	fct_report("candidates_ms", "%.2f", st.candidates_s * per_view);
+	fct_report("distances_ms", "%.2f", st.distances_s * per_view);
 	fct_report("carve_s", "%.4f", carve_s);
 	fct_report("flow_s", "%.4f", flow_s);
 	fct_report("mcubes_s", "%.4f", mc_s);

@@ -9,6 +9,7 @@
 
 #include "geom/adj.h"
 #include "geom/geom.h"
+#include "core/clock.h"
 #include "core/par.h"
 
 void fuse_geo_free(struct geo *G)
@@ -162,8 +163,11 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	double vox = fct_voxgrid_voxel(g), band = p->band;
 	int proj = p->projective;
 	struct geo G;
+	double t0 = fct_now();
 	if (fuse_geo_build(&G, v->mesh, !proj, nthreads, err))
 		return -1;
+	double t1 = fct_now();
+	st->triangles_s += t1 - t0;
 	struct raster R;
 	struct scratch s = { 0 };
 	size_t from = fct_voxgrid_count(g);
@@ -177,16 +181,21 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		failed = fuse_raster_image(&R, v, err);
 	else
 		failed = fuse_raster_build(&R, v, &G, 1, 0, max_samples, nthreads, err);
+	double t2 = fct_now();
+	st->raster_s += t2 - t1;
 	if (failed)
 		goto done;
 	if (R.w > 0) {
 		const struct fct_fuse_view *img = proj && fuse_image_grid(v, &G) ? v : NULL;
 		if (fuse_candidates(&s, g, &G, img, vox, band, proj, err))
 			goto done;
+		double t3 = fct_now();
+		st->candidates_s += t3 - t2;
 		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox) };
 		fct_par_run(nthreads, s.n, 0, proj ? fuse_projective_blocks : fuse_true_blocks, &F);
 		if (commit(g, from, &s, st, err))
 			goto done;
+		st->distances_s += fct_now() - t3;
 	}
 	if (proj) {
 		st->faces += v->mesh->nf;

@@ -89,6 +89,10 @@ struct fct_fuse_stats {
 	size_t voxels;          /* voxels updated */
 	size_t border;          /* voxels skipped because their nearest point is on a border */
 	size_t faces;           /* triangles used */
+	/* Seconds in fct_fuse_view's phases: the view's triangles (with their
+	 * normals for true distance), its raster or pixel grid, its candidate
+	 * voxels, and their distances put into the volume. */
+	double triangles_s, raster_s, candidates_s, distances_s;
 };
 
 /* Fuse view v into g.  stats may be NULL (or is added to).  0 or -1
