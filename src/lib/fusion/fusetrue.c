@@ -608,22 +608,38 @@ static void true_batch(const struct fctx *F, struct sblock *b, struct seen *V, i
 	for (int v = 0; v < n; v++)
 		if (V[v].t >= 0)
 			search_begin(F, V[v].t, V[v].x, &V[v].S);
-	for (int step = 0; step < 2; step++) {
+	/* Every move of the searches here, the voxels still moving (act)
+	 * side by side, until none is: on noisy views many move more than
+	 * twice, and a move taken alone (search_end) waits on each of its
+	 * loads in turn. */
+	int act[TRUE_BATCH], na = 0;
+	for (int v = 0; v < n; v++)
+		if (V[v].t >= 0 && !V[v].S.done)
+			act[na++] = v;
+	while (na > 0) {
 		int8_t go[TRUE_BATCH];
 		int32_t ts[TRUE_BATCH];
-		for (int v = 0; v < n; v++) {
-			go[v] = V[v].t >= 0 && !V[v].S.done && step_foot(F, V[v].x, &V[v].S);
-			if (go[v])
-				prefetch_seen(R, V[v].S.sx, V[v].S.sy);
+		for (int i = 0; i < na; i++) {
+			struct seen *e = &V[act[i]];
+			go[i] = step_foot(F, e->x, &e->S);
+			if (go[i])
+				prefetch_seen(R, e->S.sx, e->S.sy);
 		}
-		for (int v = 0; v < n; v++) {
-			go[v] = go[v] && step_seen(F, R->id, &V[v].S, &ts[v]);
-			if (go[v])
-				__builtin_prefetch(&G->tn[4 * (size_t)ts[v]]);
+		for (int i = 0; i < na; i++) {
+			struct seen *e = &V[act[i]];
+			go[i] = go[i] && step_seen(F, R->id, &e->S, &ts[i]);
+			if (go[i])
+				__builtin_prefetch(&G->tn[4 * (size_t)ts[i]]);
 		}
-		for (int v = 0; v < n; v++)
-			if (go[v])
-				step_move(F, V[v].x, &V[v].S, ts[v]);
+		int still = 0;
+		for (int i = 0; i < na; i++) {
+			struct seen *e = &V[act[i]];
+			if (go[i])
+				step_move(F, e->x, &e->S, ts[i]);
+			if (!e->S.done)
+				act[still++] = act[i];
+		}
+		na = still;
 	}
 	for (int v = 0; v < n; v++)
 		if (V[v].t >= 0)
