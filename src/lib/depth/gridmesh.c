@@ -321,18 +321,19 @@ static unsigned square_code(unsigned e, int ad, unsigned *possible)
 }
 
 /* square_code of every e, looked up instead of branched through square by
- * square: the code along bc and along ad (the same unless ask), whether
- * the square's shape must choose between them (prefer_ad), and possible. */
+ * square: the code along bc ([0]) and along ad ([1], the same unless ask),
+ * whether the square's shape must choose between them (prefer_ad), and
+ * possible. */
 struct square_rule {
-	unsigned char bc, ad, ask, possible;
+	unsigned char code[2], ask, possible;
 };
 
 static void square_rules(struct square_rule rules[1024])
 {
 	for (unsigned e = 0; e < 1024; e++) {
 		unsigned possible;
-		rules[e].bc = (unsigned char)square_code(e, 0, &possible);
-		rules[e].ad = (unsigned char)square_code(e, 1, &possible);
+		rules[e].code[0] = (unsigned char)square_code(e, 0, &possible);
+		rules[e].code[1] = (unsigned char)square_code(e, 1, &possible);
 		rules[e].possible = (unsigned char)possible;
 		rules[e].ask = (e & (HA | HB | HC | HD | JAD | JBC)) == (HA | HB | HC | HD | JAD | JBC);
 	}
@@ -625,7 +626,9 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 		for (long i = 0; i < sw; i++) {
 			struct square q = square_at(&G, i, j);
 			const struct square_rule *rule = &rules[edges[i]];
-			unsigned k = rule->ask && prefer_ad(&G, &R, i, j) ? rule->ad : rule->bc;
+			/* indexed, not `prefer ? ad : bc`, which GCC made a branch
+			 * that the as-good-as-random choice mispredicts */
+			unsigned k = rule->code[rule->ask ? prefer_ad(&G, &R, i, j) : 0];
 			code[j * sw + i] = (unsigned char)k;
 			possible += rule->possible;
 			if (!(k & (FIRST | SECOND))) {
