@@ -484,16 +484,47 @@ static inline void square_triangle(struct square q, unsigned code, unsigned whic
 	}
 }
 
-/* Mark the corners of the triangles that code k makes of square q as used:
- * four flags stored, not three per triangle behind a branch on the
- * diagonal. */
-static inline void mark_corners(unsigned char *used, struct square q, unsigned k)
+/* The corners that the triangles of code k use, as bits: a 1, b 2, c 4,
+ * d 8. */
+static unsigned square_corners(unsigned k)
 {
 	unsigned first = k & FIRST, second = (k & SECOND) >> 1, ad = (k & DIAG_AD) >> 2;
-	used[q.a] |= (unsigned char)(first | (second & ad));
-	used[q.b] |= (unsigned char)((first & !ad) | second);
-	used[q.c] |= (unsigned char)(first | (second & !ad));
-	used[q.d] |= (unsigned char)((first & ad) | second);
+	return (first | (second & ad)) | ((first & !ad) | second) << 1 |
+	       (first | (second & !ad)) << 2 | ((first & ad) | second) << 3;
+}
+
+/* Number the cells of a row that a kept triangle uses in vindex[0..w),
+ * from *nv on (UINT32_MAX for the others).  A cell is corner a of square
+ * i of the row of squares below it, b of square i-1 there, c of square i
+ * of the row above and d of square i-1 there (below, above: those rows'
+ * codes, zeros beyond the grid; sw squares a row, w on a full cylinder,
+ * whose column 0 is the last square's b and d).  corners: square_corners
+ * of each code.  Worked out cell by cell from the final codes: marking
+ * each square's four corners in a byte per cell chained a square's
+ * stores to its neighbour's through memory. */
+static void number_row(const unsigned char corners[8], const unsigned char *below,
+                       const unsigned char *above, long w, long sw, uint32_t *vindex, size_t *nv)
+{
+	size_t n = *nv;
+	/* per square, bit 0: its left corners (a, c) used, bit 1: its right
+	 * ones (b, d); left: the previous square's bit 1 */
+	unsigned left = 0;
+	if (sw == w && sw > 0)
+		left = ((corners[below[sw - 1]] & 3u) | (corners[above[sw - 1]] >> 2)) >> 1;
+	long i = 0;
+	for (; i < sw; i++) {
+		unsigned sides = (corners[below[i]] & 3u) | (corners[above[i]] >> 2);
+		unsigned u = left | (sides & 1u);
+		left = sides >> 1;
+		vindex[i] = u ? (uint32_t)n : UINT32_MAX;
+		n += u;
+	}
+	for (; i < w; i++) {   /* the last column, without squares of its own */
+		vindex[i] = left ? (uint32_t)n : UINT32_MAX;
+		n += left;
+		left = 0;
+	}
+	*nv = n;
 }
 
 /* Union-find over cells; the smaller index is the root, so the result does
@@ -570,14 +601,15 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	int pieces = p->min_faces > 1;
 
 	/* Per cell a uint32 (with pieces parent, which becomes the piece
-	 * labels and then vindex; else vindex), then per cell whether a kept
-	 * triangle uses it, then per square its code: one block, the 2 MB page
-	 * of a 640x480 grid's uint32s holding the rest too instead of 150 pages
-	 * of 4 KB faulted in (squares are no more than cells). */
+	 * labels and then vindex; else vindex), then per square its code, then
+	 * a row of zero codes for the squares beyond the grid's top and bottom:
+	 * one block, the 2 MB page of a 640x480 grid's uint32s holding the rest
+	 * too instead of 150 pages of 4 KB faulted in (squares are no more than
+	 * cells, a row no longer than the grid). */
 	uint32_t *cells = fct_alloc_big(ncells, sizeof *cells + 2, err);
 	uint32_t *parent = pieces ? cells : NULL, *vindex = pieces ? NULL : cells, *count = NULL;
-	unsigned char *used = cells ? (unsigned char *)(cells + ncells) : NULL;
-	unsigned char *code = used ? used + ncells : NULL;
+	unsigned char *code = cells ? (unsigned char *)(cells + ncells) : NULL;
+	unsigned char *no_squares = code ? code + ncells : NULL;
 	size_t pw = (size_t)G.w + 2;   /* a position row and its padding */
 	double *rings = fct_alloc_array(pw, 16 * sizeof *rings, err);
 	unsigned char *flags = fct_alloc_array((size_t)G.w + 1, 8, err);
@@ -588,7 +620,7 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 	int rc = -1;
 	if (!cells || !rings || !flags || !edges || (!g->xyz && !rays))
 		goto out;
-	memset(used, 0, ncells);
+	memset(no_squares, 0, (size_t)G.w);
 
 	/* The triangles of every square, and the pieces they join. */
 	size_t possible = 0, made = 0;
@@ -640,8 +672,6 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 				uint32_t r = left != UINT32_MAX ? join_square_after(parent, left, q, k)
 				                                : join_square(parent, q, k);
 				left = k & SECOND ? r : UINT32_MAX;
-			} else {
-				mark_corners(used, q, k);
 			}
 		}
 	}
@@ -678,15 +708,18 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 					*k &= (unsigned char)~FIRST, nf--;
 				if ((*k & SECOND) && count[parent[q.b]] < p->min_faces)
 					*k &= (unsigned char)~SECOND, nf--;
-				mark_corners(used, q, *k);
 			}
 		vindex = parent, parent = NULL;
 	}
 
 	/* Vertices: the cells used by a kept triangle, in cell order. */
 	size_t nv = 0;
-	for (size_t c = 0; c < ncells; c++)
-		vindex[c] = used[c] ? (uint32_t)nv++ : UINT32_MAX;
+	unsigned char corners[8];
+	for (unsigned k = 0; k < 8; k++)
+		corners[k] = (unsigned char)square_corners(k);
+	for (long j = 0; j < G.h; j++)
+		number_row(corners, j < sh ? code + j * sw : no_squares, j > 0 ? code + (j - 1) * sw : no_squares,
+		           G.w, sw, vindex + (size_t)j * (size_t)G.w, &nv);
 	if (fct_mesh_set_counts_big(m, nv, nf, err))
 		goto out;
 	/* The faces: a square's corners' vertex numbers read once for its
