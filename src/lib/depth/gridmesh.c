@@ -739,15 +739,24 @@ int fct_grid_mesh(struct fct_mesh *m, const struct fct_range_grid *g,
 				}
 		}
 	/* The positions; vindex becomes cell_of in place (vertex v is a cell
-	 * c >= v, and entry v has been read by the time c is reached). */
-	for (size_t c = 0, j = 0; j < (size_t)G.h; j++)
+	 * c >= v, and entry v has been read by the time c is reached).  From
+	 * depths, P's products with the arrays in locals: the compiler read
+	 * them anew through g after each store. */
+	for (size_t c = 0, j = 0; j < (size_t)G.h; j++) {
+		const double *depth = g->depth, *ray_x = G.ray_x, *ray_z = G.ray_z;
+		double ray_y = g->xyz ? 0 : g->row[j], *xyz = m->xyz;
 		for (size_t i = 0; i < (size_t)G.w; i++, c++) {
 			uint32_t v = vindex[c];
 			if (v == UINT32_MAX)
 				continue;
-			P(&G, c, i, j, m->xyz + 3 * (size_t)v);
+			double *p = xyz + 3 * (size_t)v, d = depth[c];
+			if (g->xyz)
+				P(&G, c, i, j, p);
+			else
+				p[0] = d * ray_x[i], p[1] = d * ray_y, p[2] = d * ray_z[i];
 			vindex[v] = (uint32_t)c;
 		}
+	}
 	if (cell_of) {
 		uint32_t *shrunk = realloc(cells, (nv ? nv : 1) * sizeof *cells);   /* vindex's part */
 		*cell_of = shrunk ? shrunk : cells;
