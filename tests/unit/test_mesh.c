@@ -8,7 +8,8 @@
  * saturation of integers, NaN as 0; resize (new rows zeroed, list rows
  * empty) and gather of rows with repeats; keeping vertices (faces
  * renumbered, a face on a dropped vertex dropped with its properties) and
- * faces; append (indices shifted, columns in step, double positions kept,
+ * faces; columns sharing one block through all of that;
+ * append (indices shifted, columns in step, double positions kept,
  * a difference named and dst unchanged); double positions chosen only
  * when float would move a coordinate by more than the resolution; a deep
  * copy that shares nothing; comments in order. */
@@ -127,13 +128,95 @@ static void test_build(void)
 	CHECK(m.xyz_cap == 600000 && m.fstart_cap == 400001 && m.fvert_cap == 1200000);
 	CHECK(m.fstart[0] == 0 && m.fstart[400000] == 1200000);
 	m.xyz[599999] = 1, m.fvert[1199999] = 2;
-	struct fct_prop *s = fct_elem_add_scalar_big(&m.vertex, "s", FCT_FLOAT32, &err);
-	CHECK(s != NULL && s->cap == 200000);
-	CHECK(fct_prop_get(s, 0) == 0 && fct_prop_get(s, 199999) == 0);
+	static const char *const st[] = { "s", "t" };
+	CHECK_INT(fct_elem_add_scalars_big(&m.vertex, st, 2, FCT_FLOAT32, &err), 0);
+	struct fct_prop *s = fct_elem_find(&m.vertex, "s"), *t = fct_elem_find(&m.vertex, "t");
+	CHECK(s != NULL && s->cap == 200000 && t != NULL && t->cap == 200000);
+	CHECK(s->block != NULL && s->block == t->block);
+	CHECK((float *)t->data == (float *)s->data + 200000);   /* one block, one after the other */
+	CHECK(fct_prop_get(s, 0) == 0 && fct_prop_get(s, 199999) == 0 && fct_prop_get(t, 199999) == 0);
 	fct_prop_set(s, 199999, 0.5);
+	fct_prop_set(t, 0, 0.25);
 	CHECK(fct_prop_get(fct_elem_find(&m.vertex, "s"), 199999) == 0.5);
+	CHECK(fct_prop_get(s, 199999) == 0.5 && fct_prop_get(t, 0) == 0.25);
 	CHECK_INT(fct_mesh_set_counts_big(&m, 10, (size_t)UINT32_MAX, &err), -1);
 	CHECK_STR(err.msg, "too many faces");
+	fct_mesh_free(&m);
+}
+
+/* Columns in one block (fct_elem_add_scalars_big) behave as columns of
+ * their own through every change: grown (copied out, values kept, the
+ * other still in the block), replaced, gathered, appended to, copied,
+ * removed and freed in any order (ASan and LSan in make sanitize see a
+ * double free or a leak). */
+static void test_block_columns(void)
+{
+	struct fct_mesh m, c;
+	struct fct_err err;
+	static const char *const uvw[] = { "u", "v", "w" };
+	two_faces(&m);
+	fct_elem_add_scalar(&m.vertex, "v", FCT_INT8, &err);   /* replaced by the block's */
+	CHECK_INT(fct_elem_add_scalars_big(&m.vertex, uvw, 3, FCT_INT32, &err), 0);
+	CHECK_INT(m.vertex.nprops, 3);
+	CHECK_STR(m.vertex.props[0].name, "u");
+	CHECK_STR(m.vertex.props[2].name, "w");
+	struct fct_prop *u = fct_elem_find(&m.vertex, "u"), *v = fct_elem_find(&m.vertex, "v");
+	CHECK(v->type == FCT_INT32 && v->block == u->block && (int32_t *)v->data == (int32_t *)u->data + 5);
+	for (size_t i = 0; i < 5; i++) {
+		fct_prop_set(u, i, (double)i);
+		fct_prop_set(v, i, 10.0 + (double)i);
+		fct_prop_set(fct_elem_find(&m.vertex, "w"), i, 20.0 + (double)i);
+	}
+	/* a copy shares nothing */
+	CHECK_INT(fct_mesh_copy(&c, &m, &err), 0);
+	CHECK(fct_elem_find(&c.vertex, "u")->block == NULL);
+	CHECK(fct_prop_get(fct_elem_find(&c.vertex, "w"), 4) == 24);
+	fct_mesh_free(&c);
+	/* a new vertex grows every column: each its own copy, values kept,
+	 * the new row zeroed */
+	CHECK_INT(fct_mesh_add_vertex(&m, 0, 0, 0, &err), 5);
+	u = fct_elem_find(&m.vertex, "u"), v = fct_elem_find(&m.vertex, "v");
+	CHECK(u->block == NULL && v->block == NULL);
+	CHECK(fct_prop_get(u, 4) == 4 && fct_prop_get(v, 4) == 14 && fct_prop_get(v, 5) == 0);
+	CHECK(fct_prop_get(fct_elem_find(&m.vertex, "w"), 3) == 23);
+	fct_mesh_free(&m);
+
+	/* gathered, one removed, the rest freed with the mesh */
+	two_faces(&m);
+	CHECK_INT(fct_elem_add_scalars_big(&m.vertex, uvw, 3, FCT_FLOAT32, &err), 0);
+	for (size_t i = 0; i < 5; i++)
+		fct_prop_set(fct_elem_find(&m.vertex, "v"), i, 0.5 * (double)i);
+	size_t keep[2] = { 3, 1 };
+	CHECK_INT(fct_elem_gather(&m.vertex, keep, 2, &err), 0);
+	v = fct_elem_find(&m.vertex, "v");
+	CHECK(v->block == NULL && fct_prop_get(v, 0) == 1.5 && fct_prop_get(v, 1) == 0.5);
+	fct_elem_remove(&m.vertex, "u");
+	fct_mesh_free(&m);
+
+	/* removed one by one, the block freed with the last; appended to */
+	two_faces(&m);
+	CHECK_INT(fct_elem_add_scalars_big(&m.vertex, uvw, 2, FCT_UINT16, &err), 0);
+	fct_elem_remove(&m.vertex, "v");
+	fct_prop_set(fct_elem_find(&m.vertex, "u"), 2, 7);
+	struct fct_mesh b;
+	two_faces(&b);
+	fct_prop_set(fct_elem_add_scalar(&b.vertex, "u", FCT_UINT16, &err), 0, 9);
+	CHECK_INT(fct_mesh_append(&m, &b, &err), 0);
+	u = fct_elem_find(&m.vertex, "u");
+	CHECK(u->block == NULL && fct_prop_get(u, 2) == 7 && fct_prop_get(u, 5) == 9);
+	fct_elem_remove(&m.vertex, "u");
+	CHECK_INT(m.vertex.nprops, 0);
+	fct_mesh_free(&m);
+	fct_mesh_free(&b);
+
+	/* no rows: columns without data, grown later; none asked: nothing */
+	fct_mesh_init(&m);
+	CHECK_INT(fct_elem_add_scalars_big(&m.vertex, uvw, 3, FCT_FLOAT64, &err), 0);
+	CHECK(m.vertex.nprops == 3 && m.vertex.props[1].cap == 0);
+	CHECK_INT(fct_elem_add_scalars_big(&m.vertex, uvw, 0, FCT_FLOAT64, &err), 0);
+	CHECK_INT(m.vertex.nprops, 3);
+	CHECK_INT(fct_mesh_add_vertex(&m, 1, 2, 3, &err), 0);
+	CHECK(fct_prop_get(fct_elem_find(&m.vertex, "w"), 0) == 0);
 	fct_mesh_free(&m);
 }
 
@@ -417,6 +500,7 @@ int main(void)
 	test_types();
 	test_build();
 	test_props();
+	test_block_columns();
 	test_values();
 	test_rows();
 	test_gather_mesh();

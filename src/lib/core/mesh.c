@@ -46,10 +46,45 @@ void fct_mesh_init(struct fct_mesh *m)
 	m->findex_type = FCT_INT32;
 }
 
+/* Scalar columns' data allocated together (fct_elem_add_scalars_big):
+ * freed with the last column that uses it. */
+struct fct_block {
+	void *mem;
+	size_t users;
+};
+
+/* Let go of p's data: freed if it is p's own or p is its block's last
+ * user.  p->data and p->block are stale afterwards. */
+static void prop_release(struct fct_prop *p)
+{
+	if (!p->block) {
+		free(p->data);
+	} else if (--p->block->users == 0) {
+		free(p->block->mem);
+		free(p->block);
+	}
+}
+
+/* Give a column in a block its own copy of its data, before it grows. */
+static int prop_own(struct fct_prop *p, struct fct_err *err)
+{
+	if (!p->block)
+		return 0;
+	size_t sz = fct_type_size(p->type);
+	void *d = fct_alloc_array(p->cap, sz, err);
+	if (!d)
+		return -1;
+	if (p->cap)   /* a column of no rows has no data */
+		memcpy(d, p->data, p->cap * sz);
+	prop_release(p);
+	p->data = d, p->block = NULL;
+	return 0;
+}
+
 static void prop_free(struct fct_prop *p)
 {
 	free(p->name);
-	free(p->data);
+	prop_release(p);
 	free(p->off);
 }
 
@@ -101,7 +136,7 @@ static int prop_resize(struct fct_prop *p, size_t old, size_t count, struct fct_
 {
 	size_t sz = fct_type_size(p->type);
 	if (p->count_type == FCT_NONE) {
-		if (fct_grow(&p->data, &p->cap, count, sz, err))
+		if ((count > p->cap && prop_own(p, err)) || fct_grow(&p->data, &p->cap, count, sz, err))
 			return -1;
 		if (count > old)
 			memset((char *)p->data + old * sz, 0, (count - old) * sz);
@@ -125,9 +160,8 @@ int fct_elem_resize(struct fct_elem *e, size_t count, struct fct_err *err)
 	return 0;
 }
 
-/* fct_elem_add_scalar, the new column from fct_alloc_big when big. */
-static struct fct_prop *add_scalar(struct fct_elem *e, const char *name, enum fct_type t, int big,
-                                   struct fct_err *err)
+struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
+                                     enum fct_type t, struct fct_err *err)
 {
 	struct fct_prop *p = fct_elem_find(e, name);
 	if (p && p->type == t && p->count_type == FCT_NONE)
@@ -145,13 +179,6 @@ static struct fct_prop *add_scalar(struct fct_elem *e, const char *name, enum fc
 	p->type = t;
 	if (!(p->name = fct_strdup(name, err)))
 		return NULL;
-	if (big && e->count) {
-		if (!(p->data = fct_alloc_big(e->count, fct_type_size(t), err))) {
-			prop_free(p);
-			return NULL;
-		}
-		p->cap = e->count;
-	}
 	if (prop_resize(p, 0, e->count, err)) {
 		prop_free(p);
 		return NULL;
@@ -160,16 +187,48 @@ static struct fct_prop *add_scalar(struct fct_elem *e, const char *name, enum fc
 	return p;
 }
 
-struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
-                                     enum fct_type t, struct fct_err *err)
+int fct_elem_add_scalars_big(struct fct_elem *e, const char *const *names, size_t n, enum fct_type t,
+                             struct fct_err *err)
 {
-	return add_scalar(e, name, t, 0, err);
-}
-
-struct fct_prop *fct_elem_add_scalar_big(struct fct_elem *e, const char *name,
-                                         enum fct_type t, struct fct_err *err)
-{
-	return add_scalar(e, name, t, 1, err);
+	size_t sz = fct_type_size(t), values;
+	if (!n)
+		return 0;
+	if (fct_mul_size(e->count, n, &values))
+		return fct_fail(err, "too many values");
+	struct fct_block *b = malloc(sizeof *b);
+	void *mem = values ? fct_alloc_big(values, sz, err) : NULL;
+	struct fct_prop *np = realloc(e->props, (e->nprops + n) * sizeof *np);
+	if (np)
+		e->props = np;
+	if (!b || (values && !mem) || !np) {
+		free(b);
+		free(mem);
+		return fct_fail(err, "out of memory");
+	}
+	if (values)
+		memset(mem, 0, values * sz);
+	b->mem = mem, b->users = 0;
+	for (size_t i = 0; i < n; i++)   /* props has room for n more */
+		fct_elem_remove(e, names[i]);
+	for (size_t i = 0; i < n; i++) {
+		struct fct_prop *p = &e->props[e->nprops];
+		memset(p, 0, sizeof *p);
+		p->name = fct_strdup(names[i], err);
+		if (!p->name) {   /* the block goes with the last column removed */
+			for (size_t k = 0; k < i; k++)
+				fct_elem_remove(e, names[k]);
+			if (!i) {
+				free(mem);
+				free(b);
+			}
+			return -1;
+		}
+		p->type = t;
+		p->data = (char *)mem + i * e->count * sz, p->cap = e->count;
+		p->block = b, b->users++;
+		e->nprops++;
+	}
+	return 0;
 }
 
 struct fct_prop *fct_mesh_add_corner_list(struct fct_mesh *m, const char *name, enum fct_type t,
@@ -393,8 +452,8 @@ static int prop_gather(struct fct_prop *p, const size_t *src, size_t n, struct f
 			return fct_fail(err, "out of memory");
 		for (size_t i = 0; i < n; i++)
 			memcpy(d + i * sz, (char *)p->data + src[i] * sz, sz);
-		free(p->data);
-		p->data = d;
+		prop_release(p);
+		p->data = d, p->block = NULL;
 		p->cap = n;
 		return 0;
 	}
@@ -569,7 +628,7 @@ static int prop_append(struct fct_prop *p, size_t old, const struct fct_prop *q,
 {
 	size_t sz = fct_type_size(p->type);
 	if (p->count_type == FCT_NONE) {
-		if (fct_grow(&p->data, &p->cap, old + count, sz, err))
+		if ((old + count > p->cap && prop_own(p, err)) || fct_grow(&p->data, &p->cap, old + count, sz, err))
 			return -1;
 		if (count)
 			memcpy((char *)p->data + old * sz, q->data, count * sz);

@@ -41,6 +41,10 @@ struct fct_prop {
 	size_t cap;     /* capacity of data, in values */
 	size_t *off;
 	size_t off_cap; /* capacity of off, in entries */
+	/* NULL, or the block that data lies in with other scalar columns' data
+	 * (fct_elem_add_scalars_big) instead of being allocated on its own;
+	 * the functions below give the column its own copy before it grows. */
+	struct fct_block *block;
 };
 
 /* A PLY element: a name, a row count and its properties in order. */
@@ -128,10 +132,14 @@ struct fct_elem *fct_mesh_find_elem(const struct fct_mesh *m, const char *name);
  * replaced otherwise.  Returns the column or NULL. */
 struct fct_prop *fct_elem_add_scalar(struct fct_elem *e, const char *name,
                                      enum fct_type t, struct fct_err *err);
-/* The same for a new column that is then written whole once: from
- * fct_alloc_big. */
-struct fct_prop *fct_elem_add_scalar_big(struct fct_elem *e, const char *name,
-                                         enum fct_type t, struct fct_err *err);
+/* New columns that are then written whole once: n zero-filled scalar
+ * columns of type t called names[0..n) added to e, their data one after
+ * the other in one block from fct_alloc_big (a 640x480 depth map's
+ * vertices' s, t and sigma floats fill two 2 MB pages together, three
+ * apart).  Columns of those names are replaced.  0, or -1 (out of memory:
+ * none of them added, e as it was unless a name could not be copied). */
+int fct_elem_add_scalars_big(struct fct_elem *e, const char *const *names, size_t n, enum fct_type t,
+                             struct fct_err *err);
 /* Add a list column to the faces of m with per_corner zeroed values of type
  * t for each corner of each face, in the face's vertex order (list uchar,
  * as MeshLab's per-wedge "texcoord", 2 per corner; the PLY writer widens

@@ -177,13 +177,6 @@ double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params
 	return integer && !(p->baseline > 0) ? 1 / p->depth_scale : 0;
 }
 
-/* Add the float vertex property called name, for the caller to fill: 0,
- * or -1 when out of memory. */
-static int add_float_property(struct fct_mesh *m, const char *name, struct fct_err *err)
-{
-	return fct_elem_add_scalar_big(&m->vertex, name, FCT_FLOAT32, err) ? 0 : -1;
-}
-
 /* The vertex properties that come from each vertex's cell (s t, sigma, and
  * the kept depths): vertices are in cell order, so the rows are walked
  * alongside instead of dividing each cell index.  s depends on the column
@@ -196,10 +189,12 @@ static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int 
                            struct fct_err *err)
 {
 	float *s = NULL, *t = NULL, *sigma = NULL;
-	/* A mesh without vertices (every piece too small) has properties
+	/* The float vertex properties, in one block, for the loop below to
+	 * fill; a mesh without vertices (every piece too small) has them
 	 * without data. */
-	if ((texcoords && (add_float_property(m, "s", err) || add_float_property(m, "t", err))) ||
-	    (cell_sigma && add_float_property(m, "sigma", err)))
+	static const char *const names[] = { "s", "t", "sigma" };
+	size_t first = texcoords ? 0 : 2, last = cell_sigma ? 3 : 2;
+	if (fct_elem_add_scalars_big(&m->vertex, names + first, last - first, FCT_FLOAT32, err))
 		return -1;
 	if (texcoords)   /* adding a property may move the others */
 		s = fct_elem_find(&m->vertex, "s")->data, t = fct_elem_find(&m->vertex, "t")->data;
