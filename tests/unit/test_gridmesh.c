@@ -1,5 +1,6 @@
 /* test_gridmesh.c - organised range data to triangles, depth images to
- * meshes, and the camera models, on grids whose answers are known by hand. */
+ * meshes, and the camera models, on grids whose answers are known by hand,
+ * and the pieces kept against a count of the pieces of the whole mesh. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -8,6 +9,7 @@
 #include "depth/depthmesh.h"
 #include "geom/geom.h"
 #include "depth/gridmesh.h"
+#include "core/unionfind.h"
 
 static struct fct_err err;
 
@@ -561,6 +563,95 @@ static void test_rules_by_square(void)
 			}
 }
 
+/* The pieces a mesher with min_faces keeps, worked out from the mesh with
+ * every piece: its faces' corners joined (fct_uf_root over its vertices),
+ * each piece's faces counted; the faces of pieces of at least min_faces,
+ * in order, as cells.  Checked against the mesher's faces as cells, and
+ * its vertices against the cells its faces use, ascending, on rough grids
+ * with holes, open and closed around a cylinder (the seam's squares). */
+static void test_pieces(void)
+{
+	uint32_t seed = 5;
+	size_t dropped[2] = { 0, 0 };   /* faces dropped, open and closed */
+	for (int wrap = 0; wrap < 2; wrap++)
+		for (int h = 2; h <= 7; h++)
+			for (int w = 3; w <= 17; w += 2) {
+				size_t n = (size_t)w * (size_t)h;
+				double *depth = malloc(n * sizeof *depth), *col = malloc(3 * (size_t)w * sizeof *col);
+				double *row = malloc((size_t)h * sizeof *row);
+				if (!depth || !col || !row)
+					abort();
+				for (int i = 0; i < w; i++)
+					col[3 * i] = sin(2 * M_PI * i / w), col[3 * i + 1] = 0, col[3 * i + 2] = cos(2 * M_PI * i / w);
+				for (int j = 0; j < h; j++)
+					row[j] = (j - h / 2) * 0.01;
+				for (size_t c = 0; c < n; c++) {
+					seed = seed * 1664525u + 1013904223u;
+					depth[c] = seed % 5 == 0 ? 0 : 2 + (seed % 3 == 0 ? 0.3 : 0.001 * (seed >> 28));
+				}
+				struct fct_range_grid g = { w, h, NULL, col, row, depth, 0.01, wrap, NULL, 0 };
+				struct fct_grid_params all = { 5, 0 };
+				struct fct_mesh m0;
+				uint32_t *cell0 = NULL;
+				fct_mesh_init(&m0);
+				CHECK_INT(fct_grid_mesh(&m0, &g, &all, &cell0, NULL, &err), 0);
+				int32_t *parent = malloc((m0.nv + 1) * sizeof *parent);
+				size_t *faces = calloc(m0.nv + 1, sizeof *faces);
+				if (!parent || !faces)
+					abort();
+				for (size_t v = 0; v < m0.nv; v++)
+					parent[v] = -1;
+				for (size_t f = 0; f < m0.nf; f++)
+					for (int k = 1; k < 3; k++) {
+						uint32_t a = fct_uf_root(parent, m0.fvert[3 * f]);
+						uint32_t b = fct_uf_root(parent, m0.fvert[3 * f + k]);
+						if (a != b)
+							parent[b] = (int32_t)a;
+					}
+				for (size_t f = 0; f < m0.nf; f++)
+					faces[fct_uf_root(parent, m0.fvert[3 * f])]++;
+				for (size_t min = 2; min <= 9; min += 3) {
+					struct fct_grid_params p = { 5, min };
+					struct fct_mesh m;
+					uint32_t *cell = NULL;
+					fct_mesh_init(&m);
+					CHECK_INT(fct_grid_mesh(&m, &g, &p, &cell, NULL, &err), 0);
+					size_t k = 0;
+					int same = 1;
+					for (size_t f = 0; f < m0.nf && same; f++) {
+						if (faces[fct_uf_root(parent, m0.fvert[3 * f])] < min)
+							continue;
+						for (int c = 0; c < 3 && same; c++)
+							same = k < m.nf && cell[m.fvert[3 * k + c]] == cell0[m0.fvert[3 * f + c]];
+						k++;
+					}
+					CHECK_MSG(same && k == m.nf, "%dx%d wrap %d min_faces %zu: %zu faces, not the %zu "
+					          "of the pieces kept", w, h, wrap, min, m.nf, k);
+					dropped[wrap] += m0.nf - m.nf;
+					/* vertices: exactly the cells the faces use, ascending */
+					unsigned char *used = calloc(n, 1);
+					if (!used)
+						abort();
+					for (size_t i = 0; i < 3 * m.nf; i++)
+						used[cell[m.fvert[i]]] = 1;
+					size_t v = 0;
+					for (size_t c = 0; c < n && same; c++)
+						if (used[c])
+							same = v < m.nv && cell[v++] == c;
+					CHECK_MSG(same && v == m.nv, "%dx%d wrap %d min_faces %zu: vertices not the cells "
+					          "used", w, h, wrap, min);
+					free(used);
+					fct_mesh_free(&m);
+					free(cell);
+				}
+				fct_mesh_free(&m0);
+				free(cell0), free(parent), free(faces);
+				free(depth), free(col), free(row);
+			}
+	/* the grids are rough enough that pieces of every size occur */
+	CHECK(dropped[0] > 100 && dropped[1] > 100);
+}
+
 int main(void)
 {
 	test_rules_by_square();
@@ -574,5 +665,6 @@ int main(void)
 	test_camera();
 	test_depth_image();
 	test_cylinder();
+	test_pieces();
 	CHECK_DONE();
 }
