@@ -119,6 +119,7 @@ int main(int argc, char **argv)
 	fct_report("holes_filled", "%zu", st.holes_filled);
 	fct_report("projected", "%zu", st.projected);
 	fct_report("creased", "%zu", st.creased);
+	fct_report("split", "%zu", st.split);
 	fct_report("uncreased", "%zu", st.uncreased);
 	fct_report("collapses", "%zu", st.qem.collapses);
 	fct_report("corners", "%zu", st.qem.corners);

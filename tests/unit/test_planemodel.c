@@ -1,5 +1,6 @@
 /* test_planemodel - fct_planes_project at a crease seen at a grazing angle,
- * and a crease move beyond its bound in sigma;
+ * a crease move beyond its bound in sigma, and one that would hide its
+ * sample (an occlusion);
  * fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
  * at shallow creases, of about its size (a facet) and much smaller (a floor
  * with tilted pieces beside it); fct_fill_plane_holes on a flat grid with
@@ -183,7 +184,7 @@ static size_t crease_move(double y, double z, double out[3], double off[3])
 	const double vp[3] = { 0, 1.5, 0 };
 	double off_crease[15];
 	size_t moved, creased;
-	CHECK_INT(fct_planes_project(&m, patch, planes, vp, NULL, 0, 4, off_crease, &moved, &creased, &err), 0);
+	CHECK_INT(fct_planes_project(&m, patch, planes, vp, NULL, 0, 4, off_crease, NULL, &moved, &creased, &err), 0);
 	memcpy(out, m.xyz, 3 * sizeof *out);
 	memcpy(off, off_crease, 3 * sizeof *off);
 	for (int v = 1; v < 5; v++)
@@ -195,9 +196,10 @@ static size_t crease_move(double y, double z, double out[3], double off[3])
 /* fct_planes_project on a vertex p = (x, y, 0) of two faces, one of the
  * side y = 0 of a box (patch 0) whose data end at its edge x = 0, one of a
  * wall x = -0.5 behind it (patch 1), seen from (3, -2, 0) with every sigma
- * sigma and a bound of 4 sigma: *out gets where p goes; returns the count
- * of vertices put on the line x = -0.5, y = 0. */
-static size_t bounded_crease(double x, double y, double sigma, double out[3])
+ * sigma and a bound of 4 sigma, occluded (5 entries) NULL or marked: *out
+ * gets where p goes; returns the count of vertices put on the line x =
+ * -0.5, y = 0. */
+static size_t bounded_crease(double x, double y, double sigma, unsigned char *occluded, double out[3])
 {
 	struct fct_mesh m;
 	struct fct_err err;
@@ -212,7 +214,7 @@ static size_t bounded_crease(double x, double y, double sigma, double out[3])
 	const struct fct_plane planes[2] = { { { 0, -1, 0 }, 0, 0, 0 }, { { 1, 0, 0 }, 0.5, 0, 0 } };
 	const double vp[3] = { 3, -2, 0 }, sg[5] = { sigma, sigma, sigma, sigma, sigma };
 	size_t moved, creased;
-	CHECK_INT(fct_planes_project(&m, patch, planes, vp, sg, 0, 4, NULL, &moved, &creased, &err), 0);
+	CHECK_INT(fct_planes_project(&m, patch, planes, vp, sg, 0, 4, NULL, occluded, &moved, &creased, &err), 0);
 	memcpy(out, m.xyz, 3 * sizeof *out);
 	fct_mesh_free(&m);
 	return creased;
@@ -241,12 +243,28 @@ int main(void)
 	/* On the ray past the box's edge (0, 0, 0), 0.1 m before the wall and
 	 * 0.285 m from the crease line: onto the line with sigma 0.1 (within 4
 	 * sigma), onto the wall along its ray with sigma 0.05. */
-	CHECK_INT(bounded_crease(-0.4, 0.8 / 3, 0.1, at), 1);
+	CHECK_INT(bounded_crease(-0.4, 0.8 / 3, 0.1, NULL, at), 1);
 	CHECK_NEAR(at[0], -0.5, 1e-12);
 	CHECK_NEAR(at[1], 0, 1e-12);
-	CHECK_INT(bounded_crease(-0.4, 0.8 / 3, 0.05, at), 0);
+	CHECK_INT(bounded_crease(-0.4, 0.8 / 3, 0.05, NULL, at), 0);
 	CHECK_NEAR(at[0], -0.5, 1e-12);
 	CHECK_NEAR(at[1], 1.0 / 3, 1e-12);
+	/* Asked for occlusions, the crease within 4 sigma is refused: there
+	 * the box's side would span the gap to the wall and hide p's sample
+	 * (its ray meets the side's plane 0.48 m before it, at the box's
+	 * edge); p goes onto the wall along its ray, marked occluded.  Near
+	 * the line, 30 mm before the side's plane (its ray meets the plane 40
+	 * mm before it, within the bound), a crease. */
+	unsigned char occ[5];
+	CHECK_INT(bounded_crease(-0.4, 0.8 / 3, 0.1, occ, at), 0);
+	CHECK_NEAR(at[0], -0.5, 1e-12);
+	CHECK_NEAR(at[1], 1.0 / 3, 1e-12);
+	CHECK_INT(occ[0], 1);
+	CHECK_INT(occ[1] + occ[2] + occ[3] + occ[4], 0);
+	CHECK_INT(bounded_crease(-0.49, 0.03, 0.1, occ, at), 1);
+	CHECK_NEAR(at[0], -0.5, 1e-12);
+	CHECK_NEAR(at[1], 0, 1e-12);
+	CHECK_INT(occ[0], 0);
 	/* With a bound of 4 sigma: a speck mostly 2 sigma off the plane around
 	 * it joins it; one mostly 5 sigma off (a strip of floor seen between a
 	 * pillar and the wall) stays free-form, and without sigma it would

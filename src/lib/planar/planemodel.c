@@ -692,6 +692,29 @@ static int along_ray(const struct fct_plane *P, const int32_t *ls, int n, const 
 	return 1;
 }
 
+/* The mean of the other corners of v's faces fs[0..n) of patch lab: where
+ * that patch's data lie around v.  0 when v has none. */
+static int patch_side(const struct fct_mesh *m, const int32_t *patch, const uint32_t *fs, size_t n,
+                      int32_t lab, uint32_t v, double out[3])
+{
+	double sum[3] = {0, 0, 0};
+	size_t k = 0;
+	for (size_t i = 0; i < n; i++) {
+		if (patch[fs[i]] != lab)
+			continue;
+		for (uint32_t c = m->fstart[fs[i]]; c < m->fstart[fs[i] + 1]; c++)
+			if (m->fvert[c] != v) {
+				fct_v3_add(sum, sum, m->xyz + 3 * (size_t)m->fvert[c]);
+				k++;
+			}
+	}
+	if (!k)
+		return 0;
+	for (int i = 0; i < 3; i++)
+		out[i] = sum[i] / (double)k;
+	return 1;
+}
+
 /* Vertex v's uncertainty at p: the root of sigma^2 (none when NULL) plus
  * its sample spacing squared, the span of pixel_angle at its distance from
  * vp. */
@@ -702,10 +725,49 @@ static double uncertainty(const double *sigma, double pixel_angle, const double 
 	return sqrt(sg * sg + sp * sp);
 }
 
+/* Would a crease through x of patches ls[0], ls[1] hide the vertex's own
+ * sample p from vp?  It does when p's ray meets one of the two planes more
+ * than margin before p, on that patch's side of the crease line (toward
+ * the other corners of the vertex's faces of it): a box's side put onto
+ * the line where its plane meets the wall behind it, across the gap
+ * between them, would hide the wall seen through that gap. */
+static int crease_hides(const struct fct_mesh *m, const int32_t *patch, const uint32_t *fs, size_t n,
+                        uint32_t v, const struct fct_plane *P, const int32_t ls[2],
+                        const double vp[3], const double p[3], const double x[3], double margin)
+{
+	double u[3], r[3];
+	fct_v3_cross(u, P[ls[0]].n, P[ls[1]].n);
+	double ul = sqrt(fct_v3_dot(u, u));
+	fct_v3_sub(r, p, vp);
+	double rl = sqrt(fct_v3_dot(r, r));
+	if (!(ul > 0) || !(rl > margin))
+		return 0;
+	for (int i = 0; i < 3; i++)
+		u[i] /= ul;
+	for (int k = 0; k < 2; k++) {
+		const struct fct_plane *Q = &P[ls[k]];
+		double nr = fct_v3_dot(Q->n, r);
+		if (!(fabs(nr) > 1e-3 * rl))
+			continue;
+		double t = -(fct_v3_dot(Q->n, vp) + Q->d) / nr, side[3];
+		if (!(t > 0 && (1 - t) * rl > margin) || !patch_side(m, patch, fs, n, ls[k], v, side))
+			continue;
+		double c[3], a[3], b[3];
+		fct_v3_axpy(c, vp, t, r);
+		fct_v3_sub(a, c, x);
+		fct_v3_sub(b, side, x);
+		/* across the line, in the plane */
+		double au = fct_v3_dot(a, u), bu = fct_v3_dot(b, u);
+		if (fct_v3_dot(a, b) - au * bu > 0)
+			return 1;
+	}
+	return 0;
+}
+
 int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
                        const double *viewpoint, const double *sigma, double pixel_angle,
-                       double max_move, double *off_crease, size_t *moved, size_t *creased,
-                       struct fct_err *err)
+                       double max_move, double *off_crease, unsigned char *occluded,
+                       size_t *moved, size_t *creased, struct fct_err *err)
 {
 	*moved = 0, *creased = 0;
 	uint32_t *vstart, *vf;
@@ -735,10 +797,14 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 		if (off_crease)
 			off_crease[3 * v] = NAN;
 		double y[3], bound = viewpoint ? max_move * uncertainty(sigma, pixel_angle, viewpoint, v, p) : 0;
+		if (occluded)
+			occluded[v] = 0;
 		if (n == 2 && viewpoint && onto_planes(planes, ls, 2, p, x) &&
 		    onto_planes(planes, ls, 2, best, y) && fct_v3_dist2(best, y) > fct_v3_dist2(p, x) &&
 		    along_ray(planes, ls, 2, viewpoint, p, x) && fct_v3_dist2(x, p) <= 16 * bd * bd &&
-		    (!(bound > 0) || fct_v3_dist2(x, p) <= bound * bound)) {
+		    (!(bound > 0) || fct_v3_dist2(x, p) <= bound * bound) &&
+		    !(occluded && crease_hides(m, patch, vf + vstart[v], vstart[v + 1] - vstart[v], (uint32_t)v,
+		                               planes, ls, viewpoint, p, x, bound) && (occluded[v] = 1))) {
 			if (off_crease)
 				memcpy(off_crease + 3 * v, best, sizeof best);
 			memcpy(best, x, sizeof x);
@@ -910,6 +976,10 @@ int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_p
 					continue;
 				if (viewpoint)
 					along_ray(planes, pair, 2, viewpoint, p, x);
+				if (viewpoint && crease_hides(m, patch, vf + vstart[v], vstart[v + 1] - vstart[v],
+				                              (uint32_t)v, planes, pair, viewpoint, p, x,
+				                              max_move * sqrt(e2)))
+					continue;
 				double d2 = fct_v3_dist2(x, p);
 				if (d2 <= bound2 && d2 < bd)
 					bd = d2, memcpy(best, x, sizeof x);
@@ -1677,6 +1747,83 @@ static size_t uncrease_slivers(struct fct_mesh *m, double *off_crease, const int
 	return back;
 }
 
+/* Each vertex marked occluded (fct_planes_project: a crease there would
+ * hide its sample) is split: the faces of its patch whose plane it is not
+ * on get a copy on that plane along its ray (before the sample at a sine
+ * of MIN_GRAZING or more; else straight across), so that the two patches
+ * meet there in no vertex: an occlusion border for each.  sigma and
+ * off_crease grow with the vertices. */
+static int split_occluded(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                          const double *vp, const unsigned char *occluded, double **sigma,
+                          double **off_crease, size_t *split, struct fct_err *err)
+{
+	*split = 0;
+	size_t nv0 = m->nv, n = 0;
+	for (size_t v = 0; v < nv0; v++)
+		n += occluded[v];
+	if (!n)
+		return 0;
+	uint32_t *vstart, *vf;
+	if (fct_vertex_faces(m, &vstart, &vf, err))
+		return -1;
+	double *sg = realloc(*sigma, (nv0 + n) * sizeof *sg);
+	if (!sg) {
+		free(vstart), free(vf);
+		return fct_fail(err, "out of memory");
+	}
+	*sigma = sg;
+	double *oc = realloc(*off_crease, 3 * (nv0 + n) * sizeof *oc);
+	if (!oc) {
+		free(vstart), free(vf);
+		return fct_fail(err, "out of memory");
+	}
+	*off_crease = oc;
+	if (fct_mesh_set_vertex_count(m, nv0 + n, err)) {
+		free(vstart), free(vf);
+		return -1;
+	}
+	size_t c = nv0;
+	for (size_t v = 0; v < nv0; v++) {
+		if (!occluded[v])
+			continue;
+		int32_t ls[8];
+		int k = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
+		const double *p = m->xyz + 3 * v;
+		double r0 = fabs(fct_v3_dot(planes[ls[0]].n, p) + planes[ls[0]].d);
+		double r1 = k > 1 ? fabs(fct_v3_dot(planes[ls[1]].n, p) + planes[ls[1]].d) : 0;
+		int32_t other = k > 1 ? (r0 <= r1 ? ls[1] : ls[0]) : -1;
+		for (size_t j = 0; j < m->vertex.nprops; j++) {
+			struct fct_prop *pr = &m->vertex.props[j];
+			if (pr->count_type == FCT_NONE)
+				fct_prop_set(pr, c, fct_prop_get(pr, v));
+		}
+		double x[3], r = other >= 0 ? fct_v3_dot(planes[other].n, p) + planes[other].d : 0;
+		memcpy(x, p, sizeof x);
+		if (other >= 0) {
+			onto_planes(planes, &other, 1, p, x);
+			double y[3];
+			if (along_ray(planes, &other, 1, vp, p, y) && fct_v3_dist2(y, vp) < fct_v3_dist2(p, vp) &&
+			    fabs(r) >= MIN_GRAZING * sqrt(fct_v3_dist2(y, p)))
+				memcpy(x, y, sizeof y);
+		}
+		memcpy(m->xyz + 3 * c, x, sizeof x);
+		sg[c] = sg[v];
+		oc[3 * c] = NAN;
+		for (uint32_t q = vstart[v]; q < vstart[v + 1]; q++) {
+			uint32_t f = vf[q];
+			if (patch[f] != other)
+				continue;
+			for (uint32_t i = m->fstart[f]; i < m->fstart[f + 1]; i++)
+				if (m->fvert[i] == v)
+					m->fvert[i] = (uint32_t)c;
+		}
+		c++;
+	}
+	*split = n;
+	free(vstart), free(vf);
+	return 0;
+}
+
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
                      struct fct_planar_stats *st, struct fct_err *err)
 {
@@ -1685,6 +1832,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	size_t np = 0;
 	int32_t *patch = NULL;
 	double *sigma = NULL, *spacing = NULL, *off_crease = NULL;
+	unsigned char *occluded = NULL;
 	unsigned char *unclean = NULL, *tight = NULL, *force = NULL, *trouble = NULL, *hit_patch = NULL;
 	size_t *nfaces = NULL, *mended = NULL;
 	struct fct_mesh w;
@@ -1723,9 +1871,11 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	    fct_patches_tidy(patch, m, pl, np, !have_cam, sigma, p->max_move, p->min_plane,
 	                     p->min_free, &st->tidy, err) ||
 	    !(off_crease = fct_alloc_array(3 * (m->nv ? m->nv : 1), sizeof *off_crease, err)) ||
+	    !(occluded = calloc(m->nv ? m->nv : 1, 1)) ||
 	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, sigma,
 	                       have_cam ? fct_camera_pixel_angle(&cam) : 0, p->max_move, off_crease,
-	                       &st->projected, &st->creased, err) ||
+	                       have_cam ? occluded : NULL, &st->projected, &st->creased, err) ||
+	    split_occluded(m, patch, pl, vp, occluded, &sigma, &off_crease, &st->split, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing = mean_edge(m), err)) ||
@@ -1821,6 +1971,6 @@ out:
 	fct_mesh_free(&w);
 	rounds_free(&carry);
 	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(nfaces);
-	free(force), free(trouble), free(mended), free(off_crease), free(hit_patch);
+	free(force), free(trouble), free(mended), free(off_crease), free(hit_patch), free(occluded);
 	return rc;
 }

@@ -93,14 +93,19 @@ int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_p
  * uncertainty, the root of sigma^2 (sigma NULL: 0) plus the span of
  * pixel_angle at its distance squared): along its ray onto the nearer plane
  * alone, a vertex of the floor at a far wall, its ray grazing the floor,
- * slides on past the wall.  off_crease (NULL, or 3 * m->nv) gets for each
+ * slides on past the wall.  With occluded (NULL, or m->nv entries), not
+ * where the two planes would hide the vertex's own sample (its ray meets
+ * one of them more than that bound before it, on that patch's side of the
+ * line): the patches do not meet there, one occludes the other;
+ * occluded[v] is 1 for such a vertex (fct_planar_model splits it), 0 for
+ * the others.  off_crease (NULL, or 3 * m->nv) gets for each
  * vertex so put on a line where the nearer plane alone would have put it,
  * NaN for the others.  *moved gets the vertices moved, *creased those put
  * on a line.  0, or -1 out of memory. */
 int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
                        const double *viewpoint, const double *sigma, double pixel_angle,
-                       double max_move, double *off_crease, size_t *moved, size_t *creased,
-                       struct fct_err *err);
+                       double max_move, double *off_crease, unsigned char *occluded,
+                       size_t *moved, size_t *creased, struct fct_err *err);
 
 struct fct_meet_stats {
 	size_t lines;     /* vertices put on the line of two planes */
@@ -116,7 +121,9 @@ struct fct_meet_stats {
  * its point nearest the vertex's ray with a viewpoint), when that is within
  * max_move times the vertex's uncertainty, sqrt(sigma^2 + spacing^2): its
  * noise along its ray and its sample spacing across it (no bound when both
- * are NULL; where creases meet is known to a sample); a move that
+ * are NULL; where creases meet is known to a sample), and not where the
+ * two planes would hide the vertex's own sample (fct_planes_project); a
+ * move that
  * turns a face over (against its plane's normal) or leaves it a sliver is
  * taken back, in rounds: Kang et al.'s section 5.  A vertex then still off
  * one of its planes by more than its uncertainty (where patches meet, or
@@ -159,6 +166,7 @@ struct fct_planar_stats {
 	struct fct_tidy_stats tidy;
 	size_t holes_filled, projected;
 	size_t creased;                  /* of those, put on two planes' line */
+	size_t split;                    /* of the others, split: a crease there would hide their sample */
 	size_t uncreased;                /* ... and taken off it again: corners of
 	                                    triangles of no area */
 	struct fct_qem_stats qem;        /* the free-form faces' decimation */
