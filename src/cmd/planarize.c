@@ -260,6 +260,7 @@ static void report_model(const struct fct_planar_stats *st)
 	fct_report_stage("planedecim", "closed_faces", "%zu", st->tidy.closed_faces);
 	fct_report_stage("planedecim", "seam_faces", "%zu", st->tidy.seam_faces);
 	fct_report_stage("planedecim", "holes_filled", "%zu", st->holes_filled);
+	fct_report_stage("planedecim", "free_holes_filled", "%zu", st->free_holes_filled);
 	fct_report_stage("planedecim", "collapses", "%zu", st->qem.collapses);
 	fct_report_stage("planedecim", "max_error", "%.9g", st->qem.max_error);
 	fct_report_stage("planedecim", "planar_triangles", "%zu", st->planar_triangles);

@@ -31,8 +31,9 @@ static const char usage[] =
 	"  -o file        output file (default standard output)\n"
 	"      --border k a border may move by k edge lengths (default 1)\n"
 	"      --max-hole k\n"
-	"                 fill the holes of at most k edges inside one patch\n"
-	"                 (default 64; 0: none)\n"
+	"                 fill the holes of at most k edges inside one patch and,\n"
+	"                 without a camera, those of the surface within the noise\n"
+	"                 of a plane (default 64; 0: none)\n"
 	"      --max-move k\n"
 	"                 move a vertex onto a line or corner by at most k sigma,\n"
 	"                 and a speck onto the plane around it only when most of\n"
@@ -117,6 +118,7 @@ int main(int argc, char **argv)
 	fct_report("closed_faces", "%zu", st.tidy.closed_faces);
 	fct_report("seam_faces", "%zu", st.tidy.seam_faces);
 	fct_report("holes_filled", "%zu", st.holes_filled);
+	fct_report("free_holes_filled", "%zu", st.free_holes_filled);
 	fct_report("projected", "%zu", st.projected);
 	fct_report("creased", "%zu", st.creased);
 	fct_report("split", "%zu", st.split);

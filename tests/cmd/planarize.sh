@@ -186,10 +186,12 @@ check_num "a mesh on standard input" "$(info faces "$V/g.ply")" == "$(info faces
 run_case 0 "planarize -o $V/m1.ply $V/k/1-mesh.ply"
 check_true "a mesh with a camera: the model of its depth image" test "$(bare "$V/m1.ply" | cksum)" = "$(bare "$V/a.ply" | cksum)"
 # Without a camera (its camera and pose comments taken away; sigma kept):
-# measured 270x, 4.1 mm from the truth against the dense mesh's 15.8.
+# measured 197x, 4.1 mm from the truth against the dense mesh's 15.8 (204x
+# before the small holes of the free-form surface were filled: seven
+# missing pixels' holes, 29 faces more in a model of 760).
 meshconv -a "$V/k/1-mesh.ply" | grep -v -e '^comment camera ' -e '^comment pose ' >"$V/nocam.ply"
 run_case 0 "planarize -v -o $V/m2.ply $V/nocam.ply 2>$V/m2.err"
-check_num "no camera: reduction 200x" "$(field reduction "$V/m2.err")" ">=" 200
+check_num "no camera: reduction 190x" "$(field reduction "$V/m2.err")" ">=" 190
 valid "no camera" "$V/m2.ply"
 run_case 0 "meshdist -s 100000 $V/m2.ply $V/scene.ply > $V/m2.dist"
 run_case 0 "meshdist -s 100000 $V/k/1-mesh.ply $V/scene.ply > $V/dense.dist"

@@ -203,11 +203,14 @@ check_true "TUM folder: read as such, the frame without colour left out" grep -q
 # 623 faces, which moves the outlines' rounds).  With the debris dropped
 # (74 pieces of 383 faces in both) the outlines' rounds part more: 3435
 # faces against 3244, 5.9% more (13% more, 3499 against 3100, when an
-# outline that crossed anywhere was tightened all round).
+# outline that crossed anywhere was tightened all round).  Since the small
+# holes of the free-form surface are filled (both models about 9% fewer
+# faces) the pieces kept part by 9.1%, 3356 against 3690 (6.0% before,
+# 3757 against 3995); the held-out PSNR below is the measure of sameness.
 check_num "TUM folder: debris dropped" "$(field 'planedecim: debris_faces')" ">" 0
 run_case 0 "roommodel --min-piece 0 --voxel 0.03 -K $K --depth-scale 1000 --noise kinect -o $TMP/m/t0.obj $T"
-check_num "TUM folder: the faces of the 7-Scenes folder's model (6%)" \
-	"$(ratio "$(faces "$TMP/m/t0.obj")" "$(faces "$TMP/m/f0.obj")")" ">" 0.94
+check_num "TUM folder: the faces of the 7-Scenes folder's model (12%)" \
+	"$(ratio "$(faces "$TMP/m/t0.obj")" "$(faces "$TMP/m/f0.obj")")" ">" 0.88
 check_num "TUM folder: ... (at most 5% more)" \
 	"$(ratio "$(faces "$TMP/m/t0.obj")" "$(faces "$TMP/m/f0.obj")")" "<" 1.05
 check_num "TUM folder: ... (at most 10% more with the debris dropped)" \

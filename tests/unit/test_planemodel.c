@@ -7,7 +7,8 @@
  * missing vertices, as missing depth pixels leave them: one hole, two holes that
  * touch at a corner (which a walk that gives up at a shared vertex leaves
  * open), holes too long for max_edges, a hole along two patches, and a
- * piece's outer boundary, which is no hole.  Each fill is checked by what
+ * piece's outer boundary, which is no hole; fct_fill_free_holes on the
+ * same holes of the free-form surface and between two patches.  Each fill is checked by what
  * it must give: the square's whole area back, its four sides as the only
  * border, every new triangle turned as the faces around it. */
 #include <math.h>
@@ -72,31 +73,58 @@ static size_t border_edges(const struct fct_mesh *m)
 	return n;
 }
 
-/* Fill the holes of the square without gone[], every face in patch 0 (or
- * split at x = 0 into patches 0 and 1 with two_patches), the plane z = 1
- * facing -z as the faces do.  The holes filled; the area, border and
- * turned-over faces after. */
-static size_t fill(const uint32_t *gone, size_t ngone, size_t max_edges, int two_patches, double *a,
-                   size_t *border, size_t *up)
+/* The labels of fill's square: every face in patch 0, split at x = 0 into
+ * patches 0 and 1, or every face free-form. */
+enum labels { ONE_PATCH, TWO_PATCHES, ALL_FREE };
+
+/* Fill the holes of the square without gone[] labelled as lab says, the
+ * plane z = 1 facing -z as the faces do: fct_fill_plane_holes, or
+ * fct_fill_free_holes (every sigma 0.01, within 4 of them) when free_holes,
+ * with the vertices at x > 0 moved by step along z.  The holes filled; the
+ * area, border and turned-over faces after, and the faces and free-form
+ * faces. */
+static size_t fill_as(const uint32_t *gone, size_t ngone, size_t max_edges, enum labels lab,
+                      int free_holes, double step, double *a, size_t *border, size_t *up,
+                      size_t *faces, size_t *free_faces)
 {
 	struct fct_mesh m;
 	struct fct_err err;
 	square_without(&m, gone, ngone);
+	double *sigma = malloc(m.nv * sizeof *sigma);
+	for (size_t v = 0; v < m.nv; v++) {
+		sigma[v] = 0.01;
+		if (m.xyz[3 * v] > 1e-9)
+			m.xyz[3 * v + 2] += step;
+	}
 	int32_t *patch = malloc((m.nf ? m.nf : 1) * sizeof *patch);
 	for (size_t f = 0; f < m.nf; f++) {
 		const double *p = m.xyz + 3 * (size_t)m.fvert[m.fstart[f]];
-		patch[f] = two_patches && p[0] >= -1e-9 ? 1 : 0;
+		patch[f] = lab == ALL_FREE ? -1 : lab == TWO_PATCHES && p[0] >= -1e-9 ? 1 : 0;
 	}
 	struct fct_plane pl[2] = { { { 0, 0, -1 }, 1, 0, 0 }, { { 0, 0, -1 }, 1, 0, 0 } };
 	size_t filled = 99;
-	CHECK_INT(fct_fill_plane_holes(&m, &patch, pl, 2, max_edges, &filled, &err), 0);
-	for (size_t f = 0; f < m.nf; f++)
-		CHECK(patch[f] == 0 || patch[f] == 1);
+	if (free_holes)
+		CHECK_INT(fct_fill_free_holes(&m, &patch, pl, 2, max_edges, sigma, 4, &filled, &err), 0);
+	else
+		CHECK_INT(fct_fill_plane_holes(&m, &patch, pl, 2, max_edges, &filled, &err), 0);
+	*faces = m.nf, *free_faces = 0;
+	for (size_t f = 0; f < m.nf; f++) {
+		CHECK(patch[f] >= -1 && patch[f] <= 1);
+		*free_faces += patch[f] == -1;
+	}
 	*a = area(&m, up);
 	*border = border_edges(&m);
-	free(patch);
+	free(patch), free(sigma);
 	fct_mesh_free(&m);
 	return filled;
+}
+
+static size_t fill(const uint32_t *gone, size_t ngone, size_t max_edges, int two_patches, double *a,
+                   size_t *border, size_t *up)
+{
+	size_t faces, free_faces;
+	return fill_as(gone, ngone, max_edges, two_patches ? TWO_PATCHES : ONE_PATCH, 0, 0, a, border,
+	               up, &faces, &free_faces);
 }
 
 /* fct_patches_unfacet on an n x n square whose cells [a,b)^2 are patch 0
@@ -350,5 +378,41 @@ int main(void)
 	 * the piece, not a hole, however many edges max_edges allows. */
 	CHECK_INT(fill(NULL, 0, 1000, 0, &a, &border, &up), 0);
 	CHECK_INT(border, 4 * N);
+
+	/* fct_fill_free_holes: the hole between two patches, which no plane
+	 * fill takes, is filled with free-form faces (4 triangles of the
+	 * hexagon) ... */
+	size_t faces, free_faces, plane_faces;
+	CHECK_INT(fill_as(mid, 1, 64, TWO_PATCHES, 1, 0, &a, &border, &up, &faces, &free_faces), 1);
+	CHECK_NEAR(a, 4, 1e-12);
+	CHECK_INT(border, 4 * N);
+	CHECK_INT(up, 0);
+	CHECK_INT(free_faces, 4);
+	CHECK_INT(faces, 2 * N * N - 6 + 4);
+	/* ... and so are holes in the free-form surface, touching ones too,
+	 * as the plane fill does inside a patch ... */
+	CHECK_INT(fill_as(many, 6, 64, ONE_PATCH, 0, 0, &a, &border, &up, &plane_faces, &free_faces), 4);
+	CHECK_INT(fill_as(many, 6, 64, ALL_FREE, 1, 0, &a, &border, &up, &faces, &free_faces), 4);
+	CHECK_NEAR(a, 4, 1e-12);
+	CHECK_INT(border, 4 * N);
+	CHECK_INT(up, 0);
+	CHECK_INT(faces, plane_faces);
+	CHECK_INT(free_faces, faces);
+	/* ... up to max_edges only ... */
+	CHECK_INT(fill_as(one, 1, 5, ALL_FREE, 1, 0, &a, &border, &up, &faces, &free_faces), 0);
+	CHECK_INT(border, 4 * N + 6);
+	/* ... but not a hole inside one patch (the plane fill's, after the
+	 * projection), nor the outer boundary. */
+	CHECK_INT(fill_as(side, 2, 64, TWO_PATCHES, 1, 0, &a, &border, &up, &faces, &free_faces), 1);
+	CHECK_INT(border, 4 * N + 6);
+	CHECK_INT(fill_as(NULL, 0, 1000, ALL_FREE, 1, 0, &a, &border, &up, &faces, &free_faces), 0);
+	CHECK_INT(border, 4 * N);
+	/* A hole on a ramp of 0.02 over the quarter to its right (the loop two
+	 * sigma off a plane at most) is filled; on one of 0.5 it is a depth
+	 * jump: left open. */
+	CHECK_INT(fill_as(mid, 1, 64, ALL_FREE, 1, 0.02, &a, &border, &up, &faces, &free_faces), 1);
+	CHECK_INT(border, 4 * N);
+	CHECK_INT(fill_as(mid, 1, 64, ALL_FREE, 1, 0.5, &a, &border, &up, &faces, &free_faces), 0);
+	CHECK_INT(border, 4 * N + 6);
 	CHECK_DONE();
 }

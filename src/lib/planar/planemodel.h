@@ -81,6 +81,17 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 int fct_fill_plane_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
                          size_t nplanes, size_t max_edges, size_t *filled, struct fct_err *err);
 
+/* The other holes of at most max_edges edges: border loops through faces
+ * of more than one label or free-form ones (-1) whose every vertex v lies
+ * within max_dev sigma[v] of the plane through the loop's centroid normal
+ * to its faces' mean normal (a surface no view saw, not a depth jump),
+ * triangulated in that plane as free-form faces, on the same terms; where
+ * holes touch, each goes on along the edge that turns first across it
+ * about the normal of the face walked. */
+int fct_fill_free_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plane *planes,
+                        size_t nplanes, size_t max_edges, const double *sigma, double max_dev,
+                        size_t *filled, struct fct_err *err);
+
 
 /* Every vertex of a face of a patch onto the nearest of its patches' planes:
  * along its ray from viewpoint (when not NULL, and no more than four times
@@ -164,7 +175,7 @@ struct fct_planar_stats {
 	int sigma_estimated;             /* no sigma property: estimated (noise.h) */
 	size_t facets;                   /* patches found facets of curved surfaces */
 	struct fct_tidy_stats tidy;
-	size_t holes_filled, projected;
+	size_t holes_filled, free_holes_filled, projected;
 	size_t creased;                  /* of those, put on two planes' line */
 	size_t split;                    /* of the others, split: a crease there would hide their sample */
 	size_t uncreased;                /* ... and taken off it again: corners of
