@@ -191,6 +191,17 @@ static size_t speck_left(double off, int rows, int with_sigma, size_t *joined)
 	return left;
 }
 
+/* m: the five vertices pos and the triangles a (face 0) and b (face 1). */
+static void two_faces(struct fct_mesh *m, const double pos[5][3], const uint32_t a[3], const uint32_t b[3])
+{
+	struct fct_err err;
+	fct_mesh_init(m);
+	for (int v = 0; v < 5; v++)
+		CHECK(fct_mesh_add_vertex(m, pos[v][0], pos[v][1], pos[v][2], &err) >= 0);
+	CHECK(fct_mesh_add_face(m, a, 3, &err) >= 0);
+	CHECK(fct_mesh_add_face(m, b, 3, &err) >= 0);
+}
+
 /* fct_planes_project on a vertex p = (0, y, z) of two faces, one of the
  * floor y = 0 (patch 0) and one of a wall z = 5 (patch 1), seen from
  * (0, 1.5, 0): *out gets where p goes, *off where the nearer plane alone
@@ -200,13 +211,9 @@ static size_t crease_move(double y, double z, double out[3], double off[3])
 {
 	struct fct_mesh m;
 	struct fct_err err;
-	fct_mesh_init(&m);
 	const double pos[5][3] = { { 0, y, z }, { -0.1, 0, 4.9 }, { 0.1, 0, 4.9 }, { -0.1, 0.1, 5 }, { 0.1, 0.1, 5 } };
-	for (int v = 0; v < 5; v++)
-		CHECK(fct_mesh_add_vertex(&m, pos[v][0], pos[v][1], pos[v][2], &err) >= 0);
 	const uint32_t floor_face[3] = { 1, 2, 0 }, wall_face[3] = { 0, 4, 3 };
-	CHECK(fct_mesh_add_face(&m, floor_face, 3, &err) >= 0);
-	CHECK(fct_mesh_add_face(&m, wall_face, 3, &err) >= 0);
+	two_faces(&m, pos, floor_face, wall_face);
 	const int32_t patch[2] = { 0, 1 };
 	const struct fct_plane planes[2] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 } };
 	const double vp[3] = { 0, 1.5, 0 };
@@ -231,13 +238,9 @@ static size_t bounded_crease(double x, double y, double sigma, unsigned char *oc
 {
 	struct fct_mesh m;
 	struct fct_err err;
-	fct_mesh_init(&m);
 	const double pos[5][3] = { { x, y, 0 }, { 0, 0, -0.1 }, { 0, 0, 0.1 }, { -0.5, 0.5, -0.1 }, { -0.5, 0.5, 0.1 } };
-	for (int v = 0; v < 5; v++)
-		CHECK(fct_mesh_add_vertex(&m, pos[v][0], pos[v][1], pos[v][2], &err) >= 0);
 	const uint32_t side_face[3] = { 0, 1, 2 }, wall_face[3] = { 0, 4, 3 };
-	CHECK(fct_mesh_add_face(&m, side_face, 3, &err) >= 0);
-	CHECK(fct_mesh_add_face(&m, wall_face, 3, &err) >= 0);
+	two_faces(&m, pos, side_face, wall_face);
 	const int32_t patch[2] = { 0, 1 };
 	const struct fct_plane planes[2] = { { { 0, -1, 0 }, 0, 0, 0 }, { { 1, 0, 0 }, 0.5, 0, 0 } };
 	const double vp[3] = { 3, -2, 0 }, sg[5] = { sigma, sigma, sigma, sigma, sigma };

@@ -337,9 +337,10 @@ static int edge_exists(const struct fct_adj *adj, const struct edge_set *h, uint
 }
 
 /* Fill one hole: loop[0..k) in border order (faces on its left), in the
- * plane of the given normal, its triangles faces of label p; not when a new triangle's inner edge exists already (the hole's
- * corners are joined elsewhere, across a fold or a thin wall, and the fill
- * would make that edge non-manifold). */
+ * plane of the given normal, its triangles faces of label p; not when a
+ * new triangle's inner edge exists already (the hole's corners are joined
+ * elsewhere, across a fold or a thin wall, and the fill would make that
+ * edge non-manifold). */
 static int fill_loop(struct fct_mesh *m, int32_t **patch, const double normal[3], int32_t p,
                      const uint32_t *loop, size_t k, const struct fct_adj *adj, struct edge_set *h,
                      size_t *filled, struct fct_err *err)
@@ -458,36 +459,6 @@ static int border_build(struct border *b, const struct fct_mesh *m, const struct
 	return 0;
 }
 
-/* The border half-edge that goes on around the hole after h (x -> a):
- * a's only one, or at a vertex several holes touch (two missing depth
- * pixels a pixel apart) the first met turning from a's edge back to x
- * counterclockwise about normal n, across the hole, on h's right.
- * UINT32_MAX: none. */
-static uint32_t border_next(const struct border *b, const struct fct_mesh *m, uint32_t h, const double n[3])
-{
-	uint32_t a = b->to[h], lo = b->start[a], hi = b->start[a + 1];
-	if (hi - lo == 1)
-		return lo;
-	if (hi == lo || !n)
-		return UINT32_MAX;
-	const double *pa = m->xyz + 3 * (size_t)a;
-	double back[3];
-	fct_v3_sub(back, m->xyz + 3 * (size_t)b->from[h], pa);
-	uint32_t best = UINT32_MAX;
-	double best_angle = INFINITY;
-	for (uint32_t o = lo; o < hi; o++) {
-		double d[3], c[3];
-		fct_v3_sub(d, m->xyz + 3 * (size_t)b->to[o], pa);
-		fct_v3_cross(c, back, d);
-		double angle = atan2(fct_v3_dot(c, n), fct_v3_dot(back, d));
-		if (!(angle > 0))
-			angle += 2 * M_PI;
-		if (angle < best_angle)
-			best_angle = angle, best = o;
-	}
-	return best;
-}
-
 /* The unit normal of the faces fs[0..n) of m, each weighted by its area;
  * 0 when they have none. */
 static int faces_normal(const struct fct_mesh *m, const uint32_t *fs, size_t n, double normal[3])
@@ -511,6 +482,40 @@ static int faces_normal(const struct fct_mesh *m, const uint32_t *fs, size_t n, 
 	for (int i = 0; i < 3; i++)
 		normal[i] = sum[i] / len;
 	return 1;
+}
+
+/* The border half-edge that goes on around the hole after h (x -> a):
+ * a's only one, or at a vertex several holes touch (two missing depth
+ * pixels a pixel apart) the first met turning from a's edge back to x
+ * counterclockwise about normal n (NULL: about the normal of h's face,
+ * on the free-form surface), across the hole, on h's right.
+ * UINT32_MAX: none. */
+static uint32_t border_next(const struct border *b, const struct fct_mesh *m, uint32_t h, const double n[3])
+{
+	uint32_t a = b->to[h], lo = b->start[a], hi = b->start[a + 1];
+	if (hi - lo == 1)
+		return lo;
+	double face_n[3];
+	if (!n && faces_normal(m, &b->face[h], 1, face_n))
+		n = face_n;
+	if (hi == lo || !n)
+		return UINT32_MAX;
+	const double *pa = m->xyz + 3 * (size_t)a;
+	double back[3];
+	fct_v3_sub(back, m->xyz + 3 * (size_t)b->from[h], pa);
+	uint32_t best = UINT32_MAX;
+	double best_angle = INFINITY;
+	for (uint32_t o = lo; o < hi; o++) {
+		double d[3], c[3];
+		fct_v3_sub(d, m->xyz + 3 * (size_t)b->to[o], pa);
+		fct_v3_cross(c, back, d);
+		double angle = atan2(fct_v3_dot(c, n), fct_v3_dot(back, d));
+		if (!(angle > 0))
+			angle += 2 * M_PI;
+		if (angle < best_angle)
+			best_angle = angle, best = o;
+	}
+	return best;
 }
 
 /* Whether every vertex of loop[0..k) lies within max_dev times its sigma
@@ -579,11 +584,7 @@ static int fill_holes(struct fct_mesh *m, int32_t **patch, const struct fct_plan
 				stamp[x] = h0 + 1;
 				loopface[k] = b.face[e];
 				loop[k++] = x;
-				/* Across the free-form surface, where holes touch, the
-				 * way on turns about the normal of the face walked. */
-				double fn[3];
-				const double *turn = n || !free_form || !faces_normal(m, &b.face[e], 1, fn) ? n : fn;
-				e = border_next(&b, m, e, turn);
+				e = border_next(&b, m, e, n);
 			} while (e != UINT32_MAX && e != h0);
 			if (!ok || e == UINT32_MAX || k < 3 || (!n && !free_form))
 				continue;
@@ -930,6 +931,35 @@ static int spoilt(const struct fct_mesh *m, size_t f, int32_t lab, const struct 
  * plane) or more is taken as seen at this angle. */
 #define MIN_GRAZING 0.3
 
+/* Vertex c (new) becomes a copy of v at x, every property of v with it,
+ * and the faces of patch label around v (fs[0..n)) take c for v. */
+static void copy_vertex_for(struct fct_mesh *m, const int32_t *patch, const uint32_t *fs, size_t n,
+                            uint32_t v, size_t c, int32_t label, const double x[3])
+{
+	for (size_t j = 0; j < m->vertex.nprops; j++) {
+		struct fct_prop *pr = &m->vertex.props[j];
+		if (pr->count_type == FCT_NONE)
+			fct_prop_set(pr, c, fct_prop_get(pr, v));
+	}
+	memcpy(m->xyz + 3 * c, x, 3 * sizeof *x);
+	for (size_t k = 0; k < n; k++) {
+		uint32_t f = fs[k];
+		if (patch[f] != label)
+			continue;
+		for (uint32_t q = m->fstart[f]; q < m->fstart[f + 1]; q++)
+			if (m->fvert[q] == v)
+				m->fvert[q] = (uint32_t)c;
+	}
+}
+
+/* Is x, where p's ray from vp meets a plane p lies r from, before p and
+ * met at a sine of MIN_GRAZING or more?  Then the ray passes the edge of a
+ * surface in front, which ends there. */
+static int met_before(const double vp[3], const double p[3], const double x[3], double r)
+{
+	return fct_v3_dist2(x, vp) < fct_v3_dist2(p, vp) && fabs(r) >= MIN_GRAZING * sqrt(fct_v3_dist2(x, p));
+}
+
 /* A vertex still off the plane of one of its patches by more than its
  * uncertainty (sigma along its ray, across it its sample spacing) is torn:
  * that patch's faces get a copy of it on their plane, where its ray meets
@@ -972,9 +1002,7 @@ static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct
 				continue;
 			onto_planes(planes, &ls[i], 1, p, x);
 			if (viewpoint && along_ray(planes, &ls[i], 1, viewpoint, p, x) &&
-			    !(fct_v3_dist2(x, p) <= max_move * max_move * e2) &&
-			    !(fct_v3_dist2(x, viewpoint) < fct_v3_dist2(p, viewpoint) &&
-			      fabs(r) >= MIN_GRAZING * sqrt(fct_v3_dist2(x, p))))
+			    !(fct_v3_dist2(x, p) <= max_move * max_move * e2) && !met_before(viewpoint, p, x, r))
 				onto_planes(planes, &ls[i], 1, p, x);
 			if (n == cap && fct_grow((void **)&tears, &cap, n + 1, sizeof *tears, err)) {
 				free(tears);
@@ -989,22 +1017,9 @@ static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct
 		return -1;
 	}
 	for (size_t t = 0; t < n; t++) {
-		size_t c = nv0 + t;
 		uint32_t v = tears[t].v;
-		for (size_t j = 0; j < m->vertex.nprops; j++) {
-			struct fct_prop *pr = &m->vertex.props[j];
-			if (pr->count_type == FCT_NONE)
-				fct_prop_set(pr, c, fct_prop_get(pr, v));
-		}
-		memcpy(m->xyz + 3 * c, tears[t].x, sizeof tears[t].x);
-		for (uint32_t k = vstart[v]; k < vstart[v + 1]; k++) {
-			uint32_t f = vf[k];
-			if (patch[f] != tears[t].label)
-				continue;
-			for (uint32_t q = m->fstart[f]; q < m->fstart[f + 1]; q++)
-				if (m->fvert[q] == v)
-					m->fvert[q] = (uint32_t)c;
-		}
+		copy_vertex_for(m, patch, vf + vstart[v], vstart[v + 1] - vstart[v], v, nv0 + t, tears[t].label,
+		                tears[t].x);
 	}
 	st->torn = n;
 	free(tears);
@@ -1861,31 +1876,17 @@ static int split_occluded(struct fct_mesh *m, const int32_t *patch, const struct
 		double r0 = fabs(fct_v3_dot(planes[ls[0]].n, p) + planes[ls[0]].d);
 		double r1 = k > 1 ? fabs(fct_v3_dot(planes[ls[1]].n, p) + planes[ls[1]].d) : 0;
 		int32_t other = k > 1 ? (r0 <= r1 ? ls[1] : ls[0]) : -1;
-		for (size_t j = 0; j < m->vertex.nprops; j++) {
-			struct fct_prop *pr = &m->vertex.props[j];
-			if (pr->count_type == FCT_NONE)
-				fct_prop_set(pr, c, fct_prop_get(pr, v));
-		}
 		double x[3], r = other >= 0 ? fct_v3_dot(planes[other].n, p) + planes[other].d : 0;
 		memcpy(x, p, sizeof x);
 		if (other >= 0) {
 			onto_planes(planes, &other, 1, p, x);
 			double y[3];
-			if (along_ray(planes, &other, 1, vp, p, y) && fct_v3_dist2(y, vp) < fct_v3_dist2(p, vp) &&
-			    fabs(r) >= MIN_GRAZING * sqrt(fct_v3_dist2(y, p)))
+			if (along_ray(planes, &other, 1, vp, p, y) && met_before(vp, p, y, r))
 				memcpy(x, y, sizeof y);
 		}
-		memcpy(m->xyz + 3 * c, x, sizeof x);
+		copy_vertex_for(m, patch, vf + vstart[v], vstart[v + 1] - vstart[v], (uint32_t)v, c, other, x);
 		sg[c] = sg[v];
 		oc[3 * c] = NAN;
-		for (uint32_t q = vstart[v]; q < vstart[v + 1]; q++) {
-			uint32_t f = vf[q];
-			if (patch[f] != other)
-				continue;
-			for (uint32_t i = m->fstart[f]; i < m->fstart[f + 1]; i++)
-				if (m->fvert[i] == v)
-					m->fvert[i] = (uint32_t)c;
-		}
 		c++;
 	}
 	*split = n;
