@@ -242,7 +242,7 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 		struct fct_mesh mesh;
 		struct fct_fuse_view view;
 		int rc = fct_fuse_depth_view(&view, &mesh, NULL, &img, &cam, &s->dp, &o->f.smooth,
-		                             &s->pose[12 * i], &err);
+		                             &s->pose[12 * i], o->f.voxel, &err);
 		fct_image_free(&img);
 		if (rc || fct_fuse_view(g, &view, &o->f.fp, &st, &err))
 			fct_die_err_at(&err, "tsdfuse: %s", s->depth[i]);
@@ -257,6 +257,7 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 	fct_report_stage("tsdfuse", "views", "%zu", s->n);
 	fct_report_stage("tsdfuse", "noise", "%s", *noise ? noise : "unknown");
 	fct_report_stage("tsdfuse", "voxels_updated", "%zu", st.voxels);
+	fct_report_stage("tsdfuse", "plane_views", "%zu", st.plane_views);
 	fct_report_stage("tsdfuse", "memory_mb", "%.1f", (double)fct_voxgrid_bytes(g) / 1048576);
 	fct_voxgrid_free(g);
 	if (out->nf == 0)

@@ -212,14 +212,17 @@ static void fuse_views(const struct options *o, struct fct_fuse_views *vs, struc
 			fct_fuse_extent_volume(e, o->f.voxel, o->f.fp.band, o->has_bbox ? o->bbox : NULL, o->carve, clo, chi);
 		}
 		double tv = fct_now();
-		size_t before = st->voxels;
+		size_t before = st->voxels, planes_before = st->plane_views;
 		if (fct_fuse_view(g, &L.view, &o->f.fp, st, &err))
 			fct_die_err_at(&err, "%s", L.name);
 		if (st->voxels == before)
 			fct_fuse_input_warn_unused(&L, o->has_bbox);
 		double dt = fct_now() - tv;
 		*fuse_s += dt;
-		if (fct_verbose)
+		if (fct_verbose && st->plane_views > planes_before)
+			fprintf(stderr, "tsdfuse: view %zu/%zu %s: %zu faces, planes at step %d, %.1f ms\n", i + 1,
+			        vs->n, L.name, L.mesh.nf, L.view.step, 1e3 * dt);
+		else if (fct_verbose)
 			fprintf(stderr, "tsdfuse: view %zu/%zu %s: %zu faces, %.1f ms\n", i + 1, vs->n, L.name,
 			        L.mesh.nf, 1e3 * dt);
 		if (carving) {
@@ -370,6 +373,7 @@ int main(int argc, char **argv)
 	if (ndebris < 0)
 		fct_die_err(&err);
 	fct_report("views", "%zu", nv);
+	fct_report("plane_views", "%zu", st.plane_views);
 	fct_report("view_faces", "%zu", st.faces);
 	fct_report("debris_pieces", "%zu", npieces);
 	fct_report("debris_faces", "%ld", ndebris);

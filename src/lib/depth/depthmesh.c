@@ -230,12 +230,9 @@ static int cell_properties(struct fct_mesh *m, const struct fct_image *img, int 
 	return 0;
 }
 
-int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
-                          const struct fct_camera *cam, const struct fct_depth_params *p)
+double fct_depth_median(const struct fct_image *img, const struct fct_depth_params *p)
 {
-	double scale = 0;
-	const char *name = fct_camera_known(cam, p->depth_scale, &scale);
-	if (!name || img->channels != 1)
+	if (img->channels != 1)
 		return 0;
 	size_t n = 0, cap = ((size_t)img->width / 4 + 1) * ((size_t)img->height / 4 + 1);
 	/* Samples rounded to float: no depth image holds more. */
@@ -248,9 +245,21 @@ int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
 			if (v > 0)
 				d[n++] = (float)v;
 		}
+	double med = n > 0 ? fct_select_kth(d, n, n / 2) : 0;
+	free(d);
+	return med;
+}
+
+int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
+                          const struct fct_camera *cam, const struct fct_depth_params *p)
+{
+	double scale = 0;
+	const char *name = fct_camera_known(cam, p->depth_scale, &scale);
+	if (!name || img->channels != 1)
+		return 0;
+	double med = fct_depth_median(img, p);
 	int bad = 0;
-	if (n > 0) {
-		double med = fct_select_kth(d, n, n / 2);
+	if (med > 0) {
 		bad = !(med >= FCT_SENSOR_MIN_DEPTH && med <= FCT_SENSOR_MAX_DEPTH);
 		int integer = img->type != FCT_PIX_F32 || p->scale_float;
 		if (bad && integer && scale != p->depth_scale)
@@ -263,7 +272,6 @@ int fct_depth_implausible(char *msg, size_t size, const struct fct_image *img,
 			         "m; the camera is %s's): is the depth scale right?", med,
 			         FCT_SENSOR_MIN_DEPTH, FCT_SENSOR_MAX_DEPTH, name);
 	}
-	free(d);
 	return bad;
 }
 

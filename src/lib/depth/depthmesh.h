@@ -71,9 +71,13 @@ double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params
 #define FCT_SENSOR_MIN_DEPTH 0.3
 #define FCT_SENSOR_MAX_DEPTH 8.0
 
+/* The median of a one-channel depth image's depths in metres, over every
+ * 4th pixel of every 4th row; 0 when none has data. */
+double fct_depth_median(const struct fct_image *img, const struct fct_depth_params *p);
+
 /* Is the depth image implausible for its camera?  When cam is a dataset's
  * RGB-D camera (fct_camera_known) and the median of the image's depths
- * (every 4th pixel of every 4th row) lies outside [FCT_SENSOR_MIN_DEPTH,
+ * (fct_depth_median) lies outside [FCT_SENSOR_MIN_DEPTH,
  * FCT_SENSOR_MAX_DEPTH], returns 1 with why in msg (the median, the
  * camera, and its dataset's depth scale when p's differs: TUM's frames in
  * units of 1/5000 m read as millimetres give 7-45 m); 0 otherwise. */

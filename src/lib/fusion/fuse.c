@@ -1,7 +1,8 @@
 /* fuse.c - one view fused into the volume (fct_fuse_view): its triangles,
  * its raster (fuseraster.c), its candidate voxels (fusecand.c), then their
- * true signed distance (fusetrue.c) or projective depth difference
- * (fuseproj.c) on the threads.  Sun, Paik, Koschan and Abidi, sec. 3 (see
+ * true signed distance (fusetrue.c; by a noisy depth image's planes,
+ * fuseplane.c) or projective depth difference (fuseproj.c) on the
+ * threads.  Sun, Paik, Koschan and Abidi, sec. 3 (see
  * fuse.h); carving is carve.c, the curvature flow levelset.c. */
 #include "fusion/fusepriv.h"
 
@@ -170,6 +171,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	st->triangles_s += t1 - t0;
 	struct raster R;
 	struct scratch s = { 0 };
+	struct planes T = { 0 };
 	size_t from = fct_voxgrid_count(g);
 	int rc = -1;
 	size_t max_samples = (size_t)1 << 26;
@@ -191,8 +193,15 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 			goto done;
 		double t3 = fct_now();
 		st->candidates_s += t3 - t2;
-		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox) };
-		fct_par_run(nthreads, s.n, 0, proj ? fuse_projective_blocks : fuse_true_blocks, &F);
+		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox), NULL };
+		void (*blocks)(void *, size_t, size_t, int) = proj ? fuse_projective_blocks : fuse_true_blocks;
+		if (!proj && v->planes && R.grid.cell && v->cam.kind == FCT_CAMERA_PINHOLE) {
+			if (fuse_planes_build(&T, &R, v, p, vox, err))
+				goto done;
+			F.T = &T, blocks = fuse_plane_blocks;
+			st->plane_views++;
+		}
+		fct_par_run(nthreads, s.n, 0, blocks, &F);
 		if (commit(g, from, &s, st, err))
 			goto done;
 		st->distances_s += fct_now() - t3;
@@ -206,6 +215,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 done:
 	if (rc)   /* no half-made blocks left behind */
 		fct_voxgrid_drop(g, from, NULL);
+	fuse_planes_free(&T);
 	fuse_scratch_free(&s);
 	fuse_raster_free(&R);
 	fuse_geo_free(&G);

@@ -60,7 +60,15 @@
  * it: inverse-variance weights, the sensor's variance plus (voxel / 2)^2
  * (what the volume resolves anyway) over the latter, so that data far
  * more precise than the voxels weigh 1 and a noisy far wall weighs less
- * than a near view of it.  Projective fusion, the baseline, ignores it. */
+ * than a near view of it.  Projective fusion, the baseline, ignores it.
+ *
+ * step: for a pinhole's depth image meshed every step pixels (0 or 1:
+ * every pixel), the mesh's vertices on pixels (k step, l step) of the
+ * image; true distance finds its grid at that step.  planes: for a view
+ * that came as a depth image (fct_fuse_depth_view), true distance measures
+ * to the tangent planes of its grid's vertices instead of searching the
+ * mesh for each voxel's nearest point (fuseplane.c): a pinhole's view
+ * whose mesh is a grid; others are searched. */
 struct fct_fuse_view {
 	const struct fct_mesh *mesh;
 	struct fct_camera cam;
@@ -68,6 +76,7 @@ struct fct_fuse_view {
 	double ortho_step;
 	const float *depth;
 	const float *sigma;
+	int step, planes;
 };
 
 enum fct_fuse_weight {
@@ -89,6 +98,7 @@ struct fct_fuse_stats {
 	size_t voxels;          /* voxels updated */
 	size_t border;          /* voxels skipped because their nearest point is on a border */
 	size_t faces;           /* triangles used */
+	size_t plane_views;     /* views fused by their planes (fuseplane.c) */
 	/* Seconds in fct_fuse_view's phases: the view's triangles (with their
 	 * normals for true distance), its raster or pixel grid, its candidate
 	 * voxels, and their distances put into the volume. */
@@ -112,11 +122,36 @@ struct fct_image;
  * each vertex's sigma, which v->sigma points into), the mesh moved to the
  * world into mesh (v->mesh; the caller frees it).  depth, when not NULL,
  * gets the depths the mesh keeps (malloc'd; v->depth, what --projective
- * fusion reads).  0 or -1. */
+ * fusion reads), and the mesh has a vertex on every pixel with data.
+ * Without it the view is for true distance into voxels of vox metres:
+ * where fct_fuse_depth_step gives a step, meshed at that step and fused by
+ * its planes (v->step and v->planes); else meshed at every pixel and
+ * searched.  0 or -1. */
 int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **depth,
                         const struct fct_image *img, const struct fct_camera *cam,
                         const struct fct_depth_params *dp, const struct fct_depth_smooth *smooth,
-                        const double pose[12], struct fct_err *err);
+                        const double pose[12], double vox, struct fct_err *err);
+
+/* The pixel step at which true distance meshes depth image img for voxels
+ * of vox metres and fuses it by its planes (fuseplane.c), or 0 to mesh it
+ * at every pixel and search the mesh.  Planes where the sensor's noise
+ * (dp's model) at the image's median depth is at least a tenth of a voxel
+ * and its pixels there are at most 0.6 voxels apart: then the mesh's
+ * nearest points follow the noise, the planes average it (mkscene's room,
+ * 24 views under Kinect noise at 2 cm: 1.30 mm from the true surface and
+ * 61 components, against 1.69 and 33 by the search and 1.97 and 176 by
+ * --projective), and cost a small part of the search.  Without a model,
+ * or with little noise, the search is the more exact (the same room
+ * without noise: 0.13 mm against 0.15; Gaussian noise of 3 mm at 4 cm
+ * voxels: 0.84 against 1.09).  The step: samples about 0.6 voxels apart
+ * at the median depth, round(0.6 vox f / median) for a pinhole of focal
+ * length f (the smaller of fx and fy); finer ones add nothing the volume
+ * keeps (Kinect-class sensors measure coarser than their pixels anyway: a
+ * correlation window of 9 pixels), samples a voxel apart lose surfaces
+ * (the noisy room: step 2 1.29 mm, 3 1.33, 4 2.50).  0 for cameras other
+ * than pinholes. */
+int fct_fuse_depth_step(const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *dp, double vox);
 
 /* A view's range image, from its mesh rasterised into its own camera. */
 struct fct_range_image {

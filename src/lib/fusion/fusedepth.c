@@ -1,16 +1,30 @@
 /* fusedepth.c - a depth image made a view for fusion (fct_fuse_depth_view,
  * fuse.h): smoothed and meshed with the sensor's noise model, moved to the
  * world frame.  tsdfuse and roommodel read their depth images through it. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "depth/depthmesh.h"
 #include "depth/depthsmooth.h"
 #include "fusion/fuse.h"
+
+int fct_fuse_depth_step(const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *dp, double vox)
+{
+	if (cam->kind != FCT_CAMERA_PINHOLE || !(vox > 0))
+		return 0;
+	double med = fct_depth_median(img, dp), f = cam->fx < cam->fy ? cam->fx : cam->fy;
+	if (!(fct_noise_sigma(&dp->noise, med) >= vox / 10))
+		return 0;
+	double s = 0.6 * vox * f / med;
+	return !(s >= 1) ? 0 : s >= 64 ? 64 : (int)floor(s + 0.5);
+}
 
 int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **depth,
                         const struct fct_image *img, const struct fct_camera *cam,
                         const struct fct_depth_params *dp, const struct fct_depth_smooth *smooth,
-                        const double pose[12], struct fct_err *err)
+                        const double pose[12], double vox, struct fct_err *err)
 {
 	memset(v, 0, sizeof *v);
 	if (depth)
@@ -21,6 +35,9 @@ int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **
 	struct fct_depth_params vp = *dp;
 	if (vp.noise.model != FCT_NOISE_UNKNOWN && vp.noise.unit == 0)
 		vp.noise.unit = fct_depth_unit(img, &vp);
+	int step = depth ? 0 : fct_fuse_depth_step(img, cam, &vp, vox);
+	if (step)
+		vp.step = step;
 	struct fct_image sm;
 	const struct fct_image *src = img;
 	if (smooth->radius > 0 && vp.noise.model != FCT_NOISE_UNKNOWN) {
@@ -39,6 +56,8 @@ int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **
 	v->cam = *cam;
 	memcpy(v->pose, pose, sizeof v->pose);
 	v->depth = depth ? *depth : NULL;
+	v->step = vp.step;
+	v->planes = step > 0;
 	struct fct_prop *sp = fct_elem_find(&mesh->vertex, "sigma");
 	v->sigma = sp && sp->type == FCT_FLOAT32 ? sp->data : NULL;
 	return 0;

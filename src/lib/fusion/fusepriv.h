@@ -1,7 +1,8 @@
 /* fusepriv.h - what the fusion files share: fuse.c (one view's fusion
  * and its triangles), fuseraster.c (its raster and range image),
- * fusecand.c (its candidate voxels), fusetrue.c (true signed distance)
- * and fuseproj.c (projective distance); the lookups their voxel loops
+ * fusecand.c (its candidate voxels), fusetrue.c (true signed distance),
+ * fuseplane.c (true distance by a depth image's planes) and fuseproj.c
+ * (projective distance); the lookups their voxel loops
  * make are inline here.  Not for other callers: the interface is fuse.h. */
 #ifndef FCT_FUSEPRIV_H
 #define FCT_FUSEPRIV_H
@@ -144,8 +145,8 @@ struct raster {
 	int32_t *idf;
 	double *sp;              /* per vertex: sample x, y, depth (1/depth for pinholes);
 	                          * sensor u, v, depth until the raster's extent is known */
-	int32_t *at;             /* one sample per pixel: per vertex, x and y of the sample
-	                          * it lies on (within 1e-3), or -1 and -1 */
+	int32_t *at;             /* one sample per pixel or fewer: per vertex, x and y of the
+	                          * sample it lies on (within 1e-3), or -1 and -1 */
 	float *zv;               /* and the depth a triangle gives there */
 	uint32_t *gen;           /* with at: the triangles that are not grid triangles */
 	size_t ngen, gencap;
@@ -261,6 +262,23 @@ static inline double band_kept(double band, double vox)
 	return band + 1e-3 * vox;
 }
 
+/* A depth image's view: per sample of its grid the tangent plane of the
+ * vertex there (fuseplane.c). */
+struct plane {
+	float n[3], off;         /* unit normal n and n . p, p the vertex; n[0] NaN: no vertex */
+	float depth;             /* p's depth in the sensor */
+	float weight;            /* of a distance to it (the view's at p, by its sigma with a
+	                          * noise model); -1: p is on the data's border */
+};
+
+struct planes {
+	struct plane *pl;        /* sample (x, y) at x + y w */
+	size_t w, h;
+	double reach;            /* a foot's depth may differ from its sample's by this
+	                          * times that depth (and by a voxel) */
+	double ax, bx, ay, by;   /* sample x = ax c0 / c2 + bx of camera point c, likewise y */
+};
+
 /* Fusion of one view, block by block on the threads. */
 struct fctx {
 	const struct geo *G;
@@ -270,7 +288,24 @@ struct fctx {
 	const struct scratch *s;
 	double vox;
 	double band;             /* band_kept */
+	const struct planes *T;  /* a depth image's planes (NULL: search the mesh) */
 };
+
+/* The weight of a distance whose nearest point q has normal n, seen by v
+ * (p->weight). */
+double fuse_view_weight(const struct fct_fuse_view *v, const struct fct_fuse_params *p,
+                        const double q[3], const double n[3]);
+
+/* The view's noise at a point of sigma metres as a weight: 1 / (1 +
+ * (2 sigma / voxel)^2), the inverse of the sensor's variance plus
+ * (voxel / 2)^2 (what the volume resolves anyway) over the latter: 1 for
+ * data far more precise than the voxels, falling as 1 / sigma^2 for
+ * noisier data (fuse.h). */
+static inline double sigma_weight(double sigma, double vox)
+{
+	double r = 2 * sigma / vox;
+	return 1 / (1 + r * r);
+}
 
 /* fuse.c: the view's triangles (polygons fan-triangulated), with topo
  * their unit normals too; freed by fuse_geo_free.  0 or -1. */
@@ -304,5 +339,13 @@ void fuse_scratch_free(struct scratch *s);
 void fuse_true_blocks(void *ctx, size_t lo, size_t hi, int worker);
 
 void fuse_projective_blocks(void *ctx, size_t lo, size_t hi, int worker);
+
+/* fuseplane.c: the planes of a depth image's view whose mesh is R's grid
+ * (fuse_planes_build, vox the voxel size; 0 or -1), and blocks lo..hi of
+ * F->s by them (fuse_plane_blocks, for fct_par_run). */
+int fuse_planes_build(struct planes *T, const struct raster *R, const struct fct_fuse_view *v,
+                      const struct fct_fuse_params *p, double vox, struct fct_err *err);
+void fuse_planes_free(struct planes *T);
+void fuse_plane_blocks(void *ctx, size_t lo, size_t hi, int worker);
 
 #endif

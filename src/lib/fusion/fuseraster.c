@@ -283,7 +283,7 @@ static void raster_rows(void *ctx, size_t lo, size_t hi, int worker)
 
 /* G's vertices in the sample coordinates of v with S samples per sensor
  * pixel (fewer when more than max_samples would be needed): R's extent and
- * sp, and at S = 1 at (and zv unless proper).  0 or -1; R->w is 0 when
+ * sp, and at S <= 1 at (and zv unless proper).  0 or -1; R->w is 0 when
  * nothing is seen. */
 static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
                         double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
@@ -330,8 +330,11 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 	for (;;) {
 		/* Offsets keep the samples off a pixel grid's vertices and
 		 * diagonals, so that every triangle of it owns a sample. */
-		R->u0 = floor(lo[0]) - 1 + (S > 1 ? 0.25 : 0);
-		R->v0 = floor(lo[1]) - 1 + (S > 1 ? 0.125 : 0);
+		/* Below one sample per pixel (a depth image meshed at a step
+		 * of 1 / S pixels) the origin is on a vertex's pixel too. */
+		double px = S < 1 ? floor(1 / S + 0.5) : 1;
+		R->u0 = px * (floor(lo[0] / px) - 1) + (S > 1 ? 0.25 : 0);
+		R->v0 = px * (floor(lo[1] / px) - 1) + (S > 1 ? 0.125 : 0);
 		double w = ceil((hi[0] - R->u0) * S) + 2, h = ceil((hi[1] - R->v0) * S) + 2;
 		if (w * h <= (double)max_samples) {
 			R->w = (int)w, R->h = (int)h;
@@ -342,7 +345,7 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 		S /= 2;
 	}
 	R->S = S;
-	if (S == 1) {
+	if (S <= 1) {
 		/* A true-distance frame is for a pixel grid first, which needs
 		 * no depths: raster_fill makes them if it comes to a raster. */
 		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
@@ -473,17 +476,19 @@ not_grid:
 	return 0;
 }
 
-/* For true distance: the grid of G seen by v when it is one, else the
- * raster at two samples per pixel along each axis, so that every triangle
- * of a range image's grid owns one.  0 or -1. */
+/* For true distance: the grid of G seen by v when it is one (one sample
+ * per v->step pixels, a vertex on each), else the raster at two samples
+ * per pixel along each axis, so that every triangle of a range image's
+ * grid owns one.  0 or -1. */
 int fuse_raster_true(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
                        size_t max_samples, int nthreads, struct fct_err *err)
 {
-	if (raster_frame(R, v, G, 1, 1, max_samples, nthreads, err))
+	double S = v->step > 1 ? 1.0 / v->step : 1;
+	if (raster_frame(R, v, G, S, 1, max_samples, nthreads, err))
 		return -1;
 	if (R->w == 0)
 		return 0;
-	int grid = R->S == 1 ? grid_cells(R, err) : 0;
+	int grid = R->S == S ? grid_cells(R, err) : 0;
 	if (grid)
 		return grid > 0 ? 0 : -1;
 	if (v->cam.kind == FCT_CAMERA_NONE)

@@ -209,8 +209,8 @@ static int32_t walk(const struct geo *G, int32_t t, const double x[3], double ba
 	return t;
 }
 
-static double view_weight(const struct fct_fuse_view *v, const struct fct_fuse_params *p,
-                          const double q[3], const double n[3])
+double fuse_view_weight(const struct fct_fuse_view *v, const struct fct_fuse_params *p,
+                        const double q[3], const double n[3])
 {
 	if (p->weight == FCT_FUSE_CONSTANT)
 		return 1;
@@ -236,16 +236,12 @@ static double view_weight(const struct fct_fuse_view *v, const struct fct_fuse_p
 	return depth > 1e-3 ? 1 / (depth * depth) : 1e6;
 }
 
-/* The view's noise at triangle tv (the mean sigma of its corners) as a
- * weight: 1 / (1 + (2 sigma / voxel)^2), the inverse of the sensor's
- * variance plus (voxel / 2)^2 (what the volume resolves anyway) over the
- * latter: 1 for data far more precise than the voxels, falling as
- * 1 / sigma^2 for noisier data (fuse.h). */
+/* The view's noise at triangle tv as a weight: the mean sigma of its
+ * corners. */
 static inline double noise_weight(const struct fctx *F, const uint32_t *tv)
 {
 	const float *s = F->v->sigma;
-	double sigma = ((double)s[tv[0]] + s[tv[1]] + s[tv[2]]) / 3, r = 2 * sigma / F->vox;
-	return 1 / (1 + r * r);
+	return sigma_weight(((double)s[tv[0]] + s[tv[1]] + s[tv[2]]) / 3, F->vox);
 }
 
 /* The triangle seen at sample (x, y), or at one of its 8 neighbours. */
@@ -585,7 +581,7 @@ static void put_true(const struct fctx *F, struct sblock *b, int l, const double
 	}
 	/* The kept band's extra thousandth of a voxel is not a distance. */
 	d = dmax(-F->p->band, dmin(d, F->p->band));
-	double w = view_weight(F->v, F->p, h->q, n);
+	double w = fuse_view_weight(F->v, F->p, h->q, n);
 	if (F->v->sigma)
 		w *= noise_weight(F, G->tv + 3 * (size_t)t);
 	put(b, l, (float)d, (float)w);
