@@ -12,7 +12,8 @@
 int fct_fuse_depth_step(const struct fct_image *img, const struct fct_camera *cam,
                         const struct fct_depth_params *dp, double vox)
 {
-	if (cam->kind != FCT_CAMERA_PINHOLE || !(vox > 0))
+	/* No model, no noise to average: the image's median is not needed. */
+	if (cam->kind != FCT_CAMERA_PINHOLE || !(vox > 0) || dp->noise.model == FCT_NOISE_UNKNOWN)
 		return 0;
 	double med = fct_depth_median(img, dp), f = cam->fx < cam->fy ? cam->fx : cam->fy;
 	if (!(fct_noise_sigma(&dp->noise, med) >= vox / 10))

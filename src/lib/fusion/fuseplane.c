@@ -54,26 +54,26 @@ enum { PLANE_MOVES = 4 };
 #define SETTLED 0.5
 
 /* Per cell of the grid: the sum of its triangles' cross products (their
- * normals weighted by twice their area), and whether both halves are
- * there. */
+ * normals weighted by twice their area), and which of its corners have
+ * all of the cell's triangles about them. */
 struct cellsum {
 	float n[3];
-	uint8_t whole;           /* both halves there */
-	uint8_t ring;            /* bit q: corner q (x + 2 y in the cell) has all of the
-	                          * cell's triangles about it (a cell's diagonal corners
-	                          * are in both halves, the others in one) */
+	uint8_t ring;            /* bit q: corner q (x + 2 y in the cell); 15: both halves */
 };
 
-/* Row cy of the grid's cells into cs (w of them). */
+/* Row cy of the grid's cells into cs (w of them).  A half holds the two
+ * corners on the diagonal, which the other half holds too, and the one
+ * opposite the corner it leaves out: alone, it closes that corner only. */
 static void cell_row(const struct raster *R, size_t cy, struct cellsum *cs)
 {
 	const struct pixgrid *P = &R->grid;
 	const struct geo *G = R->G;
 	for (size_t cx = 0; cx < P->w; cx++) {
 		double sum[3] = { 0, 0, 0 };
+		unsigned corners = 0;
 		int halves = 0;
 		for (int k = 0; k < 2; k++) {
-			int32_t t = P->cell[2 * (cy * P->w + cx) + k];
+			int32_t t = P->cell[2 * (cy * P->w + cx) + k], tx, ty;
 			if (t < 0)
 				continue;
 			const uint32_t *tv = &G->tv[3 * (size_t)t];
@@ -83,26 +83,12 @@ static void cell_row(const struct raster *R, size_t cy, struct cellsum *cs)
 			fct_v3_sub(e2, d, a);
 			fct_v3_cross(n, e1, e2);
 			fct_v3_add(sum, sum, n);
+			corners = cell_corners(P->at, tv, &tx, &ty);
 			halves++;
 		}
 		for (int k = 0; k < 3; k++)
 			cs[cx].n[k] = (float)sum[k];
-		cs[cx].whole = halves == 2;
-		/* With one half, the corners of its own side of the diagonal
-		 * (the one corner off it that the half holds). */
-		uint8_t ring = halves == 2 ? 15 : 0;
-		for (int k = 0; halves == 1 && k < 2; k++) {
-			int32_t t = P->cell[2 * (cy * P->w + cx) + k];
-			if (t < 0)
-				continue;
-			const uint32_t *tv = &G->tv[3 * (size_t)t];
-			uint8_t diag = P->diag[cy * P->w + cx] == DIAG_DOWN ? 9 : 6;   /* corners 0, 3 or 1, 2 */
-			for (int m = 0; m < 3; m++) {
-				int q = (P->at[2 * tv[m]] - (int32_t)cx) + 2 * (P->at[2 * tv[m] + 1] - (int32_t)cy);
-				ring |= (uint8_t)((1u << q) & ~diag);
-			}
-		}
-		cs[cx].ring = ring;
+		cs[cx].ring = (uint8_t)(halves == 2 ? 15 : halves == 1 ? 1u << (3 - __builtin_ctz(~corners & 15)) : 0);
 	}
 }
 
@@ -147,7 +133,7 @@ static int vertex_plane(const struct raster *R, const struct cellsum *above, con
 			 * right, 1 left and 0 right. */
 			int q = (cx == x ? 0 : 1) + (r == 0 ? 2 : 0);
 			in &= c->ring >> q & 1;
-			whole &= c->whole;
+			whole &= c->ring == 15;
 		}
 	*inside = in;
 	double len = sqrt(fct_v3_dot(n, n));

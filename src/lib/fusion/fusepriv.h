@@ -202,6 +202,27 @@ static inline long sample_index(const struct raster *R, double x, double y)
 	return (long)(y + 0.5) * R->w + (long)(x + 0.5);
 }
 
+/* The corners of a pixel cell that triangle tv takes, as bits x + 2 y of
+ * the cell (cx, cy) (at: per vertex, its sample's x and y, or -1), when its
+ * vertices lie on three distinct corners of one cell: 7, 11, 13 or 14.
+ * 0 when they do not (a vertex off the samples, a triangle larger than a
+ * cell or degenerate in the image).  Tested without branches, as the
+ * diagonals of a range image follow its data. */
+static inline unsigned cell_corners(const int32_t *at, const uint32_t tv[3], int32_t *cx, int32_t *cy)
+{
+	const int32_t *a = &at[2 * tv[0]], *b = &at[2 * tv[1]], *d = &at[2 * tv[2]];
+	if ((a[0] | b[0] | d[0]) < 0)
+		return 0;
+	int32_t x = a[0] < b[0] ? a[0] : b[0], y = a[1] < b[1] ? a[1] : b[1];
+	x = d[0] < x ? d[0] : x, y = d[1] < y ? d[1] : y;
+	int32_t ax = a[0] - x, ay = a[1] - y, bx = b[0] - x, by = b[1] - y, dx = d[0] - x, dy = d[1] - y;
+	if ((ax | ay | bx | by | dx | dy) > 1)
+		return 0;   /* not within one cell */
+	unsigned corners = 1u << (ax + 2 * ay) | 1u << (bx + 2 * by) | 1u << (dx + 2 * dy);
+	*cx = x, *cy = y;
+	return 0x6880u >> corners & 1 ? corners : 0;
+}
+
 /* The cell of the grid under sample point (x, y), or -1. */
 static inline long grid_cell_at(const struct pixgrid *P, double x, double y)
 {

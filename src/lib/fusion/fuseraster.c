@@ -124,27 +124,6 @@ static void depths_chunk(void *ctx, size_t lo, size_t hi, int worker)
 		R->zv[i] = vertex_depth(R, i);
 }
 
-/* The corners of a pixel cell that triangle tv takes, as bits x + 2 y of
- * the cell (cx, cy) (at: per vertex, its sample's x and y, or -1), when its
- * vertices lie on three distinct corners of one cell: 7, 11, 13 or 14.
- * 0 when they do not (a vertex off the samples, a triangle larger than a
- * cell or degenerate in the image).  Tested without branches, as the
- * diagonals of a range image follow its data. */
-static inline unsigned cell_corners(const int32_t *at, const uint32_t tv[3], int32_t *cx, int32_t *cy)
-{
-	const int32_t *a = &at[2 * tv[0]], *b = &at[2 * tv[1]], *d = &at[2 * tv[2]];
-	if ((a[0] | b[0] | d[0]) < 0)
-		return 0;
-	int32_t x = a[0] < b[0] ? a[0] : b[0], y = a[1] < b[1] ? a[1] : b[1];
-	x = d[0] < x ? d[0] : x, y = d[1] < y ? d[1] : y;
-	int32_t ax = a[0] - x, ay = a[1] - y, bx = b[0] - x, by = b[1] - y, dx = d[0] - x, dy = d[1] - y;
-	if ((ax | ay | bx | by | dx | dy) > 1)
-		return 0;   /* not within one cell */
-	unsigned corners = 1u << (ax + 2 * ay) | 1u << (bx + 2 * by) | 1u << (dx + 2 * dy);
-	*cx = x, *cy = y;
-	return 0x6880u >> corners & 1 ? corners : 0;
-}
-
 /* A triangle of a range image's grid (its vertices on three corners of a
  * pixel cell, one sample per pixel) covers no sample but its vertices: the
  * raster's depth is the vertex's there (barycentric weights 1, 0, 0). */
@@ -283,12 +262,13 @@ static void raster_rows(void *ctx, size_t lo, size_t hi, int worker)
 
 /* G's vertices in the sample coordinates of v with S samples per sensor
  * pixel (fewer when more than max_samples would be needed): R's extent and
- * sp, and at S <= 1 at (and zv unless proper).  0 or -1; R->w is 0 when
+ * sp, and at S <= 1 as asked at (and zv unless proper).  0 or -1; R->w is 0 when
  * nothing is seen. */
 static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
                         double S, int proper, size_t max_samples, int nthreads, struct fct_err *err)
 {
 	memset(R, 0, sizeof *R);
+	double asked = S;   /* halved below when too large: then no grid */
 	R->v = v;
 	R->G = G;
 	R->proper = proper;
@@ -345,7 +325,7 @@ static int raster_frame(struct raster *R, const struct fct_fuse_view *v, const s
 		S /= 2;
 	}
 	R->S = S;
-	if (S <= 1) {
+	if (S <= 1 && S == asked) {
 		/* A true-distance frame is for a pixel grid first, which needs
 		 * no depths: raster_fill makes them if it comes to a raster. */
 		R->at = fct_alloc_array(G->nv ? G->nv : 1, 2 * sizeof *R->at, err);
