@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/lanes.h"
 #include "geom/geom.h"
 
 /* What one grid square becomes: which of its two triangles are made and
@@ -13,35 +14,10 @@
  * (a, c, d) and (a, d, b) -- all clockwise in (u, v), which faces the sensor. */
 enum { FIRST = 1, SECOND = 2, DIAG_AD = 4 };
 
-/* Two doubles at once: GCC's and Clang's vector extension, which every
- * target compiles (to SSE2 on x86-64, NEON on arm64, scalar code
- * elsewhere); lane by lane the same IEEE operations as scalar code, so
- * the same bits. */
-typedef double v2d __attribute__((vector_size(16)));
-typedef int64_t v2i __attribute__((vector_size(16)));
-
-static inline v2d load2(const double *p)
-{
-	v2d v;
-	memcpy(&v, p, sizeof v);
-	return v;
-}
-
-static inline void store2(double *p, v2d v)
-{
-	memcpy(p, &v, sizeof v);
-}
-
 /* Two floats made doubles (exactly). */
 static inline v2d load2_float(const float *p)
 {
 	return (v2d){ p[0], p[1] };
-}
-
-/* Lane by lane: where m is all ones, a, else b. */
-static inline v2d select2(v2i m, v2d a, v2d b)
-{
-	return (v2d)(((v2i)a & m) | ((v2i)b & ~m));
 }
 
 struct grid {

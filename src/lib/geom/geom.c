@@ -48,10 +48,8 @@ double fct_closest_on_triangle(const double p[3], const double a[3], const doubl
 
 double fct_triangle_area2(const double a[3], const double b[3], const double c[3])
 {
-	double ab[3], ac[3], n[3];
-	fct_v3_sub(ab, b, a);
-	fct_v3_sub(ac, c, a);
-	fct_v3_cross(n, ab, ac);
+	double n[3];
+	fct_triangle_cross(n, a, b, c);
 	return sqrt(fct_v3_dot(n, n));
 }
 

@@ -190,6 +190,15 @@ done:
 	return fct_v3_dist2(p, q);
 }
 
+/* (b - a) x (c - a): triangle abc's normal, its length twice the area. */
+static inline void fct_triangle_cross(double n[3], const double a[3], const double b[3], const double c[3])
+{
+	double ab[3], ac[3];
+	fct_v3_sub(ab, b, a);
+	fct_v3_sub(ac, c, a);
+	fct_v3_cross(n, ab, ac);
+}
+
 /* Twice the area of triangle abc (|(b - a) x (c - a)|). */
 double fct_triangle_area2(const double a[3], const double b[3], const double c[3]);
 
