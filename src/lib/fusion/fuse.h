@@ -138,8 +138,8 @@ int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **
  * (dp's model) at the image's median depth is at least a tenth of a voxel
  * and its pixels there are at most 0.6 voxels apart: then the mesh's
  * nearest points follow the noise, the planes average it (mkscene's room,
- * 24 views under Kinect noise at 2 cm: 1.30 mm from the true surface and
- * 61 components, against 1.69 and 33 by the search and 1.97 and 176 by
+ * 24 views under Kinect noise at 2 cm: 1.29 mm from the true surface and
+ * 55 components, against 1.69 and 33 by the search and 1.97 and 176 by
  * --projective), and cost a small part of the search.  Without a model,
  * or with little noise, the search is the more exact (the same room
  * without noise: 0.13 mm against 0.23, 13 components against 38; Gaussian
