@@ -968,6 +968,33 @@ static void test_plane_noise(void)
 	fct_image_free(&img);
 }
 
+/* A view to be fused by its planes whose mesh is no pixel grid (a vertex
+ * moved off its pixel, as a library caller's mesh may be): its triangles'
+ * normals are made after all and the mesh is searched, the same volume
+ * as with the planes off. */
+static void test_plane_no_grid(void)
+{
+	struct fct_image img;
+	struct fct_fuse_view v;
+	struct fct_mesh m;
+	front_view(&v, &m, &img, at_half, 0.003, 0.03);
+	m.xyz[3 * (m.nv / 2)] += 0.01;   /* 0.6 pixels at 0.5 m */
+	struct fct_fuse_stats st = { 0 };
+	struct fct_voxgrid *g = fused_at(&v, 0.03, 0.09, &st);
+	CHECK(st.plane_views == 0 && st.faces == m.nf);
+	v.planes = 0;
+	struct fct_voxgrid *h = fused_at(&v, 0.03, 0.09, NULL);
+	double worst;
+	size_t missing, n = compare_grids(g, h, &worst, &missing);
+	CHECK_MSG(n > 500 && missing == 0 && worst == 0, "%zu voxels, %zu missing, worst %g", n, missing, worst);
+	compare_grids(h, g, &worst, &missing);
+	CHECK(missing == 0);
+	fct_voxgrid_free(g);
+	fct_voxgrid_free(h);
+	fct_mesh_free(&m);
+	fct_image_free(&img);
+}
+
 int main(void)
 {
 	test_plane();
@@ -987,5 +1014,6 @@ int main(void)
 	test_plane_field();
 	test_plane_border();
 	test_plane_noise();
+	test_plane_no_grid();
 	CHECK_DONE();
 }

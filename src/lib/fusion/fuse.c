@@ -36,10 +36,8 @@ static void normals_chunk(void *ctx, size_t lo, size_t hi, int worker)
 	for (size_t f = lo; f < hi; f++) {
 		const uint32_t *v = &tv[3 * f];
 		const double *a = &xyz[3 * v[0]], *b = &xyz[3 * v[1]], *c = &xyz[3 * v[2]];
-		double e1[3], e2[3], n[3];
-		fct_v3_sub(e1, b, a);
-		fct_v3_sub(e2, c, a);
-		fct_v3_cross(n, e1, e2);
+		double n[3];
+		fct_triangle_cross(n, a, b, c);
 		double nn = fct_v3_dot(n, n), len = sqrt(nn);
 		/* Most are far above the view's bound (degenerate_bound); the
 		 * others take the test itself, which shares e1, e2 and n. */
@@ -70,6 +68,19 @@ static double degenerate_bound(const struct geo *G)
 	double e[3];
 	fct_v3_sub(e, hi, lo);
 	return fct_degenerate_limit(fct_v3_dot(e, e));
+}
+
+int fuse_geo_normals(struct geo *G, int nthreads, struct fct_err *err)
+{
+	size_t nt = G->nt;
+	if (nt > (size_t)UINT32_MAX / 3)
+		return fct_fail(err, "%zu triangles: too many", nt);
+	G->tn = fct_alloc_array(nt, 4 * sizeof *G->tn, err);
+	if (!G->tn)
+		return -1;
+	G->nondegen = degenerate_bound(G);
+	fct_par_run(nthreads, nt, 0, normals_chunk, G);
+	return 0;
 }
 
 /* Triangles of m (polygons fan-triangulated); with topo, their unit
@@ -104,19 +115,8 @@ int fuse_geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthrea
 	G->nt = t->nf, G->nv = t->nv;
 	G->xyz = t->xyz;
 	G->tv = t->fvert;
-	if (!topo)
+	if (!topo || !fuse_geo_normals(G, nthreads, err))
 		return 0;
-	size_t nt = G->nt;
-	if (nt > (size_t)UINT32_MAX / 3) {
-		fct_fail(err, "%zu triangles: too many", nt);
-		goto fail;
-	}
-	G->tn = fct_alloc_array(nt, 4 * sizeof *G->tn, err);
-	if (!G->tn)
-		goto fail;
-	G->nondegen = degenerate_bound(G);
-	fct_par_run(nthreads, nt, 0, normals_chunk, G);
-	return 0;
 fail:
 	fuse_geo_free(G);
 	return -1;
@@ -163,9 +163,13 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 	int nthreads = fct_par_threads(p->threads);
 	double vox = fct_voxgrid_voxel(g), band = p->band;
 	int proj = p->projective;
+	/* A depth image to be fused by its planes needs its triangles'
+	 * normals only where its grid is not found (the raster makes them
+	 * then, for the search). */
+	int by_planes = !proj && v->planes && v->cam.kind == FCT_CAMERA_PINHOLE;
 	struct geo G;
 	double t0 = fct_now();
-	if (fuse_geo_build(&G, v->mesh, !proj, nthreads, err))
+	if (fuse_geo_build(&G, v->mesh, !proj && !by_planes, nthreads, err))
 		return -1;
 	double t1 = fct_now();
 	st->triangles_s += t1 - t0;
@@ -195,7 +199,7 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 		st->candidates_s += t3 - t2;
 		struct fctx F = { &G, &R, v, p, &s, vox, band_kept(band, vox), NULL };
 		void (*blocks)(void *, size_t, size_t, int) = proj ? fuse_projective_blocks : fuse_true_blocks;
-		if (!proj && v->planes && R.grid.cell && v->cam.kind == FCT_CAMERA_PINHOLE) {
+		if (by_planes && R.grid.cell) {
 			if (fuse_planes_build(&T, &R, v, p, vox, err))
 				goto done;
 			F.T = &T, blocks = fuse_plane_blocks;
@@ -206,11 +210,9 @@ int fct_fuse_view(struct fct_voxgrid *g, const struct fct_fuse_view *v,
 			goto done;
 		st->distances_s += fct_now() - t3;
 	}
-	if (proj) {
-		st->faces += v->mesh->nf;
-	} else {
-		st->faces += G.nproper;
-	}
+	/* By planes every triangle of the grid counts, as projective
+	 * fusion counts them; the search leaves degenerate ones out. */
+	st->faces += proj ? v->mesh->nf : G.tn ? G.nproper : G.nt;
 	rc = 0;
 done:
 	if (rc)   /* no half-made blocks left behind */

@@ -6,6 +6,8 @@
 
 #include <stdlib.h>
 
+#include "geom/geom.h"
+
 static inline unsigned recent_slot(int32_t bx, int32_t by, int32_t bz)
 {
 	return ((uint32_t)bx + 3 * (uint32_t)by + 5 * (uint32_t)bz) & 15;
@@ -289,16 +291,27 @@ static int vertex_boxes(struct cand *c, const struct geo *G, struct sblock **vb)
 }
 
 /* The slabs of the vertices' blocks (vb: each vertex's), across the mean
- * normal of the triangles at their first vertex: a voxel within the band
- * of a point of the block is within the band of its slab too, so walls
+ * unit normal of the triangles at their first vertex (made here where G
+ * has none): a voxel within the band of a point of the block is within
+ * the band of its slab too, whatever the slab's direction, so walls
  * across the axes need not search the whole box around them. */
 static void vertex_slabs(struct cand *c, const struct geo *G, struct sblock **vb)
 {
 	for (size_t t = 0; t < G->nt; t++) {
-		const float *n = &G->tn[4 * t];
-		if (isnan(n[0]))
+		const uint32_t *tv = &G->tv[3 * t];
+		double n[3];
+		if (G->tn) {
+			const float *u = &G->tn[4 * t];
+			n[0] = u[0], n[1] = u[1], n[2] = u[2];
+		} else {
+			fct_triangle_cross(n, &G->xyz[3 * tv[0]], &G->xyz[3 * tv[1]], &G->xyz[3 * tv[2]]);
+			double len = sqrt(fct_v3_dot(n, n));
+			for (int k = 0; k < 3; k++)
+				n[k] /= len;
+		}
+		if (!(isfinite(n[0]) && isfinite(n[1]) && isfinite(n[2])))
 			continue;
-		struct sblock *b = vb[G->tv[3 * t]];
+		struct sblock *b = vb[tv[0]];
 		for (int k = 0; k < 3; k++)
 			b->sn[k] += n[k];
 	}

@@ -111,7 +111,8 @@ struct geo {
 	const uint32_t *tv;      /* 3 per triangle */
 	uint32_t *tvown;
 	float *tn;               /* unit normal n and n . a, 4 per triangle; NaN: degenerate
-	                          * (float: half the memory the search has to bring in) */
+	                          * (float: half the memory the search has to bring in);
+	                          * NULL: not made (a depth image fused by its planes) */
 	uint32_t *vfs, *vf;      /* faces of vertex v: vf[vfs[v] .. vfs[v + 1]), in face order */
 	const struct pixgrid *grid;   /* instead of vfs and vf when the mesh is a grid */
 	const struct fct_mesh *m;    /* the triangles as a mesh: the input or tris */
@@ -329,18 +330,21 @@ static inline double sigma_weight(double sigma, double vox)
 }
 
 /* fuse.c: the view's triangles (polygons fan-triangulated), with topo
- * their unit normals too; freed by fuse_geo_free.  0 or -1. */
+ * their unit normals too (fuse_geo_normals, also later); freed by
+ * fuse_geo_free.  0 or -1. */
 int fuse_geo_build(struct geo *G, const struct fct_mesh *m, int topo, int nthreads,
                    struct fct_err *err);
+int fuse_geo_normals(struct geo *G, int nthreads, struct fct_err *err);
 void fuse_geo_free(struct geo *G);
 
 /* fuseraster.c: the raster of G seen by v with S samples per sensor pixel
  * (fewer when more than max_samples would be needed); for true distance
- * the pixel grid of a range image's mesh instead when it is one; for a
- * view given as a depth image, the image itself.  0 or -1. */
+ * the pixel grid of a range image's mesh instead when it is one (else the
+ * raster, with G's normals made first when it has none); for a view
+ * given as a depth image, the image itself.  0 or -1. */
 int fuse_raster_build(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
                       double S, int proper, size_t max_samples, int nthreads, struct fct_err *err);
-int fuse_raster_true(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
+int fuse_raster_true(struct raster *R, const struct fct_fuse_view *v, struct geo *G,
                      size_t max_samples, int nthreads, struct fct_err *err);
 int fuse_raster_image(struct raster *R, const struct fct_fuse_view *v, struct fct_err *err);
 void fuse_raster_free(struct raster *R);

@@ -430,8 +430,9 @@ static int grid_cells(struct raster *R, struct fct_err *err)
 	size_t nt = G->nt, w = P->w, h = P->h;
 	/* The normals are read only when some triangle has none: a range
 	 * image's mesh mostly has them all, and the test would bring in 16
-	 * bytes per triangle to fail every time. */
-	int some_degenerate = G->nproper < nt;
+	 * bytes per triangle to fail every time.  Without normals (fused by
+	 * planes) every triangle takes its half. */
+	int some_degenerate = tn && G->nproper < nt;
 	for (size_t f = 0; f < nt; f++) {
 		if (some_degenerate && isnan(tn[4 * f]))
 			continue;
@@ -460,7 +461,7 @@ not_grid:
  * per v->step pixels, a vertex on each), else the raster at two samples
  * per pixel along each axis, so that every triangle of a range image's
  * grid owns one.  0 or -1. */
-int fuse_raster_true(struct raster *R, const struct fct_fuse_view *v, const struct geo *G,
+int fuse_raster_true(struct raster *R, const struct fct_fuse_view *v, struct geo *G,
                        size_t max_samples, int nthreads, struct fct_err *err)
 {
 	double S = v->step > 1 ? 1.0 / v->step : 1;
@@ -471,6 +472,10 @@ int fuse_raster_true(struct raster *R, const struct fct_fuse_view *v, const stru
 	int grid = R->S == S ? grid_cells(R, err) : 0;
 	if (grid)
 		return grid > 0 ? 0 : -1;
+	/* The raster keeps proper triangles only, and the search needs
+	 * their normals. */
+	if (!G->tn && fuse_geo_normals(G, nthreads, err))
+		return -1;
 	if (v->cam.kind == FCT_CAMERA_NONE)
 		return raster_fill(R, err);
 	fuse_raster_free(R);
