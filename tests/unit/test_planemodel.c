@@ -1,6 +1,6 @@
 /* test_planemodel - fct_planes_project at a crease seen at a grazing angle,
- * a crease move beyond its bound in sigma, and one that would hide its
- * sample (an occlusion);
+ * a crease move beyond its bound in sigma, one that would hide its sample
+ * (an occlusion), and a floor vertex alone whose ray meets a wall first;
  * fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
  * at shallow creases, of about its size (a facet) and much smaller (a floor
  * with tilted pieces beside it); fct_fill_plane_holes on a flat grid with
@@ -251,6 +251,40 @@ static size_t bounded_crease(double x, double y, double sigma, unsigned char *oc
 	return creased;
 }
 
+/* fct_planes_project on p = (0, 0.03, 5.02), a vertex of one face of the
+ * floor y = 0 (patch 0) and of a free-form face (-1) whose other corners
+ * (+-0.05, 0.06 side, 5) are corners of a face of the wall z = 5 (patch 1)
+ * with (0, 0.1 side, 5): the wall rises from the floor (side 1) or hangs
+ * below it, the front of a box whose top the floor then is (side -1).
+ * Seen from (0, 1.5, 0), every sigma sigma: *out gets where p goes, *off
+ * where along its ray alone it would have gone (NaN when it did not go
+ * onto the two planes' line); returns the count of vertices put on it. */
+static size_t hidden_floor(double sigma, double side, double out[3], double off[3])
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	fct_mesh_init(&m);
+	const double pos[6][3] = { { 0, 0.03, 5.02 }, { -0.1, 0, 4.9 }, { 0.1, 0, 4.9 },
+	                           { -0.05, 0.06 * side, 5 }, { 0.05, 0.06 * side, 5 }, { 0, 0.1 * side, 5 } };
+	const uint32_t faces[3][3] = { { 1, 2, 0 }, { 0, 4, 3 }, { 3, 4, 5 } };
+	for (int v = 0; v < 6; v++)
+		CHECK(fct_mesh_add_vertex(&m, pos[v][0], pos[v][1], pos[v][2], &err) >= 0);
+	for (int f = 0; f < 3; f++)
+		CHECK(fct_mesh_add_face(&m, faces[f], 3, &err) >= 0);
+	const int32_t patch[3] = { 0, -1, 1 };
+	const struct fct_plane planes[2] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 } };
+	const double vp[3] = { 0, 1.5, 0 }, sg[6] = { sigma, sigma, sigma, sigma, sigma, sigma };
+	double off_crease[18];
+	size_t moved, creased;
+	CHECK_INT(fct_planes_project(&m, patch, planes, vp, sg, 0, 4, off_crease, NULL, &moved, &creased, &err), 0);
+	memcpy(out, m.xyz, 3 * sizeof *out);
+	memcpy(off, off_crease, 3 * sizeof *off);
+	for (int v = 1; v < 6; v++)
+		CHECK(isnan(off_crease[3 * v]));
+	fct_mesh_free(&m);
+	return creased;
+}
+
 int main(void)
 {
 	size_t facets, joined;
@@ -296,6 +330,29 @@ int main(void)
 	CHECK_NEAR(at[0], -0.5, 1e-12);
 	CHECK_NEAR(at[1], 0, 1e-12);
 	CHECK_INT(occ[0], 0);
+	/* A floor vertex alone (no crease), its sample 20 mm behind the wall
+	 * and 30 mm above the floor: along its ray it would go onto the floor
+	 * at z = 5.02 * 1.5 / 1.47 = 5.1224, 0.107 m (3.6 times straight
+	 * across) and 0.12 m past the wall.  Its ray meets the wall 20.8 mm
+	 * from it, at y = 0.0359 (the wall's side of the line), 0.128 m before
+	 * the floor: with sigma 0.02 (bound 0.08, margin 0.02) it goes onto the
+	 * line y = 0, z = 5 where it passes nearest its ray, (0, 0, 5). */
+	CHECK_INT(hidden_floor(0.02, 1, at, off), 1);
+	CHECK_NEAR(at[0], 0, 1e-12);
+	CHECK_NEAR(at[1], 0, 1e-12);
+	CHECK_NEAR(at[2], 5, 1e-12);
+	CHECK_NEAR(off[1], 0, 1e-12);
+	CHECK_NEAR(off[2], 5.02 * 1.5 / 1.47, 1e-12);
+	/* The wall met 20.8 mm away is beyond a bound of 4 sigma = 16 mm with
+	 * sigma 0.004; the front of a box below its top is met above the top,
+	 * where it does not reach: along its ray onto the floor both times. */
+	CHECK_INT(hidden_floor(0.004, 1, at, off), 0);
+	CHECK_NEAR(at[1], 0, 1e-12);
+	CHECK_NEAR(at[2], 5.02 * 1.5 / 1.47, 1e-12);
+	CHECK_INT(hidden_floor(0.02, -1, at, off), 0);
+	CHECK_NEAR(at[1], 0, 1e-12);
+	CHECK_NEAR(at[2], 5.02 * 1.5 / 1.47, 1e-12);
+	CHECK(isnan(off[0]));
 	/* With a bound of 4 sigma: a speck mostly 2 sigma off the plane around
 	 * it joins it; one mostly 5 sigma off (a strip of floor seen between a
 	 * pillar and the wall) stays free-form, and without sigma it would

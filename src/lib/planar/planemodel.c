@@ -834,6 +834,105 @@ static int crease_hides(const struct fct_mesh *m, const int32_t *patch, const ui
 	return 0;
 }
 
+/* Is vertex v inside its faces fs[0..n), all of one patch, and not on
+ * the border of the mesh (each edge from v shared by two of them)? */
+static int inside_patch(const struct fct_mesh *m, const int32_t *patch, const uint32_t *fs, size_t n,
+                        uint32_t v)
+{
+	uint32_t e[64];
+	size_t k = 0;
+	if (!n || 2 * n > sizeof e / sizeof *e)
+		return 0;
+	for (size_t i = 0; i < n; i++) {
+		uint32_t s = m->fstart[fs[i]], c = m->fstart[fs[i] + 1] - s, j = 0;
+		if (patch[fs[i]] != patch[fs[0]])
+			return 0;
+		while (j < c && m->fvert[s + j] != v)
+			j++;
+		if (j == c)
+			return 0;
+		e[k++] = m->fvert[s + (j + 1) % c];
+		e[k++] = m->fvert[s + (j + c - 1) % c];
+	}
+	for (size_t i = 0; i < k; i++) {
+		size_t same = 0;
+		for (size_t j = 0; j < k; j++)
+			same += e[j] == e[i];
+		if (same != 2)
+			return 0;
+	}
+	return 1;
+}
+
+/* The mean of the corners within r of p of the faces of patch b reached
+ * from vertex v through corners within r of p, in mean: where b's data lie
+ * near p.  0 when there are none.  stamp (m->nv entries, none yet equal
+ * to *mark + 1) and queue (m->nv) are scratch; *mark counts the calls. */
+static int patch_near(const struct fct_mesh *m, const int32_t *patch, const uint32_t *vstart,
+                      const uint32_t *vf, uint32_t v, int32_t b, const double p[3], double r,
+                      uint32_t *stamp, uint32_t *queue, uint32_t *mark, double mean[3])
+{
+	uint32_t s = ++*mark;
+	size_t head = 0, tail = 0, k = 0;
+	double sum[3] = {0, 0, 0};
+	stamp[v] = s, queue[tail++] = v;
+	while (head < tail) {
+		uint32_t u = queue[head++];
+		for (uint32_t i = vstart[u]; i < vstart[u + 1]; i++) {
+			uint32_t f = vf[i];
+			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+				uint32_t w = m->fvert[c];
+				const double *q = m->xyz + 3 * (size_t)w;
+				if (!(fct_v3_dist2(q, p) <= r * r))
+					continue;
+				if (patch[f] == b)
+					fct_v3_add(sum, sum, q), k++;
+				if (stamp[w] != s)
+					stamp[w] = s, queue[tail++] = w;
+			}
+		}
+	}
+	if (!k)
+		return 0;
+	for (int i = 0; i < 3; i++)
+		mean[i] = sum[i] / (double)k;
+	return 1;
+}
+
+/* The patch b (of np) whose plane the ray from vp through vertex v's p
+ * meets first, more than margin nearer vp than far (where it meets patch
+ * a's plane; INFINITY: nowhere), within bound of p, and on the side of a
+ * and b's line where the corners of b's faces within bound of p lie
+ * (patch_near): the ray meets b's surface before a's plane, which b hides
+ * there.  box: each patch's bounding box (least x y z, then greatest).
+ * -1 when none. */
+static int32_t ray_blocked(const struct fct_mesh *m, const int32_t *patch, const uint32_t *vstart,
+                           const uint32_t *vf, uint32_t v, const struct fct_plane *P, size_t np,
+                           int32_t a, const double vp[3], const double p[3], double far,
+                           double margin, double bound, const double *box, uint32_t *stamp,
+                           uint32_t *queue, uint32_t *mark)
+{
+	int32_t hit = -1;
+	double near = INFINITY;
+	for (size_t q = 0; q < np; q++) {
+		int32_t ab[2] = {a, (int32_t)q};
+		double xb[3], o[3], u[3], w[3], side[3], d;
+		const double *bx = box + 6 * q;
+		if (ab[1] == a || !(p[0] >= bx[0] - bound && p[0] <= bx[3] + bound && p[1] >= bx[1] - bound &&
+		                    p[1] <= bx[4] + bound && p[2] >= bx[2] - bound && p[2] <= bx[5] + bound) ||
+		    !along_ray(P, &ab[1], 1, vp, p, xb) || !(fct_v3_dist2(xb, p) <= bound * bound) ||
+		    !((d = sqrt(fct_v3_dist2(xb, vp))) + margin < far && d < near) || !onto_planes(P, ab, 2, p, o) ||
+		    !patch_near(m, patch, vstart, vf, v, ab[1], p, bound, stamp, queue, mark, side))
+			continue;
+		/* across the line, in b's plane */
+		fct_v3_cross(u, P[a].n, P[q].n);
+		fct_v3_cross(w, P[q].n, u);
+		if ((fct_v3_dot(xb, w) - fct_v3_dot(o, w)) * (fct_v3_dot(side, w) - fct_v3_dot(o, w)) > 0)
+			near = d, hit = ab[1];
+	}
+	return hit;
+}
+
 int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
                        const double *viewpoint, const double *sigma, double pixel_angle,
                        double max_move, double *off_crease, unsigned char *occluded,
@@ -843,6 +942,28 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 	uint32_t *vstart, *vf;
 	if (fct_vertex_faces(m, &vstart, &vf, err))
 		return -1;
+	/* the patches' bounding boxes, and scratch for ray_blocked */
+	size_t nplanes = 0;
+	for (size_t f = 0; f < m->nf; f++)
+		if (patch[f] >= 0 && (size_t)patch[f] + 1 > nplanes)
+			nplanes = (size_t)patch[f] + 1;
+	uint32_t mark = 0, *stamp = calloc(m->nv ? m->nv : 1, sizeof *stamp),
+	         *queue = malloc((m->nv ? m->nv : 1) * sizeof *queue);
+	double *box = malloc((nplanes ? nplanes : 1) * 6 * sizeof *box);
+	if (!stamp || !queue || !box) {
+		free(vstart), free(vf), free(stamp), free(queue), free(box);
+		return fct_fail(err, "out of memory");
+	}
+	for (size_t l = 0; l < nplanes; l++)
+		for (int i = 0; i < 3; i++)
+			box[6 * l + i] = INFINITY, box[6 * l + 3 + i] = -INFINITY;
+	for (size_t f = 0; f < m->nf; f++)
+		for (uint32_t c = m->fstart[f]; patch[f] >= 0 && c < m->fstart[f + 1]; c++)
+			for (int i = 0; i < 3; i++) {
+				double *bx = box + 6 * (size_t)patch[f], q = m->xyz[3 * (size_t)m->fvert[c] + i];
+				bx[i] = q < bx[i] ? q : bx[i];
+				bx[3 + i] = q > bx[3 + i] ? q : bx[3 + i];
+			}
 	for (size_t v = 0; v < m->nv; v++) {
 		int32_t ls[8];
 		int n = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
@@ -866,7 +987,8 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 		 * room). */
 		if (off_crease)
 			off_crease[3 * v] = NAN;
-		double y[3], bound = viewpoint ? max_move * uncertainty(sigma, pixel_angle, viewpoint, v, p) : 0;
+		double y[3], unc = viewpoint ? uncertainty(sigma, pixel_angle, viewpoint, v, p) : 0,
+		       bound = max_move * unc;
 		if (occluded)
 			occluded[v] = 0;
 		if (n == 2 && viewpoint && onto_planes(planes, ls, 2, p, x) &&
@@ -880,12 +1002,37 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 			memcpy(best, x, sizeof x);
 			++*creased;
 		}
+		/* A vertex on the border of its one patch, its ray grazing the
+		 * plane (along it more than twice as far as straight across),
+		 * whose ray meets another patch's surface more than its
+		 * uncertainty before its plane and within bound of its sample
+		 * would lie on its plane hidden behind that surface: it goes
+		 * onto the two planes' line where that passes nearest its ray,
+		 * when within bound.  A floor vertex next to a far wall, its
+		 * sample 4.7 cm behind the wall (noise), slid along its ray onto
+		 * the floor 0.16 m past the wall in mkscene's Kinect room. */
+		int32_t ab[2] = {ls[0], -1};
+		double st[3];
+		int hit = n == 1 && bound > 0 && along_ray(planes, ls, 1, viewpoint, p, x);
+		if (n == 1 && bound > 0 && onto_planes(planes, ls, 1, p, st) &&
+		    (!hit || fct_v3_dist2(x, p) > 4 * fct_v3_dist2(st, p)) &&
+		    !inside_patch(m, patch, vf + vstart[v], vstart[v + 1] - vstart[v], (uint32_t)v) &&
+		    (ab[1] = ray_blocked(m, patch, vstart, vf, (uint32_t)v, planes, nplanes, ls[0], viewpoint, p,
+		                         hit ? sqrt(fct_v3_dist2(x, viewpoint)) : INFINITY, unc, bound, box,
+		                         stamp, queue, &mark)) >= 0 &&
+		    onto_planes(planes, ab, 2, p, y) && along_ray(planes, ab, 2, viewpoint, p, y) &&
+		    fct_v3_dist2(y, p) <= bound * bound) {
+			if (off_crease)
+				memcpy(off_crease + 3 * v, best, sizeof best);
+			memcpy(best, y, sizeof y);
+			++*creased;
+		}
 		if (n && (best[0] != p[0] || best[1] != p[1] || best[2] != p[2])) {
 			memcpy(p, best, sizeof best);
 			++*moved;
 		}
 	}
-	free(vstart), free(vf);
+	free(vstart), free(vf), free(stamp), free(queue), free(box);
 	return 0;
 }
 

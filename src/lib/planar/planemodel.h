@@ -109,8 +109,18 @@ int fct_fill_free_holes(struct fct_mesh *m, int32_t **patch, const struct fct_pl
  * one of them more than that bound before it, on that patch's side of the
  * line): the patches do not meet there, one occludes the other;
  * occluded[v] is 1 for such a vertex (fct_planar_model splits it), 0 for
- * the others.  off_crease (NULL, or 3 * m->nv) gets for each
- * vertex so put on a line where the nearer plane alone would have put it,
+ * the others.  So does a vertex of the floor alone slide past the wall
+ * (the wall's faces beside it free-form, or none): a vertex of one patch,
+ * on its border (not inside a closed fan of that patch's faces), whose ray
+ * meets its plane at a grazing angle (more than twice as far as straight
+ * across) and meets the plane of another patch more than its uncertainty
+ * before that, within max_move times its uncertainty of the vertex and on
+ * the side of the two planes' line where the corners of that patch's
+ * faces within that distance lie (reached through the mesh), would lie
+ * hidden behind that patch: it goes onto the two planes' line where that
+ * passes nearest its ray, when that is within max_move times its
+ * uncertainty.  off_crease (NULL, or 3 * m->nv) gets for each
+ * vertex so put on a line where the nearer (or only) plane alone would have put it,
  * NaN for the others.  *moved gets the vertices moved, *creased those put
  * on a line.  0, or -1 out of memory. */
 int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
