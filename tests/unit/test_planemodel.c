@@ -202,6 +202,29 @@ static void two_faces(struct fct_mesh *m, const double pos[5][3], const uint32_t
 	CHECK(fct_mesh_add_face(m, b, 3, &err) >= 0);
 }
 
+/* fct_planes_project on m (freed after) with the floor y = 0 as plane 0
+ * and the wall z = 5 as plane 1, seen from (0, 1.5, 0), every sigma sg[v]
+ * (NULL: none): *out gets where vertex 0 goes, *off where the nearer plane
+ * alone would have put it (NaN when it did not go onto a line), and no
+ * other vertex goes onto one; returns the count of vertices put on one. */
+static size_t floor_wall_project(struct fct_mesh *m, const int32_t *patch, const double *sg, double out[3],
+                                 double off[3])
+{
+	struct fct_err err;
+	const struct fct_plane planes[2] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 } };
+	const double vp[3] = { 0, 1.5, 0 };
+	double *off_crease = malloc(3 * m->nv * sizeof *off_crease);
+	size_t moved, creased;
+	CHECK_INT(fct_planes_project(m, patch, planes, vp, sg, 0, 4, off_crease, NULL, &moved, &creased, &err), 0);
+	memcpy(out, m->xyz, 3 * sizeof *out);
+	memcpy(off, off_crease, 3 * sizeof *off);
+	for (size_t v = 1; v < m->nv; v++)
+		CHECK(isnan(off_crease[3 * v]));
+	free(off_crease);
+	fct_mesh_free(m);
+	return creased;
+}
+
 /* fct_planes_project on a vertex p = (0, y, z) of two faces, one of the
  * floor y = 0 (patch 0) and one of a wall z = 5 (patch 1), seen from
  * (0, 1.5, 0): *out gets where p goes, *off where the nearer plane alone
@@ -210,22 +233,11 @@ static void two_faces(struct fct_mesh *m, const double pos[5][3], const uint32_t
 static size_t crease_move(double y, double z, double out[3], double off[3])
 {
 	struct fct_mesh m;
-	struct fct_err err;
 	const double pos[5][3] = { { 0, y, z }, { -0.1, 0, 4.9 }, { 0.1, 0, 4.9 }, { -0.1, 0.1, 5 }, { 0.1, 0.1, 5 } };
 	const uint32_t floor_face[3] = { 1, 2, 0 }, wall_face[3] = { 0, 4, 3 };
 	two_faces(&m, pos, floor_face, wall_face);
 	const int32_t patch[2] = { 0, 1 };
-	const struct fct_plane planes[2] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 } };
-	const double vp[3] = { 0, 1.5, 0 };
-	double off_crease[15];
-	size_t moved, creased;
-	CHECK_INT(fct_planes_project(&m, patch, planes, vp, NULL, 0, 4, off_crease, NULL, &moved, &creased, &err), 0);
-	memcpy(out, m.xyz, 3 * sizeof *out);
-	memcpy(off, off_crease, 3 * sizeof *off);
-	for (int v = 1; v < 5; v++)
-		CHECK(isnan(off_crease[3 * v]));
-	fct_mesh_free(&m);
-	return creased;
+	return floor_wall_project(&m, patch, NULL, out, off);
 }
 
 /* fct_planes_project on a vertex p = (x, y, 0) of two faces, one of the
@@ -272,17 +284,8 @@ static size_t hidden_floor(double sigma, double side, double out[3], double off[
 	for (int f = 0; f < 3; f++)
 		CHECK(fct_mesh_add_face(&m, faces[f], 3, &err) >= 0);
 	const int32_t patch[3] = { 0, -1, 1 };
-	const struct fct_plane planes[2] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 } };
-	const double vp[3] = { 0, 1.5, 0 }, sg[6] = { sigma, sigma, sigma, sigma, sigma, sigma };
-	double off_crease[18];
-	size_t moved, creased;
-	CHECK_INT(fct_planes_project(&m, patch, planes, vp, sg, 0, 4, off_crease, NULL, &moved, &creased, &err), 0);
-	memcpy(out, m.xyz, 3 * sizeof *out);
-	memcpy(off, off_crease, 3 * sizeof *off);
-	for (int v = 1; v < 6; v++)
-		CHECK(isnan(off_crease[3 * v]));
-	fct_mesh_free(&m);
-	return creased;
+	const double sg[6] = { sigma, sigma, sigma, sigma, sigma, sigma };
+	return floor_wall_project(&m, patch, sg, out, off);
 }
 
 int main(void)

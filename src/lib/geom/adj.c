@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom/geom.h"
+
 void fct_adj_free(struct fct_adj *a)
 {
 	if (!a)
@@ -125,6 +127,31 @@ out:
 
 /* The faces of each vertex, each face once: a face's stamp in last[v]
  * tells that it was already counted for v. */
+size_t fct_vertices_within(const struct fct_mesh *m, const uint32_t *vert_fstart, const uint32_t *vert_f,
+                           size_t s, double r, uint32_t *stamp, uint32_t mark, uint32_t *list)
+{
+	const double *ps = m->xyz + 3 * s;
+	double r2 = r * r;
+	size_t head = 0, tail = 0;
+	list[tail++] = (uint32_t)s;
+	stamp[s] = mark;
+	while (head < tail) {
+		uint32_t u = list[head++];
+		for (uint32_t k = vert_fstart[u]; k < vert_fstart[u + 1]; k++) {
+			uint32_t f = vert_f[k];
+			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
+				uint32_t v = m->fvert[c];
+				if (stamp[v] == mark)
+					continue;
+				stamp[v] = mark;
+				if (fct_v3_dist2(ps, m->xyz + 3 * (size_t)v) <= r2)
+					list[tail++] = v;
+			}
+		}
+	}
+	return tail;
+}
+
 int fct_vertex_faces(const struct fct_mesh *m, uint32_t **vert_fstart, uint32_t **vert_f,
                      struct fct_err *err)
 {

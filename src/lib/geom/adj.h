@@ -68,6 +68,14 @@ int fct_adj_build(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *e
 int fct_vertex_faces(const struct fct_mesh *m, uint32_t **vert_fstart, uint32_t **vert_f,
                      struct fct_err *err);
 
+/* The vertices within r of m's vertex s reached through faces (from s,
+ * through vertices within r), s first, into list (room for m->nv); every
+ * vertex looked at gets mark in stamp (m->nv entries), which none may hold
+ * before.  vert_fstart, vert_f: as fct_vertex_faces gives them.  Returns
+ * how many. */
+size_t fct_vertices_within(const struct fct_mesh *m, const uint32_t *vert_fstart, const uint32_t *vert_f,
+                           size_t s, double r, uint32_t *stamp, uint32_t mark, uint32_t *list);
+
 /* Free what a owns and make it empty; a may be NULL. */
 void fct_adj_free(struct fct_adj *a);
 

@@ -364,33 +364,6 @@ static double median(double *v, size_t n)
 	return v[(n - 1) / 2];
 }
 
-/* One seed's neighbourhood: the vertices within r of m's vertex s, reached
- * through faces, into list (stamp marks them with s); returns how many. */
-static size_t neighbourhood(const struct fct_mesh *m, const uint32_t *vfs, const uint32_t *vf, size_t s,
-                            double r, uint32_t *stamp, uint32_t *list)
-{
-	const double *ps = m->xyz + 3 * s;
-	double r2 = r * r;
-	size_t head = 0, tail = 0;
-	list[tail++] = (uint32_t)s;
-	stamp[s] = (uint32_t)s;
-	while (head < tail) {
-		uint32_t u = list[head++];
-		for (uint32_t k = vfs[u]; k < vfs[u + 1]; k++) {
-			uint32_t f = vf[k];
-			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
-				uint32_t v = m->fvert[c];
-				if (stamp[v] == (uint32_t)s)
-					continue;
-				stamp[v] = (uint32_t)s;
-				if (fct_v3_dist2(ps, m->xyz + 3 * (size_t)v) <= r2)
-					list[tail++] = v;
-			}
-		}
-	}
-	return tail;
-}
-
 /* The mean length of the edges from vertex s to the other corners of its
  * faces; 0 when it has none. */
 static double mean_edge(const struct fct_mesh *m, const uint32_t *vfs, const uint32_t *vf, size_t s)
@@ -464,7 +437,7 @@ int fct_noise_fit(struct fct_noise_fit *fit, const struct fct_mesh *m, struct fc
 	size_t n = 0;
 	for (size_t s = 0; s < nv; s += stride) {
 		double r = FCT_NOISE_RADIUS * mean_edge(m, vfs, vf, s);
-		size_t k = r > 0 ? neighbourhood(m, vfs, vf, s, r, stamp, list) : 0;
+		size_t k = r > 0 ? fct_vertices_within(m, vfs, vf, s, r, stamp, (uint32_t)s, list) : 0;
 		if (k < 12)
 			continue;
 		double normal[3], c[3], dir[3];

@@ -864,34 +864,27 @@ static int inside_patch(const struct fct_mesh *m, const int32_t *patch, const ui
 	return 1;
 }
 
-/* The mean of the corners within r of p of the faces of patch b reached
- * from vertex v through corners within r of p, in mean: where b's data lie
- * near p.  0 when there are none.  stamp (m->nv entries, none yet equal
- * to *mark + 1) and queue (m->nv) are scratch; *mark counts the calls. */
+/* The mean of the corners within r of vertex v of the faces of patch b
+ * around the vertices within r of it (fct_vertices_within), in mean: where
+ * b's data lie near v.  0 when there are none.  stamp (m->nv entries,
+ * none yet above *mark) and list (m->nv) are scratch; *mark counts the
+ * calls. */
 static int patch_near(const struct fct_mesh *m, const int32_t *patch, const uint32_t *vstart,
-                      const uint32_t *vf, uint32_t v, int32_t b, const double p[3], double r,
-                      uint32_t *stamp, uint32_t *queue, uint32_t *mark, double mean[3])
+                      const uint32_t *vf, uint32_t v, int32_t b, double r, uint32_t *stamp,
+                      uint32_t *list, uint32_t *mark, double mean[3])
 {
-	uint32_t s = ++*mark;
-	size_t head = 0, tail = 0, k = 0;
+	const double *p = m->xyz + 3 * (size_t)v;
+	size_t n = fct_vertices_within(m, vstart, vf, v, r, stamp, ++*mark, list), k = 0;
 	double sum[3] = {0, 0, 0};
-	stamp[v] = s, queue[tail++] = v;
-	while (head < tail) {
-		uint32_t u = queue[head++];
-		for (uint32_t i = vstart[u]; i < vstart[u + 1]; i++) {
-			uint32_t f = vf[i];
-			for (uint32_t c = m->fstart[f]; c < m->fstart[f + 1]; c++) {
-				uint32_t w = m->fvert[c];
-				const double *q = m->xyz + 3 * (size_t)w;
-				if (!(fct_v3_dist2(q, p) <= r * r))
-					continue;
-				if (patch[f] == b)
+	for (size_t i = 0; i < n; i++)
+		for (uint32_t j = vstart[list[i]]; j < vstart[list[i] + 1]; j++) {
+			uint32_t f = vf[j];
+			for (uint32_t c = m->fstart[f]; patch[f] == b && c < m->fstart[f + 1]; c++) {
+				const double *q = m->xyz + 3 * (size_t)m->fvert[c];
+				if (fct_v3_dist2(q, p) <= r * r)
 					fct_v3_add(sum, sum, q), k++;
-				if (stamp[w] != s)
-					stamp[w] = s, queue[tail++] = w;
 			}
 		}
-	}
 	if (!k)
 		return 0;
 	for (int i = 0; i < 3; i++)
@@ -922,7 +915,7 @@ static int32_t ray_blocked(const struct fct_mesh *m, const int32_t *patch, const
 		                    p[1] <= bx[4] + bound && p[2] >= bx[2] - bound && p[2] <= bx[5] + bound) ||
 		    !along_ray(P, &ab[1], 1, vp, p, xb) || !(fct_v3_dist2(xb, p) <= bound * bound) ||
 		    !((d = sqrt(fct_v3_dist2(xb, vp))) + margin < far && d < near) || !onto_planes(P, ab, 2, p, o) ||
-		    !patch_near(m, patch, vstart, vf, v, ab[1], p, bound, stamp, queue, mark, side))
+		    !patch_near(m, patch, vstart, vf, v, ab[1], bound, stamp, queue, mark, side))
 			continue;
 		/* across the line, in b's plane */
 		fct_v3_cross(u, P[a].n, P[q].n);
