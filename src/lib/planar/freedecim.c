@@ -23,7 +23,7 @@ struct fct_free_tri {
 
 void fct_free_cache_free(struct fct_free_cache *c)
 {
-	free(c->dead), free(c->xyz), free(c->attr), free(c->corner), free(c->piece);
+	free(c->dead), free(c->xyz), free(c->attr), free(c->corner), free(c->in), free(c->piece);
 	free(c->pieces), free(c->tri);
 	memset(c, 0, sizeof *c);
 }
@@ -50,12 +50,15 @@ static int cache_init(struct fct_free_cache *c, const struct fct_mesh *m, struct
 	    !(c->xyz = fct_alloc_array(3 * nv1, sizeof *c->xyz, err)) ||
 	    !(c->attr = fct_alloc_array(c->nattr * nv1 + 1, sizeof *c->attr, err)) ||
 	    !(c->corner = fct_alloc_array(nv1, 1, err)) ||
+	    !(c->in = fct_alloc_array(3 * nv1, sizeof *c->in, err)) ||
 	    !(c->piece = fct_alloc_array(m->nf ? m->nf : 1, sizeof *c->piece, err)))
 		return -1;
 	memset(c->dead, 0, nv1);
 	memset(c->corner, 0, nv1);
-	if (m->nv)
+	if (m->nv) {
 		memcpy(c->xyz, m->xyz, 3 * m->nv * sizeof *m->xyz);
+		memcpy(c->in, m->xyz, 3 * m->nv * sizeof *m->xyz);
+	}
 	size_t col = 0;
 	for (size_t j = 0; j < m->vertex.nprops; j++) {
 		const struct fct_prop *p = &m->vertex.props[j];
@@ -135,9 +138,10 @@ static size_t find_pieces(const struct fct_mesh *m, const unsigned char *is_free
 }
 
 /* Is piece k (its faces fl[0 .. nf), vertices vl[0 .. nv)) the last
- * round's, decimated with these corners? */
-static int unchanged(const struct fct_free_cache *c, const uint32_t *fl, size_t nf,
-                     const uint32_t *vl, size_t nv, const unsigned char *corner)
+ * round's, decimated with these corners and its vertices where m has them
+ * (a vertex a round put back off a crease line moves)? */
+static int unchanged(const struct fct_free_cache *c, const struct fct_mesh *m, const uint32_t *fl,
+                     size_t nf, const uint32_t *vl, size_t nv, const unsigned char *corner)
 {
 	int32_t old = c->piece[fl[0]];
 	if (old < 0 || c->pieces[old].nfaces != nf)
@@ -146,7 +150,8 @@ static int unchanged(const struct fct_free_cache *c, const uint32_t *fl, size_t 
 		if (c->piece[fl[i]] != old)
 			return 0;
 	for (size_t i = 0; i < nv; i++)
-		if ((corner ? corner[vl[i]] : 0) != c->corner[vl[i]])
+		if ((corner ? corner[vl[i]] : 0) != c->corner[vl[i]] ||
+		    memcmp(c->in + 3 * (size_t)vl[i], m->xyz + 3 * (size_t)vl[i], 3 * sizeof *m->xyz))
 			return 0;
 	return 1;
 }
@@ -233,6 +238,7 @@ static int run_piece(struct fct_free_cache *c, const struct fct_mesh *m, const u
 	for (size_t i = 0; i < nv; i++) {
 		c->dead[vl[i]] = 1;
 		c->corner[vl[i]] = qp->corner ? qp->corner[vl[i]] : 0;
+		memcpy(c->in + 3 * (size_t)vl[i], m->xyz + 3 * (size_t)vl[i], 3 * sizeof *m->xyz);
 	}
 	idx = fct_elem_find(&s.vertex, "fct_vertex");
 	fidx = fct_elem_find(&s.face, "fct_face");
@@ -348,7 +354,7 @@ int fct_free_decimate(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, const s
 	for (size_t k = 0; k < np; k++) {
 		uint32_t *fl = flist + fstart[k], *vl = vlist + vstart[k];
 		size_t nf = fstart[k + 1] - fstart[k], nv = vstart[k + 1] - vstart[k];
-		same[k] = unchanged(c, fl, nf, vl, nv, qp->corner);
+		same[k] = unchanged(c, m, fl, nf, vl, nv, qp->corner);
 		pc[k].nfaces = nf;
 		if (same[k])
 			pc[k].st = c->pieces[c->piece[fl[0]]].st;

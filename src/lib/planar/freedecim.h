@@ -32,6 +32,7 @@ struct fct_free_cache {
 	double *xyz;              /* per vertex: position after decimation */
 	double *attr;             /* per vertex: nattr interpolated values */
 	unsigned char *corner;    /* per vertex: the corner flag its piece was decimated with */
+	double *in;               /* per vertex: where it was when its piece was decimated */
 	int32_t *piece;           /* per face: its piece, or -1 (not free-form) */
 	struct fct_free_piece *pieces;
 	size_t npieces;
@@ -46,7 +47,8 @@ void fct_free_cache_free(struct fct_free_cache *c);
  * be: into F, whose vertices are the survivors (vmap[i] is m's number of
  * F's vertex i, nmap of them) with their positions and m's float and double
  * scalar properties, and whose faces name m's vertices; qs gets the
- * figures.  Pieces unchanged since the last call with c are taken from it. */
+ * figures.  Pieces unchanged since the last call with c (the same faces,
+ * corners and vertex positions) are taken from it. */
 int fct_free_decimate(struct fct_mesh *F, uint32_t **vmap, size_t *nmap, const struct fct_mesh *m,
                       const unsigned char *is_free, const struct fct_qem_params *qp,
                       struct fct_free_cache *c, struct fct_qem_stats *qs, struct fct_err *err);
