@@ -1903,7 +1903,8 @@ static int crease_of(const int32_t *patch, const uint32_t *vstart, const uint32_
  * a triangle has no area and no normal, and flipping cannot always remove
  * it (tripatch's flip_slivers: not where its longest edge is the outline).
  * Every creased vertex of the creases through the corners of each triangle
- * of w thinner than NO_AREA goes back where its nearer plane alone put it
+ * of w thinner than NO_AREA (a corner of one patch put on a line alone)
+ * goes back where its nearer plane alone put it
  * (from round UNCREASE_PATCH on, every creased vertex of the triangle's
  * patch's faces in m; from UNCREASE_ALL on, every creased vertex), for
  * build_model to try again: the fold is the whole crease's, and taking
@@ -1935,8 +1936,12 @@ static size_t uncrease_slivers(struct fct_mesh *m, double *off_crease, const int
 		for (uint32_t q = s; q < s + 3; q++) {
 			uint32_t v = w->fvert[q];
 			int32_t pair[2];
-			if (v >= m->nv || isnan(off_crease[3 * (size_t)v]) || !crease_of(patch, vstart, vf, v, pair))
+			if (v >= m->nv || isnan(off_crease[3 * (size_t)v]))
 				continue;
+			if (!crease_of(patch, vstart, vf, v, pair)) {   /* a vertex of one patch */
+				back += off_crease_line(m, off_crease, v);
+				continue;
+			}
 			size_t k = 0;
 			while (k < nbad && !(bad[k][0] == pair[0] && bad[k][1] == pair[1]))
 				k++;
