@@ -180,6 +180,10 @@ static void test_rounds(void)
 	free_cells(is_free, 16, 20, 5, 10);
 	compare("round 4", &m, is_free, &qp, &c);
 	CHECK_INT(c.npieces, 4);
+	/* A vertex of a piece moves, as one put back off a crease line does:
+	 * that piece is decimated again. */
+	m.xyz[3 * (6 * (N + 1) + 6) + 2] += 0.01;
+	compare("round 5", &m, is_free, &qp, &c);
 	fct_free_cache_free(&c);
 	/* Without sigma, corners or a viewpoint, and with nothing free. */
 	qp.sigma = NULL, qp.corner = NULL, qp.use_viewpoint = 0;
