@@ -296,9 +296,12 @@ struct plane {
 struct planes {
 	struct plane *pl;        /* sample (x, y) at x + y w */
 	size_t w, h;
-	double reach;            /* a foot's depth may differ from its sample's by this
+	/* Floats, as the voxels' arithmetic (fuseplane.c). */
+	float reach;             /* a foot's depth may differ from its sample's by this
 	                          * times that depth (and by a voxel) */
-	double ax, bx, ay, by;   /* sample x = ax c0 / c2 + bx of camera point c, likewise y */
+	float ax, bx, ay, by;    /* x = ax c0 / c2 + bx of camera point c, likewise y: its
+	                          * sample's coordinates from the corner of sample 0
+	                          * (from its centre minus a half) */
 };
 
 /* Fusion of one view, block by block on the threads. */

@@ -926,28 +926,18 @@ static int32_t ray_blocked(const struct fct_mesh *m, const int32_t *patch, const
 	return hit;
 }
 
-int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                       const double *viewpoint, const double *sigma, double pixel_angle,
-                       double max_move, double *off_crease, unsigned char *occluded,
-                       size_t *moved, size_t *creased, struct fct_err *err)
+/* The bounding box of each patch's corners (least x y z, then greatest;
+ * *np patches, the largest label plus one), or NULL out of memory. */
+static double *patch_boxes(const struct fct_mesh *m, const int32_t *patch, size_t *np)
 {
-	*moved = 0, *creased = 0;
-	uint32_t *vstart, *vf;
-	if (fct_vertex_faces(m, &vstart, &vf, err))
-		return -1;
-	/* the patches' bounding boxes, and scratch for ray_blocked */
-	size_t nplanes = 0;
+	size_t n = 0;
 	for (size_t f = 0; f < m->nf; f++)
-		if (patch[f] >= 0 && (size_t)patch[f] + 1 > nplanes)
-			nplanes = (size_t)patch[f] + 1;
-	uint32_t mark = 0, *stamp = calloc(m->nv ? m->nv : 1, sizeof *stamp),
-	         *queue = malloc((m->nv ? m->nv : 1) * sizeof *queue);
-	double *box = malloc((nplanes ? nplanes : 1) * 6 * sizeof *box);
-	if (!stamp || !queue || !box) {
-		free(vstart), free(vf), free(stamp), free(queue), free(box);
-		return fct_fail(err, "out of memory");
-	}
-	for (size_t l = 0; l < nplanes; l++)
+		if (patch[f] >= 0 && (size_t)patch[f] + 1 > n)
+			n = (size_t)patch[f] + 1;
+	double *box = malloc((n ? n : 1) * 6 * sizeof *box);
+	if (!box)
+		return NULL;
+	for (size_t l = 0; l < n; l++)
 		for (int i = 0; i < 3; i++)
 			box[6 * l + i] = INFINITY, box[6 * l + 3 + i] = -INFINITY;
 	for (size_t f = 0; f < m->nf; f++)
@@ -957,6 +947,33 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 				bx[i] = q < bx[i] ? q : bx[i];
 				bx[3 + i] = q > bx[3 + i] ? q : bx[3 + i];
 			}
+	*np = n;
+	return box;
+}
+
+int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+                       const double *viewpoint, const double *sigma, double pixel_angle,
+                       double max_move, double *off_crease, unsigned char *occluded,
+                       size_t *moved, size_t *creased, struct fct_err *err)
+{
+	*moved = 0, *creased = 0;
+	uint32_t *vstart, *vf;
+	if (fct_vertex_faces(m, &vstart, &vf, err))
+		return -1;
+	/* The grazing-ray rule's patch boxes and scratch (ray_blocked): only
+	 * with a viewpoint, the rule's ray. */
+	size_t nplanes = 0;
+	uint32_t mark = 0, *stamp = NULL, *queue = NULL;
+	double *box = NULL;
+	if (viewpoint) {
+		stamp = calloc(m->nv ? m->nv : 1, sizeof *stamp);
+		queue = malloc((m->nv ? m->nv : 1) * sizeof *queue);
+		box = patch_boxes(m, patch, &nplanes);
+		if (!stamp || !queue || !box) {
+			free(vstart), free(vf), free(stamp), free(queue), free(box);
+			return fct_fail(err, "out of memory");
+		}
+	}
 	for (size_t v = 0; v < m->nv; v++) {
 		int32_t ls[8];
 		int n = face_labels(patch, vf + vstart[v], vstart[v + 1] - vstart[v], ls);
