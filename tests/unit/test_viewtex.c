@@ -6,7 +6,8 @@
  * patch seen obliquely is textured at one metric density (rectified) where
  * the projection's density varies with depth; a face behind every camera
  * gets the fill colour and is counted; the same inputs give the same
- * pages; a mesh without faces or with a NaN vertex is refused. */
+ * pages; blending weighs a photo twice as far by half; a mesh without
+ * faces or with a NaN vertex is refused. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -361,6 +362,49 @@ static void test_unseen_and_determinism(void)
 	fct_mesh_free(&m);
 }
 
+/* Blended, two photos of the plane straight on, one from twice as far and
+ * darker by half: the far one's projected area is a quarter of the near
+ * one's, its weight the square root, 1/2, so each texel is (c + 0.5 (c /
+ * 2)) / 1.5 = 5/6 of the near photo's colour c (the plain mean, 3/4). */
+static void test_blend_weights(void)
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	square(&m, 4, 2);
+	struct fct_viewtex_params p;
+	fct_viewtex_params_default(&p);
+	p.blend = 1, p.level = 0;
+	double poses[2][12], gains[2] = { 1, 0.5 };
+	look(poses[0], 0, 0, 0);
+	look(poses[1], 0, 0, -2);
+	struct fct_viewtex *T = texture(&m, poses, gains, 2, &p, 0);
+	CHECK(T != NULL);
+	char *names[1] = { "b.png" };
+	CHECK(fct_viewtex_apply(T, &m, names, 1, &err) == 0);
+	float *s;
+	int32_t *tn;
+	CHECK(fct_texmap_corners(&m, &s, &tn, &err) == 1);
+	double worst = 0;
+	for (size_t f = 0; f < m.nf; f++) {
+		double x[3] = { 0, 0, 0 }, st[2] = { 0, 0 }, want[3], got[3];
+		for (int k = 0; k < 3; k++) {
+			const double *v = &m.xyz[3 * (size_t)m.fvert[m.fstart[f] + (size_t)k]];
+			for (int d = 0; d < 3; d++)
+				x[d] += v[d] / 3;
+			st[0] += s[6 * f + 2 * (size_t)k] / 3.0, st[1] += s[6 * f + 2 * (size_t)k + 1] / 3.0;
+		}
+		pattern(x, want);
+		fct_texture_sample(fct_viewtex_page(T, (size_t)tn[f]), st[0], st[1], got);
+		for (int k = 0; k < 3; k++)
+			worst = fmax(worst, fabs(got[k] - want[k] * 5 / 6));
+	}
+	CHECK_MSG(worst < 2, "blended texel off 5/6 of the near photo by %.2f levels", worst);
+	free(s);
+	free(tn);
+	fct_viewtex_free(T);
+	fct_mesh_free(&m);
+}
+
 static void test_refused(void)
 {
 	struct fct_mesh m;
@@ -389,6 +433,7 @@ int main(void)
 	test_occlusion();
 	test_rectify();
 	test_unseen_and_determinism();
+	test_blend_weights();
 	test_refused();
 	CHECK_DONE();
 }

@@ -43,7 +43,8 @@ enum {
  * viewtex's own says more), after a heading. */
 #define FCT_TEX_USAGE \
 	"      --atlas-size n largest atlas side, a power of two (default 4096)\n" \
-	"      --blend        each texel the mean of the photos that see it (default)\n" \
+	"      --blend        each texel the mean of the photos that see it, weighed\n" \
+	"                     by their resolution (default)\n" \
 	"      --candidates n photos kept per face, 1 to 32 (default 6)\n" \
 	"      --fill r,g,b   colour of faces no photo sees (default 128,128,128)\n" \
 	"      --level how    colour levelling: none, gain, seams (default seams,\n" \

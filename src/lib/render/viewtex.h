@@ -57,8 +57,10 @@
  *    is projected into the chart's photo and sampled bilinearly, so the
  *    texture is right under any parametrisation.  A texel the chart's photo
  *    does not see (outside it, or hidden by the mesh) takes the mean of the
- *    face's other candidate photos that see it; with blend, every texel
- *    does (all its face's candidates that see it, each after its gain).
+ *    face's other candidate photos that see it, each weighed by its
+ *    resolution there (the square root of its projected area over the
+ *    largest of the face's candidates'); with blend, every texel does (all
+ *    its face's candidates that see it, each after its gain).
  *    Seam edges are sampled in both photos along their length.
  * 6. Levelling and padding (fct_viewtex_finish): the gains; with level 2
  *    (one photo per face) Waechter et al.'s global seam levelling: an
@@ -72,7 +74,7 @@
  *    rings deep, each ring reading only the rings before it.
  *
  * Memory is bounded by the mesh (candidates per face, charts, seams) and
- * the atlas pages (4 bytes a texel, and 8 more while sampling; at most
+ * the atlas pages (4 bytes a texel, and 17 more while sampling; at most
  * 2^29 texels in all); one photo is held at a time.  The same inputs give the same texture, bit for bit. */
 #ifndef FCT_VIEWTEX_H
 #define FCT_VIEWTEX_H
@@ -98,7 +100,7 @@ struct fct_viewtex_params {
 	int level;            /* 0 none, 1 a gain per photo, 2 and seam levelling (default 2) */
 	int rectify;          /* planar patches in their plane's frame (default 1) */
 	int candidates;       /* photos kept per face, 1 to 32 (default 6) */
-	int blend;            /* texels the mean of the face's candidates (default 0: its one photo) */
+	int blend;            /* texels the weighted mean of the face's candidates (default 0: its one photo) */
 	int max_cycles;       /* alpha-expansion cycles (default 8) */
 	uint8_t fill[3];      /* colour of faces no photo sees (default 128 128 128) */
 };
