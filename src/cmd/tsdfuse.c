@@ -25,7 +25,7 @@
 
 static const char usage[] =
 	"usage: tsdfuse [-aqv] [-o file] [--voxel size] [--trunc n] [--bbox x0,y0,z0,x1,y1,z1]\n"
-	"               [--carve] [--weight constant | incidence | depth2]\n"
+	"               [--carve] [--exact] [--weight constant | incidence | depth2]\n"
 	"               [--curvature-flow iter] [--min-piece k] [--min-weight w]\n"
 	"               [--projective] [-K fx,fy,cx,cy | name | --camera file]\n"
 	"               [--depth-scale s] [--depth-code c] [--baseline b] [--doffs d]\n"
@@ -58,6 +58,9 @@ static const char usage[] =
 	"                     the -K name's)\n"
 	"      --depth-scale s\n"
 	"                     PNG depth units per metre (default 1000, or the -K name's)\n"
+	"      --exact        true distance from depth images to the nearest point of\n"
+	"                     their mesh at every pixel, searched (slower), not to the\n"
+	"                     tangent planes of samples 0.6 voxels apart\n"
 	"      --image file   colour image of the depth-image views, in their order\n"
 	"                     (repeated; implies --color)\n"
 	"      --max-difference s\n"
@@ -86,7 +89,7 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum { OPT_BBOX = 256, OPT_CARVE, OPT_WEIGHT, OPT_FLOW, OPT_MINW, OPT_PROJ, OPT_CONF, OPT_VERSION,
+enum { OPT_BBOX = 256, OPT_CARVE, OPT_EXACT, OPT_WEIGHT, OPT_FLOW, OPT_MINW, OPT_PROJ, OPT_CONF, OPT_VERSION,
        OPT_COLOR, OPT_BASELINE, OPT_DOFFS, OPT_MINPIECE };
 
 struct options {
@@ -108,6 +111,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		FCT_FUSE_LONGOPTS,
 		{"bbox", required_argument, NULL, OPT_BBOX},
 		{"carve", no_argument, NULL, OPT_CARVE},
+		{"exact", no_argument, NULL, OPT_EXACT},
 		{"weight", required_argument, NULL, OPT_WEIGHT},
 		{"curvature-flow", required_argument, NULL, OPT_FLOW},
 		{"min-piece", required_argument, NULL, OPT_MINPIECE},
@@ -155,6 +159,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		case OPT_MINPIECE: o->min_piece = (size_t)fct_opt_long("--min-piece", optarg, 0, 0x7fffffffL); break;
 		case OPT_MINW: o->min_weight = fct_opt_double("--min-weight", optarg, 0, 1e30); break;
 		case OPT_PROJ: o->f.fp.projective = 1; break;
+		case OPT_EXACT: o->f.exact = 1; break;
 		case OPT_CONF: o->conf = optarg; break;
 		case OPT_COLOR: o->color = 1; break;
 		case OPT_BASELINE: o->baseline = fct_opt_double("--baseline", optarg, 1e-300, 1e300); break;

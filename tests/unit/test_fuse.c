@@ -787,24 +787,26 @@ static void depth_image(struct fct_image *img, float (*depth)(int x, int y), dou
 }
 
 /* Depth parameters with a sensor noise of 1 cm at any depth (poly), at
- * least a tenth of the voxels these tests fuse into. */
-static void noisy_params(struct fct_depth_params *dp)
+ * least a tenth of the voxels these tests fuse into; exact data (none)
+ * when exact; no model when exact is -1. */
+static void depth_params(struct fct_depth_params *dp, int exact)
 {
 	struct fct_err err;
 	fct_depth_params_default(dp);
 	dp->texcoords = 0;
-	CHECK(fct_noise_parse(&dp->noise, "poly:0.01,0,0", &err) == 0);
+	if (exact >= 0)
+		CHECK(fct_noise_parse(&dp->noise, exact ? "none" : "poly:0.01,0,0", &err) == 0);
 }
 
 /* v: the view of img through fct_fuse_depth_view (view_of's camera at
- * pose, no smoothing, noisy_params) for true distance into voxels of vox
+ * pose, no smoothing, depth_params) for true distance into voxels of vox
  * metres, its mesh in m. */
 static void image_view(struct fct_fuse_view *v, struct fct_mesh *m, const struct fct_image *img,
-                       const double pose[12], double vox)
+                       const double pose[12], double vox, int exact)
 {
 	struct fct_err err;
 	struct fct_depth_params dp;
-	noisy_params(&dp);
+	depth_params(&dp, exact);
 	struct fct_depth_smooth sm = { 0, 2, 0 };
 	struct fct_fuse_view cam;
 	view_of(&cam, NULL);
@@ -818,7 +820,7 @@ static void front_view(struct fct_fuse_view *v, struct fct_mesh *m, struct fct_i
 {
 	const double identity[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
 	depth_image(img, depth, noise);
-	image_view(v, m, img, identity, vox);
+	image_view(v, m, img, identity, vox, 0);
 	CHECK(v->planes);
 }
 
@@ -828,11 +830,35 @@ static float at_half(int x, int y)
 	return 0.5f;
 }
 
+/* The step of the view fct_fuse_depth_view makes of img for voxels of vox
+ * with noise model `noise` (NULL: none; 1 when not by planes: every
+ * pixel), and its planes and plane_mean. */
+static int planned_step(const struct fct_image *img, const char *noise, double vox, int *planes, int *mean)
+{
+	struct fct_err err;
+	struct fct_depth_params dp;
+	depth_params(&dp, -1);
+	if (noise)
+		CHECK(fct_noise_parse(&dp.noise, noise, &err) == 0);
+	struct fct_depth_smooth sm = { 0, 2, 0 };
+	struct fct_fuse_view cam, v;
+	view_of(&cam, NULL);
+	struct fct_mesh m;
+	const double identity[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
+	CHECK(fct_fuse_depth_view(&v, &m, NULL, img, &cam.cam, &dp, &sm, identity, vox, &err) == 0);
+	*planes = v.planes, *mean = v.plane_mean;
+	fct_mesh_free(&m);
+	return v.step;
+}
+
 /* The step a depth image is meshed at for true distance by its planes:
  * samples 0.6 voxels apart at the median depth, rounded, and 0 (every
  * pixel, the mesh searched) where its pixels are farther apart than that
- * or its noise is under a tenth of a voxel: view_of's focal length is 32,
- * so at 0.5 m a pixel is 1/64 m across; the noise is 1 cm. */
+ * or its noise is unknown (no model): view_of's focal length is 32, so at
+ * 0.5 m a pixel is 1/64 m across; the planes through the mean of nine
+ * samples where the noise is a tenth of a voxel or more (1 cm at 5 cm
+ * voxels), else through the vertices (1 mm; none, exact data); voxels of
+ * 0 (tsdfuse --exact): searched. */
 static void test_depth_step(void)
 {
 	struct fct_err err;
@@ -841,16 +867,23 @@ static void test_depth_step(void)
 	struct fct_fuse_view cam;
 	view_of(&cam, NULL);
 	struct fct_depth_params dp;
-	noisy_params(&dp);
+	depth_params(&dp, 0);
 	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0.01) == 0);    /* 0.38 pixels */
 	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0.03) == 1);    /* 1.15 */
 	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0.05) == 2);    /* 1.92 */
 	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0.1) == 4);     /* 3.84 */
 	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0) == 0);
 	CHECK(fct_noise_parse(&dp.noise, "poly:0.001,0,0", &err) == 0);
-	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0.05) == 0);    /* noise a fiftieth */
+	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0.05) == 2);    /* noise a fiftieth */
 	fct_depth_params_default(&dp);
 	CHECK(fct_fuse_depth_step(&img, &cam.cam, &dp, 0.05) == 0);    /* no model */
+	int planes, mean;
+	CHECK(planned_step(&img, "poly:0.01,0,0", 0.05, &planes, &mean) == 2 && planes && mean);
+	CHECK(planned_step(&img, "poly:0.001,0,0", 0.05, &planes, &mean) == 2 && planes && !mean);
+	CHECK(planned_step(&img, "none", 0.05, &planes, &mean) == 2 && planes && !mean);
+	CHECK(planned_step(&img, NULL, 0.05, &planes, &mean) == 1 && !planes && !mean);    /* every pixel */
+	CHECK(planned_step(&img, "none", 0, &planes, &mean) == 1 && !planes && !mean);
+	CHECK(planned_step(&img, "poly:0.01,0,0", 0.01, &planes, &mean) == 1 && !planes);   /* 0.38 pixels */
 	struct fct_camera cyl = cam.cam;
 	cyl.kind = FCT_CAMERA_CYLINDRICAL;
 	CHECK(fct_fuse_depth_step(&img, &cyl, &dp, 0.1) == 0);
@@ -865,8 +898,10 @@ static void test_depth_step(void)
  * the plane's distance (the planes are exact on a plane:
  * their normals the triangles', their points means of points on it),
  * none beyond the band has a value; at 3 cm voxels (step 1) and 5 cm
- * (step 2); one thread or two, the same volume. */
-static void plane_field_case(double vox, int want_step, int threads)
+ * (step 2), with the noise model (planes through the means of nine
+ * samples) and declared exact (none: through the vertices); one thread or
+ * two, the same volume. */
+static void plane_field_case(double vox, int want_step, int threads, int exact)
 {
 	struct fct_err err;
 	struct fct_image img;
@@ -876,8 +911,8 @@ static void plane_field_case(double vox, int want_step, int threads)
 	fct_pose_invert(pose, inv);
 	struct fct_fuse_view v;
 	struct fct_mesh m;
-	image_view(&v, &m, &img, pose, vox);
-	CHECK(v.planes && v.step == want_step);
+	image_view(&v, &m, &img, pose, vox, exact);
+	CHECK(v.planes && v.step == want_step && v.plane_mean == !exact);
 	double band = 3 * vox;
 	struct fct_voxgrid *g = fct_voxgrid_new(vox, 0, &err);
 	struct fct_fuse_params p = { band, FCT_FUSE_CONSTANT, 0, 0, { 0 }, { 0 }, threads };
@@ -905,8 +940,10 @@ static void plane_field_case(double vox, int want_step, int threads)
 
 static void test_plane_field(void)
 {
-	plane_field_case(0.03, 1, 1);
-	plane_field_case(0.05, 2, 0);
+	plane_field_case(0.03, 1, 1, 0);
+	plane_field_case(0.05, 2, 0, 0);
+	plane_field_case(0.03, 1, 1, 1);
+	plane_field_case(0.05, 2, 0, 1);
 }
 
 /* The step of step_depth (0.5 on the left half, 0.8 on the right) by its

@@ -52,6 +52,7 @@ struct fct_fuse_opts {
 	double trunc;                   /* --trunc: the band in voxels (default 3) */
 	double max_diff;                /* --max-difference (default 0.02 s) */
 	struct fct_depth_smooth smooth; /* --smooth */
+	int exact;                      /* tsdfuse --exact: depth images searched at every pixel */
 	struct fct_fuse_params fp;      /* --threads; band set by fct_fuse_opts_check */
 };
 

@@ -137,8 +137,8 @@ static void load_depth_image(struct fct_fuse_input *L, const struct fct_fuse_vie
 	struct fct_camera cam;
 	static int warned;      /* a wrong depth scale, once for all views */
 	warned |= fct_fuse_read_depth(&img, &cam, path, vs->dcam, vs->dp, !warned);
-	int rc = fct_fuse_depth_view(&L->view, &L->mesh, vs->o->fp.projective ? &L->depth : NULL,
-	                             &img, &cam, vs->dp, &vs->o->smooth, dpose, vs->o->voxel, &err);
+	int rc = fct_fuse_depth_view(&L->view, &L->mesh, vs->o->fp.projective ? &L->depth : NULL, &img, &cam,
+	                             vs->dp, &vs->o->smooth, dpose, vs->o->exact ? 0 : vs->o->voxel, &err);
 	fct_image_free(&img);
 	if (rc)
 		fct_die_err_at(&err, "%s", path);

@@ -9,17 +9,29 @@
 #include "depth/depthsmooth.h"
 #include "fusion/fuse.h"
 
-int fct_fuse_depth_step(const struct fct_image *img, const struct fct_camera *cam,
-                        const struct fct_depth_params *dp, double vox)
+/* fct_fuse_depth_step, and in *mean whether the planes go through the
+ * mean of nine samples (fct_fuse_view's plane_mean). */
+static int depth_plan(const struct fct_image *img, const struct fct_camera *cam,
+                      const struct fct_depth_params *dp, double vox, int *mean)
 {
-	/* No model, no noise to average: the image's median is not needed. */
+	*mean = 0;
+	/* Noise unknown: the mesh as it is, searched; a sensor's noise the
+	 * planes would average, or exact data (--noise none), is declared. */
 	if (cam->kind != FCT_CAMERA_PINHOLE || !(vox > 0) || dp->noise.model == FCT_NOISE_UNKNOWN)
 		return 0;
 	double med = fct_depth_median(img, dp), f = cam->fx < cam->fy ? cam->fx : cam->fy;
-	if (!(fct_noise_sigma(&dp->noise, med) >= vox / 10))
-		return 0;
 	double s = 0.6 * vox * f / med;
-	return !(s >= 1) ? 0 : s >= 64 ? 64 : (int)floor(s + 0.5);
+	if (!(s >= 1))
+		return 0;
+	*mean = fct_noise_sigma(&dp->noise, med) >= vox / 10;
+	return s >= 64 ? 64 : (int)floor(s + 0.5);
+}
+
+int fct_fuse_depth_step(const struct fct_image *img, const struct fct_camera *cam,
+                        const struct fct_depth_params *dp, double vox)
+{
+	int mean;
+	return depth_plan(img, cam, dp, vox, &mean);
 }
 
 int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **depth,
@@ -36,7 +48,7 @@ int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **
 	struct fct_depth_params vp = *dp;
 	if (vp.noise.model != FCT_NOISE_UNKNOWN && vp.noise.unit == 0)
 		vp.noise.unit = fct_depth_unit(img, &vp);
-	int step = depth ? 0 : fct_fuse_depth_step(img, cam, &vp, vox);
+	int mean = 0, step = depth ? 0 : depth_plan(img, cam, &vp, vox, &mean);
 	if (step)
 		vp.step = step;
 	struct fct_image sm;
@@ -59,6 +71,7 @@ int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **
 	v->depth = depth ? *depth : NULL;
 	v->step = vp.step;
 	v->planes = step > 0;
+	v->plane_mean = mean;
 	struct fct_prop *sp = fct_elem_find(&mesh->vertex, "sigma");
 	v->sigma = sp && sp->type == FCT_FLOAT32 ? sp->data : NULL;
 	return 0;

@@ -1,5 +1,5 @@
-/* fuseplane.c - true signed distance for a noisy depth image's view: to
- * the tangent plane of the pixel under the voxel's foot (Hilton's implicit
+/* fuseplane.c - true signed distance for a depth image's view: to the
+ * tangent plane of the pixel under the voxel's foot (Hilton's implicit
  * surface, fuse.h, the surface near a pixel taken as its plane).
  *
  * fusetrue.c searches the view's mesh for each voxel's nearest point and
@@ -10,7 +10,8 @@
  * (one every step pixels, fct_fuse_depth_step) gets a plane: its normal the
  * sum of the cross products of the four cells' triangles about it (their
  * normals weighted by area), through the mean of the nine vertices about
- * it, which averages the noise.  A voxel goes to the plane of the sample
+ * it, which averages the noise (through the vertex itself when the noise
+ * is under a tenth of a voxel).  A voxel goes to the plane of the sample
  * it projects to, to the foot of the perpendicular there, to the plane of
  * the sample under the foot, and so on until the sample stays or the
  * distance changes by SETTLED voxels at most (PLANE_MOVES moves at most):
@@ -28,10 +29,11 @@
  *
  * Per voxel: two projections and lookups in an array of one plane per
  * sample, mostly, four voxels side by side in floats; per view: a pass
- * over the samples, its sums kept by column.  Where the noise is at least
- * a tenth of a voxel (fct_fuse_depth_step), this is closer to the true
- * surface than the search and costs a small part of it; bench/NOTES.md
- * has the figures. */
+ * over the samples, its sums kept by column.  It costs a small part of
+ * the search; where the noise is at least a tenth of a voxel it is closer
+ * to the true surface than the search too, with less it is a little less
+ * complete at silhouettes (fct_fuse_depth_step; bench/NOTES.md has the
+ * figures). */
 #include "fusion/fusepriv.h"
 
 #include <stdlib.h>
@@ -149,11 +151,14 @@ static void column_row(const struct raster *R, const struct cellsum *above, cons
 
 /* The plane of the vertex on sample (x, y) from its row's columns: the
  * sum of the cross products of the four cells about it, through the mean
- * of the nine samples' vertices when those cells are whole (one surface,
- * the mesh being cut at depth jumps) and the nine span at most `most`
- * metres (the band: a mean over more blurs what the band resolves; on a
- * coarse image, 160x120 at 2 cm voxels, the planar model made from it
- * lost 0.5 dB at held-out views), else through the vertex.  *inside: the
+ * of the nine samples' vertices when the view has noise to average
+ * (plane_mean), those cells are whole (one surface, the mesh being cut at
+ * depth jumps) and the nine span at most `most` metres (the band: a mean
+ * over more blurs what the band resolves; on a coarse image, 160x120 at 2
+ * cm voxels, the planar model made from it lost 0.5 dB at held-out
+ * views), else through the vertex (without noise the mean of nine cuts
+ * the corner of a crease: 0.23 mm from the true surface against 0.14 on
+ * mkscene's room without noise).  *inside: the
  * triangles about the vertex are all there (it is on no border).  0 when
  * its normal is none. */
 static int vertex_plane(const struct raster *R, const struct column *cols, const int32_t *sv, size_t x, size_t y,
@@ -185,7 +190,7 @@ static int vertex_plane(const struct raster *R, const struct column *cols, const
 	/* The nine samples span two sample widths (depth / (f S) each). */
 	int whole = *inside && (cols[x - 1].ring & cols[x].ring & 0x10) && !isnan(cols[x - 1].p[0]) &&
 	            !isnan(cols[x].p[0]) && !isnan(cols[x + 1].p[0]);
-	if (!whole || 2 / (R->sp[3 * vi + 2] * R->v->cam.fx * R->S) > most) {
+	if (!whole || !R->v->plane_mean || 2 / (R->sp[3 * vi + 2] * R->v->cam.fx * R->S) > most) {
 		memcpy(p, &R->G->xyz[3 * vi], 3 * sizeof *p);
 		return 1;
 	}
