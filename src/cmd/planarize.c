@@ -265,6 +265,7 @@ static void report_model(const struct fct_planar_stats *st)
 	fct_report_stage("planedecim", "max_error", "%.9g", st->qem.max_error);
 	fct_report_stage("planedecim", "planar_triangles", "%zu", st->planar_triangles);
 	fct_report_stage("planedecim", "free_faces", "%zu", st->free_faces);
+	fct_report_stage("planedecim", "border_free_faces", "%zu", st->border_free_faces);
 	fct_report_stage("planedecim", "unclean_patches", "%zu", st->unclean_patches);
 	fct_report_stage("planedecim", "moved_line", "%zu", st->meet.lines);
 	fct_report_stage("planedecim", "moved_corner", "%zu", st->meet.corners);

@@ -131,6 +131,7 @@ int main(int argc, char **argv)
 	fct_report("max_error", "%.9g", st.qem.max_error);
 	fct_report("free_faces_in", "%zu", st.qem.faces_in);
 	fct_report("free_faces", "%zu", st.free_faces);
+	fct_report("border_free_faces", "%zu", st.border_free_faces);
 	fct_report("outline_vertices", "%zu", st.chains.kept_vertices);
 	fct_report("outline_tolerance", "%.9g", st.chains.tolerance);
 	fct_report("planar_triangles", "%zu", st.planar_triangles);

@@ -211,6 +211,8 @@ run_case 0 "planarize -v -o $TMP/fv/model.ply $TMP/fv/fused.ply 2>$TMP/fv/err"
 check_num "fused: reduction 80x" "$(field reduction "$TMP/fv/err")" ">=" 80
 check_num "fused: watertight in" "$(info border_edges "$TMP/fv/fused.ply")" == 0
 check_num "fused: watertight out" "$(info border_edges "$TMP/fv/model.ply")" == 0
+check_num "fused: free-form faces" "$(field "planedecim: free_faces" "$TMP/fv/err")" ">" 0
+check_num "fused: none on a border (-v border_free_faces)" "$(field "planedecim: border_free_faces" "$TMP/fv/err")" == 0
 check_num "fused: debris dropped" "$(field "planedecim: debris_pieces" "$TMP/fv/err")" ">" 0
 check_num "fused: the other pieces kept" "$(info components "$TMP/fv/model.ply")" == \
 	"$(($(info components "$TMP/fv/fused.ply") - $(field "planedecim: debris_pieces" "$TMP/fv/err")))"

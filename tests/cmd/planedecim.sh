@@ -155,7 +155,7 @@ model rk 250 3.3
 # -v: every figure the man page lists, and the counts consistent.
 for k in vertices_in faces_in vertices faces reduction planes sigma_estimated facets \
 	small_faces speck_faces off_plane_faces holes_filled projected creased split uncreased collapses corners refused_topology \
-	refused_flip refused_error max_error free_faces_in free_faces outline_vertices \
+	refused_flip refused_error max_error free_faces_in free_faces border_free_faces outline_vertices \
 	outline_tolerance planar_triangles rounds dense_patches pinned mended tightened \
 	unclean_patches moved_line moved_corner \
 	stayed moves_undone torn no_pixel read_s model_s total_s cpu_s; do
@@ -163,6 +163,34 @@ for k in vertices_in faces_in vertices faces reduction planes sigma_estimated fa
 done
 check_num "-v faces = planar + free-form" "$(report faces "$TMP/rq.model.err")" == \
 	"$(($(report planar_triangles "$TMP/rq.model.err") + $(report free_faces "$TMP/rq.model.err")))"
+# border_free_faces: the model's free-form faces (patch -1, its last face
+# property) with a corner on an edge of one face, counted here from the
+# model itself.
+check_num "-v border_free_faces: counted from the model" "$(report border_free_faces "$TMP/rq.model.err")" == \
+	"$(awk 'NR == 1, /^end_header/ {
+		if ($1 == "element" && $2 == "vertex") nv = $3
+		if ($1 == "element" && $2 == "face") nf = $3
+		next
+	}
+	++i <= nv { next }
+	i <= nv + nf {
+		f = i - nv - 1; c[f] = $1; p[f] = $NF
+		for (k = 2; k <= $1 + 1; k++) {
+			v[f, k] = $k; a = $k; b = (k == $1 + 1) ? $2 : $(k + 1)
+			n[a < b ? a " " b : b " " a]++
+		}
+	}
+	END {
+		for (e in n) if (n[e] == 1) { split(e, ab, " "); on[ab[1]] = on[ab[2]] = 1 }
+		for (f = 0; f < nf; f++) {
+			if (p[f] >= 0) continue
+			hit = 0
+			for (k = 2; k <= c[f] + 1; k++) hit = hit || (v[f, k] in on)
+			m += hit
+		}
+		print m + 0
+	}' "$TMP/rq.model.a.ply")"
+check_num "-v border_free_faces: some (the view's borders)" "$(report border_free_faces "$TMP/rq.model.err")" ">" 0
 check_num "-v faces_in = the dense mesh's" "$(report faces_in "$TMP/rq.model.err")" == "$(info faces "$TMP/rq.dense.ply")"
 check_num "-v sigma from the mesh" "$(report sigma_estimated "$TMP/rq.model.err")" == 0
 check_num "-v free-form decimation within -e (1.5 sigma, the default)" "$(report max_error "$TMP/rq.model.err")" "<=" 1.5

@@ -194,6 +194,8 @@ struct fct_planar_stats {
 	struct fct_chain_stats chains;   /* the outlines' simplification */
 	struct fct_tripatch_stats tri;   /* their triangulation */
 	size_t planar_triangles, free_faces;
+	size_t border_free_faces;        /* free-form faces of the model with a corner on
+	                                    one of its open borders */
 	size_t duplicates_dropped;       /* a patch's triangles over a free-form one */
 	size_t rounds, dense_patches;    /* patches whose outline was kept as sampled */
 	size_t pinned;                   /* diagonals found elsewhere (edges of three faces) */
