@@ -21,6 +21,15 @@ completeness() {
 	for t in "$1"/truth*.ply; do meshdist -s 4000 "$t" "$2"; done |
 		awk '$1 == "mean" { s += $2; n++ } END { print s / n }'
 }
+# judge SCENE NAME...: c_NAME, a_NAME, k_NAME: the components, accuracy
+# and completeness of $TMP/NAME.ply.
+judge() {
+	j=$1
+	shift
+	for f; do
+		eval "c_$f=\$(info \$TMP/$f.ply components) a_$f=\$(accuracy \$j \$TMP/$f.ply) k_$f=\$(completeness \$j \$TMP/$f.ply)"
+	done
+}
 # scene DIR NOISE N [SIZE FX]: N views of the room at 160x120 (or SIZE
 # with focal FX) with NOISE, their true surfaces meshed, and in $DIR/args
 # the depth-image operands.
@@ -44,9 +53,7 @@ run_case 0 "tsdfuse --voxel 0.04 --noise $S/view00.noise -o $TMP/true.ply $A"
 run_case 0 "tsdfuse --projective --voxel 0.04 --noise $S/view00.noise -o $TMP/proj.ply $A"
 run_case 0 "tsdfuse --voxel 0.04 -o $TMP/raw.ply $A"
 run_case 0 "tsdfuse --projective --voxel 0.04 -o $TMP/rawproj.ply $A"
-for f in true proj raw rawproj; do
-	eval "c_$f=\$(info \$TMP/$f.ply components) a_$f=\$(accuracy \$S \$TMP/$f.ply) k_$f=\$(completeness \$S \$TMP/$f.ply)"
-done
+judge "$S" true proj raw rawproj
 echo "tsdfuse_noise.sh: kinect, 24 views, 4 cm: components / accuracy / completeness (m):" \
 	"true $c_true / $a_true / $k_true, projective $c_proj / $a_proj / $k_proj," \
 	"without the model $c_raw / $a_raw / $k_raw, projective $c_rawproj / $a_rawproj / $k_rawproj"
@@ -122,9 +129,7 @@ check_num "no model: searched" "$(sed -n 's/^tsdfuse: plane_views=//p' "$TMP/err
 run_case 0 "tsdfuse -v --exact --noise none --voxel 0.04 -o $TMP/nx.ply $A"
 check_num "no noise, --exact: searched" "$(sed -n 's/^tsdfuse: plane_views=//p' "$TMP/err")" == 0
 run_case 0 "tsdfuse --projective --noise none --voxel 0.04 -o $TMP/np.ply $A"
-for f in n nx np; do
-	eval "c_$f=\$(info \$TMP/$f.ply components) a_$f=\$(accuracy \$N \$TMP/$f.ply) k_$f=\$(completeness \$N \$TMP/$f.ply)"
-done
+judge "$N" n nx np
 echo "tsdfuse_noise.sh: no noise, 12 views, 4 cm: planes $c_n / $a_n / $k_n, --exact $c_nx / $a_nx / $k_nx, --projective $c_np / $a_np / $k_np"
 check_num "no noise: components, planes <= projective" "$c_n" "<=" "$c_np"
 check_num "no noise: accuracy, planes < projective / 2" "$a_n" "<" "$(awk -v a="$a_np" 'BEGIN { print a / 2 }')"

@@ -40,7 +40,7 @@ static void normals_chunk(void *ctx, size_t lo, size_t hi, int worker)
 		fct_triangle_cross(n, a, b, c);
 		double nn = fct_v3_dot(n, n), len = sqrt(nn);
 		/* Most are far above the view's bound (degenerate_bound); the
-		 * others take the test itself, which shares e1, e2 and n. */
+		 * others take the exact test itself. */
 		float u[3] = { NAN, NAN, NAN };
 		if (len > 0 && isfinite(len) && (nn > G->nondegen || !fct_triangle_degenerate(a, b, c))) {
 			for (int k = 0; k < 3; k++)

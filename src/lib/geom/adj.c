@@ -125,8 +125,8 @@ out:
 	return rc;
 }
 
-/* The faces of each vertex, each face once: a face's stamp in last[v]
- * tells that it was already counted for v. */
+/* A breadth-first walk through the faces from s, kept to the ball of
+ * radius r (adj.h). */
 size_t fct_vertices_within(const struct fct_mesh *m, const uint32_t *vert_fstart, const uint32_t *vert_f,
                            size_t s, double r, uint32_t *stamp, uint32_t mark, uint32_t *list)
 {
@@ -152,6 +152,8 @@ size_t fct_vertices_within(const struct fct_mesh *m, const uint32_t *vert_fstart
 	return tail;
 }
 
+/* The faces of each vertex, each face once: a face's stamp in last[v]
+ * tells that it was already counted for v. */
 int fct_vertex_faces(const struct fct_mesh *m, uint32_t **vert_fstart, uint32_t **vert_f,
                      struct fct_err *err)
 {

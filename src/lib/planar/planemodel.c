@@ -1023,10 +1023,11 @@ int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fc
 		 * the floor 0.16 m past the wall in mkscene's Kinect room. */
 		int32_t ab[2] = {ls[0], -1};
 		double st[3];
-		int hit = n == 1 && bound > 0 && along_ray(planes, ls, 1, viewpoint, p, x);
-		if (n == 1 && bound > 0 && onto_planes(planes, ls, 1, p, st) &&
+		int on_border = n == 1 && bound > 0 &&
+		                !inside_patch(m, patch, vf + vstart[v], vstart[v + 1] - vstart[v], (uint32_t)v);
+		int hit = on_border && along_ray(planes, ls, 1, viewpoint, p, x);
+		if (on_border && onto_planes(planes, ls, 1, p, st) &&
 		    (!hit || fct_v3_dist2(x, p) > 4 * fct_v3_dist2(st, p)) &&
-		    !inside_patch(m, patch, vf + vstart[v], vstart[v + 1] - vstart[v], (uint32_t)v) &&
 		    (ab[1] = ray_blocked(m, patch, vstart, vf, (uint32_t)v, planes, nplanes, ls[0], viewpoint, p,
 		                         hit ? sqrt(fct_v3_dist2(x, viewpoint)) : INFINITY, unc, bound, box,
 		                         stamp, queue, &mark)) >= 0 &&

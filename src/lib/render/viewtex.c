@@ -48,6 +48,7 @@ struct cand {                /* a photo that can texture a face */
 	float col[3];            /* mean colour of its visible pixels */
 	float npix;              /* those pixels (at least 1) */
 	float vis;               /* the part of the face they are */
+	float blend;             /* its weight in a blend (blend_weights) */
 	int32_t view;
 };
 
@@ -1309,25 +1310,28 @@ static int flat_at(const struct fct_view *v, const struct fct_image *rgb, const 
 	return 1;
 }
 
-/* The weight of candidate i of face f in a blend: its resolution
- * there, the square root of its projected area over the largest of the
- * face's candidates'.  A photo that sees the face at half the resolution
- * of the best has samples twice as wide, which blur the texel; the plain
- * mean lost 0.2-0.3 dB at held-out views of mkscene's rooms (Kinect noise,
+/* Each candidate's weight in a blend: its resolution on its face, the
+ * square root of its projected area over the largest of the face's
+ * candidates'.  A photo that sees the face at half the resolution of the
+ * best has samples twice as wide, which blur the texel; the plain mean
+ * lost 0.2-0.3 dB at held-out views of mkscene's rooms (Kinect noise,
  * grained albedo), the area itself as the weight 0.03 dB of the 7-Scenes
  * frames'. */
-static double blend_weight(const struct fct_viewtex *T, uint32_t f, size_t i)
+static void blend_weights(struct fct_viewtex *T)
 {
-	const struct cand *cd = T->cand + (size_t)T->p.candidates * f;
-	double most = 0;
-	for (size_t k = 0; k < T->ncand[f]; k++)
-		most = cd[k].area > most ? cd[k].area : most;
-	return most > 0 ? sqrt(cd[i].area / most) : 1;
+	for (size_t f = 0; f < T->m->nf; f++) {
+		struct cand *cd = T->cand + (size_t)T->p.candidates * f;
+		double most = 0;
+		for (size_t k = 0; k < T->ncand[f]; k++)
+			most = cd[k].area > most ? cd[k].area : most;
+		for (size_t k = 0; k < T->ncand[f]; k++)
+			cd[k].blend = most > 0 ? (float)sqrt(cd[k].area / most) : 1;
+	}
 }
 
 /* Blending: add photo T->bview's colour (after its gain) of the texel's
  * point to the texel's sums, weighed by the photo's resolution there
- * (blend_weight), when the photo is a candidate of the face and sees the
+ * (blend_weights), when the photo is a candidate of the face and sees the
  * point (inside, nothing of the mesh in front of it). */
 static void blend_texel(struct fct_viewtex *T, const struct chart *c, uint32_t tri, double b1,
                         double b2, size_t at, void *ctx)
@@ -1344,7 +1348,7 @@ static void blend_texel(struct fct_viewtex *T, const struct chart *c, uint32_t t
 		return;
 	fct_texture_sample(rgb, (u + 0.5) / rgb->width, 1 - (v + 0.5) / rgb->height, col);
 	float *sum = T->bsum[c->page] + 4 * at;
-	double w = blend_weight(T, f, i);
+	double w = cd[i].blend;
 	for (int j = 0; j < 3; j++) {
 		double g = T->gain[3 * T->bview + (size_t)j] * col[j];
 		sum[j] += (float)(w * (g < 0 ? 0 : g > 255 ? 255 : g));
@@ -1365,9 +1369,11 @@ static int chart_sees(const struct fct_viewtex *T, const struct chart *c, size_t
 	return 0;
 }
 
-/* The per-texel sums over photos (blending, and the holes' fill). */
+/* The per-texel sums over photos (blending, and the holes' fill), and
+ * the candidates' weights in them, the candidates being final. */
 static int blend_alloc(struct fct_viewtex *T, struct fct_err *err)
 {
+	blend_weights(T);
 	T->bsum = calloc(T->npages, sizeof *T->bsum);
 	T->hole = calloc(T->npages, sizeof *T->hole);
 	if (!T->bsum || !T->hole)
