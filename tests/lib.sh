@@ -77,14 +77,14 @@ check_true() {
 	if "$@"; then ok; else not_ok "$desc"; fi
 }
 
-# holds VALUE OP REF: numeric comparison with awk (OP: < <= > >= ==), as a
+# holds VALUE OP REF: numeric comparison with awk (OP: < <= > >= == !=), as a
 # status; a VALUE that is not a number holds nothing.
 holds() {
 	awk -v a="$1" -v b="$3" -v op="$2" 'BEGIN {
 		if (a !~ /^[-+0-9.eEinfa]+$/) exit 1
 		if (op == "<") exit !(a + 0 < b + 0); if (op == "<=") exit !(a + 0 <= b + 0)
 		if (op == ">") exit !(a + 0 > b + 0); if (op == ">=") exit !(a + 0 >= b + 0)
-		if (op == "==") exit !(a + 0 == b + 0); exit 1 }'
+		if (op == "==") exit !(a + 0 == b + 0); if (op == "!=") exit !(a + 0 != b + 0); exit 1 }'
 }
 
 # check_num "description" VALUE OP REF: passes when holds VALUE OP REF.

@@ -266,6 +266,9 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 	/* Coordinates as a file holds them: the stages give what the programs
 	 * give on a pipe and on the files of --keep. */
 	fct_mesh_round_xyz(out);
+	/* Each vertex's noise from the views that saw it, so that the planes
+	 * judge a far wall by its own noise and a near table by its own. */
+	fct_fuse_depth_sigma(out, s->depth, s->pose, s->n, &s->cam, &s->dp, &o->f);
 }
 
 /* Stages 2 and 3: planar patches, then the planar model. */

@@ -377,6 +377,16 @@ int main(int argc, char **argv)
 	long ndebris = fct_mesh_drop_small_pieces(&out, o.min_piece, &npieces, &err);
 	if (ndebris < 0)
 		fct_die_err(&err);
+	/* Each vertex's noise, where every view is a depth image of a known
+	 * sensor: what segplanes judges the surface's planes by, a far wall
+	 * by its own noise and a near table by its own. */
+	double sigma_s = 0;
+	if (vs.n > 0 && vs.ndepth == vs.n) {
+		double ts = fct_now(), r0 = vs.read_s;
+		fct_fuse_depth_sigma(&out, (const char *const *)vs.paths, vs.dposes, vs.n, &dcam, &dp, &o.f);
+		reread_s += vs.read_s - r0;
+		sigma_s = fct_now() - ts;
+	}
 	fct_report("views", "%zu", nv);
 	fct_report("plane_views", "%zu", st.plane_views);
 	fct_report("view_faces", "%zu", st.faces);
@@ -410,6 +420,7 @@ int main(int argc, char **argv)
 		fct_report("color_views", "%zu", ncolor);
 		fct_report("color_s", "%.4f", color_s);
 	}
+	fct_report("sigma_s", "%.4f", sigma_s);
 	fct_report("total_s", "%.4f", fct_now() - t0);
 	if (!getrusage(RUSAGE_SELF, &ru))
 		fct_report("peak_rss_mb", "%.1f", (double)ru.ru_maxrss / 1024);

@@ -79,7 +79,12 @@ fused=$(faces "$TMP/k/1-fused.ply")
 model=$(faces "$TMP/m/model.obj")
 check_num "fused faces reported" "$(field fused_faces)" == "$fused"
 check_num "model faces reported" "$(field faces)" == "$model"
-check_num "the model: at most 2% of the fused mesh's faces" "$(ratio "$model" "$fused")" "<" 0.02
+# Since each fused vertex carries its own noise (viewcolor.h), the near
+# surfaces' free-form faces are decimated to their own, smaller noise and
+# more planes are found: 9371 faces (2.1%) where one figure for the whole
+# surface gave 4906 (1.1%), 3.19 mm from the truth on average (p95 11.7)
+# where it gave 3.54 (13.9).
+check_num "the model: at most 3% of the fused mesh's faces" "$(ratio "$model" "$fused")" "<" 0.03
 meshdist -p -s 200000 "$TMP/m/model.obj" "$S/scene.ply" >"$TMP/dm"
 meshdist -p -s 200000 "$TMP/k/1-fused.ply" "$S/scene.ply" >"$TMP/df"
 check_num "the model: mean distance to the true surface (4 mm)" "$(figure mean "$TMP/dm")" "<" 0.004
@@ -120,15 +125,22 @@ bare "$TMP/m/b.obj" >"$TMP/b.txt"
 check_true "same OBJ twice" cmp -s "$TMP/a.txt" "$TMP/b.txt"
 
 # Every option of segplanes, planedecim and viewtex's texture reaches the
-# stages (one table each, segopts.h, planaropts.h, texopts.h): -n stops at
-# 3 patches (21 without, 3 cm voxels), --no-rectify leaves their charts
-# unrectified (1 of them rectified without), and --min-plane above every
-# patch's faces leaves no planar triangle, all of it free-form.
-run_case 0 "roommodel -v -n 3 --no-rectify --voxel 0.03 $V -o $TMP/m/n.obj"
-check_num "-n 3: patches" "$(field 'segplanes: patches')" "==" 3
-check_num "-n 3: planes" "$(field 'planedecim: planes')" "<=" 3
+# stages (one table each, segopts.h, planaropts.h, texopts.h): -c 6 gives
+# the patches segplanes -c 6 gives on the fused mesh kept (with the
+# stage's --min-faces, one in 600 of its faces), not the default's,
+# --no-rectify leaves their charts unrectified (1 of them rectified
+# without), and --min-plane above every patch's faces leaves no planar
+# triangle, all of it free-form.
+run_case 0 "roommodel -v -c 6 --no-rectify --voxel 0.03 --keep $TMP/kc $V -o $TMP/m/n.obj"
+c6_patches=$(field 'segplanes: patches') c6_free=$(field 'segplanes: free_faces')
 check_num "--no-rectify: charts rectified" "$(field 'viewtex: charts_rectified')" "==" 0
-check_num "-n 3: planar triangles" "$(field 'planedecim: planar_triangles')" ">" 0
+check_num "-c 6: planar triangles" "$(field 'planedecim: planar_triangles')" ">" 0
+mf=$(( $(faces "$TMP/kc/1-fused.ply") / 600 ))
+run_case 0 "segplanes -v -c 6 --min-faces $mf -o $TMP/c6.ply $TMP/kc/1-fused.ply"
+check_num "-c 6: the patches of segplanes -c 6" "$c6_patches" "==" "$(sed -n 's/^segplanes: patches=//p' "$TMP/err")"
+check_num "-c 6: the free faces of segplanes -c 6" "$c6_free" "==" "$(sed -n 's/^segplanes: free_faces=//p' "$TMP/err")"
+run_case 0 "segplanes -v --min-faces $mf -o $TMP/c3.ply $TMP/kc/1-fused.ply"
+check_num "-c 6: not the default's free faces" "$c6_free" "!=" "$(sed -n 's/^segplanes: free_faces=//p' "$TMP/err")"
 run_case 0 "roommodel -v --min-plane 1000000 --voxel 0.03 $V -o $TMP/m/p.obj"
 check_num "--min-plane 1000000: planar triangles" "$(field 'planedecim: planar_triangles')" "==" 0
 check_num "--min-plane 1000000: free faces" "$(field 'planedecim: free_faces')" ">" 0
@@ -218,14 +230,19 @@ check_true "TUM folder: read as such, the frame without colour left out" grep -q
 # holes of the free-form surface are filled (both models about 9% fewer
 # faces) the pieces kept part by 9.1%, 3356 against 3690 (6.0% before,
 # 3757 against 3995); the held-out PSNR below is the measure of sameness.
+# With each fused vertex's own noise (viewcolor.h) the rounds part more:
+# 5134 against 4331 faces with every piece kept (18.5%), 5003 against 4306
+# with the debris dropped (16.2%); the same views with their poses rounded
+# to 7 decimals gave 5075 against 4331 (before: 3416 against 3690).  The
+# planar model's face count is that sensitive (issue 23), not its PSNR.
 check_num "TUM folder: debris dropped" "$(field 'planedecim: debris_faces')" ">" 0
 run_case 0 "roommodel --min-piece 0 --voxel 0.03 -K $K --depth-scale 1000 --noise kinect -o $TMP/m/t0.obj $T"
 check_num "TUM folder: the faces of the 7-Scenes folder's model (12%)" \
 	"$(ratio "$(faces "$TMP/m/t0.obj")" "$(faces "$TMP/m/f0.obj")")" ">" 0.88
-check_num "TUM folder: ... (at most 5% more)" \
-	"$(ratio "$(faces "$TMP/m/t0.obj")" "$(faces "$TMP/m/f0.obj")")" "<" 1.05
-check_num "TUM folder: ... (at most 10% more with the debris dropped)" \
-	"$(ratio "$(faces "$TMP/m/t.obj")" "$(faces "$TMP/m/f.obj")")" "<" 1.10
+check_num "TUM folder: ... (at most 25% more)" \
+	"$(ratio "$(faces "$TMP/m/t0.obj")" "$(faces "$TMP/m/f0.obj")")" "<" 1.25
+check_num "TUM folder: ... (at most 25% more with the debris dropped)" \
+	"$(ratio "$(faces "$TMP/m/t.obj")" "$(faces "$TMP/m/f.obj")")" "<" 1.25
 run_case 0 "viewjudge -K $K $TMP/m/t.obj $held"
 check_num "TUM folder: held-out PSNR within 0.5 dB of the 7-Scenes folder's $folder_psnr" \
 	"$(awk -v a="$(judged 3)" -v b="$folder_psnr" 'BEGIN { d = a - b; print (d < 0 ? -d : d) }')" "<" 0.5

@@ -3,7 +3,9 @@
  * at another), vertices out of view, occluded or facing away get the
  * fallback, two views average, and on mkscene's room fused from three views
  * the colour of each fused vertex is close to the scene's true colour at
- * that point (far closer than the best constant colour). */
+ * that point (far closer than the best constant colour); the noise of a
+ * fused vertex from the views that see it, by hand, and its range image
+ * from a depth image. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -144,6 +146,76 @@ static void test_two(void)
 	fct_mesh_free(&out);
 }
 
+/* The noise of three vertices of the plane z = 0.5: A seen by both views of
+ * test_two (the first a depth image of the plane, the second the square's
+ * mesh twice as far), B beyond the first view's picture and seen by the
+ * second only, C behind the plane (unseen).  Sensor noise 0.01 z: s = 5 mm
+ * and 10 mm; at 2 cm voxels the weights 1 / (1 + (2 s / vox)^2) are 0.8 and
+ * 0.5.  A: weighted rms sqrt((0.8 * 25e-6 + 0.5 * 1e-4) / 1.3) = 7.338 mm,
+ * independent sqrt(0.64 * 25e-6 + 0.25 * 1e-4) / 1.3 = 4.925 mm, their
+ * geometric mean 6.012 mm; B: 10 mm both ways.  The median of the two seen
+ * (the upper one, fct_select_kth's n / 2) is B's: scaled to a level of 2 mm,
+ * A has 1.2024 mm, B and C 2 mm. */
+static void test_noise(void)
+{
+	struct fct_err err;
+	struct fct_mesh view, out;
+	square(&view, 40, 0.5);
+	struct fct_fuse_view v2;
+	view_of(&v2, &view);
+	v2.pose[3] = 0.1;
+	v2.pose[11] = -0.5;
+	struct fct_image depth;
+	CHECK(fct_image_alloc(&depth, 64, 64, 1, FCT_PIX_F32, &err) == 0);
+	for (size_t i = 0; i < 64 * 64; i++)
+		((float *)depth.data)[i] = 0.5f;
+	struct fct_depth_params dp;
+	fct_depth_params_default(&dp);
+	const double identity[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 };
+	struct fct_range_image r1, r2;
+	CHECK(fct_range_image_depth(&r1, &depth, &v2.cam, &dp, identity, &err) == 0);
+	CHECK(r1.view.mesh == NULL && r1.width == 64 && r1.height == 64);
+	CHECK_NEAR(r1.range[64 * 10 + 20], 0.5, 1e-7);
+	CHECK(fct_range_image_make(&r2, &v2, 1 << 20, &err) == 0);
+	fct_mesh_init(&out);
+	fct_mesh_add_vertex(&out, 0.05, 0.02, 0.5, &err);      /* A */
+	fct_mesh_add_vertex(&out, 0.8, 0.0, 0.5, &err);        /* B */
+	fct_mesh_add_vertex(&out, 0.05, 0.02, 1.5, &err);      /* C */
+	add_normals(&out);
+	struct fct_noise nz;
+	CHECK(fct_noise_parse(&nz, "poly:0,0.01,0", &err) == 0);
+	struct fct_viewcolor_params p = { 0.03, FCT_FUSE_CONSTANT, 0 };
+	for (int threads = 1; threads <= 2; threads++) {
+		struct fct_viewnoise acc;
+		CHECK(fct_viewnoise_init(&acc, out.nv, &err) == 0);
+		size_t seen1, seen2, seen;
+		CHECK(fct_viewnoise_add(&acc, &out, &r1, &nz, 0.02, &p, threads, &seen1, &err) == 0);
+		CHECK(fct_viewnoise_add(&acc, &out, &r2, &nz, 0.02, &p, threads, &seen2, &err) == 0);
+		CHECK_INT(seen1, 1);
+		CHECK_INT(seen2, 2);
+		CHECK(fct_viewnoise_write(&acc, &out, 0.002, &seen, &err) == 0);
+		CHECK_INT(seen, 2);
+		const struct fct_prop *sg = fct_elem_find(&out.vertex, "sigma");
+		CHECK(sg && sg->type == FCT_FLOAT32);
+		double a = sqrt(sqrt(7e-5 / 1.3) * sqrt(4.1e-5) / 1.3);
+		CHECK_NEAR(a, 6.012e-3, 1e-6);
+		CHECK_NEAR(fct_prop_get(sg, 0), 0.002 * a / 0.01, 1e-9);
+		CHECK_NEAR(fct_prop_get(sg, 1), 0.002, 1e-9);
+		CHECK_NEAR(fct_prop_get(sg, 2), 0.002, 1e-9);
+		fct_viewnoise_free(&acc);
+	}
+	/* No view with a noise model saw anything: nothing written. */
+	struct fct_viewnoise none;
+	CHECK(fct_viewnoise_init(&none, out.nv, &err) == 0);
+	CHECK(fct_viewnoise_write(&none, &out, 0.002, NULL, &err) == -1);
+	fct_viewnoise_free(&none);
+	fct_image_free(&depth);
+	fct_range_image_free(&r1);
+	fct_range_image_free(&r2);
+	fct_mesh_free(&view);
+	fct_mesh_free(&out);
+}
+
 /* mkscene's room, three views at 160 x 120, fused at 2 cm: the mean absolute
  * colour error of the fused vertices against the scene's colour at their
  * nearest point on the true surface. */
@@ -264,6 +336,7 @@ int main(void)
 {
 	test_flat();
 	test_two();
+	test_noise();
 	test_room();
 	CHECK_DONE();
 }

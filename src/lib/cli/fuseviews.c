@@ -355,3 +355,48 @@ void fct_fuse_views_color(struct fct_fuse_views *vs, struct fct_mesh *out, size_
 	fct_report("uncolored_vertices", "%zu", st.unseen);
 	fct_report("views_per_vertex", "%.2f", st.views_per_vertex);
 }
+
+int fct_fuse_depth_sigma(struct fct_mesh *out, const char *const *depth, const double *pose, size_t n,
+                         const struct fct_camera *dcam, const struct fct_depth_params *dp,
+                         const struct fct_fuse_opts *o)
+{
+	struct fct_err err;
+	double level;
+	/* Exact data (--noise none): the fused surface's error is the
+	 * volume's, the same everywhere, which segplanes estimates. */
+	if (dp->noise.model == FCT_NOISE_UNKNOWN || dp->noise.model == FCT_NOISE_NONE)
+		return -1;
+	if (fct_noise_estimate(&level, out, &err) || !(level > 0)) {
+		if (fct_verbose)
+			fprintf(stderr, "%s: no sigma for the fused surface: %s\n", fct_prog, err.msg);
+		return -1;
+	}
+	struct fct_viewnoise acc;
+	if (fct_viewnoise_init(&acc, out->nv, &err))
+		fct_die_err(&err);
+	struct fct_viewcolor_params cp = { o->fp.band, o->fp.weight, 0 };
+	for (size_t i = 0; i < n; i++) {
+		struct fct_image img;
+		struct fct_camera cam;
+		fct_fuse_read_depth(&img, &cam, depth[i], dcam, dp, 0);
+		/* The encoding's unit is part of the noise, as the fusion took it
+		 * (fct_fuse_depth_view). */
+		struct fct_noise nz = dp->noise;
+		if (nz.unit == 0)
+			nz.unit = fct_depth_unit(&img, dp);
+		struct fct_range_image ri;
+		int rc = fct_range_image_depth(&ri, &img, &cam, dp, &pose[12 * i], &err) ||
+		         fct_viewnoise_add(&acc, out, &ri, &nz, o->voxel, &cp, o->fp.threads, NULL, &err);
+		fct_range_image_free(&ri);
+		fct_image_free(&img);
+		if (rc)
+			fct_die_err_at(&err, "%s", depth[i]);
+	}
+	size_t seen;
+	if (fct_viewnoise_write(&acc, out, level, &seen, &err))
+		fct_die_err(&err);
+	fct_viewnoise_free(&acc);
+	fct_report("sigma_seen", "%zu", seen);
+	fct_report("sigma_level", "%.9g", level);
+	return 0;
+}

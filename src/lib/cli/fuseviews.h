@@ -70,6 +70,19 @@ void fct_fuse_input_close(struct fct_fuse_input *in);
 /* A view that changed no voxel: a warning that says why where it can. */
 void fct_fuse_input_warn_unused(const struct fct_fuse_input *in, int has_bbox);
 
+/* The noise of the fused surface out as its vertex property sigma
+ * (viewcolor.h's fct_viewnoise): the n depth images depth[0..n) at poses
+ * (12 numbers each), read with dcam and dp, under dp's sensor noise model,
+ * seen as they are (fct_range_image_depth) with o's band, weight and voxel;
+ * the level from out's own residuals (noise.h's fct_noise_estimate).  0, or
+ * -1 with nothing written (segplanes then estimates one figure) when the
+ * noise is unknown or none (exact data, whose fused error is the volume's)
+ * or out has too few neighbourhoods to estimate the level.  -v reports
+ * sigma_seen and sigma_level. */
+int fct_fuse_depth_sigma(struct fct_mesh *out, const char *const *depth, const double *pose, size_t n,
+                         const struct fct_camera *dcam, const struct fct_depth_params *dp,
+                         const struct fct_fuse_opts *o);
+
 /* The views' extent: the box of their vertices and their area. */
 struct fct_fuse_extent {
 	double lo[3], hi[3], area;

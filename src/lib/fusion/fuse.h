@@ -180,6 +180,15 @@ int fct_range_image_make(struct fct_range_image *r, const struct fct_fuse_view *
                          size_t max_pixels, struct fct_err *err);
 void fct_range_image_free(struct fct_range_image *r);
 
+/* The range image of depth image img itself, seen by cam (a pinhole or
+ * cylindrical camera of its size) at camera-to-world pose: each pixel's
+ * depth as it is (fct_depth_at under dp), no mesh rasterised (view.mesh is
+ * NULL).  What tells whether a view sees a point where its raw depth will
+ * do (fct_viewnoise_add), at the cost of decoding the image.  0 or -1. */
+int fct_range_image_depth(struct fct_range_image *r, const struct fct_image *img,
+                          const struct fct_camera *cam, const struct fct_depth_params *dp,
+                          const double pose[12], struct fct_err *err);
+
 /* Bytes that fct_carve would use for the bitsets over lo..hi. */
 size_t fct_carve_bytes(const int32_t lo[3], const int32_t hi[3]);
 

@@ -76,3 +76,24 @@ int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **
 	v->sigma = sp && sp->type == FCT_FLOAT32 ? sp->data : NULL;
 	return 0;
 }
+
+int fct_range_image_depth(struct fct_range_image *r, const struct fct_image *img,
+                          const struct fct_camera *cam, const struct fct_depth_params *dp,
+                          const double pose[12], struct fct_err *err)
+{
+	memset(r, 0, sizeof *r);
+	if (cam->kind == FCT_CAMERA_NONE || cam->width != img->width || cam->height != img->height)
+		return fct_fail(err, "a range image of a depth image needs its pinhole or cylindrical camera");
+	r->view.cam = *cam;
+	memcpy(r->view.pose, pose, sizeof r->view.pose);
+	fct_pose_invert(pose, r->inv);
+	r->width = img->width, r->height = img->height;
+	if (!(r->range = fct_alloc_array((size_t)r->width * (size_t)r->height, sizeof *r->range, err)))
+		return -1;
+	for (int y = 0; y < r->height; y++)
+		for (int x = 0; x < r->width; x++) {
+			double z = fct_depth_at(img, x, y, dp);
+			r->range[(size_t)y * (size_t)r->width + (size_t)x] = z > 0 && z < INFINITY ? (float)z : 0;
+		}
+	return 0;
+}

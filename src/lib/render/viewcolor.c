@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/par.h"
 #include "depth/depthmesh.h"
 #include "geom/geom.h"
 #include "render/raster.h"
@@ -93,6 +94,123 @@ float *fct_depth_edge_distance(const float *R, int W, int H, double band, double
 	return d;
 }
 
+/* How a view sees the vertices of a mesh: its camera and range image, the
+ * depth test's tolerances, the mesh's normals when it has them. */
+struct sight_ctx {
+	const struct fct_range_image *r;
+	const struct fct_camera *cam;
+	int W, H, cyl;
+	double band, slope, centre[3];
+	enum fct_fuse_weight weight;
+	const struct fct_prop *nx, *ny, *nz;
+};
+
+/* What the view sees of one vertex: its depth along the sensor, the
+ * confidence of fuse.h's weight, and the four pixels around its projection
+ * (k) with their bilinear weights (w, 0 for pixels whose range does not
+ * agree with depth or that are outside), their sum and the heaviest. */
+struct sight {
+	double depth, conf, w[4], wsum;
+	size_t k[4];
+	int nearest;
+	double u, v;
+};
+
+static void sight_init(struct sight_ctx *c, const struct fct_mesh *m, const struct fct_range_image *r,
+                       double band, enum fct_fuse_weight weight)
+{
+	memset(c, 0, sizeof *c);
+	c->r = r;
+	c->cam = &r->view.cam;
+	c->W = r->width, c->H = r->height;
+	c->cyl = c->cam->kind == FCT_CAMERA_CYLINDRICAL;
+	c->band = band;
+	c->slope = FCT_DEFAULT_MAX_JUMP * fct_camera_pixel_angle(c->cam);
+	c->weight = weight;
+	c->nx = fct_elem_find(&m->vertex, "nx");
+	c->ny = fct_elem_find(&m->vertex, "ny");
+	c->nz = fct_elem_find(&m->vertex, "nz");
+	if (!(c->nx && c->ny && c->nz))
+		c->nx = c->ny = c->nz = NULL;
+	c->centre[0] = r->view.pose[3], c->centre[1] = r->view.pose[7], c->centre[2] = r->view.pose[11];
+}
+
+/* 1 when the view sees vertex i of m (in front of the camera, inside its
+ * image, from the side its normal points to, and some pixel around it
+ * agrees with its depth), with *s filled; 0 when it does not. */
+static int sight(struct sight *s, const struct sight_ctx *c, const struct fct_mesh *m, size_t i)
+{
+	const struct fct_range_image *r = c->r;
+	int W = c->W, H = c->H;
+	const double *x = &m->xyz[3 * i];
+	double q[3], u, v, depth;
+	fct_pose_apply(r->inv, x, q);
+	if (!fct_camera_project(c->cam, q, &u, &v, &depth) || !(depth > 0) ||
+	    !(u > -1 && v > -1 && u < W && v < H))
+		return 0;
+	double conf = 1;
+	if (c->nx || c->weight == FCT_FUSE_INCIDENCE) {
+		double ray[3], n[3] = { 0, 0, 0 };
+		fct_v3_sub(ray, c->centre, x);
+		double len = sqrt(fct_v3_dot(ray, ray));
+		if (c->nx) {
+			n[0] = fct_prop_get(c->nx, i), n[1] = fct_prop_get(c->ny, i), n[2] = fct_prop_get(c->nz, i);
+		}
+		double cs = len > 0 ? fct_v3_dot(ray, n) / len : 0;
+		if (c->nx && !(cs > 0))
+			return 0;       /* seen from behind */
+		if (c->weight == FCT_FUSE_INCIDENCE)
+			conf = c->nx ? fmax(cs, 1e-3) : 1;
+	}
+	if (c->weight == FCT_FUSE_DEPTH2)
+		conf = depth > 1e-3 ? 1 / (depth * depth) : 1e6;
+	/* The four pixels around (u, v) whose range agrees with depth. */
+	int x0 = (int)floor(u), y0 = (int)floor(v);
+	double fx = u - x0, fy = v - y0;
+	s->wsum = 0;
+	s->nearest = -1;
+	double wnear = -1;
+	for (int b = 0; b < 2; b++)
+		for (int a = 0; a < 2; a++) {
+			int j = 2 * b + a, xx = x0 + a, yy = y0 + b;
+			s->w[j] = 0, s->k[j] = 0;
+			if (c->cyl)
+				xx = (xx % W + W) % W;
+			if (xx < 0 || yy < 0 || xx >= W || yy >= H)
+				continue;
+			size_t k = (size_t)yy * (size_t)W + (size_t)xx;
+			double w = (a ? fx : 1 - fx) * (b ? fy : 1 - fy);
+			double R = r->range[k];
+			if (!(R > 0) || !(w > 0))
+				continue;
+			/* The depth test allows the change of range across the
+			 * pixel's own surface over the distance to its centre,
+			 * so grazing surfaces are seen (asked only when the
+			 * band alone does not do). */
+			double ds = 0, reach = fmax(a ? 1 - fx : fx, b ? 1 - fy : fy);
+			for (int e = 0; e < 4 && !(fabs(depth - R) <= c->band); e++) {
+				int x2 = xx + (e == 0) - (e == 1), y2 = yy + (e == 2) - (e == 3);
+				if (c->cyl)
+					x2 = (x2 % W + W) % W;
+				if (x2 < 0 || y2 < 0 || x2 >= W || y2 >= H)
+					continue;
+				double R2 = r->range[(size_t)y2 * (size_t)W + (size_t)x2];
+				if (R2 > 0 && continuous(R, R2, c->band, c->slope))
+					ds = fmax(ds, fabs(R2 - R));
+			}
+			if (!(fabs(depth - R) <= c->band + ds * reach))
+				continue;
+			s->w[j] = w, s->k[j] = k;
+			s->wsum += w;
+			if (w > wnear)
+				wnear = w, s->nearest = (int)k;
+		}
+	if (!(s->wsum > 0))
+		return 0;
+	s->depth = depth, s->conf = conf, s->u = u, s->v = v;
+	return 1;
+}
+
 int fct_viewcolor_add(struct fct_viewcolor *c, const struct fct_mesh *m,
                       const struct fct_range_image *r, const struct fct_image *image,
                       const struct fct_viewcolor_params *p, size_t *seen, struct fct_err *err)
@@ -104,7 +222,6 @@ int fct_viewcolor_add(struct fct_viewcolor *c, const struct fct_mesh *m,
 		return fct_fail(err, "an orthographic range scan has no colour image");
 	if (m->nv != c->nv)
 		return fct_fail(err, "colour of %zu vertices asked of a mesh of %zu", c->nv, m->nv);
-	int W = r->width, H = r->height, cyl = cam->kind == FCT_CAMERA_CYLINDRICAL;
 	struct fct_image rgb = { 0 };
 	const struct fct_image *img = image;
 	if (image->type != FCT_PIX_U8 || image->channels != 3) {
@@ -113,100 +230,39 @@ int fct_viewcolor_add(struct fct_viewcolor *c, const struct fct_mesh *m,
 			return -1;
 		img = &rgb;
 	}
-	int same = img->width == W && img->height == H;
-	double slope = FCT_DEFAULT_MAX_JUMP * fct_camera_pixel_angle(cam);
+	struct sight_ctx sc;
+	sight_init(&sc, m, r, p->band, p->weight);
+	int W = r->width, H = r->height, same = img->width == W && img->height == H;
 	float *edge = NULL;
 	if (p->edge_px > 0 &&
-	    !(edge = fct_depth_edge_distance(r->range, W, H, p->band, slope, p->edge_px, err))) {
+	    !(edge = fct_depth_edge_distance(r->range, W, H, p->band, sc.slope, p->edge_px, err))) {
 		fct_image_free(&rgb);
 		return -1;
 	}
-	const struct fct_prop *nx = fct_elem_find(&m->vertex, "nx");
-	const struct fct_prop *ny = fct_elem_find(&m->vertex, "ny");
-	const struct fct_prop *nz = fct_elem_find(&m->vertex, "nz");
-	int normals = nx && ny && nz;
-	const double centre[3] = { r->view.pose[3], r->view.pose[7], r->view.pose[11] };
 	const unsigned char *pix = img->data;
 	size_t nseen = 0;
 	for (size_t i = 0; i < m->nv; i++) {
-		const double *x = &m->xyz[3 * i];
-		double q[3], u, v, depth;
-		fct_pose_apply(r->inv, x, q);
-		if (!fct_camera_project(cam, q, &u, &v, &depth) || !(depth > 0) ||
-		    !(u > -1 && v > -1 && u < W && v < H))
+		struct sight s;
+		if (!sight(&s, &sc, m, i))
 			continue;
-		double conf = 1;
-		if (normals || p->weight == FCT_FUSE_INCIDENCE) {
-			double ray[3], n[3] = { 0, 0, 0 };
-			fct_v3_sub(ray, centre, x);
-			double len = sqrt(fct_v3_dot(ray, ray));
-			if (normals) {
-				n[0] = fct_prop_get(nx, i), n[1] = fct_prop_get(ny, i), n[2] = fct_prop_get(nz, i);
-			}
-			double cs = len > 0 ? fct_v3_dot(ray, n) / len : 0;
-			if (normals && !(cs > 0))
-				continue;       /* seen from behind */
-			if (p->weight == FCT_FUSE_INCIDENCE)
-				conf = normals ? fmax(cs, 1e-3) : 1;
-		}
-		if (p->weight == FCT_FUSE_DEPTH2)
-			conf = depth > 1e-3 ? 1 / (depth * depth) : 1e6;
-		/* The four pixels around (u, v) whose range agrees with depth. */
-		int x0 = (int)floor(u), y0 = (int)floor(v);
-		double fx = u - x0, fy = v - y0, wsum = 0, col[3] = { 0, 0, 0 };
-		int nearest = -1;
-		double wnear = -1;
-		for (int b = 0; b < 2; b++)
-			for (int a = 0; a < 2; a++) {
-				int xx = x0 + a, yy = y0 + b;
-				if (cyl)
-					xx = (xx % W + W) % W;
-				if (xx < 0 || yy < 0 || xx >= W || yy >= H)
-					continue;
-				size_t k = (size_t)yy * (size_t)W + (size_t)xx;
-				double w = (a ? fx : 1 - fx) * (b ? fy : 1 - fy);
-				double R = r->range[k];
-				if (!(R > 0) || !(w > 0))
-					continue;
-				/* The depth test allows the change of range across the
-				 * pixel's own surface over the distance to its centre,
-				 * so grazing surfaces are seen. */
-				double s = 0, reach = fmax(a ? 1 - fx : fx, b ? 1 - fy : fy);
-				for (int e = 0; e < 4; e++) {
-					int x2 = xx + (e == 0) - (e == 1), y2 = yy + (e == 2) - (e == 3);
-					if (cyl)
-						x2 = (x2 % W + W) % W;
-					if (x2 < 0 || y2 < 0 || x2 >= W || y2 >= H)
-						continue;
-					double R2 = r->range[(size_t)y2 * (size_t)W + (size_t)x2];
-					if (R2 > 0 && continuous(R, R2, p->band, slope))
-						s = fmax(s, fabs(R2 - R));
-				}
-				if (!(fabs(depth - R) <= p->band + s * reach))
-					continue;
-				wsum += w;
-				if (w > wnear)
-					wnear = w, nearest = (int)k;
-				if (same)
-					for (int ch = 0; ch < 3; ch++)
-						col[ch] += w * pix[3 * k + (size_t)ch];
-			}
-		if (!(wsum > 0))
-			continue;
+		double col[3] = { 0, 0, 0 };
 		if (same) {
+			for (int j = 0; j < 4; j++)
+				for (int ch = 0; ch < 3; ch++)
+					col[ch] += s.w[j] * pix[3 * s.k[j] + (size_t)ch];
 			for (int ch = 0; ch < 3; ch++)
-				col[ch] /= wsum;
+				col[ch] /= s.wsum;
 		} else {
-			fct_texture_sample(img, (u + 0.5) / W, 1 - (v + 0.5) / H, col);
+			fct_texture_sample(img, (s.u + 0.5) / W, 1 - (s.v + 0.5) / H, col);
 		}
-		double w = conf * wsum;
+		double w = s.conf * s.wsum;
 		if (edge) {
-			double d = edge[nearest];
+			double d = edge[s.nearest];
 			if (d < p->edge_px)
 				w *= (1 + d) / (1 + p->edge_px);
 		}
-		double *s = &c->sum[4 * i];
-		s[0] += w * col[0], s[1] += w * col[1], s[2] += w * col[2], s[3] += w;
+		double *sum = &c->sum[4 * i];
+		sum[0] += w * col[0], sum[1] += w * col[1], sum[2] += w * col[2], sum[3] += w;
 		nseen++;
 	}
 	c->samples += nseen;
@@ -244,5 +300,116 @@ int fct_viewcolor_write(const struct fct_viewcolor *c, struct fct_mesh *m, const
 		stats->unseen = m->nv - colored;
 		stats->views_per_vertex = colored ? (double)c->samples / (double)colored : 0;
 	}
+	return 0;
+}
+
+int fct_viewnoise_init(struct fct_viewnoise *c, size_t nv, struct fct_err *err)
+{
+	memset(c, 0, sizeof *c);
+	c->nv = nv;
+	c->sum = fct_alloc_array(nv ? nv : 1, 3 * sizeof *c->sum, err);
+	if (!c->sum)
+		return -1;
+	memset(c->sum, 0, (nv ? nv : 1) * 3 * sizeof *c->sum);
+	return 0;
+}
+
+void fct_viewnoise_free(struct fct_viewnoise *c)
+{
+	if (c) {
+		free(c->sum);
+		c->sum = NULL;
+		c->nv = 0;
+	}
+}
+
+/* fct_viewnoise_add's loop over a range of vertices: each writes its own
+ * sums, so the result is the same on any number of threads. */
+struct noise_pass {
+	struct fct_viewnoise *c;
+	const struct fct_mesh *m;
+	const struct sight_ctx *sc;
+	const struct fct_noise *nz;
+	double vox;
+	size_t seen[FCT_PAR_MAX];
+};
+
+static void noise_chunk(void *ctx, size_t lo, size_t hi, int worker)
+{
+	struct noise_pass *N = ctx;
+	for (size_t i = lo; i < hi; i++) {
+		struct sight s;
+		if (!sight(&s, N->sc, N->m, i))
+			continue;
+		double sd = fct_noise_sigma(N->nz, s.depth), t = 2 * sd / N->vox;
+		double w = s.conf / (1 + t * t);
+		double *sum = &N->c->sum[3 * i];
+		sum[0] += w;
+		sum[1] += w * sd * sd;
+		sum[2] += w * w * sd * sd;
+		N->seen[worker]++;
+	}
+}
+
+int fct_viewnoise_add(struct fct_viewnoise *c, const struct fct_mesh *m, const struct fct_range_image *r,
+                      const struct fct_noise *nz, double vox, const struct fct_viewcolor_params *p,
+                      int threads, size_t *seen, struct fct_err *err)
+{
+	if (seen)
+		*seen = 0;
+	if (r->view.cam.kind == FCT_CAMERA_NONE)
+		return fct_fail(err, "an orthographic range scan has no noise model");
+	if (m->nv != c->nv)
+		return fct_fail(err, "noise of %zu vertices asked of a mesh of %zu", c->nv, m->nv);
+	struct sight_ctx sc;
+	sight_init(&sc, m, r, p->band, p->weight);
+	struct noise_pass N = { .c = c, .m = m, .sc = &sc, .nz = nz, .vox = vox };
+	fct_par_run(fct_par_threads(threads), m->nv, 0, noise_chunk, &N);
+	if (seen)
+		for (int k = 0; k < FCT_PAR_MAX; k++)
+			*seen += N.seen[k];
+	return 0;
+}
+
+/* The noise of a weighted mean of views (viewcolor.h): the geometric mean
+ * of what it would be were the views' errors one and the same, the
+ * weighted root mean square sqrt(sum w s^2 / sum w), and what it would be
+ * were they independent, sqrt(sum w^2 s^2) / sum w. */
+static double fused_noise(const double sum[3])
+{
+	return sqrt(sqrt(sum[1] / sum[0]) * sqrt(sum[2]) / sum[0]);
+}
+
+int fct_viewnoise_write(const struct fct_viewnoise *c, struct fct_mesh *m, double level,
+                        size_t *seen, struct fct_err *err)
+{
+	if (seen)
+		*seen = 0;
+	if (m->nv != c->nv)
+		return fct_fail(err, "noise of %zu vertices for a mesh of %zu", c->nv, m->nv);
+	double *mean = fct_alloc_array(c->nv ? c->nv : 1, sizeof *mean, err);
+	if (!mean)
+		return -1;
+	size_t n = 0;
+	for (size_t i = 0; i < c->nv; i++)
+		if (c->sum[3 * i] > 0)
+			mean[n++] = fused_noise(&c->sum[3 * i]);
+	if (n == 0 || !(level > 0)) {
+		free(mean);
+		return fct_fail(err, "no vertex seen by a view with a noise model");
+	}
+	double med = fct_select_kth(mean, n, n / 2);
+	free(mean);
+	struct fct_prop *sg = fct_elem_add_scalar(&m->vertex, "sigma", FCT_FLOAT32, err);
+	if (!sg)
+		return -1;
+	double scale = med > 0 ? level / med : 0;
+	for (size_t i = 0; i < c->nv; i++) {
+		const double *s = &c->sum[3 * i];
+		double v = s[0] > 0 && med > 0 ? fused_noise(s) * scale : level;
+		fct_prop_set(sg, i, v);
+	}
+	if (seen)
+		*seen = n;
 	return 0;
 }
