@@ -268,7 +268,12 @@ static void fuse(struct fct_mesh *out, struct sequence *s, const struct options 
 	fct_mesh_round_xyz(out);
 	/* Each vertex's noise from the views that saw it, so that the planes
 	 * judge a far wall by its own noise and a near table by its own. */
-	fct_fuse_depth_sigma(out, s->depth, s->pose, s->n, &s->cam, &s->dp, &o->f);
+	size_t seen;
+	double level;
+	if (!fct_fuse_depth_sigma(out, s->depth, s->pose, s->n, &s->cam, &s->dp, &o->f, &seen, &level)) {
+		fct_report_stage("tsdfuse", "sigma_seen", "%zu", seen);
+		fct_report_stage("tsdfuse", "sigma_level", "%.9g", level);
+	}
 }
 
 /* Stages 2 and 3: planar patches, then the planar model. */

@@ -380,11 +380,12 @@ int main(int argc, char **argv)
 	/* Each vertex's noise, where every view is a depth image of a known
 	 * sensor: what segplanes judges the surface's planes by, a far wall
 	 * by its own noise and a near table by its own. */
-	double sigma_s = 0;
+	double sigma_s = 0, sigma_level = 0;
+	size_t sigma_seen = 0;
 	if (vs.n > 0 && vs.ndepth == vs.n) {
-		double ts = fct_now(), r0 = vs.read_s;
-		fct_fuse_depth_sigma(&out, (const char *const *)vs.paths, vs.dposes, vs.n, &dcam, &dp, &o.f);
-		reread_s += vs.read_s - r0;
+		double ts = fct_now();
+		fct_fuse_depth_sigma(&out, (const char *const *)vs.paths, vs.dposes, vs.n, &dcam, &dp, &o.f,
+		                     &sigma_seen, &sigma_level);
 		sigma_s = fct_now() - ts;
 	}
 	fct_report("views", "%zu", nv);
@@ -420,7 +421,11 @@ int main(int argc, char **argv)
 		fct_report("color_views", "%zu", ncolor);
 		fct_report("color_s", "%.4f", color_s);
 	}
-	fct_report("sigma_s", "%.4f", sigma_s);
+	if (sigma_level > 0) {
+		fct_report("sigma_seen", "%zu", sigma_seen);
+		fct_report("sigma_level", "%.9g", sigma_level);
+		fct_report("sigma_s", "%.4f", sigma_s);
+	}
 	fct_report("total_s", "%.4f", fct_now() - t0);
 	if (!getrusage(RUSAGE_SELF, &ru))
 		fct_report("peak_rss_mb", "%.1f", (double)ru.ru_maxrss / 1024);

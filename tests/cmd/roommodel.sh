@@ -75,6 +75,8 @@ check_true "--keep: the stages" test "$(ls "$TMP/k" | tr '\n' ' ')" = "1-fused.p
 check_true "each stage's line" grep -q '^roommodel: planedecim  *[0-9]* vertices  *[0-9]* faces  *[0-9.]* s CPU  *[0-9.]* s$' "$TMP/err"
 check_true "stage figures" grep -q '^roommodel: segplanes: patches=[0-9]*$' "$TMP/err"
 check_true "the noise model used" grep -q '^roommodel: tsdfuse: noise=kinect ' "$TMP/err"
+check_true "each fused vertex's noise" grep -q '^roommodel: tsdfuse: sigma_seen=[0-9][0-9]*$' "$TMP/err"
+check_true "the fused mesh kept with its sigma" grep -q '^property float sigma$' "$TMP/k/1-fused.ply"
 fused=$(faces "$TMP/k/1-fused.ply")
 model=$(faces "$TMP/m/model.obj")
 check_num "fused faces reported" "$(field fused_faces)" == "$fused"

@@ -358,15 +358,15 @@ void fct_fuse_views_color(struct fct_fuse_views *vs, struct fct_mesh *out, size_
 
 int fct_fuse_depth_sigma(struct fct_mesh *out, const char *const *depth, const double *pose, size_t n,
                          const struct fct_camera *dcam, const struct fct_depth_params *dp,
-                         const struct fct_fuse_opts *o)
+                         const struct fct_fuse_opts *o, size_t *seen, double *level)
 {
 	struct fct_err err;
-	double level;
+	*seen = 0, *level = 0;
 	/* Exact data (--noise none): the fused surface's error is the
 	 * volume's, the same everywhere, which segplanes estimates. */
 	if (dp->noise.model == FCT_NOISE_UNKNOWN || dp->noise.model == FCT_NOISE_NONE)
 		return -1;
-	if (fct_noise_estimate(&level, out, &err) || !(level > 0)) {
+	if (fct_noise_estimate(level, out, &err) || !(*level > 0)) {
 		if (fct_verbose)
 			fprintf(stderr, "%s: no sigma for the fused surface: %s\n", fct_prog, err.msg);
 		return -1;
@@ -392,11 +392,8 @@ int fct_fuse_depth_sigma(struct fct_mesh *out, const char *const *depth, const d
 		if (rc)
 			fct_die_err_at(&err, "%s", depth[i]);
 	}
-	size_t seen;
-	if (fct_viewnoise_write(&acc, out, level, &seen, &err))
+	if (fct_viewnoise_write(&acc, out, *level, seen, &err))
 		fct_die_err(&err);
 	fct_viewnoise_free(&acc);
-	fct_report("sigma_seen", "%zu", seen);
-	fct_report("sigma_level", "%.9g", level);
 	return 0;
 }

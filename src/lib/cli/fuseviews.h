@@ -77,11 +77,12 @@ void fct_fuse_input_warn_unused(const struct fct_fuse_input *in, int has_bbox);
  * the level from out's own residuals (noise.h's fct_noise_estimate).  0, or
  * -1 with nothing written (segplanes then estimates one figure) when the
  * noise is unknown or none (exact data, whose fused error is the volume's)
- * or out has too few neighbourhoods to estimate the level.  -v reports
- * sigma_seen and sigma_level. */
+ * or out has too few neighbourhoods to estimate the level.  *seen gets the
+ * vertices some view saw (the others have the median), *level the level
+ * (0 when nothing was written). */
 int fct_fuse_depth_sigma(struct fct_mesh *out, const char *const *depth, const double *pose, size_t n,
                          const struct fct_camera *dcam, const struct fct_depth_params *dp,
-                         const struct fct_fuse_opts *o);
+                         const struct fct_fuse_opts *o, size_t *seen, double *level);
 
 /* The views' extent: the box of their vertices and their area. */
 struct fct_fuse_extent {
