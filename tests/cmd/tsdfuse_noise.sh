@@ -93,9 +93,8 @@ check_num "kinect: components without smoothing" "$(info "$TMP/nosm.ply" compone
 # wall's several times a near table's (the level within 1e-4: -a rounds the
 # coordinates the estimate is made of again); none without a model.
 # planarize on the fused mesh judges each region by it: measured at 2 cm,
-# mean / p95 2.55 / 9.2 mm from the true surface against 2.89 / 12.9 mm
-# with the one figure (the same mesh, its sigma column removed), at 34.7x
-# and 34.5x fewer faces.
+# mean / p95 2.52 / 9.4 mm from the true surface against 2.89 / 12.9 mm
+# with the one figure (the same mesh, its sigma column removed).
 run_case 0 "tsdfuse -a -v --voxel 0.02 --noise $S/view00.noise -o $TMP/s2.ply $A"
 check_true "sigma: written with the model" grep -q '^property float sigma$' "$TMP/s2.ply"
 check_true "sigma: not without it" sh -c "! grep -q 'property float sigma' $TMP/raw.ply"

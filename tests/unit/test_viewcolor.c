@@ -155,7 +155,7 @@ static void test_two(void)
  * independent sqrt(0.64 * 25e-6 + 0.25 * 1e-4) / 1.3 = 4.925 mm, their
  * geometric mean 6.012 mm; B: 10 mm both ways.  The median of the two seen
  * (the upper one, fct_select_kth's n / 2) is B's: scaled to a level of 2 mm,
- * A has 1.2024 mm, B and C 2 mm. */
+ * A has 1.2024 mm, B and C 2 mm; with a floor, below. */
 static void test_noise(void)
 {
 	struct fct_err err;
@@ -193,7 +193,7 @@ static void test_noise(void)
 		CHECK(fct_viewnoise_add(&acc, &out, &r2, &nz, 0.02, &p, threads, &seen2, &err) == 0);
 		CHECK_INT(seen1, 1);
 		CHECK_INT(seen2, 2);
-		CHECK(fct_viewnoise_write(&acc, &out, 0.002, &seen, &err) == 0);
+		CHECK(fct_viewnoise_write(&acc, &out, 0.002, 0, &seen, &err) == 0);
 		CHECK_INT(seen, 2);
 		const struct fct_prop *sg = fct_elem_find(&out.vertex, "sigma");
 		CHECK(sg && sg->type == FCT_FLOAT32);
@@ -202,12 +202,26 @@ static void test_noise(void)
 		CHECK_NEAR(fct_prop_get(sg, 0), 0.002 * a / 0.01, 1e-9);
 		CHECK_NEAR(fct_prop_get(sg, 1), 0.002, 1e-9);
 		CHECK_NEAR(fct_prop_get(sg, 2), 0.002, 1e-9);
+		/* A floor of 1 mm in quadrature: k = sqrt(4e-6 - 1e-6) / 0.01 keeps
+		 * B, the median, at 2 mm; A sqrt((k a)^2 + 1e-6) = 1.4437 mm. */
+		CHECK(fct_viewnoise_write(&acc, &out, 0.002, 0.001, NULL, &err) == 0);
+		sg = fct_elem_find(&out.vertex, "sigma");
+		double k = sqrt(3e-6) / 0.01;
+		CHECK_NEAR(fct_prop_get(sg, 0), sqrt(k * a * k * a + 1e-6), 1e-9);
+		CHECK_NEAR(fct_prop_get(sg, 0), 1.4437e-3, 1e-6);
+		CHECK_NEAR(fct_prop_get(sg, 1), 0.002, 1e-9);
+		CHECK_NEAR(fct_prop_get(sg, 2), 0.002, 1e-9);
+		/* A level under the floor: one figure, the level. */
+		CHECK(fct_viewnoise_write(&acc, &out, 0.002, 0.003, NULL, &err) == 0);
+		sg = fct_elem_find(&out.vertex, "sigma");
+		for (size_t i = 0; i < 3; i++)
+			CHECK_NEAR(fct_prop_get(sg, i), 0.002, 1e-9);
 		fct_viewnoise_free(&acc);
 	}
 	/* No view with a noise model saw anything: nothing written. */
 	struct fct_viewnoise none;
 	CHECK(fct_viewnoise_init(&none, out.nv, &err) == 0);
-	CHECK(fct_viewnoise_write(&none, &out, 0.002, NULL, &err) == -1);
+	CHECK(fct_viewnoise_write(&none, &out, 0.002, 0, NULL, &err) == -1);
 	fct_viewnoise_free(&none);
 	fct_image_free(&depth);
 	fct_range_image_free(&r1);

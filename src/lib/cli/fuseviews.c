@@ -392,7 +392,7 @@ int fct_fuse_depth_sigma(struct fct_mesh *out, const char *const *depth, const d
 		if (rc)
 			fct_die_err_at(&err, "%s", depth[i]);
 	}
-	if (fct_viewnoise_write(&acc, out, *level, seen, &err))
+	if (fct_viewnoise_write(&acc, out, *level, o->voxel / 20, seen, &err))
 		fct_die_err(&err);
 	fct_viewnoise_free(&acc);
 	return 0;

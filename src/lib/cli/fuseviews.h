@@ -74,7 +74,8 @@ void fct_fuse_input_warn_unused(const struct fct_fuse_input *in, int has_bbox);
  * (viewcolor.h's fct_viewnoise): the n depth images depth[0..n) at poses
  * (12 numbers each), read with dcam and dp, under dp's sensor noise model,
  * seen as they are (fct_range_image_depth) with o's band, weight and voxel;
- * the level from out's own residuals (noise.h's fct_noise_estimate).  0, or
+ * the level from out's own residuals (noise.h's fct_noise_estimate), a
+ * floor of a twentieth of a voxel (the volume's own error).  0, or
  * -1 with nothing written (segplanes then estimates one figure) when the
  * noise is unknown or none (exact data, whose fused error is the volume's)
  * or out has too few neighbourhoods to estimate the level.  *seen gets the

@@ -380,7 +380,7 @@ static double fused_noise(const double sum[3])
 	return sqrt(sqrt(sum[1] / sum[0]) * sqrt(sum[2]) / sum[0]);
 }
 
-int fct_viewnoise_write(const struct fct_viewnoise *c, struct fct_mesh *m, double level,
+int fct_viewnoise_write(const struct fct_viewnoise *c, struct fct_mesh *m, double level, double floor_,
                         size_t *seen, struct fct_err *err)
 {
 	if (seen)
@@ -403,10 +403,17 @@ int fct_viewnoise_write(const struct fct_viewnoise *c, struct fct_mesh *m, doubl
 	struct fct_prop *sg = fct_elem_add_scalar(&m->vertex, "sigma", FCT_FLOAT32, err);
 	if (!sg)
 		return -1;
-	double scale = med > 0 ? level / med : 0;
+	/* sqrt((scale x)^2 + floor^2) grows with x: the median vertex's is
+	 * level when scale x is sqrt(level^2 - floor^2) there. */
+	double f2 = floor_ > 0 ? floor_ * floor_ : 0, above = level * level - f2;
+	double scale = med > 0 && above > 0 ? sqrt(above) / med : 0;
 	for (size_t i = 0; i < c->nv; i++) {
 		const double *s = &c->sum[3 * i];
-		double v = s[0] > 0 && med > 0 ? fused_noise(s) * scale : level;
+		double v = level;
+		if (s[0] > 0 && scale > 0) {
+			double x = fused_noise(s) * scale;
+			v = sqrt(x * x + f2);
+		}
 		fct_prop_set(sg, i, v);
 	}
 	if (seen)

@@ -97,6 +97,14 @@ int fct_viewcolor_write(const struct fct_viewcolor *c, struct fct_mesh *m, const
  * sensor's model does not know.  So the views give each vertex's noise
  * relative to the others', and the fused surface's own residuals (noise.h's
  * estimate) give the level: the vertices' median sigma is the estimate.
+ * The volume adds an error of its own, which no view's noise accounts for:
+ * on exact data (mkscene's room, 24 views) the fused surface lies vox/30
+ * from the truth rms at 1 and 2 cm voxels, most of it where marching cubes
+ * rounds creases (p99 vox/6).  A near surface's noise would have a plane
+ * give up the strip along each of its creases to free-form faces, so the
+ * figure has a floor, added in quadrature (fct_fuse_depth_sigma: vox/20,
+ * the best of vox/30, vox/20 and vox/13 on three sequences,
+ * bench/NOTES.md).
  * Measured against the true surface of mkscene's room under Kinect noise
  * at 2 cm voxels, in each fifth of the vertices by the figure: make demo's
  * 18 views of 320x240, 0.07-0.10 times the figure (median absolute
@@ -123,11 +131,12 @@ int fct_viewnoise_add(struct fct_viewnoise *c, const struct fct_mesh *m, const s
                       int threads, size_t *seen, struct fct_err *err);
 
 /* Write the float vertex property sigma into m (replacing any there): each
- * seen vertex's weighted-mean noise scaled so that their median is level
- * (metres, > 0), the median for vertices no view saw.  *seen (may be NULL)
+ * seen vertex's figure x, scaled, with the floor, sqrt((k x)^2 + floor^2),
+ * k such that the median is level (metres, > 0); level for vertices no view
+ * saw, and for all when level is not above the floor.  *seen (may be NULL)
  * gets the number seen.  0 or -1 (none seen: nothing written; out of
  * memory). */
-int fct_viewnoise_write(const struct fct_viewnoise *c, struct fct_mesh *m, double level,
+int fct_viewnoise_write(const struct fct_viewnoise *c, struct fct_mesh *m, double level, double floor_,
                         size_t *seen, struct fct_err *err);
 
 /* Chamfer distance (1, sqrt 2) in pixels from each pixel of a W x H range
