@@ -1,8 +1,8 @@
-/* viewcolor.c - vertex colour of a fused surface from the views' images;
+/* viewcolor.c - vertex colour and noise of a fused surface from the views;
  * see viewcolor.h.  Each view: the vertex is moved into the camera
- * (fct_pose_apply with the range image's inverse pose, fct_camera_project),
- * tested against the four range-image pixels around it, and the image
- * sampled there. */
+ * (fct_pose_apply with the range image's inverse pose, fct_camera_project)
+ * and tested against the four range-image pixels around it (sight); the
+ * image is sampled there, or the sensor's noise taken at its depth. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

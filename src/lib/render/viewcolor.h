@@ -1,9 +1,11 @@
-/* viewcolor.h - the colour of a fused surface from the views' images: each
- * vertex gets the weighted average of what the views that see it saw there
- * (the optional colour of tsdfuse, issue 7 item 3; Sun et al. fuse geometry
- * only, so this is the usual texture-fusion step of volumetric pipelines,
- * done per output vertex rather than per voxel so that the colour is not
- * blurred to the voxel size).
+/* viewcolor.h - what the views saw of a fused surface, vertex by vertex:
+ * its colour from the views' images, each vertex the weighted average of
+ * what the views that see it saw there (the optional colour of tsdfuse,
+ * issue 7 item 3; Sun et al. fuse geometry only, so this is the usual
+ * texture-fusion step of volumetric pipelines, done per output vertex
+ * rather than per voxel so that the colour is not blurred to the voxel
+ * size), and its noise from their sensors' noise models (fct_viewnoise,
+ * below).
  *
  * Visibility.  A view sees vertex p when p projects inside its camera, in
  * front of it, onto pixels whose range (the view's own range image,
