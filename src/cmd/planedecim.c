@@ -141,6 +141,7 @@ int main(int argc, char **argv)
 	fct_report("mended", "%zu", st.mended);
 	fct_report("tightened", "%zu", st.tightened);
 	fct_report("unclean_patches", "%zu", st.unclean_patches);
+	fct_report("reprojected", "%zu", st.reprojected);
 	fct_report("moved_line", "%zu", st.meet.lines);
 	fct_report("moved_corner", "%zu", st.meet.corners);
 	fct_report("stayed", "%zu", st.meet.stayed);

@@ -203,6 +203,8 @@ struct fct_planar_stats {
 	                                    they crossed */
 	size_t tightened;                /* whole outlines simplified more tightly */
 	size_t unclean_patches;          /* ... and made free-form, still not clean */
+	size_t reprojected;              /* vertices of theirs moved onto the planes of
+	                                    the patches they still have */
 	struct fct_meet_stats meet;
 	size_t no_pixel;                 /* vertices whose s t no camera pixel gives */
 };
@@ -240,7 +242,10 @@ void fct_planar_params_default(struct fct_planar_params *p);
  *     becomes free-form, or when it holds a fiftieth of the faces or more
  *     (and no small patch went free-form in that round), has its whole
  *     outline tightened step by step to as sampled (and free-form only if
- *     even that fails); the model is made again, until none is left;
+ *     even that fails); the vertices of a patch made free-form that still
+ *     have a patch go from their samples onto the nearest plane of those
+ *     again (step 1 may have put them on the one gone); the model is made
+ *     again, until none is left;
  *  6. fct_planes_meet: vertices onto the planes' lines and corners.
  * 0, or -1 (message set; m may be half done). */
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
