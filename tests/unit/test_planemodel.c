@@ -1,4 +1,5 @@
-/* test_planemodel - fct_planes_project at a crease seen at a grazing angle,
+/* test_planemodel - fct_planes_meet tearing a vertex off a plane with a
+ * viewpoint and not without; fct_planes_project at a crease seen at a grazing angle,
  * a crease move beyond its bound in sigma, one that would hide its sample
  * (an occlusion), and a floor vertex alone whose ray meets a wall first;
  * fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
@@ -288,8 +289,46 @@ static size_t hidden_floor(double sigma, double side, double out[3], double off[
 	return floor_wall_project(&m, patch, sg, out, off);
 }
 
+/* fct_planes_meet on a vertex (0, 0, 4.8) of two faces, one of the floor
+ * y = 0 (patch 0) and one of the wall z = 5 (patch 1), every sigma 0.01:
+ * their line, 0.2 away, is beyond 4 sigma, and the vertex stays on the
+ * floor, 0.2 off the wall.  Seen from (0, 1.5, 0) (one view's mesh) it is
+ * torn: the wall's face gets a copy on its plane (vertex 5), a crack where
+ * the sensor saw an occlusion.  Without a viewpoint (a fused scan) no
+ * sensor saw one, and a crack would open a closed surface: it stays
+ * shared.  Returns the vertices torn; *nv gets the mesh's vertices, *wall0
+ * the wall face's first corner. */
+static size_t meet_far(int with_viewpoint, size_t *nv, uint32_t *wall0)
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	const double pos[5][3] = { { 0, 0, 4.8 }, { -0.1, 0, 4.7 }, { 0.1, 0, 4.7 }, { -0.1, 0.1, 5 }, { 0.1, 0.1, 5 } };
+	const uint32_t floor_face[3] = { 1, 2, 0 }, wall_face[3] = { 0, 4, 3 };
+	two_faces(&m, pos, floor_face, wall_face);
+	const int32_t patch[2] = { 0, 1 };
+	const struct fct_plane planes[2] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 } };
+	const double vp[3] = { 0, 1.5, 0 }, sg[5] = { 0.01, 0.01, 0.01, 0.01, 0.01 };
+	struct fct_meet_stats st;
+	CHECK_INT(fct_planes_meet(&m, patch, planes, sg, NULL, 4, with_viewpoint ? vp : NULL, &st, &err), 0);
+	CHECK_INT(st.stayed, 1);
+	CHECK_NEAR(m.xyz[2], 4.8, 0);
+	*nv = m.nv;
+	*wall0 = m.fvert[m.fstart[1]];
+	fct_mesh_free(&m);
+	return st.torn;
+}
+
 int main(void)
 {
+	size_t nv;
+	uint32_t wall0;
+	CHECK_INT(meet_far(1, &nv, &wall0), 1);
+	CHECK_INT(nv, 6);
+	CHECK_INT(wall0, 5);
+	CHECK_INT(meet_far(0, &nv, &wall0), 0);
+	CHECK_INT(nv, 5);
+	CHECK_INT(wall0, 0);
+
 	size_t facets, joined;
 	double at[3], off[3];
 	/* 9 mm above the floor, 10 mm before the wall: along its ray onto the

@@ -154,7 +154,9 @@ struct fct_meet_stats {
  * (an occlusion).  The copy goes along the vertex's ray when that is
  * within the bound, or when the plane lies before the sample (the ray
  * passes the edge of a surface in front) and the ray meets it at a sine of
- * 0.3 or more; else straight across.  0, or -1 out of memory. */
+ * 0.3 or more; else straight across.  Without a viewpoint (a fused scan:
+ * no occlusion, and a crack would open a closed surface) nothing is
+ * torn; the vertex stays shared.  0, or -1 out of memory. */
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
                     const double *sigma, const double *spacing, double max_move,
                     const double *viewpoint, struct fct_meet_stats *st, struct fct_err *err);
