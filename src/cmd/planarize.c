@@ -267,6 +267,7 @@ static void report_model(const struct fct_planar_stats *st)
 	fct_report_stage("planedecim", "free_faces", "%zu", st->free_faces);
 	fct_report_stage("planedecim", "border_free_faces", "%zu", st->border_free_faces);
 	fct_report_stage("planedecim", "unclean_patches", "%zu", st->unclean_patches);
+	fct_report_stage("planedecim", "reprojected", "%zu", st->reprojected);
 	fct_report_stage("planedecim", "moved_line", "%zu", st->meet.lines);
 	fct_report_stage("planedecim", "moved_corner", "%zu", st->meet.corners);
 	fct_report_stage("planedecim", "torn", "%zu", st->meet.torn);
