@@ -13,15 +13,21 @@
 #include "render/raster.h"
 #include "render/viewcolor.h"
 
+/* nv vertices' sums, per doubles each, zeroed (NULL: out of memory). */
+static double *zeroed_sums(size_t nv, size_t per, struct fct_err *err)
+{
+	size_t n = (nv ? nv : 1) * per;
+	double *sum = fct_alloc_array(n, sizeof *sum, err);
+	if (sum)
+		memset(sum, 0, n * sizeof *sum);
+	return sum;
+}
+
 int fct_viewcolor_init(struct fct_viewcolor *c, size_t nv, struct fct_err *err)
 {
 	memset(c, 0, sizeof *c);
 	c->nv = nv;
-	c->sum = fct_alloc_array(nv ? nv : 1, 4 * sizeof *c->sum, err);
-	if (!c->sum)
-		return -1;
-	memset(c->sum, 0, (nv ? nv : 1) * 4 * sizeof *c->sum);
-	return 0;
+	return (c->sum = zeroed_sums(nv, 4, err)) ? 0 : -1;
 }
 
 void fct_viewcolor_free(struct fct_viewcolor *c)
@@ -307,11 +313,7 @@ int fct_viewnoise_init(struct fct_viewnoise *c, size_t nv, struct fct_err *err)
 {
 	memset(c, 0, sizeof *c);
 	c->nv = nv;
-	c->sum = fct_alloc_array(nv ? nv : 1, 3 * sizeof *c->sum, err);
-	if (!c->sum)
-		return -1;
-	memset(c->sum, 0, (nv ? nv : 1) * 3 * sizeof *c->sum);
-	return 0;
+	return (c->sum = zeroed_sums(nv, 3, err)) ? 0 : -1;
 }
 
 void fct_viewnoise_free(struct fct_viewnoise *c)
