@@ -141,8 +141,7 @@ static void resolve_noise(struct fct_depth_opts *o, const struct fct_image *img)
 		fct_die_err(&err);
 	if (!o->noise && o->K)
 		fct_noise_named(o->K, nz);
-	if (nz->model != FCT_NOISE_UNKNOWN && nz->unit == 0)
-		nz->unit = fct_depth_unit(img, &o->depth);
+	fct_depth_noise_unit(&o->depth, img);
 }
 
 void fct_depth_opts_resolve(struct fct_depth_opts *o, struct fct_camera *cam,

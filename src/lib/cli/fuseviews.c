@@ -379,14 +379,12 @@ int fct_fuse_depth_sigma(struct fct_mesh *out, const char *const *depth, const d
 		struct fct_image img;
 		struct fct_camera cam;
 		fct_fuse_read_depth(&img, &cam, depth[i], dcam, dp, 0);
-		/* The encoding's unit is part of the noise, as the fusion took it
-		 * (fct_fuse_depth_view). */
-		struct fct_noise nz = dp->noise;
-		if (nz.unit == 0)
-			nz.unit = fct_depth_unit(&img, dp);
+		/* The noise as the fusion took it (fct_fuse_depth_view). */
+		struct fct_depth_params vp = *dp;
+		fct_depth_noise_unit(&vp, &img);
 		struct fct_range_image ri;
 		int rc = fct_range_image_depth(&ri, &img, &cam, dp, &pose[12 * i], &err) ||
-		         fct_viewnoise_add(&acc, out, &ri, &nz, o->voxel, &cp, o->fp.threads, NULL, &err);
+		         fct_viewnoise_add(&acc, out, &ri, &vp.noise, o->voxel, &cp, o->fp.threads, NULL, &err);
 		fct_range_image_free(&ri);
 		fct_image_free(&img);
 		if (rc)

@@ -177,6 +177,12 @@ double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params
 	return integer && !(p->baseline > 0) ? 1 / p->depth_scale : 0;
 }
 
+void fct_depth_noise_unit(struct fct_depth_params *p, const struct fct_image *img)
+{
+	if (p->noise.model != FCT_NOISE_UNKNOWN && p->noise.unit == 0)
+		p->noise.unit = fct_depth_unit(img, p);
+}
+
 /* The vertex properties that come from each vertex's cell (s t, sigma, and
  * the kept depths): vertices are in cell order, so the rows are walked
  * alongside instead of dividing each cell index.  s depends on the column

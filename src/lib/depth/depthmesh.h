@@ -66,6 +66,11 @@ double fct_depth_at(const struct fct_image *img, int x, int y, const struct fct_
  * (PNG) depth, 0 for floats and for disparities (whose depth steps vary). */
 double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params *p);
 
+/* A noise model without a unit of its own takes img's encoding's
+ * (fct_depth_unit): the quantisation of the depth as stored is part of
+ * its noise.  No model: nothing. */
+void fct_depth_noise_unit(struct fct_depth_params *p, const struct fct_image *img);
+
 /* Depths a known RGB-D sensor measures (metres): a median outside is a
  * wrong depth scale, not a scene. */
 #define FCT_SENSOR_MIN_DEPTH 0.3

@@ -203,8 +203,7 @@ int fct_depth_smooth_image(struct fct_image *out, const struct fct_image *img, c
 	for (size_t y = 0; y < h; y++)
 		for (size_t x = 0; x < w; x++)
 			depth[y * w + x] = (float)fct_depth_at(img, (int)x, (int)y, p);
-	if (p->noise.model != FCT_NOISE_UNKNOWN && p->noise.unit == 0)
-		p->noise.unit = fct_depth_unit(img, p);   /* before p reads metres */
+	fct_depth_noise_unit(p, img);   /* before p reads metres */
 	int rc = fct_depth_smooth(sm, depth, w, h, fct_camera_pixel_angle(cam), &p->noise, sp, err);
 	free(depth);
 	if (rc) {

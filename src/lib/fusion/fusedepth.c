@@ -46,8 +46,7 @@ int fct_fuse_depth_view(struct fct_fuse_view *v, struct fct_mesh *mesh, float **
 	 * (the jump test's noise term and each vertex's sigma, which the
 	 * fusion weighs by; depthsmooth.h, depthmesh.h). */
 	struct fct_depth_params vp = *dp;
-	if (vp.noise.model != FCT_NOISE_UNKNOWN && vp.noise.unit == 0)
-		vp.noise.unit = fct_depth_unit(img, &vp);
+	fct_depth_noise_unit(&vp, img);
 	int mean = 0, step = depth ? 0 : depth_plan(img, cam, &vp, vox, &mean);
 	if (step)
 		vp.step = step;
