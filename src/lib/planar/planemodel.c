@@ -2140,11 +2140,11 @@ static int count_border_free(const struct fct_mesh *m, size_t *n, struct fct_err
  * in the model of a watertight mesh).  A vertex left with no patch stays
  * on the plane it was put on, within its noise of its sample.  Copies
  * split_occluded made (from nsample on) have one patch each and no sample
- * of their own: they stay.  vstart, vf: m's faces of each vertex; old is
- * 3 m->nv doubles of scratch.  *n gets the vertices that moved. */
+ * of their own: they stay.  vstart, vf: m's faces of each vertex.  *n gets
+ * the vertices that moved onto a plane from their samples. */
 static int reproject_orphans(struct fct_mesh *m, const int32_t *patch, const uint32_t *vstart,
                              const uint32_t *vf, const double *sample, size_t nsample,
-                             unsigned char *only, double *old, const struct fct_plane *pl,
+                             unsigned char *only, const struct fct_plane *pl,
                              const double *vp, const double *sigma, double pixel_angle,
                              double max_move, double *off_crease, size_t *n, struct fct_err *err)
 {
@@ -2156,17 +2156,14 @@ static int reproject_orphans(struct fct_mesh *m, const int32_t *patch, const uin
 			only[v] = 0;
 		if (!only[v])
 			continue;
-		memcpy(old + 3 * v, m->xyz + 3 * v, sizeof(double[3]));
 		memcpy(m->xyz + 3 * v, sample + 3 * v, sizeof(double[3]));
 		any = 1;
 	}
-	size_t moved, creased;
-	if (!any || project_vertices(m, patch, pl, vp, sigma, pixel_angle, max_move, off_crease, NULL, only,
-	                             &moved, &creased, err))
-		return any ? -1 : 0;
-	for (size_t v = 0; v < m->nv; v++)
-		*n += only[v] && memcmp(old + 3 * v, m->xyz + 3 * v, sizeof(double[3])) != 0;
-	return 0;
+	size_t creased;
+	if (!any)
+		return 0;
+	return project_vertices(m, patch, pl, vp, sigma, pixel_angle, max_move, off_crease, NULL, only, n,
+	                        &creased, err);
 }
 
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
@@ -2176,7 +2173,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	struct fct_plane *pl = NULL;
 	size_t np = 0;
 	int32_t *patch = NULL;
-	double *sigma = NULL, *spacing = NULL, *off_crease = NULL, *sample = NULL, *old = NULL;
+	double *sigma = NULL, *spacing = NULL, *off_crease = NULL, *sample = NULL;
 	unsigned char *occluded = NULL, *orphan = NULL;
 	size_t nsample = 0;
 	unsigned char *unclean = NULL, *tight = NULL, *force = NULL, *trouble = NULL, *hit_patch = NULL;
@@ -2241,8 +2238,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	    !(force = calloc(m->nv ? m->nv : 1, 1)) ||
 	    !(trouble = calloc(m->nv ? m->nv : 1, 1)) || !(hit_patch = calloc(np ? np : 1, 1)) ||
 	    !(nfaces = calloc(np ? np : 1, sizeof *nfaces)) ||
-	    !(mended = calloc(np ? np : 1, sizeof *mended)) || !(orphan = calloc(m->nv ? m->nv : 1, 1)) ||
-	    !(old = fct_alloc_array(3 * (m->nv ? m->nv : 1), sizeof *old, err)))
+	    !(mended = calloc(np ? np : 1, sizeof *mended)) || !(orphan = calloc(m->nv ? m->nv : 1, 1)))
 		goto out;
 	for (size_t f = 0; f < m->nf; f++)
 		if (patch[f] >= 0)
@@ -2305,7 +2301,7 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 		/* (carry's adjacency is m's: its faces stay the same) */
 		size_t again_moved = 0;
 		if (gone && reproject_orphans(m, patch, carry.adj.vert_fstart, carry.adj.vert_f, sample, nsample,
-		                              orphan, old, pl, have_cam ? vp : NULL, sigma,
+		                              orphan, pl, have_cam ? vp : NULL, sigma,
 		                              have_cam ? fct_camera_pixel_angle(&cam) : 0, p->max_move,
 		                              off_crease, &again_moved, err))
 			goto out;
@@ -2347,6 +2343,6 @@ out:
 	rounds_free(&carry);
 	free(pl), free(patch), free(sigma), free(spacing), free(unclean), free(tight), free(nfaces);
 	free(force), free(trouble), free(mended), free(off_crease), free(hit_patch), free(occluded);
-	free(sample), free(orphan), free(old);
+	free(sample), free(orphan);
 	return rc;
 }
