@@ -198,8 +198,8 @@ static void test_noise(void)
 		const struct fct_prop *sg = fct_elem_find(&out.vertex, "sigma");
 		CHECK(sg && sg->type == FCT_FLOAT32);
 		double a = sqrt(sqrt(7e-5 / 1.3) * sqrt(4.1e-5) / 1.3);
-		CHECK_NEAR(a, 6.012e-3, 1e-6);
 		CHECK_NEAR(fct_prop_get(sg, 0), 0.002 * a / 0.01, 1e-9);
+		CHECK_NEAR(fct_prop_get(sg, 0), 1.2024e-3, 1e-6);
 		CHECK_NEAR(fct_prop_get(sg, 1), 0.002, 1e-9);
 		CHECK_NEAR(fct_prop_get(sg, 2), 0.002, 1e-9);
 		/* A floor of 1 mm in quadrature: k = sqrt(4e-6 - 1e-6) / 0.01 keeps
