@@ -197,6 +197,54 @@ run_case 0 "meshdist -s 100000 $V/m2.ply $V/scene.ply > $V/m2.dist"
 run_case 0 "meshdist -s 100000 $V/k/1-mesh.ply $V/scene.ply > $V/dense.dist"
 check_num "no camera: closer to the truth than the dense mesh (half)" \
 	"$(ratio "$(figure mean "$V/m2.dist")" "$(figure mean "$V/dense.dist")")" "<" 0.5
+# --noise for a mesh.  With a camera: sigma again from the model at each
+# vertex's depth, as dm2mesh gave it (the kept mesh's model; measured the
+# same faces, 4e-8 m apart at most: the positions are the file's floats).
+run_case 0 "planarize --noise $V/view00.noise -o $V/m3.ply $V/k/1-mesh.ply"
+check_num "--noise on a mesh with a camera: the depth image's faces" "$(info faces "$V/m3.ply")" == "$(info faces "$V/a.ply")"
+run_case 0 "meshdist -H $V/m3.ply $V/a.ply"
+check_num "... and the same surface (1e-6 m)" "$(awk '$1 == "hausdorff" { print $2 }' "$TMP/out")" "<" 1e-6
+check_true "--noise on a mesh: its model in the header" grep -aq "^comment noise kinect" "$V/m3.ply"
+# Without a camera: one figure.  Another tool's fused wall: a 2 m square
+# bent by 2 mm (sin x sin y over a full period, what a fusion's registration
+# leaves; zero on average) under 0.2 mm of noise, no camera, no sigma.  Its
+# own residuals say 0.2 mm, and the bend is cut into planes (measured 13
+# patches, 106x, 0.82 mm from the flat truth, which the mesh itself is);
+# told its noise is 1 mm it is one plane (2 faces, 0.00 mm).  qemdecim to
+# 2 faces: 0.91 mm.
+W=$TMP/wall
+mkdir -p "$W"
+awk 'BEGIN {
+	srand(1); n = 101; pi = 3.14159265358979
+	print "ply\nformat ascii 1.0\nelement vertex " n * n
+	print "property float x\nproperty float y\nproperty float z"
+	print "element face " 2 * (n - 1) * (n - 1) "\nproperty list uchar int vertex_indices\nend_header"
+	for (j = 0; j < n; j++)
+		for (i = 0; i < n; i++) {
+			x = 2 * i / (n - 1); y = 2 * j / (n - 1)
+			printf "%.6f %.6f %.6f\n", x, y, 0.002 * sin(pi * x) * sin(pi * y) + 0.0004 * (rand() + rand() + rand() - 1.5)
+		}
+	for (j = 0; j < n - 1; j++)
+		for (i = 0; i < n - 1; i++) {
+			a = j * n + i
+			printf "3 %d %d %d\n3 %d %d %d\n", a, a + 1, a + n + 1, a, a + n + 1, a + n
+		}
+}' >"$W/wall.ply"
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n-1 -1 0\n3 -1 0\n3 3 0\n-1 3 0\n3 0 1 2\n3 0 2 3\n' >"$W/truth.ply"
+run_case 0 "planarize -v -o $W/est.ply $W/wall.ply 2>$W/est.err"
+run_case 0 "planarize -v --noise poly:0.001,0,0 -o $W/told.ply $W/wall.ply 2>$W/told.err"
+check_num "a bent wall, its noise estimated: more than one patch" "$(field "segplanes: patches" "$W/est.err")" ">" 1
+check_num "... told 1 mm: one patch" "$(field "segplanes: patches" "$W/told.err")" == 1
+check_num "... told 1 mm: sigma 1 mm" "$(field "segplanes: noise" "$W/told.err")" "==" 0.00100000005
+meshdist -s 100000 "$W/est.ply" "$W/truth.ply" >"$W/est.dist"
+meshdist -s 100000 "$W/told.ply" "$W/truth.ply" >"$W/told.dist"
+meshdist -s 100000 "$W/wall.ply" "$W/truth.ply" >"$W/wall.dist"
+check_num "... told: within 0.1 mm of the flat truth (mean)" "$(figure mean "$W/told.dist")" "<" 0.0001
+check_num "... estimated: no closer than the mesh itself (half)" \
+	"$(ratio "$(figure mean "$W/est.dist")" "$(figure mean "$W/wall.dist")")" ">" 0.5
+check_num "... told: 1000x fewer faces" "$(field reduction "$W/told.err")" ">=" 1000
+run_case 2 "planarize --noise kinect -o $W/k.ply $W/wall.ply" "" "planarize: --noise: $W/wall.ply: the noise model \"kinect 585 0.075 0.051 0.125\" grows with depth, and the mesh has no camera"
+run_case 2 "planarize -K tum -o $W/k.ply $W/wall.ply" "" "planarize: -K: for depth images, and $W/wall.ply is a mesh"
 # A fused scan (tsdfuse --carve of four views: watertight, 145 pieces, no
 # camera) stays watertight; its floating debris (pieces of fewer than 64
 # faces, --min-piece) is dropped, every other piece stays; with

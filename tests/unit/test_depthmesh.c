@@ -247,8 +247,70 @@ static void test_sample_tables(void)
 	}
 }
 
+/* A view's mesh given its noise again from its vertices
+ * (fct_mesh_noise_sigma) has the sigma dm2mesh gave it, in the camera's
+ * frame and moved by a pose; without a camera a constant model gives its
+ * figure and a model that grows with depth is refused. */
+static void test_mesh_noise_sigma(void)
+{
+	enum { W = 64, H = 48 };
+	static float depth[W * H];
+	for (int y = 0; y < H; y++)
+		for (int x = 0; x < W; x++)
+			depth[y * W + x] = (float)(1.5 + 0.04 * x + 0.02 * y + 0.3 * sin(0.3 * x) * cos(0.2 * y));
+	struct fct_image img = { W, H, 1, FCT_PIX_F32, depth };
+	struct fct_camera cam = { FCT_CAMERA_PINHOLE, W, H, 60, 60, (W - 1) / 2.0, (H - 1) / 2.0, 0, 0 };
+	struct fct_depth_params p;
+	fct_depth_params_default(&p);
+	fct_noise_kinect(&p.noise);
+	p.noise.unit = 0.001;
+	struct fct_mesh m;
+	struct fct_err err;
+	CHECK_INT(fct_depth_mesh(&m, &img, &cam, &p, NULL, &err), 0);
+	CHECK(m.nv > 1000);
+	const struct fct_prop *sg = fct_elem_find(&m.vertex, "sigma");
+	CHECK(sg != NULL);
+	float *want = malloc(m.nv * sizeof *want);
+	if (!want)
+		abort();
+	for (size_t i = 0; i < m.nv; i++)
+		want[i] = (float)fct_prop_get(sg, i);
+	/* In the camera's frame, then moved by a pose (a turn about y and a
+	 * shift) with its inverse given. */
+	double pose[12] = { cos(0.5), 0, sin(0.5), 0.3, 0, 1, 0, -0.2, -sin(0.5), 0, cos(0.5), 2 }, inv[12];
+	fct_pose_invert(pose, inv);
+	for (int moved = 0; moved < 2; moved++) {
+		if (moved)
+			for (size_t i = 0; i < m.nv; i++) {
+				double q[3];
+				fct_pose_apply(pose, &m.xyz[3 * i], q);
+				memcpy(&m.xyz[3 * i], q, sizeof q);
+			}
+		CHECK_INT(fct_mesh_noise_sigma(&m, &p.noise, &cam, moved ? inv : NULL, &err), 0);
+		sg = fct_elem_find(&m.vertex, "sigma");
+		double worst = 0;
+		for (size_t i = 0; i < m.nv; i++)
+			worst = fmax(worst, fabs(fct_prop_get(sg, i) / want[i] - 1));
+		CHECK_MSG(worst < 1e-5, "moved %d: sigma %.3g off dm2mesh's", moved, worst);
+	}
+	/* No camera: poly A alone is one figure; kinect needs the depth. */
+	struct fct_noise flat;
+	CHECK_INT(fct_noise_parse(&flat, "poly:0.002,0,0", &err), 0);
+	CHECK_INT(fct_noise_grows_with_depth(&flat), 0);
+	CHECK_INT(fct_noise_grows_with_depth(&p.noise), 1);
+	CHECK_INT(fct_mesh_noise_sigma(&m, &flat, NULL, NULL, &err), 0);
+	sg = fct_elem_find(&m.vertex, "sigma");
+	CHECK_NEAR(fct_prop_get(sg, 0), 0.002, 1e-9);
+	CHECK_NEAR(fct_prop_get(sg, m.nv - 1), 0.002, 1e-9);
+	CHECK_INT(fct_mesh_noise_sigma(&m, &p.noise, NULL, NULL, &err), -1);
+	CHECK(strstr(err.msg, "grows with depth") != NULL);
+	free(want);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
+	test_mesh_noise_sigma();
 	test_sample_tables();
 	test_jump_allowance();
 	CHECK_DONE();

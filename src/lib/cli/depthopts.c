@@ -77,7 +77,7 @@ int fct_depth_opt(struct fct_depth_opts *o, int c, const char *arg)
 	}
 	default: return 0;
 	}
-	if (!o->first)
+	if (!o->first && c != FCT_DOPT_NOISE)
 		o->first = opt_name(c);
 	return 1;
 }

@@ -44,7 +44,8 @@ enum {
 
 struct fct_depth_opts {
 	const char *K, *camera_file, *cylindrical, *noise, *pose_file, *image_file;
-	const char *first;         /* the first depth option given, for messages */
+	const char *first;         /* the first depth option given but --noise
+	                              (a mesh takes that too), for messages */
 	int scale_given, doffs_given, code_given;
 	double focal;              /* --focal (0: the camera's) */
 	int has_pose;

@@ -368,3 +368,39 @@ out:
 	}
 	return rc;
 }
+
+int fct_mesh_noise_sigma(struct fct_mesh *m, const struct fct_noise *nz, const struct fct_camera *cam,
+                         const double *inv, struct fct_err *err)
+{
+	int seen = cam && cam->kind != FCT_CAMERA_NONE;
+	if (nz->model == FCT_NOISE_UNKNOWN)
+		return fct_fail(err, "no noise model");
+	if (!seen && fct_noise_grows_with_depth(nz)) {
+		char text[256];
+		fct_noise_format(nz, text, sizeof text);
+		return fct_fail(err, "the noise model \"%s\" grows with depth, and the mesh has no camera "
+		                "(poly:A,0,0 is one figure)", text);
+	}
+	struct fct_prop *sg = fct_elem_add_scalar(&m->vertex, "sigma", FCT_FLOAT32, err);
+	if (!sg)
+		return -1;
+	double one = fct_noise_sigma(nz, 1);
+	for (size_t i = 0; i < m->nv; i++) {
+		double s = one;
+		if (seen) {
+			double q[3], u, v, depth;
+			const double *x = &m->xyz[3 * i];
+			if (inv)
+				fct_pose_apply(inv, x, q);
+			else
+				q[0] = x[0], q[1] = x[1], q[2] = x[2];
+			double len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+			if (fct_camera_project(cam, q, &u, &v, &depth) && depth > 0)
+				s = fct_noise_sigma(nz, depth) * len / depth;
+			else
+				s = fct_noise_sigma(nz, len);
+		}
+		fct_prop_set(sg, i, s);
+	}
+	return 0;
+}

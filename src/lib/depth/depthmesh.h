@@ -71,6 +71,17 @@ double fct_depth_unit(const struct fct_image *img, const struct fct_depth_params
  * its noise.  No model: nothing. */
 void fct_depth_noise_unit(struct fct_depth_params *p, const struct fct_image *img);
 
+/* Give each vertex of m the float property sigma (replacing any) under
+ * noise model nz, as a view's mesh has it: fct_noise_sigma of its depth in
+ * camera cam times the ray's length per unit depth, m's coordinates taken
+ * into the camera's frame by inv (the inverse of its pose; NULL: they are
+ * in it already); a vertex the camera cannot project takes its distance
+ * from the camera as its depth.  Without a camera (cam NULL or
+ * FCT_CAMERA_NONE) every vertex gets the model's one figure, and a model
+ * that grows with depth (fct_noise_grows_with_depth) is refused: 0 or -1. */
+int fct_mesh_noise_sigma(struct fct_mesh *m, const struct fct_noise *nz, const struct fct_camera *cam,
+                         const double *inv, struct fct_err *err);
+
 /* Depths a known RGB-D sensor measures (metres): a median outside is a
  * wrong depth scale, not a scene. */
 #define FCT_SENSOR_MIN_DEPTH 0.3

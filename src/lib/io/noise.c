@@ -314,6 +314,13 @@ void fct_noise_sigmas(const struct fct_noise *nz, const double *depth, float *si
 	}
 }
 
+int fct_noise_grows_with_depth(const struct fct_noise *nz)
+{
+	double c[5];
+	sigma2_polynomial(nz, c);
+	return c[1] != 0 || c[2] != 0 || c[3] != 0 || c[4] != 0;
+}
+
 double fct_noise_step(const struct fct_noise *nz, double z)
 {
 	double q = disparity_step(nz, z);

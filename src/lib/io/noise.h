@@ -140,6 +140,11 @@ double fct_noise_sigma(const struct fct_noise *nz, double depth);
  * positive: the loop over the pixels of a depth image. */
 void fct_noise_sigmas(const struct fct_noise *nz, const double *depth, float *sigma, size_t n);
 
+/* 1 when nz's sigma changes with depth (every model but poly and tof with
+ * only A, and unknown), else 0: whether a mesh without a camera can be
+ * given its noise. */
+int fct_noise_grows_with_depth(const struct fct_noise *nz);
+
 /* The Gaussian part alone (what a simulation draws before rounding). */
 double fct_noise_sigma_gaussian(const struct fct_noise *nz, double depth);
 
