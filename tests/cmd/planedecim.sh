@@ -97,7 +97,10 @@ border_length() {
 # p95 too; the true surface closer to it than to the dense mesh and to
 # qemdecim's (mean), and than to the dense mesh (p95); manifold, no
 # degenerate or duplicate face; every vertex of a patch face within its
-# uncertainty of its plane.
+# max_move (4) uncertainties of its plane: on it, or at its sample where
+# the move along its ray onto the plane was beyond that bound (measured
+# 1.6, 3.7 and 3.0 uncertainties on rg, rq and rk; on the plane within 1
+# before moves were bounded).
 model() {
 	t=$TMP/$1
 	check_num "$1: reduction" "$(report reduction "$t.model.err")" ">=" "$2"
@@ -118,7 +121,7 @@ model() {
 		check_num "$1: $k" "$(sed -n "s/^$k: //p" "$t.info")" == 0
 	done
 	meshconv -a -o "$t.model.a.ply" "$t.model.ply"
-	check_num "$1: patch vertices off their plane, in uncertainties" "$(off_plane "$t.model.a.ply")" "<=" 1.001
+	check_num "$1: patch vertices off their plane, in uncertainties" "$(off_plane "$t.model.a.ply")" "<=" 4.001
 }
 
 # Gaussian noise of 3 mm.  Measured: 416 faces (363x); to the truth mean /

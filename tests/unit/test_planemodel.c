@@ -375,25 +375,28 @@ int main(void)
 	/* A floor vertex alone (no crease), its sample 20 mm behind the wall
 	 * and 30 mm above the floor: along its ray it would go onto the floor
 	 * at z = 5.02 * 1.5 / 1.47 = 5.1224, 0.107 m (3.6 times straight
-	 * across) and 0.12 m past the wall.  Its ray meets the wall 20.8 mm
-	 * from it, at y = 0.0359 (the wall's side of the line), 0.128 m before
-	 * the floor: with sigma 0.02 (bound 0.08, margin 0.02) it goes onto the
-	 * line y = 0, z = 5 where it passes nearest its ray, (0, 0, 5). */
+	 * across) and 0.12 m past the wall, beyond a bound of 4 sigma (0.08
+	 * with sigma 0.02): the floor alone leaves it at its sample.  Its ray
+	 * meets the wall 20.8 mm from it, at y = 0.0359 (the wall's side of
+	 * the line), 0.128 m before the floor: within that bound (margin 0.02)
+	 * it goes onto the line y = 0, z = 5 where it passes nearest its ray,
+	 * (0, 0, 5), off the sample where the floor left it. */
 	CHECK_INT(hidden_floor(0.02, 1, at, off), 1);
 	CHECK_NEAR(at[0], 0, 1e-12);
 	CHECK_NEAR(at[1], 0, 1e-12);
 	CHECK_NEAR(at[2], 5, 1e-12);
-	CHECK_NEAR(off[1], 0, 1e-12);
-	CHECK_NEAR(off[2], 5.02 * 1.5 / 1.47, 1e-12);
+	CHECK_NEAR(off[1], 0.03, 1e-12);
+	CHECK_NEAR(off[2], 5.02, 1e-12);
 	/* The wall met 20.8 mm away is beyond a bound of 4 sigma = 16 mm with
 	 * sigma 0.004; the front of a box below its top is met above the top,
-	 * where it does not reach: along its ray onto the floor both times. */
+	 * where it does not reach: at its sample both times, the move along
+	 * its ray onto the floor (0.107 m) beyond the bound. */
 	CHECK_INT(hidden_floor(0.004, 1, at, off), 0);
-	CHECK_NEAR(at[1], 0, 1e-12);
-	CHECK_NEAR(at[2], 5.02 * 1.5 / 1.47, 1e-12);
+	CHECK_NEAR(at[1], 0.03, 1e-12);
+	CHECK_NEAR(at[2], 5.02, 1e-12);
 	CHECK_INT(hidden_floor(0.02, -1, at, off), 0);
-	CHECK_NEAR(at[1], 0, 1e-12);
-	CHECK_NEAR(at[2], 5.02 * 1.5 / 1.47, 1e-12);
+	CHECK_NEAR(at[1], 0.03, 1e-12);
+	CHECK_NEAR(at[2], 5.02, 1e-12);
 	CHECK(isnan(off[0]));
 	/* With a bound of 4 sigma: a speck mostly 2 sigma off the plane around
 	 * it joins it; one mostly 5 sigma off (a strip of floor seen between a

@@ -96,8 +96,12 @@ int fct_fill_free_holes(struct fct_mesh *m, int32_t **patch, const struct fct_pl
 /* Every vertex of a face of a patch onto the nearest of its patches' planes:
  * along its ray from viewpoint (when not NULL, and no more than four times
  * as far as straight across), which keeps its pixel and so every face's
- * orientation in the image; else straight across.  With a viewpoint, a
- * vertex of exactly two patches that the nearer plane would take farther
+ * orientation in the image; else straight across.  A move along its ray of
+ * more than max_move times its uncertainty (below) is not made: the vertex
+ * stays at its sample (issue 23: no vertex moved farther than its noise
+ * allows; a floor vertex slid along a grazing ray ends off the data).
+ * With a viewpoint, a vertex of exactly two patches that the nearer plane
+ * would take farther
  * from their planes' line than it is goes onto that line instead, where it
  * passes nearest the vertex's ray (unless that is more than four times as
  * far as onto the nearer plane, or more than max_move times its
