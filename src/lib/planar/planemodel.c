@@ -2340,7 +2340,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	if (fct_patches_get(m, &patch, &dummy, (long)np, err) ||
 	    !(spacing = sample_spacing(m, have_cam ? &cam : NULL, vp, input_spacing, err)) ||
 	    fct_planes_meet(m, patch, pl, sigma, spacing, p->max_move, have_cam ? vp : NULL, &st->meet,
-	                    err))
+	                    err) ||
+	    drop_unused_vertices(m, err))
 		goto out;
 	if (count_border_free(m, &st->border_free_faces, err))
 		goto out;
