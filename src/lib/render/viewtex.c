@@ -11,6 +11,7 @@
 #include "geom/geom.h"
 #include "render/graphcut.h"
 #include "io/header.h"
+#include "core/par.h"
 #include "core/path.h"
 #include "geom/planes.h"
 #include "render/raster.h"
@@ -119,6 +120,7 @@ struct fct_viewtex {
 	size_t bview;
 	struct fct_viewtex_stats st;
 	size_t texels;           /* covered by faces */
+	double bake;             /* a bake's texels per metre (0: from photos) */
 };
 
 /* ---- set-up --------------------------------------------------------------- */
@@ -933,25 +935,63 @@ static int planar_frame(const struct fct_viewtex *T, const struct chart *c, doub
 	return best > 0;
 }
 
+/* The frame of a baked chart (no photo): its plane's, with e1 along the
+ * world axis that lies most in the plane, when every face is within 25
+ * degrees of the plane (returns 1); else the plane across its key's axis
+ * (orthographic along the axis, which every face's normal is within 55
+ * degrees of). */
+static int bake_frame(const struct fct_viewtex *T, const struct chart *c, double e1[3], double e2[3])
+{
+	memset(e1, 0, 3 * sizeof *e1);
+	memset(e2, 0, 3 * sizeof *e2);
+	int planar = T->p.rectify && c->patch >= 0 && (size_t)c->patch < T->nplanes;
+	const double *n = planar ? T->planes[c->patch].n : NULL;
+	for (uint32_t i = 0; planar && i < c->count; i++) {
+		uint32_t f = T->chart_faces[c->first + i];
+		planar = fabs(fct_v3_dot(T->fn + 3 * (size_t)f, n)) >= PLANAR_COS;
+	}
+	if (planar) {
+		int a = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
+		double x[3] = { 0, 0, 0 };
+		x[a] = 1;
+		fct_v3_axpy(e1, x, -n[a], n);
+		double l = sqrt(fct_v3_dot(e1, e1));
+		if (l > 0.5) {             /* at least sqrt(2/3) for a unit normal */
+			for (int j = 0; j < 3; j++)
+				e1[j] /= l;
+			fct_v3_cross(e2, n, e1);
+			return 1;
+		}
+	}
+	int axis = c->view / 2;
+	e1[(axis + 1) % 3] = 1;
+	e2[(axis + 2) % 3] = c->view % 2 ? -1 : 1;
+	return 0;
+}
+
 /* Chart-local texel coordinates of every corner of chart c at scale s,
  * into ab; the rect (with padding) into c->w, h, i0, j0. */
 static void parametrise(struct fct_viewtex *T, struct chart *c, double s)
 {
 	const struct fct_mesh *m = T->m;
-	const struct vt_view *V = &T->views[c->view];
-	double e1[3] = { 0, 0, 0 }, e2[3] = { 0, 0, 0 }, density = 0;
-	c->planar = T->p.rectify && c->patch >= 0 && (size_t)c->patch < T->nplanes &&
-	            planar_frame(T, c, e1, e2, &density);
+	const struct vt_view *V = &T->views[T->bake ? 0 : c->view];
+	double e1[3] = { 0, 0, 0 }, e2[3] = { 0, 0, 0 }, density = T->bake;
+	if (T->bake)
+		c->planar = bake_frame(T, c, e1, e2);
+	else
+		c->planar = T->p.rectify && c->patch >= 0 && (size_t)c->patch < T->nplanes &&
+		            planar_frame(T, c, e1, e2, &density);
+	int metric = c->planar || T->bake;
 	double amin = INFINITY, amax = -INFINITY, bmin = INFINITY, bmax = -INFINITY;
 	double limit = T->p.atlas_max - 2 * T->p.padding - 2;
 	for (int pass = 0; pass < 2; pass++) {
-		double k = c->planar ? s * density : s, n = 0, sa = 0, sb = 0;
+		double k = metric ? s * density : s, n = 0, sa = 0, sb = 0;
 		for (uint32_t i = 0; i < c->count; i++) {
 			uint32_t f = T->chart_faces[c->first + i];
 			for (uint32_t j = m->fstart[f]; j < m->fstart[f + 1]; j++) {
 				const double *x = m->xyz + 3 * (size_t)m->fvert[j];
 				double a, b;
-				if (c->planar) {
+				if (metric) {
 					a = k * fct_v3_dot(x, e1);
 					b = k * fct_v3_dot(x, e2);
 				} else {
@@ -1079,7 +1119,8 @@ static int make_seams(struct fct_viewtex *T, struct fct_err *err)
 	return 0;
 }
 
-int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err)
+/* Steps 3-4 after the labels, with photos or baked. */
+static int layout(struct fct_viewtex *T, struct fct_err *err)
 {
 	const struct fct_mesh *m = T->m;
 	if (make_charts(T, err))
@@ -1179,9 +1220,51 @@ int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err)
 	T->st.page_width = npages ? T->pages[0].width : 0;
 	T->st.page_height = npages ? T->pages[0].height : 0;
 	T->st.scale = s;
-	if (make_seams(T, err))
+	/* A bake has no photos to level between: its charts' edges are not seams. */
+	if (!T->bake && make_seams(T, err))
 		return -1;
 	return fct_raster_init(&T->tile, TILE, TILE, err);
+}
+
+int fct_viewtex_layout(struct fct_viewtex *T, struct fct_err *err)
+{
+	if (T->bake || T->pages)
+		return fct_fail(err, "layout: done already");
+	return layout(T, err);
+}
+
+/* The key of a baked face of unit normal n: 2 a + (n_a < 0) for the axis a
+ * nearest n (the lower axis on a tie). */
+static int32_t axis_key(const double n[3])
+{
+	int a = 0;
+	for (int j = 1; j < 3; j++)
+		if (fabs(n[j]) > fabs(n[a]))
+			a = j;
+	return 2 * a + (n[a] < 0);
+}
+
+int fct_viewtex_layout_bake(struct fct_viewtex *T, double texels_per_metre, struct fct_err *err)
+{
+	if (T->bake || T->pages)
+		return fct_fail(err, "layout: done already");
+	if (!(texels_per_metre > 0 && texels_per_metre < 1e300))
+		return fct_fail(err, "bake: %g texels per metre", texels_per_metre);
+	const struct fct_mesh *m = T->m;
+	T->bake = texels_per_metre;
+	for (size_t f = 0; f < m->nf; f++) {
+		const double *n = T->fn + 3 * f;
+		/* A face of a planar patch that lies in its plane takes the
+		 * plane's key, so the patch is one chart in the plane's frame. */
+		if (T->patch && T->patch[f] >= 0 && (size_t)T->patch[f] < T->nplanes) {
+			const double *pn = T->planes[T->patch[f]].n;
+			if (fabs(fct_v3_dot(n, pn)) >= PLANAR_COS)
+				n = pn;
+		}
+		T->label[f] = axis_key(n);
+	}
+	T->st.faces = m->nf;
+	return layout(T, err);
 }
 
 /* ---- step 4: texels ------------------------------------------------------------ */
@@ -1437,6 +1520,116 @@ int fct_viewtex_sample_view(struct fct_viewtex *T, size_t k, const struct fct_im
 		}
 	}
 	return 0;
+}
+
+/* ---- a bake's texels ------------------------------------------------------------ */
+
+#define BAKE_BATCH (1u << 18)    /* texels collected before a parallel pass */
+
+struct bake_texel {
+	uint32_t tri;
+	float b1, b2;
+	uint32_t page;
+	size_t at;
+};
+
+struct bake_run {
+	struct fct_viewtex *T;
+	fct_viewtex_colour_fn *fn;
+	const void *ctx;
+	int nthreads;
+	struct bake_texel *t;
+	unsigned char *rgb;      /* 3 per collected texel */
+	size_t n;
+};
+
+static void bake_chunk(void *ctx, size_t lo, size_t hi, int worker)
+{
+	(void)worker;
+	struct bake_run *B = ctx;
+	for (size_t i = lo; i < hi; i++) {
+		const struct bake_texel *t = &B->t[i];
+		double x[3], col[3];
+		tri_point(B->T, t->tri, t->b1, t->b2, x);
+		B->fn(B->ctx, B->T->tface[t->tri], x, col);
+		for (int j = 0; j < 3; j++) {
+			double v = floor(col[j] + 0.5);
+			B->rgb[3 * i + (size_t)j] = (unsigned char)(v > 0 ? v < 255 ? v : 255 : 0);
+		}
+	}
+}
+
+/* The collected texels' colours, in parallel (each texel's own), then
+ * written in the pages. */
+static void bake_flush(struct bake_run *B)
+{
+	struct fct_viewtex *T = B->T;
+	fct_par_run(B->nthreads, B->n, 0, bake_chunk, B);
+	for (size_t i = 0; i < B->n; i++) {
+		const struct bake_texel *t = &B->t[i];
+		memcpy((unsigned char *)T->pages[t->page].data + 3 * t->at, B->rgb + 3 * i, 3);
+		T->texels += !T->mask[t->page][t->at];
+		T->mask[t->page][t->at] = 1;
+	}
+	B->n = 0;
+}
+
+static void bake_collect(struct fct_viewtex *T, const struct chart *c, uint32_t tri, double b1,
+                         double b2, size_t at, void *ctx)
+{
+	(void)T;
+	struct bake_run *B = ctx;
+	B->t[B->n++] = (struct bake_texel){ tri, (float)b1, (float)b2, (uint32_t)c->page, at };
+	if (B->n == BAKE_BATCH)
+		bake_flush(B);
+}
+
+int fct_viewtex_bake(struct fct_viewtex *T, fct_viewtex_colour_fn *fn, const void *ctx, int nthreads,
+                     struct fct_err *err)
+{
+	if (!T->bake || !T->pages)
+		return fct_fail(err, "bake: before fct_viewtex_layout_bake");
+	struct bake_run B = { T, fn, ctx, fct_par_threads(nthreads), NULL, NULL, 0 };
+	B.t = fct_alloc_array(BAKE_BATCH, sizeof *B.t, err);
+	B.rgb = fct_alloc_array(BAKE_BATCH, 3, err);
+	int rc = B.t && B.rgb ? 0 : -1;
+	for (size_t i = 0; i < T->ncharts && !rc; i++)
+		rc = chart_texels(T, &T->charts[i], bake_collect, &B, err);
+	/* A sliver narrower than a texel covers no texel's centre: the texels
+	 * under its corners and centroid, when still empty, take its colour,
+	 * so that a viewer's bilinear lookup there reads the face (and the
+	 * padding around it), not the black between charts. */
+	static const double at_b[4][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1.0 / 3, 1.0 / 3 } };
+	if (!rc && B.n)
+		bake_flush(&B);
+	for (size_t i = 0; i < T->ncharts && !rc; i++) {
+		const struct chart *c = &T->charts[i];
+		const struct fct_image *pg = &T->pages[c->page];
+		for (uint32_t j = 0; j < c->count; j++) {
+			uint32_t f = T->chart_faces[c->first + j];
+			for (uint32_t k = T->tri_first[f]; k < T->tri_first[f + 1]; k++)
+				for (int q = 0; q < 4; q++) {
+					double b1 = at_b[q][0], b2 = at_b[q][1], ab[2];
+					const float *a0 = T->ab + 2 * (size_t)T->tcorner[3 * (size_t)k];
+					const float *a1 = T->ab + 2 * (size_t)T->tcorner[3 * (size_t)k + 1];
+					const float *a2 = T->ab + 2 * (size_t)T->tcorner[3 * (size_t)k + 2];
+					for (int d = 0; d < 2; d++)
+						ab[d] = (1 - b1 - b2) * a0[d] + b1 * a1[d] + b2 * a2[d];
+					int x = (int)floor(ab[0]), y = (int)floor(ab[1]);
+					x = x < c->x ? c->x : x >= c->x + c->w ? c->x + c->w - 1 : x;
+					y = y < c->y ? c->y : y >= c->y + c->h ? c->y + c->h - 1 : y;
+					size_t at = (size_t)y * (size_t)pg->width + (size_t)x;
+					if (T->mask[c->page][at])
+						continue;
+					bake_collect(T, c, k, b1, b2, at, &B);
+				}
+		}
+	}
+	if (!rc && B.n)
+		bake_flush(&B);
+	free(B.t);
+	free(B.rgb);
+	return rc;
 }
 
 /* ---- step 5: levelling, padding ---------------------------------------------- */

@@ -175,6 +175,28 @@ const struct fct_image *fct_viewtex_page(const struct fct_viewtex *T, size_t i);
 int fct_viewtex_apply(struct fct_viewtex *T, struct fct_mesh *m, char *const *names, int per_face,
                       struct fct_err *err);
 
+/* Baking: the texture of a surface whose colour is known at every point
+ * (a denser coloured mesh's, colbake.h), without photos; T made with
+ * nviews 0.  Steps 3-4: a face's chart key is the axis (+-x, +-y, +-z)
+ * nearest its normal, or its planar patch plane's when it lies within 25
+ * degrees of the plane; connected faces of one key (and patch) form a
+ * chart, parametrised in its plane's frame, else projected along its axis
+ * (which all its faces' normals lie within 55 degrees of), at
+ * texels_per_metre times texel_scale, the scale shrunk until the pages fit
+ * as above.  0 or -1. */
+int fct_viewtex_layout_bake(struct fct_viewtex *T, double texels_per_metre, struct fct_err *err);
+
+/* The colour (RGB, 0-255) at point x of face `face`, for a bake; called
+ * from several threads at once, so it may only read ctx. */
+typedef void fct_viewtex_colour_fn(const void *ctx, size_t face, const double x[3], double rgb[3]);
+
+/* Step 5 of a bake: every texel of every chart gets fn's colour at its 3-D
+ * point, fn called on nthreads threads (fct_par_threads: 0 one per
+ * processor); the pages are the same whatever the thread count.  Then
+ * fct_viewtex_finish pads the charts.  0 or -1. */
+int fct_viewtex_bake(struct fct_viewtex *T, fct_viewtex_colour_fn *fn, const void *ctx, int nthreads,
+                     struct fct_err *err);
+
 void fct_viewtex_get_stats(const struct fct_viewtex *T, struct fct_viewtex_stats *st);
 
 /* Step 1 for the photos ph[0..n) (photo.h; photo k is view k), each read
