@@ -6,7 +6,8 @@
 # the planar model (planedecim),
 # per-corner texcoord over several views (cyl2planar), an OBJ with its
 # .mtl, planarize's models (PLY with s t, OBJ, a panorama's per-corner
-# texcoord), roommodel's textured OBJ, tsdfuse's fused mesh with each
+# texcoord, and the atlas baked from a mesh's vertex colours, PLY and OBJ),
+# roommodel's textured OBJ, tsdfuse's fused mesh with each
 # vertex's sigma, and tsdfuse naming 30 views, whose provenance line Open3D's reader
 # aborted on at 2359 bytes ("RPly: Line too long").  The numbers each reader
 # gets are checked against facet's own ascii output (tests/cmd/interop.py).
@@ -47,10 +48,14 @@ dm2mesh -q --step 8 --cylindrical ,,0 --pose room/pano.pose --image room/pano.co
 mkdir c
 run_case 0 "cyl2planar --mesh dense.ply -o c/room.ply"
 run_case 0 "planarize --step 4 --cylindrical ,,0 --pose room/pano.pose -o c/plan.ply room/pano.depth.pfm room/pano.color.png"
+awk -f "$OLDPWD/tests/data/colour_wall.awk" >wall.ply
+run_case 0 "planarize -o bake.ply wall.ply"
+run_case 0 "planarize -o bake_obj.obj wall.ply"
 run_case 0 "roommodel -q --voxel 0.05 --camera room/view00.camera --poses room/view00.pose --poses room/view01.pose --image room/view00.color.png --image room/view01.color.png -o room_model.obj room/view00.depth.pfm room/view01.depth.pfm"
 
 # Every header line of every file: at most 255 bytes.
-for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply fused_sigma.ply c/room.ply plan.ply c/plan.ply; do
+for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply fused_sigma.ply c/room.ply plan.ply c/plan.ply \
+	bake.ply; do
 	check_num "$f: longest header line" "$(sed -n '1,/^end_header/p' "$f" | LC_ALL=C awk '{ n = length($0) > n ? length($0) : n } END { print n }')" "<=" 255
 done
 
@@ -62,14 +67,14 @@ if ! command -v "$PY" >/dev/null 2>&1 || ! "$PY" -c 'import numpy' 2>/dev/null; 
 fi
 specs=
 for f in desk.ply desk_a.ply desk_be.ply planes.ply chains.ply model.ply fused.ply fused_sigma.ply c/room.ply model.obj \
-	plan.ply c/plan.ply plan_obj.obj room_model.obj; do
+	plan.ply c/plan.ply plan_obj.obj room_model.obj bake.ply bake_obj.obj; do
 	ref=${f%.*}.ref.ply
 	case $f in model.obj) ref=model.ref.ply ;; esac
 	[ -f "$ref" ] || meshconv -a -o "$ref" "$f"
 	case $f in
 	chains.ply) kind=wire ;;
 	fused.ply | fused_sigma.ply) kind=mesh ;;
-	c/room.ply | c/plan.ply) kind=corner ;;
+	c/room.ply | c/plan.ply | bake.ply) kind=corner ;;
 	*.obj) kind=obj ;;
 	*) kind=st ;;
 	esac
