@@ -13,8 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/bakeopts.h"
 #include "cli/cli.h"
-#include "render/colbake.h"
 #include "render/cylview.h"
 #include "cli/depthopts.h"
 #include "io/header.h"
@@ -23,7 +23,6 @@
 #include "cli/planaropts.h"
 #include "geom/pointdist.h"
 #include "cli/segopts.h"
-#include "render/viewtex.h"
 
 static const char usage[] =
 	"usage: planarize [-aqv] [-o model] [-K fx,fy,cx,cy | name] [--camera file]\n"
@@ -83,12 +82,12 @@ static const char usage[] =
 	"  -h, --help         this help\n"
 	"      --version      print the version\n";
 
-enum { OPT_VERSION = 256, OPT_COUNT, OPT_FOV, OPT_KEEP, OPT_TEXEL };
+enum { OPT_VERSION = 256, OPT_COUNT, OPT_FOV, OPT_KEEP };
 
 struct options {
 	const char *out, *keep, *input, *image;
 	int ascii;
-	double texel;            /* --texel, -1 when not given */
+	struct fct_bake_opts bake;
 	struct fct_depth_opts d;
 	struct fct_seg_opts s;
 	struct fct_planar_params plan;
@@ -106,7 +105,7 @@ static void parse_options(int argc, char **argv, struct options *o)
 		{"count", required_argument, NULL, OPT_COUNT},
 		{"fov", required_argument, NULL, OPT_FOV},
 		{"keep", required_argument, NULL, OPT_KEEP},
-		{"texel", required_argument, NULL, OPT_TEXEL},
+		FCT_BAKE_LONGOPTS,
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ac:e:hj:K:n:o:qv";
@@ -116,10 +115,10 @@ static void parse_options(int argc, char **argv, struct options *o)
 	fct_seg_opts_init(&o->s);
 	fct_planar_params_default(&o->plan);
 	fct_cylview_params_default(&o->view);
-	o->texel = -1;
+	fct_bake_opts_init(&o->bake);
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
 		if (fct_depth_opt(&o->d, c, optarg) || fct_seg_opt(&o->s, c, optarg) ||
-		    fct_planar_opt(&o->plan, c, optarg))
+		    fct_planar_opt(&o->plan, c, optarg) || fct_bake_opt(&o->bake, c, optarg))
 			continue;
 		switch (c) {
 		case 'a': o->ascii = 1; break;
@@ -135,7 +134,6 @@ static void parse_options(int argc, char **argv, struct options *o)
 				fct_usage_error("--fov: %s degrees: a planar view sees less than 180", optarg);
 			break;
 		case OPT_KEEP: o->keep = optarg; break;
-		case OPT_TEXEL: o->texel = fct_opt_double("--texel", optarg, 0, 1e9); break;
 		default: fct_bad_option(optstring, argv);
 		}
 	}
@@ -345,46 +343,6 @@ static void texture_panorama(struct fct_mesh *m, const struct fct_camera *cam,
 	fct_report_stage("cyl2planar", "max_depth_ratio", "%.9g", st.assign.max_ratio);
 }
 
-/* Does the model get an atlas baked from the input mesh's vertex colours?
- * A mesh read (not a depth image) with colours and no texture, no image
- * given, a model file to write the atlas beside, and not --texel 0. */
-static int bakes(const struct options *o, int is_image, const struct fct_mesh *m)
-{
-	return !is_image && !o->image && o->texel != 0 && o->out && !fct_path_is_std(o->out) &&
-	       fct_colbake_applies(m);
-}
-
-/* The model's atlas baked from the dense mesh's colours (B), its pages
- * written beside the model, its texture coordinates per face corner. */
-static void bake_texture(struct fct_mesh *m, const struct fct_colbake *B, const struct options *o)
-{
-	struct fct_err err;
-	struct fct_colbake_params p;
-	fct_colbake_params_default(&p);
-	if (o->texel > 0)
-		p.texel = o->texel;
-	struct fct_viewtex *T = fct_colbake_texture(B, m, &p, &err);
-	if (!T)
-		fct_die_err_at(&err, "bake");
-	size_t npages = fct_viewtex_npages(T);
-	char **names = fct_viewtex_page_names(o->out, npages, &err);
-	if (!names)
-		fct_die_err(&err);
-	for (size_t i = 0; i < npages; i++)
-		fct_write_image_or_die(fct_viewtex_page(T, i), names[i]);
-	struct fct_viewtex_stats st;
-	fct_viewtex_get_stats(T, &st);
-	if (fct_viewtex_apply(T, m, names, 1, &err))
-		fct_die_err_at(&err, "bake");
-	fct_report_stage("bake", "texel", "%.9g", fct_colbake_texel(B, m, &p) / st.scale);
-	fct_report_stage("bake", "charts", "%zu", st.charts);
-	fct_report_stage("bake", "charts_rectified", "%zu", st.rectified);
-	fct_report_stage("bake", "atlas_size", "%dx%d", st.page_width, st.page_height);
-	fct_report_stage("bake", "fill_ratio", "%.4f", st.fill_ratio);
-	fct_viewtex_page_names_free(names, npages);
-	fct_viewtex_free(T);
-}
-
 /* A PGM or PPM image (NYU Depth v2's colour frames) written as a PNG beside
  * the model, whose texture it becomes: MeshLab opens netpbm, Blender and
  * Open3D do not.  Its path, name_texture.png for a model name.obj/.ply. */
@@ -451,7 +409,7 @@ int main(int argc, char **argv)
 	size_t dense_faces = m.nf, dense_nv = m.nv;
 	/* The dense mesh's colours, kept for the model's atlas. */
 	struct fct_colbake bake = { 0 };
-	int baking = bakes(&o, is_image, &m);
+	int baking = !is_image && !o.image && fct_bake_wanted(&o.bake, o.out, &m);
 	if (baking && fct_colbake_init(&bake, &m, &err))
 		fct_die_err_at(&err, "bake");
 	double *dense = NULL;
@@ -494,7 +452,7 @@ int main(int argc, char **argv)
 	}
 	if (baking && fct_colbake_applies(&m)) {
 		c1 = fct_cpu_time();
-		bake_texture(&m, &bake, &o);
+		fct_bake_model(&m, &bake, &o.bake, o.out);
 		stage_done("bake", &m, c1);
 	}
 	fct_colbake_free(&bake);

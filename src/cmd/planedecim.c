@@ -6,11 +6,13 @@
  * the sensor's noise; each patch is then the polygon of its simplified
  * outline, triangulated (sec. 4), its vertices on the planes' lines and
  * corners (sec. 5).  The algorithm is fct_planar_model (planemodel.h);
- * this is its command line. */
+ * this is its command line.  A mesh with vertex colours written to a file
+ * gets an atlas baked from them (colbake.h), as planarize's does. */
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "cli/bakeopts.h"
 #include "cli/cli.h"
 #include "io/header.h"
 #include "io/meshio.h"
@@ -20,11 +22,12 @@
 static const char usage[] =
 	"usage: planedecim [-aqv] [-e error] [-o file] [--border k]\n"
 	"                  [--max-hole k] [--max-move k] [--min-free k] [--min-piece k]\n"
-	"                  [--min-plane k] [--outline k] [input]\n"
+	"                  [--min-plane k] [--outline k] [--texel size] [input]\n"
 	"Make the planar model of a mesh segmented by segplanes: the free-form faces\n"
 	"(patch -1) decimated to an error bound, each patch the polygon of its\n"
 	"simplified outline in its plane, vertices where patches meet on their line\n"
-	"or corner, all one connected mesh.\n"
+	"or corner, all one connected mesh; a mesh with vertex colours written to a\n"
+	"file, textured by an atlas baked from them.\n"
 	"  -a             write ascii PLY\n"
 	"  -e error       the free-form decimation's bound: the largest quadric\n"
 	"                 distance of a collapse, in units of sigma (default 1.5)\n"
@@ -50,6 +53,10 @@ static const char usage[] =
 	"      --outline k\n"
 	"                 simplify the patches' outlines to k sample spacings\n"
 	"                 (pixels at the vertex's distance; default 3)\n"
+	"      --texel size\n"
+	"                 the texels, metres, of the atlas baked from the mesh's\n"
+	"                 vertex colours, file_atlas0.png beside -o file (default\n"
+	"                 half the mesh's mean edge; 0: vertex colours only)\n"
 	"  -q             quiet\n"
 	"  -v             report counts, errors and times on stderr\n"
 	"  -h, --help     this help\n"
@@ -63,16 +70,19 @@ int main(int argc, char **argv)
 		{"help", no_argument, NULL, 'h'},
 		{"version", no_argument, NULL, OPT_VERSION},
 		FCT_PLANAR_LONGOPTS,
+		FCT_BAKE_LONGOPTS,
 		{NULL, 0, NULL, 0},
 	};
 	static const char optstring[] = "ae:ho:qv";
 	fct_cli_init("planedecim");
 	struct fct_planar_params par;
 	fct_planar_params_default(&par);
+	struct fct_bake_opts bo;
+	fct_bake_opts_init(&bo);
 	const char *out = NULL;
 	int ascii = 0, c;
 	while ((c = getopt_long(argc, argv, optstring, longopts, NULL)) != -1) {
-		if (fct_planar_opt(&par, c, optarg))
+		if (fct_planar_opt(&par, c, optarg) || fct_bake_opt(&bo, c, optarg))
 			continue;
 		switch (c) {
 		case 'a': ascii = 1; break;
@@ -92,11 +102,20 @@ int main(int argc, char **argv)
 	double t0 = fct_now(), c0 = fct_cpu_time();
 	if (fct_mesh_read_file(&m, in, NULL, &err))
 		fct_die_err(&err);
+	/* The input's colours, kept for the model's atlas. */
+	struct fct_colbake bake = { 0 };
+	int baking = fct_bake_wanted(&bo, out, &m);
+	if (baking && fct_colbake_init(&bake, &m, &err))
+		fct_die_err_at(&err, "bake");
 	double t1 = fct_now();
 	struct fct_planar_stats st;
 	if (fct_planar_model(&m, &par, &st, &err))
 		fct_die_err_at(&err, "%s", name);
 	double t2 = fct_now();
+	if (baking && fct_colbake_applies(&m))
+		fct_bake_model(&m, &bake, &bo, out);
+	fct_colbake_free(&bake);
+	double t3 = fct_now();
 	if (fct_header_add_provenance(&m, "planedecim", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, out, ascii, &err)) {
 		fct_mesh_free(&m);
@@ -150,6 +169,7 @@ int main(int argc, char **argv)
 	fct_report("no_pixel", "%zu", st.no_pixel);
 	fct_report("read_s", "%.3f", t1 - t0);
 	fct_report("model_s", "%.3f", t2 - t1);
+	fct_report("bake_s", "%.3f", t3 - t2);
 	fct_report("total_s", "%.3f", fct_now() - t0);
 	fct_report("cpu_s", "%.3f", fct_cpu_time() - c0);
 	fct_mesh_free(&m);

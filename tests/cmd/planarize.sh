@@ -327,6 +327,7 @@ awk '/^\.Sh EXAMPLES/ { f = 1; next } /^\.Sh / { f = 0 } !f { next }
 check_num "examples in planarize.1" "$(grep -c '^planarize ' "$TMP/examples")" == 4
 mkdir "$TMP/ex"
 ln -s "$(pwd)/samples" "$TMP/ex/samples"
+ln -s "$(pwd)/tests" "$TMP/ex/tests"
 while IFS= read -r ex; do
 	run_case 0 "cd $TMP/ex && $ex >/dev/null 2>&1"
 done <"$TMP/examples"

@@ -7,8 +7,8 @@
 # vertex colours alone (--texel 0, as before) give under 12 (8.82).  The
 # files (PLY with per-corner texcoord and TextureFile, OBJ with MTL),
 # texture paths relative to the model's folder, the same bytes twice, a
-# model on standard output left with its vertex colours, the option's
-# grammar.
+# model on standard output left with its vertex colours, segplanes |
+# planedecim -o baking the same model and atlas, the option's grammar.
 . tests/lib.sh
 
 field() { sed -n "s/^planarize: $1=//p" "$TMP/err"; }
@@ -57,6 +57,13 @@ check_num "model.obj: PSNR" "$(judged 3)" ">" 33
 check_num "on standard output: TextureFile lines" "$(planarize "$D" | meshconv -a - | awk '/^comment TextureFile/ { n++ } END { print n + 0 }')" == 0
 check_num "on standard output: vertex colours" "$(planarize "$D" | meshconv -a - | grep -c '^property uchar red$')" == 1
 
+# The stages on a pipe bake alike: segplanes | planedecim -o.
+run_case 0 "segplanes $D | planedecim -v -o $TMP/cb/a/piped.ply"
+check_true "segplanes | planedecim: planarize's atlas" cmp -s "$TMP/cb/a/piped_atlas0.png" "$TMP/cb/a/model_atlas0.png"
+check_true "segplanes | planedecim: planarize's model" test "$(meshconv -a "$TMP/cb/a/piped.ply" | grep -v '^comment facet ' | sed 's/piped_atlas/model_atlas/' | cksum)" = "$(meshconv -a "$TMP/cb/a/model.ply" | grep -v '^comment facet ' | cksum)"
+check_num "planedecim: bake: charts" "$(sed -n 's/^planedecim: bake: charts=//p' "$TMP/err")" == 2
+
+run_case 2 "planedecim --texel x $D" "" "planedecim: --texel: "
 run_case 2 "planarize --texel -1 $D" "" "planarize: --texel: "
 run_case 2 "planarize --texel x $D" "" "planarize: --texel: "
 run_case 0 "planarize --help | grep -q -- '--texel size'"

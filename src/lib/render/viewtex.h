@@ -73,6 +73,10 @@
  *    beside a chart take the mean of their filled neighbours, `padding`
  *    rings deep, each ring reading only the rings before it.
  *
+ * Baking (fct_viewtex_layout_bake, fct_viewtex_bake) textures a mesh
+ * whose colour is known at every point, without photos, through the same
+ * charts, pages, padding and mapping (steps 4 and 6; colbake.h).
+ *
  * Memory is bounded by the mesh (candidates per face, charts, seams) and
  * the atlas pages (4 bytes a texel, and 17 more while sampling; at most
  * 2^29 texels in all); one photo is held at a time.  The same inputs give the same texture, bit for bit. */
