@@ -326,14 +326,8 @@ static void texture(struct fct_mesh *m, const struct sequence *s, const struct o
 	if (fct_viewtex_label(T, &err) || fct_viewtex_layout(T, &err) ||
 	    fct_viewtex_sample_photos(T, s->photo, s->n, &err) || fct_viewtex_finish(T, &err))
 		fct_die_err_at(&err, "viewtex");
-	size_t npages = fct_viewtex_npages(T);
-	char **names = fct_viewtex_page_names(o->out, npages, &err);
-	if (!names)
-		fct_die_err(&err);
-	for (size_t i = 0; i < npages; i++)
-		fct_write_image_or_die(fct_viewtex_page(T, i), names[i]);
-	if (fct_viewtex_apply(T, m, names, 1, &err) ||
-	    fct_header_add_provenance(m, "roommodel", argc - 1, argv + 1, &err) ||
+	fct_tex_write_atlas(T, m, o->out, 1);
+	if (fct_header_add_provenance(m, "roommodel", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(m, o->out, 0, &err))
 		fct_die_err(&err);
 	struct fct_viewtex_stats st;
@@ -346,7 +340,6 @@ static void texture(struct fct_mesh *m, const struct sequence *s, const struct o
 	fct_report_stage("viewtex", "atlas_size", "%dx%d", st.page_width, st.page_height);
 	fct_report_stage("viewtex", "seam_rms_after", "%.3f", st.seam_rms_after);
 	stage_end("viewtex", m, c0, t0);
-	fct_viewtex_page_names_free(names, npages);
 	fct_viewtex_free(T);
 }
 

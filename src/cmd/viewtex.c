@@ -183,17 +183,10 @@ int main(int argc, char **argv)
 	double sample_s = fct_now() - t1;
 
 	t1 = fct_now();
-	size_t npages = fct_viewtex_npages(T);
-	char **names = fct_viewtex_page_names(o.out, npages, &err);
-	if (!names)
-		fct_die_err(&err);
-	for (size_t i = 0; i < npages; i++)
-		fct_write_image_or_die(fct_viewtex_page(T, i), names[i]);
 	struct fct_viewtex_stats st;
 	fct_viewtex_get_stats(T, &st);
-	int per_face = fct_path_has_suffix(o.out, ".obj") || !o.per_vertex;
-	if (fct_viewtex_apply(T, &m, names, per_face, &err) ||
-	    fct_header_add_provenance(&m, "viewtex", argc - 1, argv + 1, &err) ||
+	fct_tex_write_atlas(T, &m, o.out, fct_path_has_suffix(o.out, ".obj") || !o.per_vertex);
+	if (fct_header_add_provenance(&m, "viewtex", argc - 1, argv + 1, &err) ||
 	    fct_mesh_write_file(&m, o.out, o.ascii, &err))
 		fct_die_err(&err);
 	double write_s = fct_now() - t1;
@@ -226,7 +219,6 @@ int main(int argc, char **argv)
 	fct_report("sample_s", "%.3f", sample_s);
 	fct_report("write_s", "%.3f", write_s);
 	fct_report("total_s", "%.3f", fct_now() - t0);
-	fct_viewtex_page_names_free(names, npages);
 	fct_viewtex_free(T);
 	fct_mesh_free(&m);
 	free(ph);

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "cli/cli.h"
+#include "cli/texopts.h"
 #include "core/path.h"
 #include "render/viewtex.h"
 
@@ -37,22 +38,14 @@ void fct_bake_model(struct fct_mesh *model, const struct fct_colbake *B,
 	struct fct_viewtex *T = fct_colbake_texture(B, model, &p, &err);
 	if (!T)
 		fct_die_err_at(&err, "bake");
-	size_t npages = fct_viewtex_npages(T);
-	char **names = fct_viewtex_page_names(out, npages, &err);
-	if (!names)
-		fct_die_err(&err);
-	for (size_t i = 0; i < npages; i++)
-		fct_write_image_or_die(fct_viewtex_page(T, i), names[i]);
 	struct fct_viewtex_stats st;
 	fct_viewtex_get_stats(T, &st);
-	if (fct_viewtex_apply(T, model, names, 1, &err))
-		fct_die_err_at(&err, "bake");
+	fct_tex_write_atlas(T, model, out, 1);
 	/* The texel used: the packing shrinks the scale when a page is full. */
 	fct_report_stage("bake", "texel", "%.9g", texel / st.scale);
 	fct_report_stage("bake", "charts", "%zu", st.charts);
 	fct_report_stage("bake", "charts_rectified", "%zu", st.rectified);
 	fct_report_stage("bake", "atlas_size", "%dx%d", st.page_width, st.page_height);
 	fct_report_stage("bake", "fill_ratio", "%.4f", st.fill_ratio);
-	fct_viewtex_page_names_free(names, npages);
 	fct_viewtex_free(T);
 }

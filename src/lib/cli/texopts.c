@@ -6,6 +6,20 @@
 
 #include "cli/cli.h"
 
+void fct_tex_write_atlas(struct fct_viewtex *T, struct fct_mesh *m, const char *out, int per_face)
+{
+	struct fct_err err;
+	size_t npages = fct_viewtex_npages(T);
+	char **names = fct_viewtex_page_names(out, npages, &err);
+	if (!names)
+		fct_die_err(&err);
+	for (size_t i = 0; i < npages; i++)
+		fct_write_image_or_die(fct_viewtex_page(T, i), names[i]);
+	if (fct_viewtex_apply(T, m, names, per_face, &err))
+		fct_die_err(&err);
+	fct_viewtex_page_names_free(names, npages);
+}
+
 void fct_tex_opts_init(struct fct_tex_opts *o)
 {
 	fct_viewtex_params_default(&o->p);

@@ -83,4 +83,9 @@ int fct_tex_opt(struct fct_tex_opts *o, int c, const char *arg);
  * --blend implies --level none unless given. */
 void fct_tex_opts_check(struct fct_tex_opts *o);
 
+/* Write T's atlas pages beside the model file out (name_atlasN.png,
+ * fct_viewtex_page_names) and give m their mapping (fct_viewtex_apply,
+ * per_face as there).  Dies on error ("prog: PATH: ..."). */
+void fct_tex_write_atlas(struct fct_viewtex *T, struct fct_mesh *m, const char *out, int per_face);
+
 #endif
