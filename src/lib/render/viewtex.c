@@ -1584,6 +1584,23 @@ static void bake_collect(struct fct_viewtex *T, const struct chart *c, uint32_t 
 		bake_flush(B);
 }
 
+/* Collect the texel under barycentrics (b1, b2) of triangle k of chart c
+ * (its corners' page coordinates a) when it is empty. */
+static void bake_point(struct bake_run *B, const struct chart *c, uint32_t k, double b1, double b2,
+                       const float *const a[3])
+{
+	struct fct_viewtex *T = B->T;
+	double ab[2];
+	for (int d = 0; d < 2; d++)
+		ab[d] = (1 - b1 - b2) * a[0][d] + b1 * a[1][d] + b2 * a[2][d];
+	int x = (int)floor(ab[0]), y = (int)floor(ab[1]);
+	x = x < c->x ? c->x : x >= c->x + c->w ? c->x + c->w - 1 : x;
+	y = y < c->y ? c->y : y >= c->y + c->h ? c->y + c->h - 1 : y;
+	size_t at = (size_t)y * (size_t)T->pages[c->page].width + (size_t)x;
+	if (!T->mask[c->page][at])
+		bake_collect(T, c, k, b1, b2, at, B);
+}
+
 int fct_viewtex_bake(struct fct_viewtex *T, fct_viewtex_colour_fn *fn, const void *ctx, int nthreads,
                      struct fct_err *err)
 {
@@ -1596,33 +1613,32 @@ int fct_viewtex_bake(struct fct_viewtex *T, fct_viewtex_colour_fn *fn, const voi
 	for (size_t i = 0; i < T->ncharts && !rc; i++)
 		rc = chart_texels(T, &T->charts[i], bake_collect, &B, err);
 	/* A sliver narrower than a texel covers no texel's centre: the texels
-	 * under its corners and centroid, when still empty, take its colour,
-	 * so that a viewer's bilinear lookup there reads the face (and the
-	 * padding around it), not the black between charts. */
-	static const double at_b[4][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1.0 / 3, 1.0 / 3 } };
+	 * along its edges, a texel apart, and under its centroid, when still
+	 * empty, take its colour there, so that a viewer's bilinear lookup
+	 * anywhere on it reads the face (and the padding around it), not the
+	 * black between charts. */
 	if (!rc && B.n)
 		bake_flush(&B);
+	static const double corner_b[4][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 0, 0 } };
 	for (size_t i = 0; i < T->ncharts && !rc; i++) {
 		const struct chart *c = &T->charts[i];
-		const struct fct_image *pg = &T->pages[c->page];
 		for (uint32_t j = 0; j < c->count; j++) {
 			uint32_t f = T->chart_faces[c->first + j];
-			for (uint32_t k = T->tri_first[f]; k < T->tri_first[f + 1]; k++)
-				for (int q = 0; q < 4; q++) {
-					double b1 = at_b[q][0], b2 = at_b[q][1], ab[2];
-					const float *a0 = T->ab + 2 * (size_t)T->tcorner[3 * (size_t)k];
-					const float *a1 = T->ab + 2 * (size_t)T->tcorner[3 * (size_t)k + 1];
-					const float *a2 = T->ab + 2 * (size_t)T->tcorner[3 * (size_t)k + 2];
-					for (int d = 0; d < 2; d++)
-						ab[d] = (1 - b1 - b2) * a0[d] + b1 * a1[d] + b2 * a2[d];
-					int x = (int)floor(ab[0]), y = (int)floor(ab[1]);
-					x = x < c->x ? c->x : x >= c->x + c->w ? c->x + c->w - 1 : x;
-					y = y < c->y ? c->y : y >= c->y + c->h ? c->y + c->h - 1 : y;
-					size_t at = (size_t)y * (size_t)pg->width + (size_t)x;
-					if (T->mask[c->page][at])
-						continue;
-					bake_collect(T, c, k, b1, b2, at, &B);
+			for (uint32_t k = T->tri_first[f]; k < T->tri_first[f + 1]; k++) {
+				const float *a[3];
+				for (int q = 0; q < 3; q++)
+					a[q] = T->ab + 2 * (size_t)T->tcorner[3 * (size_t)k + (size_t)q];
+				bake_point(&B, c, k, 1.0 / 3, 1.0 / 3, a);
+				for (int e = 0; e < 3; e++) {
+					double len = hypot(a[(e + 1) % 3][0] - a[e][0], a[(e + 1) % 3][1] - a[e][1]);
+					int n = len < 1 ? 1 : len < 16384 ? (int)ceil(len) : 16384;
+					for (int q = 0; q < n; q++) {
+						double t = (double)q / n;
+						bake_point(&B, c, k, (1 - t) * corner_b[e][0] + t * corner_b[e + 1][0],
+						           (1 - t) * corner_b[e][1] + t * corner_b[e + 1][1], a);
+					}
 				}
+			}
 		}
 	}
 	if (!rc && B.n)
