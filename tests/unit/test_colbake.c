@@ -7,9 +7,10 @@
  * colour within 8 levels (mean within 3); the model's own vertex colours
  * (what it carried before: a few vertices, all on the ground) miss the
  * lines by more than 100 levels.  The pages are the same bytes on 1 and 3
- * threads; the texel is half the mean edge; the nearest-point colour is
- * the barycentric one; a NaN vertex in the dense mesh is left out, a model
- * without faces refused. */
+ * threads; the texel is half the mean edge; a sliver narrower than a texel
+ * is textured along its length; the nearest-point colour is the barycentric
+ * one; a NaN vertex in the dense mesh is left out, a model without faces
+ * refused. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -264,9 +265,61 @@ static void test_colour(void)
 	fct_mesh_free(&m);
 }
 
+/* A sliver 3 mm wide and 1 m long, under the 5.7 mm texel: no texel's
+ * centre lies in it, yet its texture along its whole length is the dense
+ * mesh's colour there, not the black between charts. */
+static void test_sliver(void)
+{
+	struct fct_mesh dense, model;
+	struct fct_err err;
+	dense_grid(&dense);
+	struct fct_colbake B;
+	CHECK(fct_colbake_init(&B, &dense, &err) == 0);
+	fct_mesh_init(&model);
+	fct_mesh_add_vertex(&model, 0.1, 0.5, 1, &err);
+	fct_mesh_add_vertex(&model, 1.1, 0.5, 1, &err);
+	fct_mesh_add_vertex(&model, 1.1, 0.503, 1, &err);
+	uint32_t t[3] = { 0, 1, 2 };
+	fct_mesh_add_face(&model, t, 3, &err);
+	struct fct_colbake_params p;
+	fct_colbake_params_default(&p);
+	struct fct_viewtex *T = fct_colbake_texture(&B, &model, &p, &err);
+	CHECK(T != NULL);
+	char *names[1] = { "atlas.png" };
+	float *st = NULL;
+	int32_t *tn = NULL;
+	if (T && fct_viewtex_apply(T, &model, names, 1, &err) == 0 &&
+	    fct_texmap_corners(&model, &st, &tn, &err) == 1) {
+		double worst = 0;
+		for (int i = 1; i < 20; i++) {
+			/* Along the sliver's middle, at x from 0.15 to 1.05. */
+			double u = i / 20.0, w[3] = { 1 - u, 0.5 * u, 0.5 * u };
+			double s = 0, tt = 0, x = 0, y = 0, tex[3];
+			for (int k = 0; k < 3; k++) {
+				s += w[k] * st[2 * k], tt += w[k] * st[2 * k + 1];
+				x += w[k] * model.xyz[3 * k], y += w[k] * model.xyz[3 * k + 1];
+			}
+			fct_texture_sample(fct_viewtex_page(T, 0), s, tt, tex);
+			const double *truth = line_dist(x, y) > 0.03 ? ground : line_dist(x, y) < 0.01 ? green : NULL;
+			if (truth)
+				worst = fmax(worst, cdiff(tex, truth));
+		}
+		CHECK_MSG(worst <= 8, "sliver: largest error %.2f levels", worst);
+	} else {
+		CHECK(0);
+	}
+	free(st);
+	free(tn);
+	fct_viewtex_free(T);
+	fct_mesh_free(&model);
+	fct_mesh_free(&dense);
+	fct_colbake_free(&B);
+}
+
 int main(void)
 {
 	test_colour();
 	test_lines();
+	test_sliver();
 	CHECK_DONE();
 }
