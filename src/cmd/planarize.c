@@ -206,8 +206,6 @@ static void mesh_depth(struct fct_mesh *m, struct fct_camera *cam, struct option
 	fct_report_stage("dm2mesh", "double_xyz", "%d", o->d.double_xyz);
 }
 
-/* Stage 1 from a mesh: the mesh as it is, its camera if it has one; an
- * image given replaces its texture. */
 /* --noise for a mesh: each vertex's sigma from the model (replacing any the
  * mesh has), as dm2mesh gives a view's, or one figure for a mesh without a
  * camera.  What another tool's fused scan needs: its own residuals are
@@ -233,6 +231,8 @@ static void mesh_noise(struct fct_mesh *m, const struct fct_camera *cam, const s
 		fct_die_err(&err);
 }
 
+/* Stage 1 from a mesh: the mesh as it is, its camera if it has one; an
+ * image given replaces its texture. */
 static void mesh_read(struct fct_mesh *m, struct fct_camera *cam, const struct options *o, FILE *f)
 {
 	struct fct_err err;
