@@ -2,6 +2,9 @@
  * viewpoint and not without; fct_planes_project at a crease seen at a grazing angle,
  * a crease move beyond its bound in sigma, one that would hide its sample
  * (an occlusion), and a floor vertex alone whose ray meets a wall first;
+ * fct_planes_meet's copy of a vertex for a plane before it along its ray,
+ * all the way when a plane behind holds the vertex, 4 sigma beside the
+ * free-form surface;
  * fct_patches_tidy's specks near and far from the plane around them; fct_patches_unfacet on a patch ringed by four patches
  * at shallow creases, of about its size (a facet) and much smaller (a floor
  * with tilted pieces beside it); fct_fill_plane_holes on a flat grid with
@@ -318,6 +321,40 @@ static size_t meet_far(int with_viewpoint, size_t *nv, uint32_t *wall0)
 	return st.torn;
 }
 
+/* fct_planes_meet on a vertex p = (0, 0.5, 5.1) of two faces: one of the
+ * wall z = 5 (patch 1), which lies 0.1 before p, and one beside it, of the
+ * plane z = 5.1 (patch 2: a wall behind, seen past the first's edge) or
+ * free-form (-1), every sigma 0.01, seen from (0, 1.5, 0).  p's ray meets
+ * the first wall 0.102 before it, beyond 4 sigma.  With a plane behind
+ * holding p, the ray passes the first wall's edge: the wall's copy goes all
+ * the way onto it, as a box's side ends before the wall.  Beside the
+ * free-form surface p is the first wall's own sample, seen along a grazing
+ * ray: its copy goes 4 sigma along the ray, no farther.  *copy gets the
+ * copy (vertex 5); returns the vertices torn. */
+static size_t meet_before(int behind_is_plane, double copy[3])
+{
+	struct fct_mesh m;
+	struct fct_err err;
+	const double pos[5][3] = { { 0, 0.5, 5.1 }, { -0.1, 0.4, 5.1 }, { 0.1, 0.4, 5.1 }, { -0.1, 0.6, 5 },
+	                           { 0.1, 0.6, 5 } };
+	const uint32_t behind_face[3] = { 1, 2, 0 }, wall_face[3] = { 0, 4, 3 };
+	two_faces(&m, pos, behind_face, wall_face);
+	const int32_t patch[2] = { behind_is_plane ? 2 : -1, 1 };
+	const struct fct_plane planes[3] = { { { 0, 1, 0 }, 0, 0, 0 }, { { 0, 0, -1 }, 5, 0, 0 },
+	                                     { { 0, 0, -1 }, 5.1, 0, 0 } };
+	const double vp[3] = { 0, 1.5, 0 }, sg[5] = { 0.01, 0.01, 0.01, 0.01, 0.01 };
+	struct fct_meet_stats st;
+	CHECK_INT(fct_planes_meet(&m, patch, planes, sg, NULL, 4, vp, &st, &err), 0);
+	CHECK_INT(m.nv, 5 + st.torn);
+	if (st.torn) {
+		memcpy(copy, m.xyz + 15, 3 * sizeof *copy);
+		CHECK_INT(m.fvert[m.fstart[1]], 5);   /* the wall's face took the copy */
+	}
+	CHECK_NEAR(m.xyz[2], 5.1, 0);            /* the sample stays for the other face */
+	fct_mesh_free(&m);
+	return st.torn;
+}
+
 int main(void)
 {
 	size_t nv;
@@ -328,6 +365,20 @@ int main(void)
 	CHECK_INT(meet_far(0, &nv, &wall0), 0);
 	CHECK_INT(nv, 5);
 	CHECK_INT(wall0, 0);
+	double copy[3];
+	/* The ray from (0, 1.5, 0) through (0, 0.5, 5.1) meets z = 5 at
+	 * (0, 1.5 - 5 / 5.1, 5). */
+	CHECK_INT(meet_before(1, copy), 1);
+	CHECK_NEAR(copy[0], 0, 1e-12);
+	CHECK_NEAR(copy[1], 1.5 - 5 / 5.1, 1e-12);
+	CHECK_NEAR(copy[2], 5, 1e-12);
+	/* 0.04 (4 sigma) of the 0.102 towards the viewpoint, along the unit
+	 * (0, 1, -5.1) / |(0, 1, -5.1)|. */
+	CHECK_INT(meet_before(0, copy), 1);
+	double ray = sqrt(1 + 5.1 * 5.1);
+	CHECK_NEAR(copy[0], 0, 1e-12);
+	CHECK_NEAR(copy[1], 0.5 + 0.04 / ray, 1e-12);
+	CHECK_NEAR(copy[2], 5.1 - 0.04 * 5.1 / ray, 1e-12);
 
 	size_t facets, joined;
 	double at[3], off[3];

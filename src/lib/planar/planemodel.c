@@ -1142,17 +1142,35 @@ static int met_before(const double vp[3], const double p[3], const double x[3], 
 	return fct_v3_dist2(x, vp) < fct_v3_dist2(p, vp) && fabs(r) >= MIN_GRAZING * sqrt(fct_v3_dist2(x, p));
 }
 
+/* Is the sample p on one of the planes ls[0..k) other than ls[skip],
+ * within its uncertainty (e2 its square)? */
+static int on_other_plane(const struct fct_plane *planes, const int32_t *ls, int k, int skip,
+                          const double p[3], double e2)
+{
+	for (int j = 0; j < k; j++) {
+		double r = fct_v3_dot(planes[ls[j]].n, p) + planes[ls[j]].d;
+		if (j != skip && r * r <= e2)
+			return 1;
+	}
+	return 0;
+}
+
 /* A vertex still off the plane of one of its patches by more than its
  * uncertainty (sigma along its ray, across it its sample spacing) is torn:
  * that patch's faces get a copy of it on their plane, where its ray meets
  * the plane (when that is within max_move of its uncertainty, or when the
- * plane lies before the sample and the ray meets it at MIN_GRAZING or
- * more; else, or without a viewpoint, straight across).  Before the
- * sample, the ray passes the edge of a surface in front, which ends there:
- * straight across, a wall vertex's copy for the side of a box in front of
- * it would go out through the gap between them.  Behind the sample, along
- * a grazing ray, a floor vertex's copy would slide on past the wall that
- * hides it.  Where no line or point of the
+ * plane lies before the sample, the ray meets it at MIN_GRAZING or more
+ * and another plane of the vertex holds the sample; else, or without a
+ * viewpoint, straight across).  Before the sample, the ray passes the edge
+ * of a surface in front, which ends there: straight across, a wall
+ * vertex's copy for the side of a box in front of it would go out through
+ * the gap between them.  But where no other plane holds the sample, it is
+ * this plane's own, seen along a grazing ray: the copy goes along the ray
+ * by max_move uncertainties only, towards its plane (the TUM frame's
+ * wall behind a monitor had copies thrown 55 mm on, up to 140, into the
+ * empty space between the two; a frame's 418 such copies).  Behind the
+ * sample, along a grazing ray, a floor vertex's copy would slide on past
+ * the wall that hides it.  Where no line or point of the
  * planes lies near (an occlusion: a box's edge in front of the wall, the
  * noise's own folds), a shared vertex would tilt every face of the patch
  * that is not its own; the tear leaves a crack there instead, which is
@@ -1191,9 +1209,15 @@ static int tear_off_plane(struct fct_mesh *m, const int32_t *patch, const struct
 			if (r * r <= e2)
 				continue;
 			onto_planes(planes, &ls[i], 1, p, x);
+			double bound2 = max_move * max_move * e2, d2;
 			if (viewpoint && along_ray(planes, &ls[i], 1, viewpoint, p, x) &&
-			    !(fct_v3_dist2(x, p) <= max_move * max_move * e2) && !met_before(viewpoint, p, x, r))
-				onto_planes(planes, &ls[i], 1, p, x);
+			    !((d2 = fct_v3_dist2(x, p)) <= bound2)) {
+				if (!met_before(viewpoint, p, x, r))
+					onto_planes(planes, &ls[i], 1, p, x);
+				else if (!on_other_plane(planes, ls, k, i, p, e2))
+					for (int q = 0; q < 3; q++)
+						x[q] = p[q] + sqrt(bound2 / d2) * (x[q] - p[q]);
+			}
 			if (n == cap && fct_grow((void **)&tears, &cap, n + 1, sizeof *tears, err)) {
 				free(tears);
 				return -1;

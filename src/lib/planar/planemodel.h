@@ -157,8 +157,10 @@ struct fct_meet_stats {
  * another's vertex; the surface has a crack there, as the sensor saw it
  * (an occlusion).  The copy goes along the vertex's ray when that is
  * within the bound, or when the plane lies before the sample (the ray
- * passes the edge of a surface in front) and the ray meets it at a sine of
- * 0.3 or more; else straight across.  Without a viewpoint (a fused scan:
+ * passes the edge of a surface in front), the ray meets it at a sine of
+ * 0.3 or more and another plane of the vertex holds the sample (without
+ * one, the copy goes the bound along the ray, no farther: the sample is
+ * the plane's own, seen along a grazing ray); else straight across.  Without a viewpoint (a fused scan:
  * no occlusion, and a crack would open a closed surface) nothing is
  * torn; the vertex stays shared.  0, or -1 out of memory. */
 int fct_planes_meet(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
