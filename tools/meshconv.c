@@ -11,7 +11,6 @@
 #include "geom/adj.h"
 #include "cli/cli.h"
 #include "io/header.h"
-#include "fusion/mcubes.h"
 #include "io/meshio.h"
 #include "core/path.h"
 #include "depth/rangegrid.h"
@@ -115,25 +114,14 @@ static void range_scan(struct fct_mesh *m, const char *in, int grid, const char 
 static void weld(struct fct_mesh *m)
 {
 	struct fct_err err;
-	long merged = fct_mesh_weld_exact(m, &err);
-	unsigned char *bad = merged < 0 ? NULL : fct_alloc_array(m->nf, 1, &err);
-	size_t *keep = bad ? fct_alloc_array(m->nf, sizeof *keep, &err) : NULL;
-	/* min_area -1: only faces with a repeated vertex (or < 3 corners) */
-	long ndeg = keep ? fct_mesh_degenerate_faces(m, -1, bad, &err) : -1;
-	size_t n = 0;
-	for (size_t f = 0; ndeg > 0 && f < m->nf; f++)
-		if (!bad[f])
-			keep[n++] = f;
-	if (ndeg < 0 || (ndeg > 0 && fct_mesh_gather_faces(m, keep, n, &err))) {
-		free(bad);
-		free(keep);
+	size_t ndeg;
+	long merged = fct_mesh_weld(m, &ndeg, &err);
+	if (merged < 0) {
 		fct_mesh_free(m);
 		fct_die_err(&err);
 	}
-	free(bad);
-	free(keep);
 	fct_report("welded_vertices", "%ld", merged);
-	fct_report("degenerate_faces", "%ld", ndeg);
+	fct_report("degenerate_faces", "%zu", ndeg);
 }
 
 /* Join next (freed) onto m; next's other elements are dropped. */

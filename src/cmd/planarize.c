@@ -428,6 +428,7 @@ int main(int argc, char **argv)
 	if (fct_segment_mesh(&m, &o.s.seg, o.s.tls, &sst, &err))
 		fct_die_err_at(&err, "segplanes: %s", fct_path_display(o.input));
 	fct_report_stage("segplanes", "min_faces", "%ld", o.s.seg.min_faces);
+	fct_report_stage("segplanes", "welded_vertices", "%zu", sst.welded);
 	fct_report_stage("segplanes", "patches", "%zu", sst.patches);
 	fct_report_stage("segplanes", "noise", "%.9g", sst.noise);
 	fct_report_stage("segplanes", "clusters", "%zu", sst.clusters);

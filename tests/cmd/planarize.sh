@@ -246,6 +246,24 @@ check_num "... told: within 0.1 mm of the flat truth (mean)" "$(figure mean "$W/
 check_num "... estimated: no closer than the mesh itself (half)" \
 	"$(ratio "$(figure mean "$W/est.dist")" "$(figure mean "$W/wall.dist")")" ">" 0.5
 check_num "... told: 1000x fewer faces" "$(field reduction "$W/told.err")" ">=" 1000
+# The same wall as a triangle soup (every face its own three corners, as an
+# STL file converted writes it): no two faces shared an edge, no face merged
+# with another, and the debris step kept the largest piece, one triangle
+# (reduction 20000).  Its copies of a position are one vertex again:
+# 60000 - 10201 merged, the same model as the wall's.
+awk '/^end_header/ { hdr = 0; body = 1; print "element vertex 60000"; print "property float x\nproperty float y\nproperty float z"
+		print "element face 20000\nproperty list uchar int vertex_indices\nend_header"; next }
+	NR <= 2 { print; next } body && n < 10201 { p[n++] = $0; next }
+	body { f[nf++] = $0 }
+	END { for (i = 0; i < nf; i++) { split(f[i], c, " "); for (k = 2; k <= 4; k++) print p[c[k]] }
+		for (i = 0; i < nf; i++) printf "3 %d %d %d\n", 3 * i, 3 * i + 1, 3 * i + 2 }' "$W/wall.ply" >"$W/soup.ply"
+check_num "a triangle soup: 3 corners a face" "$(info vertices "$W/soup.ply")" == 60000
+run_case 0 "planarize -v --noise poly:0.001,0,0 -o $W/soup.model.ply $W/soup.ply 2>$W/soup.err"
+check_num "... its copies welded" "$(field "segplanes: welded_vertices" "$W/soup.err")" == 49799
+check_num "... one patch, as the wall" "$(field "segplanes: patches" "$W/soup.err")" == 1
+check_num "... the wall's faces" "$(info faces "$W/soup.model.ply")" == "$(info faces "$W/told.ply")"
+meshdist -s 100000 "$W/soup.model.ply" "$W/truth.ply" >"$W/soup.dist"
+check_num "... within 0.1 mm of the flat truth (mean)" "$(figure mean "$W/soup.dist")" "<" 0.0001
 run_case 2 "planarize --noise kinect -o $W/k.ply $W/wall.ply" "" "planarize: --noise: $W/wall.ply: the noise model \"kinect 585 0.075 0.051 0.125\" grows with depth, and the mesh has no camera"
 run_case 2 "planarize -K tum -o $W/k.ply $W/wall.ply" "" "planarize: -K: for depth images, and $W/wall.ply is a mesh"
 # A fused scan (tsdfuse --carve of four views: watertight, 145 pieces, no

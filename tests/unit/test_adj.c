@@ -388,12 +388,27 @@ static void test_drop_small_pieces(void)
 	CHECK_INT(pieces, 2);
 	CHECK_INT(m.nf, 6);
 	fct_mesh_free(&m);
+	/* Two lone triangles, or three and a piece of two: the small pieces
+	 * hold half the faces or more, they are the surface and stay. */
 	static const int two[] = { 0, 1, 2, -1, 3, 4, 5, -1 };
 	make_mesh(&m, 6, NULL, two, sizeof two / sizeof *two);
-	CHECK_INT(fct_mesh_drop_small_pieces(&m, 2, &pieces, &err), 1);
-	CHECK_INT(m.nf, 1);
-	CHECK_INT(m.nv, 3);
-	CHECK_INT(m.fvert[0], 0);
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 2, &pieces, &err), 0);
+	CHECK_INT(pieces, 0);
+	CHECK_INT(m.nf, 2);
+	CHECK_INT(m.nv, 6);
+	fct_mesh_free(&m);
+	static const int scattered[] = { 0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 9, 10, 11, -1, 10, 12, 11, -1 };
+	make_mesh(&m, 13, NULL, scattered, sizeof scattered / sizeof *scattered);
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 2, &pieces, &err), 0);
+	CHECK_INT(m.nf, 5);
+	fct_mesh_free(&m);
+	/* Two lone triangles beside a piece of three: 2 of 5 faces, debris. */
+	static const int beside[] = { 0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 7, 9, 8, -1, 8, 9, 10, -1 };
+	make_mesh(&m, 11, NULL, beside, sizeof beside / sizeof *beside);
+	CHECK_INT(fct_mesh_drop_small_pieces(&m, 2, &pieces, &err), 2);
+	CHECK_INT(pieces, 2);
+	CHECK_INT(m.nf, 3);
+	CHECK_INT(m.nv, 5);
 	fct_mesh_free(&m);
 	/* No faces: nothing to do. */
 	fct_mesh_init(&m);

@@ -40,7 +40,7 @@
  * the voxels the extraction reads (corners up to hi_T, gradients one voxel
  * beyond) hold the same values in both tiles, extract each with its box,
  * concatenate the meshes and merge vertices at identical positions with
- * fct_mesh_weld_exact below.  The welded union has the untiled extraction's
+ * fct_mesh_weld_exact (geom/adj.h).  The welded union has the untiled extraction's
  * triangles and vertices (in another order). */
 #ifndef FCT_MCUBES_H
 #define FCT_MCUBES_H
@@ -88,11 +88,5 @@ int fct_mcubes_stats(struct fct_mesh *out, const struct fct_voxgrid *g, float mi
 int fct_mcubes_reference(struct fct_mesh *out, const struct fct_voxgrid *g, float min_weight,
                          const int32_t *clip_lo, const int32_t *clip_hi, struct fct_err *err);
 
-/* Merge vertices with bit-identical positions (x, y, z as doubles): the
- * first vertex of each position in index order is kept with its properties,
- * the others are dropped, faces renumbered (faces are kept as they are, even
- * if they become degenerate).  Used to join tiles.  Returns the number of
- * vertices removed, or -1 when out of memory. */
-long fct_mesh_weld_exact(struct fct_mesh *m, struct fct_err *err);
 
 #endif

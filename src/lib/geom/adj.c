@@ -284,6 +284,11 @@ long fct_mesh_drop_small_pieces(struct fct_mesh *m, size_t min_faces, size_t *dr
 		for (size_t f = 0; f < m->nf; f++)
 			if (size[label[f]] >= min_faces)
 				keep[nkeep++] = f;
+		/* Debris is what lies beside the surface: where the small pieces
+		 * hold half the faces or more, they are the surface (a mesh of
+		 * scattered patches, a triangle soup), and all stay. */
+		if (2 * nkeep <= m->nf)
+			nkeep = m->nf, small = 0;
 		rc = (long)(m->nf - nkeep);
 		if (rc > 0) {
 			/* The vertices kept: those a kept face uses, and those no face
@@ -540,4 +545,79 @@ out:
 	free(run);
 	free(rtmp);
 	return n;
+}
+
+struct weld_key {
+	double p[3];
+	uint32_t v;
+};
+
+static int cmp_key(const void *pa, const void *pb)
+{
+	const struct weld_key *a = pa, *b = pb;
+	int r = memcmp(a->p, b->p, sizeof a->p);
+	return r ? r : (a->v > b->v) - (a->v < b->v);
+}
+
+long fct_mesh_weld_exact(struct fct_mesh *m, struct fct_err *err)
+{
+	if (m->nv > UINT32_MAX)
+		return fct_fail(err, "weld: too many vertices");
+	struct weld_key *key = fct_alloc_array(m->nv, sizeof *key, err);
+	uint32_t *rep = fct_alloc_array(m->nv, sizeof *rep, err);
+	size_t *keep = fct_alloc_array(m->nv, sizeof *keep, err);
+	long rc = -1;
+	if (!key || !rep || !keep)
+		goto done;
+	for (size_t v = 0; v < m->nv; v++) {
+		memcpy(key[v].p, m->xyz + 3 * v, sizeof key[v].p);
+		key[v].v = (uint32_t)v;
+	}
+	/* byte order of the positions: equal positions are adjacent, the
+	 * smallest index first */
+	qsort(key, m->nv, sizeof *key, cmp_key);
+	for (size_t i = 0, first = 0; i < m->nv; i++) {
+		if (i > 0 && memcmp(key[i].p, key[i - 1].p, sizeof key[i].p))
+			first = i;
+		rep[key[i].v] = key[first].v;
+	}
+	size_t n = 0;
+	for (size_t v = 0; v < m->nv; v++)
+		if (rep[v] == v)
+			keep[n++] = v;
+	for (size_t i = 0; m->nf && i < m->fstart[m->nf]; i++)
+		m->fvert[i] = rep[m->fvert[i]];
+	size_t removed = m->nv - n;
+	/* renumbers the faces, whose vertices are all kept now */
+	if (fct_mesh_gather_vertices(m, keep, n, err))
+		goto done;
+	rc = (long)removed;
+done:
+	free(key);
+	free(rep);
+	free(keep);
+	return rc;
+}
+
+long fct_mesh_weld(struct fct_mesh *m, size_t *dropped, struct fct_err *err)
+{
+	*dropped = 0;
+	long merged = fct_mesh_weld_exact(m, err);
+	if (merged < 0)
+		return -1;
+	unsigned char *bad = fct_alloc_array(m->nf ? m->nf : 1, 1, err);
+	size_t *keep = bad ? fct_alloc_array(m->nf ? m->nf : 1, sizeof *keep, err) : NULL;
+	/* min_area -1: only faces with a repeated vertex (or < 3 corners) */
+	long ndeg = keep ? fct_mesh_degenerate_faces(m, -1, bad, err) : -1;
+	size_t n = 0;
+	for (size_t f = 0; ndeg > 0 && f < m->nf; f++)
+		if (!bad[f])
+			keep[n++] = f;
+	if (ndeg < 0 || (ndeg > 0 && fct_mesh_gather_faces(m, keep, n, err)))
+		merged = -1;
+	else
+		*dropped = (size_t)ndeg;
+	free(bad);
+	free(keep);
+	return merged;
 }

@@ -98,11 +98,26 @@ long fct_adj_components(const struct fct_adj *a, uint32_t *label, struct fct_err
  * floating debris.  The faces and vertices kept stay in their order, with
  * all their properties; a vertex no face used stays, and so does the
  * largest piece (the first of them), however small: a mesh of one small
- * piece is an object, not debris.  dropped (may be NULL)
+ * piece is an object, not debris.  Nothing is dropped when the small
+ * pieces hold half the faces or more: they are the surface, not what lies
+ * beside it (a mesh of scattered patches).  dropped (may be NULL)
  * gets the number of pieces dropped.  min_faces 0 or 1 drops nothing.
  * Returns the number of faces dropped, or -1 when out of memory. */
 long fct_mesh_drop_small_pieces(struct fct_mesh *m, size_t min_faces, size_t *dropped,
                                 struct fct_err *err);
+
+/* Merge vertices with bit-identical positions (x, y, z as doubles): the
+ * first vertex of each position in index order is kept with its properties,
+ * the others are dropped, faces renumbered (faces are kept as they are, even
+ * if they become degenerate).  Used to join tiles.  Returns the number of
+ * vertices removed, or -1 when out of memory. */
+long fct_mesh_weld_exact(struct fct_mesh *m, struct fct_err *err);
+
+/* fct_mesh_weld_exact, then the faces that repeat a vertex (or have fewer
+ * than 3 corners) dropped, their count in *dropped: a triangle soup (every face its own corners, as an
+ * STL file or an exporter that splits vertices writes) made one surface.
+ * Returns the vertices removed, or -1 when out of memory. */
+long fct_mesh_weld(struct fct_mesh *m, size_t *dropped, struct fct_err *err);
 
 /* Number of vertices used by no face. */
 size_t fct_adj_isolated_vertices(const struct fct_adj *a);

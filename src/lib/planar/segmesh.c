@@ -4,8 +4,9 @@
 
 #include <stdlib.h>
 
-#include "io/header.h"
+#include "geom/adj.h"
 #include "geom/planes.h"
+#include "io/header.h"
 
 int fct_segment_mesh(struct fct_mesh *m, const struct fct_segment_params *p, int tls,
                      struct fct_segment_stats *stats, struct fct_err *err)
@@ -20,6 +21,20 @@ int fct_segment_mesh(struct fct_mesh *m, const struct fct_segment_params *p, int
 	int hc = fct_header_camera(m, &cam, err);
 	if (hc < 0)
 		return -1;
+	/* A mesh of no camera may be a triangle soup (every face its own
+	 * corners: an STL file converted, an exporter that splits vertices),
+	 * where no two faces share an edge and none would merge: the copies of
+	 * a position become one vertex.  A view's mesh is its pixel grid, one
+	 * vertex a pixel. */
+	size_t welded = 0, weld_dropped = 0;
+	if (hc == 0) {
+		long n = fct_mesh_weld(m, &weld_dropped, err);
+		if (n < 0)
+			return -1;
+		welded = (size_t)n;
+		if (m->nf == 0)
+			return fct_fail(err, "no faces to segment (every face repeats a vertex)");
+	}
 	if (hc > 0 && !tls) {
 		double pose[12];
 		int hp = fct_header_pose(m, pose, err);
@@ -46,6 +61,8 @@ int fct_segment_mesh(struct fct_mesh *m, const struct fct_segment_params *p, int
 	if (patch && !fct_segment(patch, &planes, &np, m, &sp, stats, err) &&
 	    !fct_patches_set(m, patch, err) && !fct_planes_set(m, planes, np, err))
 		rc = 0;
+	if (stats)
+		stats->welded = welded, stats->weld_dropped = weld_dropped;
 	free(patch);
 	free(planes);
 	free(sigma);
