@@ -826,17 +826,21 @@ static int ray_fit(struct fct_plane *pl, const double q[9], const double o[3])
 
 /* The moments of each patch of label (np patches; -1 faces skipped) from
  * its faces: R[np], and ray[9 np] for the fit along the rays when ray is
- * not NULL. */
+ * not NULL; only the patches flagged in redo (NULL: all), the others' left
+ * as they are. */
 static void patch_moments(const struct seg *S, const int32_t *label, size_t np, struct region *R,
-                          double *ray)
+                          double *ray, const unsigned char *redo)
 {
 	const struct fct_mesh *m = S->m;
-	memset(R, 0, np * sizeof *R);
-	if (ray)
-		memset(ray, 0, 9 * np * sizeof *ray);
+	for (size_t l = 0; l < np; l++)
+		if (!redo || redo[l]) {
+			memset(&R[l], 0, sizeof *R);
+			if (ray)
+				memset(&ray[9 * l], 0, 9 * sizeof *ray);
+		}
 	const double *vp = S->p->viewpoint;
 	for (size_t f = 0; f < m->nf; f++) {
-		if (label[f] < 0)
+		if (label[f] < 0 || (redo && !redo[label[f]]))
 			continue;
 		struct region t = S->face[f];
 		struct region *r = &R[label[f]];
@@ -864,7 +868,8 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 		}
 	}
 	for (size_t l = 0; l < np; l++)
-		R[l].sse = fmax(0, fct_sym3_min_eigenvalue(R[l].s));
+		if (!redo || redo[l])
+			R[l].sse = fmax(0, fct_sym3_min_eigenvalue(R[l].s));
 }
 
 /* The plane of a patch's moments r: the weighted orthogonal fit, or the
@@ -1151,26 +1156,37 @@ static size_t renumber(int32_t *label, size_t nf, int32_t *map)
 	return np;
 }
 
-/* Fits each patch's plane to the faces it holds now. */
+/* Fits the plane of each patch flagged in redo (NULL: every one) to the
+ * faces it holds now; the others keep theirs (their faces are the same,
+ * so a fit would give the same bits). */
 static void fit_planes(struct seg *S, const int32_t *patch, size_t np, struct region *R,
-                       struct fct_plane *pl, double *ray)
+                       struct fct_plane *pl, double *ray, const unsigned char *redo)
 {
-	patch_moments(S, patch, np, R, ray);
+	patch_moments(S, patch, np, R, ray, redo);
 	for (size_t l = 0; l < np; l++)
-		patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, S->p->viewpoint);
+		if (!redo || redo[l])
+			patch_plane(&pl[l], &R[l], ray ? &ray[9 * l] : NULL, S->p->viewpoint);
 }
 
 /* Frees (-1) every face farther than max_dev sigma from its patch's plane
- * (none when max_dev is not positive); returns how many. */
-static size_t peel(struct seg *S, int32_t *patch, const struct fct_plane *pl)
+ * (none when max_dev is not positive), looking only at the patches flagged
+ * in redo (their planes new since the last look); redo then flags the
+ * patches that lost a face.  Returns how many. */
+static size_t peel(struct seg *S, int32_t *patch, const struct fct_plane *pl, unsigned char *redo,
+                   size_t np)
 {
 	double max_dev = S->p->max_dev;
 	size_t peeled = 0;
-	for (size_t f = 0; f < S->m->nf; f++)
-		if (max_dev > 0 && patch[f] >= 0 && face_deviation(S, f, &pl[patch[f]]) > max_dev) {
+	for (size_t f = 0; f < S->m->nf; f++) {
+		int32_t l = patch[f];
+		if (max_dev > 0 && l >= 0 && (redo[l] & 1) && face_deviation(S, f, &pl[l]) > max_dev) {
 			patch[f] = -1;
+			redo[l] |= 2;
 			peeled++;
 		}
+	}
+	for (size_t l = 0; l < np; l++)
+		redo[l] >>= 1;
 	S->st.peeled += peeled;
 	return peeled;
 }
@@ -1212,9 +1228,13 @@ static int drop_small(struct seg *S, int32_t *patch, size_t np, const struct reg
 static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region *R,
                          struct fct_plane *pl, double *ray, int32_t *map, struct fct_err *err)
 {
+	/* (map holds the patches to fit again: every one at first, then those
+	 * that lost faces to peeling) */
+	unsigned char *redo = (unsigned char *)map;
+	memset(redo, 1, np);
 	for (int round = 0; round <= PEEL_ROUNDS; round++) {
-		fit_planes(S, patch, np, R, pl, ray);
-		if (round == PEEL_ROUNDS || !peel(S, patch, pl))
+		fit_planes(S, patch, np, R, pl, ray, redo);
+		if (round == PEEL_ROUNDS || !peel(S, patch, pl, redo, np))
 			break;
 	}
 	struct face_pairs fp;
@@ -1233,9 +1253,10 @@ static int check_patches(struct seg *S, int32_t *patch, size_t np, struct region
 	 * face beyond max_dev of them peeled, until a fit peels none (at most
 	 * FINAL_ROUNDS); the planes are those of the last fit, which every
 	 * face left lies within max_dev of, since peeling only takes faces. */
+	memset(redo, 1, np);
 	for (int round = 0; round < FINAL_ROUNDS; round++) {
-		fit_planes(S, patch, np, R, pl, ray);
-		if (!peel(S, patch, pl))
+		fit_planes(S, patch, np, R, pl, ray, redo);
+		if (!peel(S, patch, pl, redo, np))
 			break;
 	}
 	for (size_t f = 0; f < S->m->nf; f++)
