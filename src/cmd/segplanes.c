@@ -96,7 +96,6 @@ int main(int argc, char **argv)
 	fct_report("vertices", "%zu", m.nv);
 	fct_report("faces", "%zu", m.nf);
 	fct_report("welded_vertices", "%zu", st.welded);
-	fct_report("welded_faces_dropped", "%zu", st.weld_dropped);
 	fct_report("adjacencies", "%zu", st.adjacencies);
 	fct_report("patches", "%zu", st.patches);
 	fct_report("noise", "%.9g", st.noise);

@@ -260,6 +260,11 @@ awk '/^end_header/ { hdr = 0; body = 1; print "element vertex 60000"; print "pro
 check_num "a triangle soup: 3 corners a face" "$(info vertices "$W/soup.ply")" == 60000
 run_case 0 "planarize -v --noise poly:0.001,0,0 -o $W/soup.model.ply $W/soup.ply 2>$W/soup.err"
 check_num "... its copies welded" "$(field "segplanes: welded_vertices" "$W/soup.err")" == 49799
+# segplanes keeps the faces, in their order (labels map back onto the
+# soup's faces); the vertices are the wall's 10201.
+run_case 0 "segplanes -o $W/soup.seg.ply $W/soup.ply"
+check_num "... segplanes: the soup's faces" "$(info faces "$W/soup.seg.ply")" == 20000
+check_num "... segplanes: one vertex a position" "$(info vertices "$W/soup.seg.ply")" == 10201
 check_num "... one patch, as the wall" "$(field "segplanes: patches" "$W/soup.err")" == 1
 check_num "... the wall's faces" "$(info faces "$W/soup.model.ply")" == "$(info faces "$W/told.ply")"
 meshdist -s 100000 "$W/soup.model.ply" "$W/truth.ply" >"$W/soup.dist"

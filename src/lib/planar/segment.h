@@ -150,7 +150,6 @@ struct fct_segment_stats {
 	size_t free_faces;    /* faces of no patch at the end (free-form) */
 	double seconds;       /* wall-clock time of fct_segment */
 	size_t welded;        /* fct_segment_mesh: vertices merged into others at their position */
-	size_t weld_dropped;  /* ... and the faces that then repeated a vertex, dropped */
 };
 
 /* target 0, factor FCT_SEGMENT_FACTOR, max_rms HUGE_VAL, corners,

@@ -24,16 +24,16 @@ int fct_segment_mesh(struct fct_mesh *m, const struct fct_segment_params *p, int
 	/* A mesh of no camera may be a triangle soup (every face its own
 	 * corners: an STL file converted, an exporter that splits vertices),
 	 * where no two faces share an edge and none would merge: the copies of
-	 * a position become one vertex.  A view's mesh is its pixel grid, one
-	 * vertex a pixel. */
-	size_t welded = 0, weld_dropped = 0;
+	 * a position become one vertex.  The faces stay as they are, in their
+	 * order (one that now repeats a vertex is a degenerate face, which the
+	 * segmentation takes).  A view's mesh is its pixel grid, one vertex a
+	 * pixel. */
+	size_t welded = 0;
 	if (hc == 0) {
-		long n = fct_mesh_weld(m, &weld_dropped, err);
+		long n = fct_mesh_weld_exact(m, err);
 		if (n < 0)
 			return -1;
 		welded = (size_t)n;
-		if (m->nf == 0)
-			return fct_fail(err, "no faces to segment (every face repeats a vertex)");
 	}
 	if (hc > 0 && !tls) {
 		double pose[12];
@@ -62,7 +62,7 @@ int fct_segment_mesh(struct fct_mesh *m, const struct fct_segment_params *p, int
 	    !fct_patches_set(m, patch, err) && !fct_planes_set(m, planes, np, err))
 		rc = 0;
 	if (stats)
-		stats->welded = welded, stats->weld_dropped = weld_dropped;
+		stats->welded = welded;
 	free(patch);
 	free(planes);
 	free(sigma);

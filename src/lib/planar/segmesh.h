@@ -11,9 +11,9 @@
 /* Segment m (segment.h) with p, and with what m carries: a camera comment
  * makes the planes fitted along the rays from the camera's centre (the
  * pose's translation, else the origin) unless tls; without one, vertices
- * at bit-identical positions are merged first and faces that then repeat
- * a vertex dropped (fct_mesh_weld: a triangle soup made one surface;
- * stats->welded, weld_dropped); the vertex property
+ * at bit-identical positions are merged first, the faces kept as they are
+ * (fct_mesh_weld_exact: a triangle soup made one surface; stats->welded);
+ * the vertex property
  * sigma (a scalar) gives every vertex's noise, overriding p->sigma.  Then m
  * gets the face property patch and the plane element (planes.h).  stats
  * may be NULL.  0, or -1 with a message: no faces (an empty mesh or a
