@@ -242,9 +242,11 @@ static int print_topology(const struct fct_mesh *m, double diag2, struct fct_err
 		return -1;
 	long degenerate = fct_mesh_degenerate_faces(m, ZERO_AREA_REL * diag2, NULL, err);
 	long duplicate = degenerate < 0 ? -1 : fct_mesh_duplicate_faces(m, NULL, err);
-	if (duplicate < 0)
+	long same_place = duplicate < 0 ? -1 : fct_mesh_duplicate_vertices(m, NULL, err);
+	if (same_place < 0)
 		return -1;
-	printf("components: %ld\nisolated_vertices: %zu\n", ncomp, isolated);
+	printf("components: %ld\nisolated_vertices: %zu\nduplicate_vertices: %ld\n", ncomp, isolated,
+	       same_place);
 	printf("degenerate_faces: %ld\nduplicate_faces: %ld\n", degenerate, duplicate);
 	return 0;
 }

@@ -39,6 +39,14 @@ line "$TMP/mixed.txt" "duplicate_faces: 1"
 line "$TMP/mixed.txt" "polygons: 1"
 line "$TMP/points.txt" "mean_edge_length: none"
 line "$TMP/points.txt" "isolated_vertices: 3"
+line "$TMP/mixed.txt" "duplicate_vertices: 0"
+# A triangle soup: two triangles on the square's diagonal, each with corners
+# of its own: 6 vertices at 4 positions, no edge shared.
+printf 'ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 3 4 5\n' >"$TMP/soup.ply"
+meshinfo "$TMP/soup.ply" >"$TMP/soup.txt"
+line "$TMP/soup.txt" "duplicate_vertices: 2"
+line "$TMP/soup.txt" "components: 2"
+line "$TMP/soup.txt" "border_edges: 6"
 
 # stdin, "-" and several files (one blank line between blocks).
 sed 's/^file: .*/file: <stdin>/' $E/meshinfo_points.txt >"$TMP/stdin.txt"

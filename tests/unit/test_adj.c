@@ -416,6 +416,31 @@ static void test_drop_small_pieces(void)
 	fct_mesh_free(&m);
 }
 
+/* Vertices at one position: counted after the first, each pointed at the
+ * first; welding them joins a soup's two triangles along their diagonal. */
+static void test_duplicate_vertices(void)
+{
+	static const double pos[] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0, -0.0, 0, 0 };
+	static const int soup[] = { 0, 1, 2, -1, 3, 4, 5, -1 };
+	struct fct_mesh m;
+	make_mesh(&m, 7, pos, soup, sizeof soup / sizeof *soup);
+	uint32_t first[7];
+	/* -0.0 is another bit pattern than 0: no duplicate of vertex 0 */
+	CHECK_INT(fct_mesh_duplicate_vertices(&m, first, &err), 2);
+	static const uint32_t want[] = { 0, 1, 2, 0, 2, 5, 6 };
+	for (int v = 0; v < 7; v++)
+		CHECK_INT(first[v], want[v]);
+	CHECK_INT(fct_mesh_weld_exact(&m, &err), 2);
+	CHECK_INT(m.nv, 5);
+	struct fct_adj a;
+	CHECK_INT(fct_adj_build(&a, &m, &err), 0);
+	CHECK_INT(a.nmanifold, 1);   /* the diagonal, shared now */
+	CHECK_INT(a.nborder, 4);
+	fct_adj_free(&a);
+	CHECK_INT(fct_mesh_duplicate_vertices(&m, NULL, &err), 0);
+	fct_mesh_free(&m);
+}
+
 int main(void)
 {
 	test_cube();
@@ -426,5 +451,6 @@ int main(void)
 	test_duplicates();
 	test_empty();
 	test_drop_small_pieces();
+	test_duplicate_vertices();
 	CHECK_DONE();
 }

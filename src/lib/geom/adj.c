@@ -559,16 +559,13 @@ static int cmp_key(const void *pa, const void *pb)
 	return r ? r : (a->v > b->v) - (a->v < b->v);
 }
 
-long fct_mesh_weld_exact(struct fct_mesh *m, struct fct_err *err)
+long fct_mesh_duplicate_vertices(const struct fct_mesh *m, uint32_t *first, struct fct_err *err)
 {
 	if (m->nv > UINT32_MAX)
-		return fct_fail(err, "weld: too many vertices");
-	struct weld_key *key = fct_alloc_array(m->nv, sizeof *key, err);
-	uint32_t *rep = fct_alloc_array(m->nv, sizeof *rep, err);
-	size_t *keep = fct_alloc_array(m->nv, sizeof *keep, err);
-	long rc = -1;
-	if (!key || !rep || !keep)
-		goto done;
+		return fct_fail(err, "duplicate vertices: too many vertices");
+	struct weld_key *key = fct_alloc_array(m->nv ? m->nv : 1, sizeof *key, err);
+	if (!key)
+		return -1;
 	for (size_t v = 0; v < m->nv; v++) {
 		memcpy(key[v].p, m->xyz + 3 * v, sizeof key[v].p);
 		key[v].v = (uint32_t)v;
@@ -576,24 +573,36 @@ long fct_mesh_weld_exact(struct fct_mesh *m, struct fct_err *err)
 	/* byte order of the positions: equal positions are adjacent, the
 	 * smallest index first */
 	qsort(key, m->nv, sizeof *key, cmp_key);
-	for (size_t i = 0, first = 0; i < m->nv; i++) {
+	long n = 0;
+	for (size_t i = 0, lead = 0; i < m->nv; i++) {
 		if (i > 0 && memcmp(key[i].p, key[i - 1].p, sizeof key[i].p))
-			first = i;
-		rep[key[i].v] = key[first].v;
+			lead = i;
+		n += lead != i;
+		if (first)
+			first[key[i].v] = key[lead].v;
 	}
+	free(key);
+	return n;
+}
+
+long fct_mesh_weld_exact(struct fct_mesh *m, struct fct_err *err)
+{
+	uint32_t *rep = fct_alloc_array(m->nv ? m->nv : 1, sizeof *rep, err);
+	size_t *keep = rep ? fct_alloc_array(m->nv ? m->nv : 1, sizeof *keep, err) : NULL;
+	long rc = -1, removed = keep ? fct_mesh_duplicate_vertices(m, rep, err) : -1;
+	if (removed < 0)
+		goto done;
 	size_t n = 0;
 	for (size_t v = 0; v < m->nv; v++)
 		if (rep[v] == v)
 			keep[n++] = v;
 	for (size_t i = 0; m->nf && i < m->fstart[m->nf]; i++)
 		m->fvert[i] = rep[m->fvert[i]];
-	size_t removed = m->nv - n;
 	/* renumbers the faces, whose vertices are all kept now */
 	if (fct_mesh_gather_vertices(m, keep, n, err))
 		goto done;
-	rc = (long)removed;
+	rc = removed;
 done:
-	free(key);
 	free(rep);
 	free(keep);
 	return rc;

@@ -106,6 +106,12 @@ long fct_adj_components(const struct fct_adj *a, uint32_t *label, struct fct_err
 long fct_mesh_drop_small_pieces(struct fct_mesh *m, size_t min_faces, size_t *dropped,
                                 struct fct_err *err);
 
+/* Count the vertices at the position of an earlier vertex (bit-identical
+ * x, y, z as doubles).  first (m->nv entries, may be NULL) gets, for each
+ * vertex, the smallest index of a vertex at its position (itself when it
+ * is the first).  Returns the count, or -1 when out of memory. */
+long fct_mesh_duplicate_vertices(const struct fct_mesh *m, uint32_t *first, struct fct_err *err);
+
 /* Merge vertices with bit-identical positions (x, y, z as doubles): the
  * first vertex of each position in index order is kept with its properties,
  * the others are dropped, faces renumbered (faces are kept as they are, even
