@@ -590,8 +590,11 @@ long fct_mesh_weld_exact(struct fct_mesh *m, struct fct_err *err)
 	uint32_t *rep = fct_alloc_array(m->nv ? m->nv : 1, sizeof *rep, err);
 	size_t *keep = rep ? fct_alloc_array(m->nv ? m->nv : 1, sizeof *keep, err) : NULL;
 	long rc = -1, removed = keep ? fct_mesh_duplicate_vertices(m, rep, err) : -1;
-	if (removed < 0)
+	if (removed <= 0) {
+		/* nothing to merge: the mesh stays as it is, not copied over */
+		rc = removed;
 		goto done;
+	}
 	size_t n = 0;
 	for (size_t v = 0; v < m->nv; v++)
 		if (rep[v] == v)
