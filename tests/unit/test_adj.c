@@ -220,6 +220,41 @@ static void test_fan(void)
 	fct_mesh_free(&m);
 }
 
+/* A closed fan of 100 triangles around vertex 0, its rim visited out of
+ * index order, and 40 more triangles on the spoke (0 1): vertex 0 starts
+ * 140 edges (more than the sort's insertion runs take) and the spoke has
+ * 42 faces, which must stay in face order. */
+static void test_wide_fan(void)
+{
+	enum { RIM = 100, EXTRA = 40 };
+	int faces[4 * (RIM + EXTRA)], n = 0;
+	for (int i = 0; i < RIM; i++) {
+		faces[n++] = 0;
+		faces[n++] = 1 + (i * 37) % RIM;
+		faces[n++] = 1 + ((i + 1) * 37) % RIM;
+		faces[n++] = -1;
+	}
+	for (int j = 0; j < EXTRA; j++) {
+		faces[n++] = j % 2 ? 1 : 0;
+		faces[n++] = j % 2 ? 0 : 1;
+		faces[n++] = RIM + 1 + j;
+		faces[n++] = -1;
+	}
+	struct fct_mesh m;
+	make_mesh(&m, RIM + 1 + EXTRA, NULL, faces, (size_t)n);
+	struct fct_adj a;
+	CHECK_INT(fct_adj_build(&a, &m, &err), 0);
+	CHECK_INT(a.ne, 2 * RIM + 2 * EXTRA);
+	CHECK_INT(a.nnonmanifold, 1);
+	CHECK_INT(a.nmanifold, RIM - 1);        /* the spokes; the rim is border */
+	CHECK_INT(a.nborder, RIM + 2 * EXTRA);
+	long spoke = find_edge(&a, 0, 1);
+	CHECK_INT(fct_adj_edge_nfaces(&a, (size_t)spoke), 2 + EXTRA);
+	check_invariants(&m, &a);
+	fct_adj_free(&a);
+	fct_mesh_free(&m);
+}
+
 /* Triangles (3 4 5), (0 1 2), (2 1 7) and (5 8 9): the second and third
  * share an edge, the fourth touches the first at a vertex only; vertex 6 is
  * isolated. */
@@ -446,6 +481,7 @@ int main(void)
 	test_cube();
 	test_grid();
 	test_fan();
+	test_wide_fan();
 	test_components();
 	test_degenerate();
 	test_duplicates();

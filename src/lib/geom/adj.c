@@ -44,6 +44,63 @@ static void counting_sort(uint32_t *dst, const uint32_t *src, size_t n, const ui
 		dst[count[key[src[i]]]++] = src[i];
 }
 
+/* Corner x before corner y in (hi, corner) order. */
+static int hi_before(const uint32_t *hi, uint32_t x, uint32_t y)
+{
+	return hi[x] < hi[y] || (hi[x] == hi[y] && x < y);
+}
+
+/* Heapsort of c[0..n) in (hi, corner) order, in place. */
+static void heapsort_by_hi(uint32_t *c, size_t n, const uint32_t *hi)
+{
+	for (size_t end = n, start = n / 2; end > 1;) {
+		if (start > 0)
+			start--;             /* building the heap */
+		else {
+			end--;               /* the largest to the back */
+			uint32_t t = c[0];
+			c[0] = c[end], c[end] = t;
+		}
+		for (size_t i = start;;) {
+			size_t k = 2 * i + 1;
+			if (k >= end)
+				break;
+			if (k + 1 < end && hi_before(hi, c[k], c[k + 1]))
+				k++;
+			if (!hi_before(hi, c[i], c[k]))
+				break;
+			uint32_t t = c[i];
+			c[i] = c[k], c[k] = t;
+			i = k;
+		}
+	}
+}
+
+/* Each run of equal lo[] in c[0..n) (corner numbers, increasing within a
+ * run) sorted by (hi, corner).  A run is a vertex's edges to higher
+ * vertices, a handful, sorted by insertion; a fan's centre may have any
+ * number, so a long run is heapsorted. */
+#define SHORT_RUN 32
+
+static void sort_runs_by_hi(uint32_t *c, size_t n, const uint32_t *lo, const uint32_t *hi)
+{
+	for (size_t s = 0, e; s < n; s = e) {
+		for (e = s + 1; e < n && lo[c[e]] == lo[c[s]]; e++)
+			;
+		if (e - s > SHORT_RUN) {
+			heapsort_by_hi(c + s, e - s, hi);
+			continue;
+		}
+		for (size_t i = s + 1; i < e; i++) {   /* stable: corners stay increasing */
+			uint32_t x = c[i];
+			size_t j = i;
+			for (; j > s && hi[c[j - 1]] > hi[x]; j--)
+				c[j] = c[j - 1];
+			c[j] = x;
+		}
+	}
+}
+
 /* The edges: sort the non-degenerate corners by (lo, hi, corner) and give
  * each run of equal (lo, hi) one edge number. */
 static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
@@ -76,11 +133,12 @@ static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_e
 			p2[nk++] = c;
 		}
 	}
-	/* LSD radix: by hi, then stably by lo, gives (lo, hi, corner) order. */
-	counting_sort(p1, p2, nk, hi, count, m->nv);
-	counting_sort(p2, p1, nk, lo, count, m->nv);
-	free(p1);
-	p1 = NULL;
+	/* (lo, hi, corner) order: stably by lo, then each run of one lo (a
+	 * vertex's few edges to higher vertices) by hi. */
+	counting_sort(p1, p2, nk, lo, count, m->nv);
+	sort_runs_by_hi(p1, nk, lo, hi);
+	free(p2);
+	p2 = p1, p1 = NULL;
 
 	size_t ne = 0;
 	for (size_t i = 0; i < nk; i++)
