@@ -151,7 +151,10 @@ static int centre_unfaceted(int n, int a, int b, double tilt, size_t *facets)
 		{ { 0, 0, -1 }, 1, 0, 0 }, { { -s, 0, -c }, 1, 0, 0 }, { { s, 0, -c }, 1, 0, 0 },
 		{ { 0, -s, -c }, 1, 0, 0 }, { { 0, s, -c }, 1, 0, 0 },
 	};
-	CHECK_INT(fct_patches_unfacet(patch, &m, pl, 5, 20, 0.5, facets, &err), 0);
+	struct fct_adj adj;
+	CHECK_INT(fct_adj_build(&adj, &m, &err), 0);
+	CHECK_INT(fct_patches_unfacet(patch, &m, &adj, pl, 5, 20, 0.5, facets, &err), 0);
+	fct_adj_free(&adj);
 	int gone = patch[2 * (a * n + a)] == -1;
 	for (int j = a; j < b; j++)
 		for (int i = a; i < b; i++)
@@ -184,7 +187,10 @@ static size_t speck_left(double off, int rows, int with_sigma, size_t *joined)
 			m.xyz[3 * (size_t)(j * (n + 1) + i) + 2] += off;
 	struct fct_plane pl = { { 0, 0, -1 }, 1, 0, 0 };
 	struct fct_tidy_stats st;
-	CHECK_INT(fct_patches_tidy(patch, &m, &pl, 1, 0, with_sigma ? sigma : NULL, 4, 1, 64, &st, &err), 0);
+	struct fct_adj adj;
+	CHECK_INT(fct_adj_build(&adj, &m, &err), 0);
+	CHECK_INT(fct_patches_tidy(patch, &m, &adj, &pl, 1, 0, with_sigma ? sigma : NULL, 4, 1, 64, &st, &err), 0);
+	fct_adj_free(&adj);
 	size_t left = 0;
 	for (size_t f = 0; f < m.nf; f++)
 		left += patch[f] < 0;
@@ -219,7 +225,10 @@ static size_t floor_wall_project(struct fct_mesh *m, const int32_t *patch, const
 	const double vp[3] = { 0, 1.5, 0 };
 	double *off_crease = malloc(3 * m->nv * sizeof *off_crease);
 	size_t moved, creased;
-	CHECK_INT(fct_planes_project(m, patch, planes, vp, sg, 0, 4, off_crease, NULL, &moved, &creased, &err), 0);
+	struct fct_adj adj;
+	CHECK_INT(fct_adj_build(&adj, m, &err), 0);
+	CHECK_INT(fct_planes_project(m, &adj, patch, planes, vp, sg, 0, 4, off_crease, NULL, &moved, &creased, &err), 0);
+	fct_adj_free(&adj);
 	memcpy(out, m->xyz, 3 * sizeof *out);
 	memcpy(off, off_crease, 3 * sizeof *off);
 	for (size_t v = 1; v < m->nv; v++)
@@ -261,7 +270,10 @@ static size_t bounded_crease(double x, double y, double sigma, unsigned char *oc
 	const struct fct_plane planes[2] = { { { 0, -1, 0 }, 0, 0, 0 }, { { 1, 0, 0 }, 0.5, 0, 0 } };
 	const double vp[3] = { 3, -2, 0 }, sg[5] = { sigma, sigma, sigma, sigma, sigma };
 	size_t moved, creased;
-	CHECK_INT(fct_planes_project(&m, patch, planes, vp, sg, 0, 4, NULL, occluded, &moved, &creased, &err), 0);
+	struct fct_adj adj;
+	CHECK_INT(fct_adj_build(&adj, &m, &err), 0);
+	CHECK_INT(fct_planes_project(&m, &adj, patch, planes, vp, sg, 0, 4, NULL, occluded, &moved, &creased, &err), 0);
+	fct_adj_free(&adj);
 	memcpy(out, m.xyz, 3 * sizeof *out);
 	fct_mesh_free(&m);
 	return creased;

@@ -46,22 +46,19 @@ static void speck_far_corners(uint32_t *far, const struct fct_mesh *m, int32_t *
 	}
 }
 
-int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_adj *adj,
+                     const struct fct_plane *planes,
                      size_t np, int two_sided, const double *sigma, double max_dev,
                      size_t min_plane, size_t min_free, struct fct_tidy_stats *st,
                      struct fct_err *err)
 {
 	memset(st, 0, sizeof *st);
 	size_t nf = m->nf;
-	struct fct_adj adj;
-	if (fct_adj_build(&adj, m, err))
-		return -1;
 	int32_t *root = fct_alloc_array(nf ? nf : 1, sizeof *root, err);
 	int32_t *host = fct_alloc_array(nf ? nf : 1, sizeof *host, err);
 	uint32_t *count = fct_alloc_array(nf ? nf : 1, sizeof *count, err);
 	if (!root || !host || !count) {
 		free(root), free(host), free(count);
-		fct_adj_free(&adj);
 		return -1;
 	}
 	/* Patches of fewer than min_plane faces are free-form. */
@@ -78,9 +75,9 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 	 * the one other label around them (-2: none yet, -3: more than one). */
 	for (size_t f = 0; f < nf; f++)
 		root[f] = -1, host[f] = -2;
-	for (size_t e = 0; e < adj.ne; e++) {
-		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
-		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+	for (size_t e = 0; e < adj->ne; e++) {
+		const uint32_t *fs = &adj->edge_f[adj->edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(adj, e);
 		for (uint32_t i = 0; i < k; i++)
 			for (uint32_t j = i + 1; j < k; j++)
 				if (patch[fs[i]] == patch[fs[j]]) {
@@ -97,9 +94,9 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 	}
 	/* count: each piece's boundary edges (to another label or none). */
 	memset(count, 0, nf * sizeof *count);
-	for (size_t e = 0; e < adj.ne; e++) {
-		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
-		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+	for (size_t e = 0; e < adj->ne; e++) {
+		const uint32_t *fs = &adj->edge_f[adj->edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(adj, e);
 		if (k == 1)
 			count[fct_uf_root(root, fs[0])]++;
 		for (uint32_t i = 0; i < k; i++)
@@ -134,7 +131,6 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 	uint32_t *far = sigma && planes ? fct_alloc_array(nf ? nf : 1, 2 * sizeof *far, err) : NULL;
 	if (sigma && planes && !far) {
 		free(root), free(host), free(count);
-		fct_adj_free(&adj);
 		return -1;
 	}
 	if (far)
@@ -159,9 +155,9 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 	 * each be dropped as a duplicate, leaving the board open.  The faces
 	 * along such a seam become free-form: a rim of their own. */
 	if (two_sided && planes)
-		for (size_t e = 0; e < adj.ne; e++) {
-			const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
-			if (fct_adj_edge_nfaces(&adj, e) != 2)
+		for (size_t e = 0; e < adj->ne; e++) {
+			const uint32_t *fs = &adj->edge_f[adj->edge_fstart[e]];
+			if (fct_adj_edge_nfaces(adj, e) != 2)
 				continue;
 			int32_t a = patch[fs[0]], b = patch[fs[1]];
 			if (a < 0 || b < 0 || a == b || (size_t)a >= np || (size_t)b >= np ||
@@ -177,12 +173,11 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 	unsigned char *bounded = calloc(nf ? nf : 1, 1);
 	if (!bounded) {
 		free(root), free(host), free(count);
-		fct_adj_free(&adj);
 		return fct_fail(err, "out of memory");
 	}
-	for (size_t e = 0; e < adj.ne; e++) {
-		const uint32_t *fs = &adj.edge_f[adj.edge_fstart[e]];
-		uint32_t k = fct_adj_edge_nfaces(&adj, e);
+	for (size_t e = 0; e < adj->ne; e++) {
+		const uint32_t *fs = &adj->edge_f[adj->edge_fstart[e]];
+		uint32_t k = fct_adj_edge_nfaces(adj, e);
 		for (uint32_t i = 0; i < k; i++)
 			if (patch[fs[i]] >= 0 && (size_t)patch[fs[i]] < nf && (k != 2 || patch[fs[0]] != patch[fs[1]]))
 				bounded[patch[fs[i]]] = 1;
@@ -194,7 +189,6 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
 		}
 	free(bounded);
 	free(root), free(host), free(count);
-	fct_adj_free(&adj);
 	return 0;
 }
 
@@ -211,16 +205,14 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
  * tilted against it: a floor beside a rug, a wall beside a picture. */
 #define FACET_SIZE_RATIO 4
 
-int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_adj *adj,
+                        const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
                         struct fct_err *err)
 {
 	*facets = 0;
 	if (nplanes == 0)
 		return 0;
-	struct fct_adj adj;
-	if (fct_adj_build(&adj, m, err))
-		return -1;
 	double *shared = calloc(2 * nplanes, sizeof *shared);   /* shallow, all */
 	unsigned char *facet = calloc(nplanes, 1);
 	/* Each patch's first shallow neighbours (up to SHALLOW_NEIGHBOURS). */
@@ -229,7 +221,6 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 	size_t *faces = calloc(2 * nplanes, sizeof *faces);
 	if (!shared || !facet || !nb || !faces) {
 		free(shared), free(facet), free(nb), free(faces);
-		fct_adj_free(&adj);
 		return fct_fail(err, "out of memory");
 	}
 	for (size_t f = 0; f < m->nf; f++)
@@ -238,16 +229,16 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 	double cos_max = cos(max_angle * M_PI / 180);
 	for (size_t i = 0; i < nplanes * SHALLOW_NEIGHBOURS; i++)
 		nb[i] = -1;
-	for (size_t e = 0; e < adj.ne; e++) {
+	for (size_t e = 0; e < adj->ne; e++) {
 		/* Every edge of a patch's outline counts: to another patch, to the
 		 * free-form surface, to the outside. */
-		uint32_t k = fct_adj_edge_nfaces(&adj, e);
-		int32_t a = patch[adj.edge_f[adj.edge_fstart[e]]];
-		int32_t b = k == 2 ? patch[adj.edge_f[adj.edge_fstart[e] + 1]] : -1;
+		uint32_t k = fct_adj_edge_nfaces(adj, e);
+		int32_t a = patch[adj->edge_f[adj->edge_fstart[e]]];
+		int32_t b = k == 2 ? patch[adj->edge_f[adj->edge_fstart[e] + 1]] : -1;
 		if (k > 2 || a == b)
 			continue;
-		double len = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj.edge_v[2 * e],
-		                               m->xyz + 3 * (size_t)adj.edge_v[2 * e + 1]));
+		double len = sqrt(fct_v3_dist2(m->xyz + 3 * (size_t)adj->edge_v[2 * e],
+		                               m->xyz + 3 * (size_t)adj->edge_v[2 * e + 1]));
 		if (a < 0 || b < 0) {
 			int32_t l = a >= 0 ? a : b;
 			if (l >= 0)
@@ -282,7 +273,6 @@ int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct f
 		if (patch[f] >= 0 && facet[patch[f]])
 			patch[f] = -1;
 	free(shared), free(facet), free(nb), free(faces);
-	fct_adj_free(&adj);
 	return 0;
 }
 
@@ -951,17 +941,16 @@ static double *patch_boxes(const struct fct_mesh *m, const int32_t *patch, size_
 	return box;
 }
 
-/* fct_planes_project on the vertices with only[v] set (NULL: all). */
-static int project_vertices(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
+/* fct_planes_project on the vertices with only[v] set (NULL: all); vstart,
+ * vf: m's faces of each vertex. */
+static int project_vertices(struct fct_mesh *m, const uint32_t *vstart, const uint32_t *vf,
+                            const int32_t *patch, const struct fct_plane *planes,
                             const double *viewpoint, const double *sigma, double pixel_angle,
                             double max_move, double *off_crease, unsigned char *occluded,
                             const unsigned char *only, size_t *moved, size_t *creased,
                             struct fct_err *err)
 {
 	*moved = 0, *creased = 0;
-	uint32_t *vstart, *vf;
-	if (fct_vertex_faces(m, &vstart, &vf, err))
-		return -1;
 	/* The grazing-ray rule's patch boxes and scratch (ray_blocked): only
 	 * with a viewpoint, the rule's ray. */
 	size_t nplanes = 0;
@@ -972,7 +961,7 @@ static int project_vertices(struct fct_mesh *m, const int32_t *patch, const stru
 		queue = malloc((m->nv ? m->nv : 1) * sizeof *queue);
 		box = patch_boxes(m, patch, &nplanes);
 		if (!stamp || !queue || !box) {
-			free(vstart), free(vf), free(stamp), free(queue), free(box);
+			free(stamp), free(queue), free(box);
 			return fct_fail(err, "out of memory");
 		}
 	}
@@ -1058,17 +1047,17 @@ static int project_vertices(struct fct_mesh *m, const int32_t *patch, const stru
 			++*moved;
 		}
 	}
-	free(vstart), free(vf), free(stamp), free(queue), free(box);
+	free(stamp), free(queue), free(box);
 	return 0;
 }
 
-int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                       const double *viewpoint, const double *sigma, double pixel_angle,
-                       double max_move, double *off_crease, unsigned char *occluded,
-                       size_t *moved, size_t *creased, struct fct_err *err)
+int fct_planes_project(struct fct_mesh *m, const struct fct_adj *adj, const int32_t *patch,
+                       const struct fct_plane *planes, const double *viewpoint, const double *sigma,
+                       double pixel_angle, double max_move, double *off_crease,
+                       unsigned char *occluded, size_t *moved, size_t *creased, struct fct_err *err)
 {
-	return project_vertices(m, patch, planes, viewpoint, sigma, pixel_angle, max_move, off_crease,
-	                        occluded, NULL, moved, creased, err);
+	return project_vertices(m, adj->vert_fstart, adj->vert_f, patch, planes, viewpoint, sigma,
+	                        pixel_angle, max_move, off_crease, occluded, NULL, moved, creased, err);
 }
 
 /* Triangle (a, b, c)'s thickness, twice its area over its longest edge
@@ -2197,8 +2186,41 @@ static int reproject_orphans(struct fct_mesh *m, const int32_t *patch, const uin
 	size_t creased;
 	if (!any)
 		return 0;
-	return project_vertices(m, patch, pl, vp, sigma, pixel_angle, max_move, off_crease, NULL, only, n,
-	                        &creased, err);
+	return project_vertices(m, vstart, vf, patch, pl, vp, sigma, pixel_angle, max_move, off_crease,
+	                        NULL, only, n, &creased, err);
+}
+
+/* The labels tidied (fct_patches_unfacet, fct_patches_tidy) and the vertices
+ * put on their planes (fct_planes_project), all on one adjacency of m:
+ * neither changes its faces.  cam: NULL without a camera, else vp its
+ * viewpoint.  *sample gets the positions before, *off_crease and
+ * *occluded fct_planes_project's. */
+static int label_and_project(struct fct_mesh *m, int32_t *patch, const struct fct_plane *pl,
+                             size_t np, const struct fct_camera *cam, const double *vp,
+                             const double *sigma, const struct fct_planar_params *p,
+                             double **sample, size_t *nsample, double **off_crease,
+                             unsigned char **occluded, struct fct_planar_stats *st,
+                             struct fct_err *err)
+{
+	struct fct_adj adj;
+	if (fct_adj_build(&adj, m, err))
+		return -1;
+	size_t nv = m->nv ? m->nv : 1;
+	int rc = -1;
+	if (fct_patches_unfacet(patch, m, &adj, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
+	    fct_patches_tidy(patch, m, &adj, pl, np, !cam, sigma, p->max_move, p->min_plane,
+	                     p->min_free, &st->tidy, err) ||
+	    !(*sample = copy_positions(m, nsample, err)) ||
+	    !(*off_crease = fct_alloc_array(3 * nv, sizeof **off_crease, err)) ||
+	    !(*occluded = fct_alloc_array(nv, 1, err)))
+		goto out;
+	memset(*occluded, 0, nv);
+	rc = fct_planes_project(m, &adj, patch, pl, cam ? vp : NULL, sigma,
+	                        cam ? fct_camera_pixel_angle(cam) : 0, p->max_move, *off_crease,
+	                        cam ? *occluded : NULL, &st->projected, &st->creased, err);
+out:
+	fct_adj_free(&adj);
+	return rc;
 }
 
 int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
@@ -2256,15 +2278,8 @@ int fct_planar_model(struct fct_mesh *m, const struct fct_planar_params *p,
 	    (!have_cam && p->max_hole >= 3 &&
 	     fct_fill_free_holes(m, &patch, pl, np, p->max_hole, sigma, p->max_move,
 	                         &st->free_holes_filled, err)) ||
-	    fct_patches_unfacet(patch, m, pl, np, p->facet_angle, 0.5, &st->facets, err) ||
-	    fct_patches_tidy(patch, m, pl, np, !have_cam, sigma, p->max_move, p->min_plane,
-	                     p->min_free, &st->tidy, err) ||
-	    !(sample = copy_positions(m, &nsample, err)) ||
-	    !(off_crease = fct_alloc_array(3 * (m->nv ? m->nv : 1), sizeof *off_crease, err)) ||
-	    !(occluded = calloc(m->nv ? m->nv : 1, 1)) ||
-	    fct_planes_project(m, patch, pl, have_cam ? vp : NULL, sigma,
-	                       have_cam ? fct_camera_pixel_angle(&cam) : 0, p->max_move, off_crease,
-	                       have_cam ? occluded : NULL, &st->projected, &st->creased, err) ||
+	    label_and_project(m, patch, pl, np, have_cam ? &cam : NULL, vp, sigma, p, &sample,
+	                      &nsample, &off_crease, &occluded, st, err) ||
 	    split_occluded(m, patch, pl, vp, occluded, &sigma, &off_crease, &st->split, err) ||
 	    (p->max_hole >= 3 &&
 	     fct_fill_plane_holes(m, &patch, pl, np, p->max_hole, &st->holes_filled, err)) ||

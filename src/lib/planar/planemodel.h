@@ -46,7 +46,8 @@ struct fct_tidy_stats {
  * whole closed piece: a blob whose top was a patch and whose rest joined
  * it as a speck) becomes free-form: no outline bounds its polygon.
  * patch: m->nf labels, changed in place. */
-int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_adj *adj,
+                     const struct fct_plane *planes,
                      size_t np, int two_sided, const double *sigma, double max_dev,
                      size_t min_plane, size_t min_free, struct fct_tidy_stats *st,
                      struct fct_err *err);
@@ -63,7 +64,8 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
  * patch of more than four times the faces of its largest shallow neighbour
  * stays a plane: facets are of about one size.  patch changes in place;
  * *facets gets the count. */
-int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_plane *planes,
+int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_adj *adj,
+                        const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
                         struct fct_err *err);
 
@@ -127,10 +129,10 @@ int fct_fill_free_holes(struct fct_mesh *m, int32_t **patch, const struct fct_pl
  * vertex so put on a line where the nearer (or only) plane alone would have put it,
  * NaN for the others.  *moved gets the vertices moved, *creased those put
  * on a line.  0, or -1 out of memory. */
-int fct_planes_project(struct fct_mesh *m, const int32_t *patch, const struct fct_plane *planes,
-                       const double *viewpoint, const double *sigma, double pixel_angle,
-                       double max_move, double *off_crease, unsigned char *occluded,
-                       size_t *moved, size_t *creased, struct fct_err *err);
+int fct_planes_project(struct fct_mesh *m, const struct fct_adj *adj, const int32_t *patch,
+                       const struct fct_plane *planes, const double *viewpoint, const double *sigma,
+                       double pixel_angle, double max_move, double *off_crease,
+                       unsigned char *occluded, size_t *moved, size_t *creased, struct fct_err *err);
 
 struct fct_meet_stats {
 	size_t lines;     /* vertices put on the line of two planes */
