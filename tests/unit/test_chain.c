@@ -716,6 +716,63 @@ static void test_keep_vertex(void)
  * dm2mesh, each face labelled with the true patch of the majority of its
  * corners' pixels: the invariants on a real-sized boundary.  FCT_TEST_DUMP=
  * file writes the labelled mesh; FCT_TEST_VERBOSE prints the figures. */
+static int same_chains(const struct fct_chains *a, const struct fct_chains *b);
+
+/* The chains of m's patches simplified with its planes and the cache. */
+static void simplify_with(const struct fct_mesh *m, struct fct_chain_cache *cache,
+                          struct fct_chains *c, struct fct_chain_stats *st)
+{
+	int32_t *patch;
+	int present;
+	struct fct_plane *pl;
+	size_t npl;
+	CHECK_INT(fct_patches_get(m, &patch, &present, -1, &err), 0);
+	CHECK_INT(fct_planes_get(m, &pl, &npl, &err), 0);
+	CHECK_INT(fct_chains_extract(c, m, patch, &err), 0);
+	struct fct_chain_params p;
+	fct_chain_params_default(&p);
+	p.cache = cache;
+	CHECK_INT(fct_chains_simplify(c, m, patch, pl, npl, &p, st, &err), 0);
+	free(patch);
+	free(pl);
+}
+
+/* The crossings cached from one simplification serve the next only where
+ * its chains are the same bit for bit: the result is a fresh
+ * simplification's, with the cache, after it, and with half the points
+ * moved 5 cm (which changes the crossings the input has). */
+static void check_cache(struct fct_mesh *m)
+{
+	struct fct_chain_cache cache = { NULL, 0 };
+	struct fct_chains c0, c1;
+	struct fct_chain_stats s0, s1;
+	simplify_with(m, NULL, &c0, &s0);
+	for (int pass = 0; pass < 2; pass++) {
+		simplify_with(m, &cache, &c1, &s1);
+		CHECK(same_chains(&c0, &c1));
+		CHECK_INT(s1.conflicts_left, s0.conflicts_left);
+		CHECK_INT(s1.conflicts_left_image, s0.conflicts_left_image);
+		CHECK_INT(s1.topology_points, s0.topology_points);
+		CHECK_INT(s1.cached_checks, pass ? cache.n : 0);
+		CHECK(cache.n > 10);
+		fct_chains_free(&c1);
+	}
+	size_t made = cache.n;
+	for (size_t v = 0; v < m->nv / 2; v++)
+		m->xyz[3 * v + 2] += 0.05 * sin(12.9898 * (double)v);
+	struct fct_chains c2;
+	struct fct_chain_stats s2;
+	simplify_with(m, NULL, &c2, &s2);
+	simplify_with(m, &cache, &c1, &s1);
+	CHECK(same_chains(&c2, &c1));
+	CHECK(s2.conflicts_left != s0.conflicts_left);
+	CHECK_INT(s1.conflicts_left, s2.conflicts_left);
+	CHECK_INT(s1.topology_points, s2.topology_points);
+	CHECK(s1.cached_checks > 0 && s1.cached_checks < made);
+	fct_chains_free(&c0), fct_chains_free(&c1), fct_chains_free(&c2);
+	fct_chain_cache_free(&cache);
+}
+
 static void test_room(void)
 {
 	struct fct_scene s;
@@ -806,6 +863,7 @@ static void test_room(void)
 		fct_chains_free(&ch);
 		fct_mesh_free(&w);
 	}
+	check_cache(&m);
 	fct_mesh_free(&m);
 }
 

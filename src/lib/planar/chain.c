@@ -24,6 +24,7 @@ void fct_chain_params_default(struct fct_chain_params *p)
 	p->scale_factor = 3;
 	p->tolerance = NULL;
 	p->keep_vertex = NULL;
+	p->cache = NULL;
 }
 
 void fct_chains_free(struct fct_chains *c)
@@ -846,7 +847,10 @@ struct checker {
 	uint32_t **fpre_of, **flist_of;   /* fpre and flist of each check, kept from
 	                                     round to round (the input does not change) */
 	size_t *nflist_of;
-	size_t cap_xy, cap_base, cap_seg, cap_pts, cap_mark;
+	double **xy_of;           /* xy of each check, likewise */
+	struct fct_chain_cache *cache;   /* the last simplification's, or NULL */
+	size_t cached_checks;     /* checks that took their input crossings from it */
+	size_t cap_base, cap_seg, cap_pts, cap_mark;
 	struct box_tree sg, pg;      /* segments, kept points */
 	unsigned char *split;     /* per chain position: split the segment starting here */
 	unsigned char *chain_dirty;
@@ -1073,6 +1077,159 @@ static int sliver_checks(struct checker *k, struct pair_ctx *pc, size_t nkept,
 	return 0;
 }
 
+/* The listed chains' points into k->xy: in patch p's plane (image 0) or
+ * in image coordinates (image 1). */
+static void project_chains(struct checker *k, size_t p, int image)
+{
+	const struct fct_chains *c = k->c;
+	double u[3] = { 1, 0, 0 }, w[3] = { 0, 1, 0 }, ref = HUGE_VAL;
+	if (!image)
+		fct_plane_frame(k->normal[p], u, w);
+	for (size_t x = 0; x < k->nlist; x++) {
+		size_t ci = k->list[x];
+		size_t s = c->start[ci], e = c->start[ci + 1];
+		for (size_t q = s; q < e; q++) {
+			double *o = k->xy + 2 * (k->base[x] + (q - s));
+			if (image) {
+				o[0] = k->W == 1 ? fct_prop_get(k->ps, c->vert[q]) : fct_snap_pixel_centre(fct_prop_get(k->ps, c->vert[q]) * k->W);
+				o[1] = k->H == 1 ? fct_prop_get(k->pt, c->vert[q]) : fct_snap_pixel_centre(fct_prop_get(k->pt, c->vert[q]) * k->H);
+				if (k->wrap) {
+					/* Unwrap s to within half a turn of the patch's
+					 * first point. */
+					if (ref == HUGE_VAL)
+						ref = o[0];
+					o[0] -= k->W * floor((o[0] - ref) / k->W + 0.5);
+				}
+			} else {
+				const double *P = pt(k->m, c, q);
+				o[0] = fct_v3_dot(P, u), o[1] = fct_v3_dot(P, w);
+			}
+		}
+	}
+}
+
+/* A check of the last simplification (fct_chain_cache): the crossing
+ * original edges of its chains, which are a function of the chains' points
+ * and vertices alone. */
+struct fct_cached_check {
+	int32_t label;     /* the patch's, or GLOBAL_CHECK */
+	int image;
+	size_t nlist, npt, nflist;
+	uint32_t *len;     /* each listed chain's points */
+	uint32_t *vert;    /* their vertices (npt) */
+	double *xy;        /* and 2-D points (2 npt) */
+	uint32_t *fpre;    /* the check's fpre (npt + 1) and flist */
+	uint32_t *flist;
+};
+
+#define GLOBAL_CHECK INT32_MIN
+
+static int32_t check_label(const struct checker *k, size_t v)
+{
+	return v / 2 < k->np ? k->lab[v / 2] : GLOBAL_CHECK;
+}
+
+/* Is cached check e one of the same chains, vertices and points as check
+ * v now (k->list, k->base, k->xy)? */
+static int same_check(const struct checker *k, const struct fct_cached_check *e, size_t v,
+                      size_t npt)
+{
+	const struct fct_chains *c = k->c;
+	if (e->label != check_label(k, v) || e->image != (int)(v % 2) || e->nlist != k->nlist ||
+	    e->npt != npt)
+		return 0;
+	for (size_t x = 0, at = 0; x < k->nlist; x++) {
+		size_t ci = k->list[x], n = c->start[ci + 1] - c->start[ci];
+		if (e->len[x] != n || memcmp(e->vert + at, c->vert + c->start[ci], n * sizeof *e->vert))
+			return 0;
+		at += n;
+	}
+	return !memcmp(e->xy, k->xy, 2 * npt * sizeof *e->xy);
+}
+
+/* Check v's crossing original edges (fpre_of, flist_of) from the cache
+ * when it holds the same check: 1, else 0; -1 out of memory. */
+static int cached_crossings(struct checker *k, size_t v, size_t npt, size_t *hits,
+                            struct fct_err *err)
+{
+	const struct fct_chain_cache *cache = k->cache;
+	for (size_t i = 0; cache && i < cache->n; i++) {
+		const struct fct_cached_check *e = &cache->check[i];
+		if (!same_check(k, e, v, npt))
+			continue;
+		if (!(k->flist_of[v] = fct_arena_array(&k->arena, e->nflist ? e->nflist : 1,
+		                                       sizeof *k->flist, err)))
+			return -1;
+		memcpy(k->fpre_of[v], e->fpre, (npt + 1) * sizeof *e->fpre);
+		memcpy(k->flist_of[v], e->flist, e->nflist * sizeof *e->flist);
+		k->nflist_of[v] = e->nflist;
+		++*hits;
+		return 1;
+	}
+	return 0;
+}
+
+static void cached_check_free(struct fct_cached_check *e)
+{
+	free(e->len), free(e->vert), free(e->xy), free(e->fpre), free(e->flist);
+}
+
+void fct_chain_cache_free(struct fct_chain_cache *cache)
+{
+	if (!cache)
+		return;
+	for (size_t i = 0; i < cache->n; i++)
+		cached_check_free(&cache->check[i]);
+	free(cache->check);
+	memset(cache, 0, sizeof *cache);
+}
+
+/* The cache replaced by this simplification's checks (those made). */
+static int save_checks(struct checker *k, struct fct_err *err)
+{
+	const struct fct_chains *c = k->c;
+	size_t n = 0;
+	for (size_t v = 0; v < k->nchecks; v++)
+		n += k->fpre_of[v] != NULL;
+	struct fct_cached_check *check = calloc(n ? n : 1, sizeof *check);
+	if (!check)
+		return fct_fail(err, "out of memory");
+	size_t i = 0;
+	for (size_t v = 0; v < k->nchecks; v++) {
+		if (!k->fpre_of[v])
+			continue;
+		struct fct_cached_check *e = &check[i++];
+		size_t p = v / 2, c0 = k->pchain_start[p], nc = k->pchain_start[p + 1] - c0, npt = 0;
+		for (size_t x = 0; x < nc; x++)
+			npt += c->start[k->pchain[c0 + x] + 1] - c->start[k->pchain[c0 + x]];
+		e->label = check_label(k, v), e->image = (int)(v % 2);
+		e->nlist = nc, e->npt = npt, e->nflist = k->nflist_of[v];
+		e->len = malloc((nc ? nc : 1) * sizeof *e->len);
+		e->vert = malloc((npt ? npt : 1) * sizeof *e->vert);
+		e->xy = malloc(2 * (npt ? npt : 1) * sizeof *e->xy);
+		e->fpre = malloc((npt + 1) * sizeof *e->fpre);
+		e->flist = malloc((e->nflist ? e->nflist : 1) * sizeof *e->flist);
+		if (!e->len || !e->vert || !e->xy || !e->fpre || !e->flist) {
+			for (size_t j = 0; j < i; j++)
+				cached_check_free(&check[j]);
+			free(check);
+			return fct_fail(err, "out of memory");
+		}
+		for (size_t x = 0, at = 0; x < nc; x++) {
+			size_t ci = k->pchain[c0 + x], len = c->start[ci + 1] - c->start[ci];
+			e->len[x] = (uint32_t)len;
+			memcpy(e->vert + at, c->vert + c->start[ci], len * sizeof *e->vert);
+			at += len;
+		}
+		memcpy(e->xy, k->xy_of[v], 2 * npt * sizeof *e->xy);
+		memcpy(e->fpre, k->fpre_of[v], (npt + 1) * sizeof *e->fpre);
+		memcpy(e->flist, k->flist_of[v], e->nflist * sizeof *e->flist);
+	}
+	fct_chain_cache_free(k->cache);
+	k->cache->check = check, k->cache->n = n;
+	return 0;
+}
+
 /* Check patch p's simplified chains in its plane (image 0) or in image
  * coordinates (image 1); mark the segments to split in k->split and their
  * chains in k->chain_dirty.  Adds the conflicts found, and those inherited
@@ -1096,50 +1253,37 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 	}
 	k->base[nc] = npt;
 	struct fct_arena *a = &k->arena;
-	if (fct_arena_grow(a, (void **)&k->xy, &k->cap_xy, 2 * (npt ? npt : 1), sizeof *k->xy, err) ||
-	    fct_arena_grow(a, (void **)&k->seg, &k->cap_seg, npt ? npt : 1, sizeof *k->seg, err) ||
+	if (fct_arena_grow(a, (void **)&k->seg, &k->cap_seg, npt ? npt : 1, sizeof *k->seg, err) ||
 	    fct_arena_grow(a, (void **)&k->pts, &k->cap_pts, npt ? npt : 1, sizeof *k->pts, err) ||
 	    fct_arena_grow(a, (void **)&k->mark, &k->cap_mark, npt ? npt : 1, sizeof *k->mark, err))
 		return -1;
+	/* The first check of v projects its chains and finds the crossing
+	 * original edges (or takes them from the cache); later ones reuse
+	 * both. */
 	int first = !k->fpre_of[v];
-	if (first && !(k->fpre_of[v] = fct_arena_zeroed(a, npt + 1, sizeof *k->fpre, err)))
+	if (first && (!(k->fpre_of[v] = fct_arena_zeroed(a, npt + 1, sizeof *k->fpre, err)) ||
+	              !(k->xy_of[v] = fct_arena_array(a, 2 * (npt ? npt : 1), sizeof *k->xy, err))))
 		return -1;
 	k->fpre = k->fpre_of[v];
+	k->xy = k->xy_of[v];
+	if (first)
+		project_chains(k, p, image);
+	int cached = first ? cached_crossings(k, v, npt, &k->cached_checks, err) : 0;
+	if (cached < 0)
+		return -1;
 
-	/* Project; list the original edges. */
-	double u[3] = { 1, 0, 0 }, w[3] = { 0, 1, 0 }, ref = HUGE_VAL;
-	if (!image)
-		fct_plane_frame(k->normal[p], u, w);
-	k->nseg = 0;
-	for (size_t x = 0; x < nc; x++) {
-		size_t ci = k->list[x];
-		size_t s = c->start[ci], e = c->start[ci + 1];
-		for (size_t q = s; q < e; q++) {
-			double *o = k->xy + 2 * (k->base[x] + (q - s));
-			if (image) {
-				o[0] = k->W == 1 ? fct_prop_get(k->ps, c->vert[q]) : fct_snap_pixel_centre(fct_prop_get(k->ps, c->vert[q]) * k->W);
-				o[1] = k->H == 1 ? fct_prop_get(k->pt, c->vert[q]) : fct_snap_pixel_centre(fct_prop_get(k->pt, c->vert[q]) * k->H);
-				if (k->wrap) {
-					/* Unwrap s to within half a turn of the patch's
-					 * first point. */
-					if (ref == HUGE_VAL)
-						ref = o[0];
-					o[0] -= k->W * floor((o[0] - ref) / k->W + 0.5);
-				}
-			} else {
-				const double *P = pt(k->m, c, q);
-				o[0] = fct_v3_dot(P, u), o[1] = fct_v3_dot(P, w);
-			}
-			if (first && q > s) {
+	/* The original edges that already conflict in this map, found on the
+	 * first check. */
+	struct pair_ctx pc = { k, 0, 1, 1, 0, 0 };
+	if (first && !cached) {
+		k->nseg = 0;
+		for (size_t x = 0; x < nc; x++) {
+			size_t ci = k->list[x];
+			for (size_t q = c->start[ci] + 1; q < c->start[ci + 1]; q++) {
 				struct seg *g = &k->seg[k->nseg++];
 				g->chain = (uint32_t)x, g->i = q - 1, g->j = q;
 			}
 		}
-	}
-	/* The original edges that already conflict in this map, found on the
-	 * first check. */
-	struct pair_ctx pc = { k, 0, 1, 1, 0, 0 };
-	if (first) {
 		if (find_pairs(k, &pc, err))
 			return -1;
 		size_t nf = 0;
@@ -1336,8 +1480,9 @@ static int plan_checks(struct checker *k, struct fct_err *err)
 	k->fpre_of = fct_arena_zeroed(a, nv2, sizeof *k->fpre_of, err);
 	k->flist_of = fct_arena_zeroed(a, nv2, sizeof *k->flist_of, err);
 	k->nflist_of = fct_arena_zeroed(a, nv2, sizeof *k->nflist_of, err);
+	k->xy_of = fct_arena_zeroed(a, nv2, sizeof *k->xy_of, err);
 	if (!k->split || !k->chain_dirty || !k->chain_new || !k->dirty || !k->unresolved ||
-	    !k->checked || !k->fpre_of || !k->flist_of || !k->nflist_of)
+	    !k->checked || !k->fpre_of || !k->flist_of || !k->nflist_of || !k->xy_of)
 		return -1;
 	for (size_t p = 0; p < np; p++)
 		k->dirty[2 * p] = 1, k->dirty[2 * p + 1] = k->ps && k->wrap;
@@ -1450,12 +1595,13 @@ static int count_left(struct checker *k, struct fct_chain_stats *st, struct fct_
 /* Per-patch crossing checks and splits until nothing more can be split. */
 static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
                          const struct fct_plane *planes, size_t nplanes, const double *tol2,
-                         size_t *stack, struct fct_chain_stats *st, struct fct_err *err)
+                         struct fct_chain_cache *cache, size_t *stack,
+                         struct fct_chain_stats *st, struct fct_err *err)
 {
 	int rc = -1;
 	struct checker k;
 	memset(&k, 0, sizeof k);
-	k.m = m, k.c = c;
+	k.m = m, k.c = c, k.cache = cache;
 	int32_t *lab = fct_arena_array(&k.arena, 2 * c->n, sizeof *lab, err);
 	if (!lab)
 		goto done;
@@ -1469,8 +1615,9 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 			goto done;
 		st->rounds++;
 	} while (split_marked(&k, tol2, stack, st));
-	if (count_left(&k, st, err))
+	if (count_left(&k, st, err) || (k.cache && save_checks(&k, err)))
 		goto done;
+	st->cached_checks = k.cached_checks;
 	rc = 0;
 done:
 	fct_arena_free(&k.arena);
@@ -1530,7 +1677,7 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 		if (!(c->frozen && c->frozen[i]))   /* else the caller's keep */
 			rc = simplify_chain(m, c, i, chain_tol2[i], p->keep_vertex, stack, st, err);
 	if (!rc && p->keep_topology)
-		rc = keep_topology(c, m, patch, planes, nplanes, chain_tol2, stack, st, err);
+		rc = keep_topology(c, m, patch, planes, nplanes, chain_tol2, p->cache, stack, st, err);
 	free(stack), free(chain_tol2);
 	if (rc)
 		return -1;

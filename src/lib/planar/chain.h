@@ -146,9 +146,29 @@ struct fct_chain_params {
 	                                      vertex are always kept, anchors of the
 	                                      end-point fit (a stretch of outline that
 	                                      must stay as sampled) */
+	struct fct_chain_cache *cache;  /* NULL (default), or the crossings of the
+	                                   last simplification with this cache,
+	                                   replaced by this one's (see below) */
 };
 
 void fct_chain_params_default(struct fct_chain_params *p);
+
+/* The crossing checks first find the crossings the input already has: the
+ * original edges of each patch's chains that cross, in its plane and in
+ * the image.  Those are a function of the chains' points alone, and the
+ * rounds of the planar model simplify the same outlines again and again
+ * with a few stretches changed (planedecim: a third of its time went to
+ * finding them anew).  A cache (zeroed before its first use) keeps them
+ * from one simplification to the next, for the checks whose chains,
+ * vertices and points are bit for bit the same. */
+struct fct_cached_check;
+struct fct_chain_cache {
+	struct fct_cached_check *check;
+	size_t n;
+};
+
+/* Free what cache holds and make it empty; cache may be NULL. */
+void fct_chain_cache_free(struct fct_chain_cache *cache);
 
 struct fct_chain_stats {
 	double tolerance;          /* threshold * mean edge length */
@@ -165,6 +185,7 @@ struct fct_chain_stats {
 	                              mesh edges), in the patch planes */
 	size_t conflicts_left_image;  /* the same in image coordinates (s t) */
 	size_t rounds;             /* check-and-split rounds */
+	size_t cached_checks;      /* checks whose input crossings came from the cache */
 	size_t loops_dropped;      /* loops below the tolerance, dropped */
 };
 

@@ -1705,6 +1705,7 @@ struct rounds {
 	struct fct_chains chains;
 	int32_t *patch;
 	struct fct_free_cache free;
+	struct fct_chain_cache crossings;
 };
 
 static void rounds_free(struct rounds *r)
@@ -1714,6 +1715,7 @@ static void rounds_free(struct rounds *r)
 	fct_chains_free(&r->chains);
 	free(r->patch);
 	fct_free_cache_free(&r->free);
+	fct_chain_cache_free(&r->crossings);
 }
 
 /* The chains of m's labelling patch (fct_chains_extract), from r when
@@ -1850,6 +1852,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	}
 	cp.tolerance = tol;
 	cp.keep_vertex = force;
+	cp.cache = &carry->crossings;
 	size_t ne;
 	if (fct_chains_simplify(&c, m, patch, pl, np, &cp, &st->chains, err) ||
 	    !(wires = outline_wires(&c, &ne, err)))
