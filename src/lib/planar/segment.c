@@ -101,6 +101,7 @@ struct seg {
 	size_t patches;
 	unsigned char *dirty;    /* phase 2: the roots merged since the last refill */
 	const struct region *face;   /* finish: each face's moments (face_moments) */
+	double (*ray)[4];        /* finish with a viewpoint: each vertex's ray_terms */
 	struct fct_segment_stats st;
 	struct fct_err *err;
 	struct fct_arena arena;  /* the run's scratch, freed at fct_segment's exit */
@@ -824,6 +825,24 @@ static int ray_fit(struct fct_plane *pl, const double q[9], const double o[3])
 	return 1;
 }
 
+/* Each vertex's unit ray from the viewpoint and its length, {u, len}, as
+ * the fits along the rays take them for each corner of each face (the fits
+ * are made again and again, and the square root and divisions were much
+ * of their time); len 0 for a vertex at the viewpoint, which they skip. */
+static void ray_terms(double (*t)[4], const struct fct_mesh *m, const double *vp)
+{
+	for (size_t v = 0; v < m->nv; v++) {
+		const double *p = &m->xyz[3 * v];
+		double u[3] = { p[0] - vp[0], p[1] - vp[1], p[2] - vp[2] };
+		double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+		memset(t[v], 0, sizeof t[v]);
+		if (!(len > 0))
+			continue;
+		u[0] /= len, u[1] /= len, u[2] /= len;
+		t[v][0] = u[0], t[v][1] = u[1], t[v][2] = u[2], t[v][3] = len;
+	}
+}
+
 /* The moments of each patch of label (np patches; -1 faces skipped) from
  * its faces: R[np], and ray[9 np] for the fit along the rays when ray is
  * not NULL; only the patches flagged in redo (NULL: all), the others' left
@@ -838,7 +857,6 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 			if (ray)
 				memset(&ray[9 * l], 0, 9 * sizeof *ray);
 		}
-	const double *vp = S->p->viewpoint;
 	for (size_t f = 0; f < m->nf; f++) {
 		if (label[f] < 0 || (redo && !redo[label[f]]))
 			continue;
@@ -854,12 +872,9 @@ static void patch_moments(const struct seg *S, const int32_t *label, size_t np, 
 		uint32_t s0 = m->fstart[f], n = m->fstart[f + 1] - s0;
 		double w = S->p->area_weighted && n ? t.n / n : 1;
 		for (uint32_t k = 0; k < n; k++) {
-			const double *p = &m->xyz[3 * (size_t)m->fvert[s0 + k]];
-			double u[3] = { p[0] - vp[0], p[1] - vp[1], p[2] - vp[2] };
-			double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+			const double *u = S->ray[m->fvert[s0 + k]], len = u[3];
 			if (!(len > 0))
 				continue;
-			u[0] /= len, u[1] /= len, u[2] /= len;
 			/* 1/s has deviation sigma / s^2: weight s^4 / sigma^2. */
 			double x = w * len * len * len * len * S->wv[m->fvert[s0 + k]];
 			q[0] += x * u[0] * u[0], q[1] += x * u[1] * u[1], q[2] += x * u[2] * u[2];
@@ -1418,8 +1433,10 @@ static int finish(struct seg *S, int32_t *patch, struct fct_plane **planes, size
 	struct region *R = fct_arena_array(&S->arena, np ? np : 1, sizeof *R, err);
 	double *ray = S->p->use_viewpoint
 	              ? fct_arena_array(&S->arena, 9 * (np ? np : 1), sizeof *ray, err) : NULL;
+	if (ray && (S->ray = fct_arena_array(&S->arena, S->m->nv ? S->m->nv : 1, sizeof *S->ray, err)))
+		ray_terms(S->ray, S->m, S->p->viewpoint);
 	struct fct_plane *pl = fct_alloc_array(np ? np : 1, sizeof *pl, err);
-	if (!R || (S->p->use_viewpoint && !ray) || !pl ||
+	if (!R || (S->p->use_viewpoint && (!ray || !S->ray)) || !pl ||
 	    check_patches(S, patch, np, R, pl, ray, map, err))
 		goto fail;
 	/* The patches that remain, numbered afresh, with those planes. */
