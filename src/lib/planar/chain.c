@@ -24,6 +24,7 @@ void fct_chain_params_default(struct fct_chain_params *p)
 	p->scale_factor = 3;
 	p->tolerance = NULL;
 	p->keep_vertex = NULL;
+	p->count_left = 1;
 	p->cache = NULL;
 }
 
@@ -1592,10 +1593,12 @@ static int count_left(struct checker *k, struct fct_chain_stats *st, struct fct_
 	return 0;
 }
 
-/* Per-patch crossing checks and splits until nothing more can be split. */
+/* Per-patch crossing checks and splits until nothing more can be split;
+ * then, with count, the conflicts left counted; with a cache, the crossings
+ * of the input taken from it where they can be and left in it. */
 static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const int32_t *patch,
                          const struct fct_plane *planes, size_t nplanes, const double *tol2,
-                         struct fct_chain_cache *cache, size_t *stack,
+                         int count, struct fct_chain_cache *cache, size_t *stack,
                          struct fct_chain_stats *st, struct fct_err *err)
 {
 	int rc = -1;
@@ -1615,7 +1618,7 @@ static int keep_topology(struct fct_chains *c, const struct fct_mesh *m, const i
 			goto done;
 		st->rounds++;
 	} while (split_marked(&k, tol2, stack, st));
-	if (count_left(&k, st, err) || (k.cache && save_checks(&k, err)))
+	if ((count && count_left(&k, st, err)) || (k.cache && save_checks(&k, err)))
 		goto done;
 	st->cached_checks = k.cached_checks;
 	rc = 0;
@@ -1677,7 +1680,8 @@ int fct_chains_simplify(struct fct_chains *c, const struct fct_mesh *m, const in
 		if (!(c->frozen && c->frozen[i]))   /* else the caller's keep */
 			rc = simplify_chain(m, c, i, chain_tol2[i], p->keep_vertex, stack, st, err);
 	if (!rc && p->keep_topology)
-		rc = keep_topology(c, m, patch, planes, nplanes, chain_tol2, p->cache, stack, st, err);
+		rc = keep_topology(c, m, patch, planes, nplanes, chain_tol2, p->count_left, p->cache, stack,
+		                   st, err);
 	free(stack), free(chain_tol2);
 	if (rc)
 		return -1;

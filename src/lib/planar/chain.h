@@ -146,6 +146,9 @@ struct fct_chain_params {
 	                                      vertex are always kept, anchors of the
 	                                      end-point fit (a stretch of outline that
 	                                      must stay as sampled) */
+	int count_left;        /* 1 (default): count conflicts_left and
+	                          conflicts_left_image (one more pass of the
+	                          checks); 0: leave them 0 */
 	struct fct_chain_cache *cache;  /* NULL (default), or the crossings of the
 	                                   last simplification with this cache,
 	                                   replaced by this one's (see below) */

@@ -1853,6 +1853,7 @@ static int build_model(struct fct_mesh *w, const struct fct_mesh *m, const int32
 	cp.tolerance = tol;
 	cp.keep_vertex = force;
 	cp.cache = &carry->crossings;
+	cp.count_left = 0;
 	size_t ne;
 	if (fct_chains_simplify(&c, m, patch, pl, np, &cp, &st->chains, err) ||
 	    !(wires = outline_wires(&c, &ne, err)))
