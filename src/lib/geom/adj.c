@@ -30,119 +30,112 @@ static int check_size(const struct fct_mesh *m, struct fct_err *err)
 	return 0;
 }
 
-/* Stable counting sort of the n corner numbers in src by key[corner] (each
- * key < nkeys) into dst; count has nkeys + 1 entries. */
-static void counting_sort(uint32_t *dst, const uint32_t *src, size_t n, const uint32_t *key,
-                          uint32_t *count, size_t nkeys)
+/* A corner's step to the next corner, from the lower vertex to the higher:
+ * sorted by (lo, hi, corner), runs of equal (lo, hi) are the edges.  The
+ * sort moves the records themselves, so that the passes after it read
+ * them in order. */
+struct step {
+	uint32_t lo, hi, face, corner;
+};
+
+/* x before y in (hi, corner) order. */
+static int step_before(const struct step *x, const struct step *y)
 {
-	memset(count, 0, (nkeys + 1) * sizeof *count);
-	for (size_t i = 0; i < n; i++)
-		count[key[src[i]] + 1]++;
-	for (size_t k = 0; k < nkeys; k++)
-		count[k + 1] += count[k];
-	for (size_t i = 0; i < n; i++)
-		dst[count[key[src[i]]]++] = src[i];
+	return x->hi < y->hi || (x->hi == y->hi && x->corner < y->corner);
 }
 
-/* Corner x before corner y in (hi, corner) order. */
-static int hi_before(const uint32_t *hi, uint32_t x, uint32_t y)
-{
-	return hi[x] < hi[y] || (hi[x] == hi[y] && x < y);
-}
-
-/* Heapsort of c[0..n) in (hi, corner) order, in place. */
-static void heapsort_by_hi(uint32_t *c, size_t n, const uint32_t *hi)
+/* Heapsort of t[0..n) in (hi, corner) order, in place. */
+static void heapsort_steps(struct step *t, size_t n)
 {
 	for (size_t end = n, start = n / 2; end > 1;) {
 		if (start > 0)
 			start--;             /* building the heap */
 		else {
 			end--;               /* the largest to the back */
-			uint32_t t = c[0];
-			c[0] = c[end], c[end] = t;
+			struct step x = t[0];
+			t[0] = t[end], t[end] = x;
 		}
 		for (size_t i = start;;) {
 			size_t k = 2 * i + 1;
 			if (k >= end)
 				break;
-			if (k + 1 < end && hi_before(hi, c[k], c[k + 1]))
+			if (k + 1 < end && step_before(&t[k], &t[k + 1]))
 				k++;
-			if (!hi_before(hi, c[i], c[k]))
+			if (!step_before(&t[i], &t[k]))
 				break;
-			uint32_t t = c[i];
-			c[i] = c[k], c[k] = t;
+			struct step x = t[i];
+			t[i] = t[k], t[k] = x;
 			i = k;
 		}
 	}
 }
 
-/* Each run of equal lo[] in c[0..n) (corner numbers, increasing within a
- * run) sorted by (hi, corner).  A run is a vertex's edges to higher
- * vertices, a handful, sorted by insertion; a fan's centre may have any
- * number, so a long run is heapsorted. */
+/* Each run of equal lo in t[0..n) (corners increasing within a run) sorted
+ * by (hi, corner).  A run is a vertex's edges to higher vertices, a
+ * handful, sorted by insertion; a fan's centre may have any number, so a
+ * long run is heapsorted. */
 #define SHORT_RUN 32
 
-static void sort_runs_by_hi(uint32_t *c, size_t n, const uint32_t *lo, const uint32_t *hi)
+static void sort_runs_by_hi(struct step *t, size_t n)
 {
 	for (size_t s = 0, e; s < n; s = e) {
-		for (e = s + 1; e < n && lo[c[e]] == lo[c[s]]; e++)
+		for (e = s + 1; e < n && t[e].lo == t[s].lo; e++)
 			;
 		if (e - s > SHORT_RUN) {
-			heapsort_by_hi(c + s, e - s, hi);
+			heapsort_steps(t + s, e - s);
 			continue;
 		}
 		for (size_t i = s + 1; i < e; i++) {   /* stable: corners stay increasing */
-			uint32_t x = c[i];
+			struct step x = t[i];
 			size_t j = i;
-			for (; j > s && hi[c[j - 1]] > hi[x]; j--)
-				c[j] = c[j - 1];
-			c[j] = x;
+			for (; j > s && t[j - 1].hi > x.hi; j--)
+				t[j] = t[j - 1];
+			t[j] = x;
 		}
 	}
 }
 
-/* The edges: sort the non-degenerate corners by (lo, hi, corner) and give
- * each run of equal (lo, hi) one edge number. */
+/* The edges: sort the non-degenerate corners' steps by (lo, hi, corner)
+ * and give each run of equal (lo, hi) one edge number. */
 static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
 {
 	size_t nc = m->nf ? m->fstart[m->nf] : 0;
-	uint32_t *lo = fct_alloc_array(nc, sizeof *lo, err);
-	uint32_t *hi = fct_alloc_array(nc, sizeof *hi, err);
-	uint32_t *cf = fct_alloc_array(nc, sizeof *cf, err);
-	uint32_t *p1 = fct_alloc_array(nc, sizeof *p1, err);
-	uint32_t *p2 = fct_alloc_array(nc, sizeof *p2, err);
+	struct step *in = fct_alloc_array(nc, sizeof *in, err);
+	struct step *t = fct_alloc_array(nc, sizeof *t, err);
 	uint32_t *count = fct_alloc_array(m->nv + 1, sizeof *count, err);
 	a->face_e = fct_alloc_array(nc, sizeof *a->face_e, err);
 	int rc = -1;
-	if (!lo || !hi || !cf || !p1 || !p2 || !count || !a->face_e)
+	if (!in || !t || !count || !a->face_e)
 		goto out;
 
 	size_t nk = 0;  /* corners that give an edge, in corner order */
+	memset(count, 0, (m->nv + 1) * sizeof *count);
 	for (size_t f = 0; f < m->nf; f++) {
 		uint32_t s = m->fstart[f], e = m->fstart[f + 1];
 		for (uint32_t c = s; c < e; c++) {
 			uint32_t u = m->fvert[c], v = m->fvert[c + 1 == e ? s : c + 1];
-			cf[c] = (uint32_t)f;
 			a->face_e[c] = FCT_ADJ_NONE;
 			if (u == v) {
 				a->nskipped++;
 				continue;
 			}
-			lo[c] = u < v ? u : v;
-			hi[c] = u < v ? v : u;
-			p2[nk++] = c;
+			struct step *x = &in[nk++];
+			x->lo = u < v ? u : v, x->hi = u < v ? v : u, x->face = (uint32_t)f, x->corner = c;
+			count[x->lo + 1]++;
 		}
 	}
-	/* (lo, hi, corner) order: stably by lo, then each run of one lo (a
-	 * vertex's few edges to higher vertices) by hi. */
-	counting_sort(p1, p2, nk, lo, count, m->nv);
-	sort_runs_by_hi(p1, nk, lo, hi);
-	free(p2);
-	p2 = p1, p1 = NULL;
+	/* Stably by lo (a counting sort), then each lo's run by hi. */
+	for (size_t v = 0; v < m->nv; v++)
+		count[v + 1] += count[v];
+	for (size_t i = 0; i < nk; i++)
+		t[count[in[i].lo]++] = in[i];
+	free(in);
+	in = NULL;
+	sort_runs_by_hi(t, nk);
 
 	size_t ne = 0;
 	for (size_t i = 0; i < nk; i++)
-		if (i == 0 || lo[p2[i]] != lo[p2[i - 1]] || hi[p2[i]] != hi[p2[i - 1]])
+		if (i == 0 || t[i].lo != t[i - 1].lo || t[i].hi != t[i - 1].hi)
 			ne++;
 	a->ne = ne;
 	a->edge_v = fct_alloc_array(2 * ne, sizeof *a->edge_v, err);
@@ -152,15 +145,14 @@ static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_e
 		goto out;
 	size_t e = (size_t)-1;
 	for (size_t i = 0; i < nk; i++) {
-		uint32_t c = p2[i];
-		if (i == 0 || lo[c] != lo[p2[i - 1]] || hi[c] != hi[p2[i - 1]]) {
+		if (i == 0 || t[i].lo != t[i - 1].lo || t[i].hi != t[i - 1].hi) {
 			e++;
-			a->edge_v[2 * e] = lo[c];
-			a->edge_v[2 * e + 1] = hi[c];
+			a->edge_v[2 * e] = t[i].lo;
+			a->edge_v[2 * e + 1] = t[i].hi;
 			a->edge_fstart[e] = (uint32_t)i;
 		}
-		a->edge_f[i] = cf[c];
-		a->face_e[c] = (uint32_t)e;
+		a->edge_f[i] = t[i].face;
+		a->face_e[t[i].corner] = (uint32_t)e;
 	}
 	a->edge_fstart[ne] = (uint32_t)nk;
 	for (size_t k = 0; k < ne; k++) {
@@ -174,11 +166,8 @@ static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_e
 	}
 	rc = 0;
 out:
-	free(lo);
-	free(hi);
-	free(cf);
-	free(p1);
-	free(p2);
+	free(in);
+	free(t);
 	free(count);
 	return rc;
 }
