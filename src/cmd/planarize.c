@@ -21,6 +21,7 @@
 #include "io/meshio.h"
 #include "core/path.h"
 #include "cli/planaropts.h"
+#include "geom/adj.h"
 #include "geom/pointdist.h"
 #include "cli/segopts.h"
 
@@ -50,7 +51,7 @@ static const char usage[] =
 	"  -q                 quiet\n"
 	"  -v                 each stage's figures, vertices, faces and CPU seconds, the\n"
 	"                     reduction and E_mean E_stdev E_rms E_max (the dense mesh's\n"
-	"                     vertices to the model)\n"
+	"                     vertex positions, each once, to the model)\n"
 	"      --keep dir     write each stage into dir: 1-mesh.ply, 2-patches.ply,\n"
 	"                     3-model.ply\n"
 	"      --texel size   a mesh with vertex colours and no image, written to -o\n"
@@ -270,6 +271,23 @@ static void keep_stage(const struct options *o, const struct fct_mesh *m, const 
 	free(path);
 }
 
+/* The positions of m's vertices, each once (a triangle soup holds each
+ * position once per corner, which would weigh the errors): *n of them. */
+static double *distinct_positions(const struct fct_mesh *m, size_t *n)
+{
+	struct fct_err err;
+	uint32_t *first = fct_alloc_array(m->nv ? m->nv : 1, sizeof *first, &err);
+	double *xyz = fct_alloc_array(3 * (m->nv ? m->nv : 1), sizeof *xyz, &err);
+	if (!first || !xyz || fct_mesh_duplicate_vertices(m, first, &err) < 0)
+		fct_die_err(&err);
+	*n = 0;
+	for (size_t v = 0; v < m->nv; v++)
+		if (first[v] == v)
+			memcpy(xyz + 3 * (*n)++, m->xyz + 3 * v, 3 * sizeof *xyz);
+	free(first);
+	return xyz;
+}
+
 /* Table 1 of Kang et al.: the distances of the dense mesh's vertices
  * (xyz, nv of them) to the model's faces. */
 static void report_errors(const double *xyz, size_t nv, const struct fct_mesh *model)
@@ -413,11 +431,8 @@ int main(int argc, char **argv)
 	if (baking && fct_colbake_init(&bake, &m, &err))
 		fct_die_err_at(&err, "bake");
 	double *dense = NULL;
-	if (fct_verbose) {
-		if (!(dense = fct_alloc_array(3 * m.nv, sizeof *dense, &err)))
-			fct_die_err(&err);
-		memcpy(dense, m.xyz, 3 * m.nv * sizeof *dense);
-	}
+	if (fct_verbose)
+		dense = distinct_positions(&m, &dense_nv);
 
 	/* Patches of fewer faces than one in 600 of the mesh's (at least 8) go
 	 * to their best neighbour: below that they are specks of noise. */

@@ -260,6 +260,12 @@ awk '/^end_header/ { hdr = 0; body = 1; print "element vertex 60000"; print "pro
 check_num "a triangle soup: 3 corners a face" "$(info vertices "$W/soup.ply")" == 60000
 run_case 0 "planarize -v --noise poly:0.001,0,0 -o $W/soup.model.ply $W/soup.ply 2>$W/soup.err"
 check_num "... its copies welded" "$(field "segplanes: welded_vertices" "$W/soup.err")" == 49799
+# E_*: each position once, as the wall's own vertices give them (a copy
+# per corner weighed the border's positions less and the inner ones more).
+meshdist "$W/wall.ply" "$W/soup.model.ply" >"$W/soup.e.dist"
+e_ratio=$(ratio "$(field E_mean "$W/soup.err")" "$(figure mean "$W/soup.e.dist")")
+check_num "... E_mean: the soup's positions each once (above)" "$e_ratio" ">" 0.999999
+check_num "... E_mean: the soup's positions each once (below)" "$e_ratio" "<" 1.000001
 # segplanes keeps the faces, in their order (labels map back onto the
 # soup's faces); the vertices are the wall's 10201.
 run_case 0 "segplanes -o $W/soup.seg.ply $W/soup.ply"
