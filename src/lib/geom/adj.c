@@ -100,15 +100,16 @@ static void sort_runs_by_hi(struct step *t, size_t n)
 static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_err *err)
 {
 	size_t nc = m->nf ? m->fstart[m->nf] : 0;
-	struct step *in = fct_alloc_array(nc, sizeof *in, err);
 	struct step *t = fct_alloc_array(nc, sizeof *t, err);
 	uint32_t *count = fct_alloc_array(m->nv + 1, sizeof *count, err);
 	a->face_e = fct_alloc_array(nc, sizeof *a->face_e, err);
 	int rc = -1;
-	if (!in || !t || !count || !a->face_e)
+	if (!t || !count || !a->face_e)
 		goto out;
 
-	size_t nk = 0;  /* corners that give an edge, in corner order */
+	/* Stably by lo, a counting sort (the steps counted, then put in
+	 * place in corner order), then each lo's run by hi. */
+	size_t nk = 0;  /* corners that give an edge */
 	memset(count, 0, (m->nv + 1) * sizeof *count);
 	for (size_t f = 0; f < m->nf; f++) {
 		uint32_t s = m->fstart[f], e = m->fstart[f + 1];
@@ -119,18 +120,23 @@ static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_e
 				a->nskipped++;
 				continue;
 			}
-			struct step *x = &in[nk++];
-			x->lo = u < v ? u : v, x->hi = u < v ? v : u, x->face = (uint32_t)f, x->corner = c;
-			count[x->lo + 1]++;
+			count[(u < v ? u : v) + 1]++;
+			nk++;
 		}
 	}
-	/* Stably by lo (a counting sort), then each lo's run by hi. */
 	for (size_t v = 0; v < m->nv; v++)
 		count[v + 1] += count[v];
-	for (size_t i = 0; i < nk; i++)
-		t[count[in[i].lo]++] = in[i];
-	free(in);
-	in = NULL;
+	for (size_t f = 0; f < m->nf; f++) {
+		uint32_t s = m->fstart[f], e = m->fstart[f + 1];
+		for (uint32_t c = s; c < e; c++) {
+			uint32_t u = m->fvert[c], v = m->fvert[c + 1 == e ? s : c + 1];
+			if (u == v)
+				continue;
+			uint32_t lo = u < v ? u : v;
+			struct step *x = &t[count[lo]++];
+			x->lo = lo, x->hi = u < v ? v : u, x->face = (uint32_t)f, x->corner = c;
+		}
+	}
 	sort_runs_by_hi(t, nk);
 
 	size_t ne = 0;
@@ -166,7 +172,6 @@ static int build_edges(struct fct_adj *a, const struct fct_mesh *m, struct fct_e
 	}
 	rc = 0;
 out:
-	free(in);
 	free(t);
 	free(count);
 	return rc;
