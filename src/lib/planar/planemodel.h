@@ -45,7 +45,7 @@ struct fct_tidy_stats {
  * Last, a patch with no edge to another label or the mesh's border (a
  * whole closed piece: a blob whose top was a patch and whose rest joined
  * it as a speck) becomes free-form: no outline bounds its polygon.
- * patch: m->nf labels, changed in place. */
+ * patch: m->nf labels, changed in place; adj: m's adjacency (fct_adj_build). */
 int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_adj *adj,
                      const struct fct_plane *planes,
                      size_t np, int two_sided, const double *sigma, double max_dev,
@@ -63,7 +63,7 @@ int fct_patches_tidy(int32_t *patch, const struct fct_mesh *m, const struct fct_
  * the image's edge, do not, nor a plane that noise split in two.  A
  * patch of more than four times the faces of its largest shallow neighbour
  * stays a plane: facets are of about one size.  patch changes in place;
- * *facets gets the count. */
+ * *facets gets the count.  adj: m's adjacency (fct_adj_build). */
 int fct_patches_unfacet(int32_t *patch, const struct fct_mesh *m, const struct fct_adj *adj,
                         const struct fct_plane *planes,
                         size_t nplanes, double max_angle, double min_share, size_t *facets,
@@ -128,7 +128,8 @@ int fct_fill_free_holes(struct fct_mesh *m, int32_t **patch, const struct fct_pl
  * uncertainty.  off_crease (NULL, or 3 * m->nv) gets for each
  * vertex so put on a line where the nearer (or only) plane alone would have put it,
  * NaN for the others.  *moved gets the vertices moved, *creased those put
- * on a line.  0, or -1 out of memory. */
+ * on a line.  adj: m's adjacency (fct_adj_build; the faces of each vertex
+ * are what it takes).  0, or -1 out of memory. */
 int fct_planes_project(struct fct_mesh *m, const struct fct_adj *adj, const int32_t *patch,
                        const struct fct_plane *planes, const double *viewpoint, const double *sigma,
                        double pixel_angle, double max_move, double *off_crease,
