@@ -38,42 +38,19 @@ struct step {
 	uint32_t lo, hi, face, corner;
 };
 
-/* x before y in (hi, corner) order. */
-static int step_before(const struct step *x, const struct step *y)
+/* (hi, corner) order; corners are unique, so any sort gives one result. */
+static int step_cmp(const void *pa, const void *pb)
 {
-	return x->hi < y->hi || (x->hi == y->hi && x->corner < y->corner);
-}
-
-/* Heapsort of t[0..n) in (hi, corner) order, in place. */
-static void heapsort_steps(struct step *t, size_t n)
-{
-	for (size_t end = n, start = n / 2; end > 1;) {
-		if (start > 0)
-			start--;             /* building the heap */
-		else {
-			end--;               /* the largest to the back */
-			struct step x = t[0];
-			t[0] = t[end], t[end] = x;
-		}
-		for (size_t i = start;;) {
-			size_t k = 2 * i + 1;
-			if (k >= end)
-				break;
-			if (k + 1 < end && step_before(&t[k], &t[k + 1]))
-				k++;
-			if (!step_before(&t[i], &t[k]))
-				break;
-			struct step x = t[i];
-			t[i] = t[k], t[k] = x;
-			i = k;
-		}
-	}
+	const struct step *x = pa, *y = pb;
+	if (x->hi != y->hi)
+		return x->hi < y->hi ? -1 : 1;
+	return (x->corner > y->corner) - (x->corner < y->corner);
 }
 
 /* Each run of equal lo in t[0..n) (corners increasing within a run) sorted
  * by (hi, corner).  A run is a vertex's edges to higher vertices, a
  * handful, sorted by insertion; a fan's centre may have any number, so a
- * long run is heapsorted. */
+ * long run goes to qsort. */
 #define SHORT_RUN 32
 
 static void sort_runs_by_hi(struct step *t, size_t n)
@@ -82,7 +59,7 @@ static void sort_runs_by_hi(struct step *t, size_t n)
 		for (e = s + 1; e < n && t[e].lo == t[s].lo; e++)
 			;
 		if (e - s > SHORT_RUN) {
-			heapsort_steps(t + s, e - s);
+			qsort(t + s, e - s, sizeof *t, step_cmp);
 			continue;
 		}
 		for (size_t i = s + 1; i < e; i++) {   /* stable: corners stay increasing */

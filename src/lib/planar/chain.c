@@ -1150,8 +1150,7 @@ static int same_check(const struct checker *k, const struct fct_cached_check *e,
 
 /* Check v's crossing original edges (fpre_of, flist_of) from the cache
  * when it holds the same check: 1, else 0; -1 out of memory. */
-static int cached_crossings(struct checker *k, size_t v, size_t npt, size_t *hits,
-                            struct fct_err *err)
+static int cached_crossings(struct checker *k, size_t v, size_t npt, struct fct_err *err)
 {
 	const struct fct_chain_cache *cache = k->cache;
 	for (size_t i = 0; cache && i < cache->n; i++) {
@@ -1164,7 +1163,7 @@ static int cached_crossings(struct checker *k, size_t v, size_t npt, size_t *hit
 		memcpy(k->fpre_of[v], e->fpre, (npt + 1) * sizeof *e->fpre);
 		memcpy(k->flist_of[v], e->flist, e->nflist * sizeof *e->flist);
 		k->nflist_of[v] = e->nflist;
-		++*hits;
+		k->cached_checks++;
 		return 1;
 	}
 	return 0;
@@ -1269,7 +1268,7 @@ static int check_patch(struct checker *k, size_t v, int count_only, size_t *conf
 	k->xy = k->xy_of[v];
 	if (first)
 		project_chains(k, p, image);
-	int cached = first ? cached_crossings(k, v, npt, &k->cached_checks, err) : 0;
+	int cached = first ? cached_crossings(k, v, npt, err) : 0;
 	if (cached < 0)
 		return -1;
 

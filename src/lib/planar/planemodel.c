@@ -2196,7 +2196,7 @@ static int reproject_orphans(struct fct_mesh *m, const int32_t *patch, const uin
 
 /* The labels tidied (fct_patches_unfacet, fct_patches_tidy) and the vertices
  * put on their planes (fct_planes_project), all on one adjacency of m:
- * neither changes its faces.  cam: NULL without a camera, else vp its
+ * none of them changes its faces.  cam: NULL without a camera, else vp its
  * viewpoint.  *sample gets the positions before, *off_crease and
  * *occluded fct_planes_project's. */
 static int label_and_project(struct fct_mesh *m, int32_t *patch, const struct fct_plane *pl,
